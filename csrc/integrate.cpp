@@ -1,0 +1,153 @@
+// Adaptive explicit Runge-Kutta integration inside the kernel, so that a whole
+// time response is one C call (no Python per step; ENGINEERING.md c).
+//
+// Dormand-Prince 5(4) with FSAL, standard error-per-unit-step control and
+// Hairer's 4th-order dense output (Hairer, Norsett & Wanner, Solving ODEs I,
+// 2nd ed., sec II.5 and II.6; coefficients as in their code DOPRI5).
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics.hpp"
+#include "washer.h"
+
+namespace washer {
+namespace {
+
+// Step-size control constants (Hairer's defaults).
+constexpr double SAFETY = 0.9;       // shrink the asymptotic step estimate by this
+constexpr double MIN_FACTOR = 0.2;   // smallest allowed step decrease
+constexpr double MAX_FACTOR = 10.0;  // largest allowed step increase
+constexpr double ORDER_EXP = 0.2;    // 1 / (error estimator order + 1)
+
+// Butcher tableau.
+constexpr double C2 = 1.0 / 5, C3 = 3.0 / 10, C4 = 4.0 / 5, C5 = 8.0 / 9;
+constexpr double A21 = 1.0 / 5;
+constexpr double A31 = 3.0 / 40, A32 = 9.0 / 40;
+constexpr double A41 = 44.0 / 45, A42 = -56.0 / 15, A43 = 32.0 / 9;
+constexpr double A51 = 19372.0 / 6561, A52 = -25360.0 / 2187, A53 = 64448.0 / 6561,
+                 A54 = -212.0 / 729;
+constexpr double A61 = 9017.0 / 3168, A62 = -355.0 / 33, A63 = 46732.0 / 5247,
+                 A64 = 49.0 / 176, A65 = -5103.0 / 18656;
+constexpr double A71 = 35.0 / 384, A73 = 500.0 / 1113, A74 = 125.0 / 192,
+                 A75 = -2187.0 / 6784, A76 = 11.0 / 84;
+// Error estimate: 5th- minus 4th-order weights.
+constexpr double E1 = 71.0 / 57600, E3 = -71.0 / 16695, E4 = 71.0 / 1920,
+                 E5 = -17253.0 / 339200, E6 = 22.0 / 525, E7 = -1.0 / 40;
+// Dense output.
+constexpr double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32700410799.0,
+                 D4 = -10690763975.0 / 1880347072.0, D5 = 701980252875.0 / 199316789632.0,
+                 D6 = -1453857185.0 / 822651844.0, D7 = 69997945.0 / 29380423.0;
+
+template <class Rhs>
+int dopri5(Rhs &&f, double t, Vec12 y, double rtol, double atol, int nout, const double *tout,
+           double *yout, double *h_io, long max_steps, long *stats) {
+    long nfev = 0, nacc = 0, nrej = 0;
+    int k_out = 0;
+    Vec12 k1, k2, k3, k4, k5, k6, k7, ynew, yerr;
+    auto eval = [&](double tt, const Vec12 &yy, Vec12 &out) { ++nfev; return f(tt, yy, out); };
+    auto finish = [&](int rc) {
+        stats[0] += nfev; stats[1] += nacc; stats[2] += nrej; stats[4] = k_out;
+        return rc;
+    };
+    // Outputs at (or before) the start time.
+    while (k_out < nout && tout[k_out] <= t) {
+        Eigen::Map<Vec12>(yout + 12 * k_out) = y;
+        ++k_out;
+    }
+    if (k_out == nout) return finish(WASHER_OK);
+    const double t_end = tout[nout - 1];
+    int rc = eval(t, y, k1);
+    if (rc) return finish(rc);
+
+    auto scale = [&](const Vec12 &a, const Vec12 &b) {
+        return (atol + rtol * a.cwiseAbs().cwiseMax(b.cwiseAbs()).array()).matrix();
+    };
+    double h = *h_io;
+    if (!(h > 0.0)) {   // Hairer's starting-step heuristic
+        const Vec12 sc = scale(y, y);
+        const double d0 = std::sqrt(y.cwiseQuotient(sc).squaredNorm() / 12);
+        const double d1 = std::sqrt(k1.cwiseQuotient(sc).squaredNorm() / 12);
+        double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+        h0 = std::min(h0, t_end - t);
+        rc = eval(t + h0, Vec12(y + h0 * k1), k2);
+        if (rc) return finish(rc);
+        const double d2 = std::sqrt((k2 - k1).cwiseQuotient(sc).squaredNorm() / 12) / h0;
+        const double dm = std::max(d1, d2);
+        const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / 5);
+        h = std::min(100 * h0, h1);
+    }
+    bool last_rejected = false;
+    while (k_out < nout) {
+        if (max_steps > 0 && nacc + nrej >= max_steps) return finish(WASHER_EMAX_STEPS);
+        h = std::min(h, t_end - t);
+        if (h < 1e-14 * std::max(1.0, std::fabs(t))) return finish(WASHER_ESTEP_TOO_SMALL);
+        if ((rc = eval(t + C2 * h, Vec12(y + h * A21 * k1), k2))) return finish(rc);
+        if ((rc = eval(t + C3 * h, Vec12(y + h * (A31 * k1 + A32 * k2)), k3))) return finish(rc);
+        if ((rc = eval(t + C4 * h, Vec12(y + h * (A41 * k1 + A42 * k2 + A43 * k3)), k4)))
+            return finish(rc);
+        if ((rc = eval(t + C5 * h,
+                       Vec12(y + h * (A51 * k1 + A52 * k2 + A53 * k3 + A54 * k4)), k5)))
+            return finish(rc);
+        if ((rc = eval(t + h,
+                       Vec12(y + h * (A61 * k1 + A62 * k2 + A63 * k3 + A64 * k4 + A65 * k5)),
+                       k6)))
+            return finish(rc);
+        ynew = y + h * (A71 * k1 + A73 * k3 + A74 * k4 + A75 * k5 + A76 * k6);
+        if ((rc = eval(t + h, ynew, k7))) return finish(rc);
+        yerr = h * (E1 * k1 + E3 * k3 + E4 * k4 + E5 * k5 + E6 * k6 + E7 * k7);
+        const double err = std::sqrt(yerr.cwiseQuotient(scale(y, ynew)).squaredNorm() / 12);
+        if (!std::isfinite(err)) return finish(WASHER_ENONFINITE_OUTPUT);
+        if (err <= 1.0) {
+            // Dense output on [t, t + h] for every requested time inside it.
+            const Vec12 r2 = ynew - y;
+            const Vec12 r3 = h * k1 - r2;
+            const Vec12 r4 = r2 - h * k7 - r3;
+            const Vec12 r5 = h * (D1 * k1 + D3 * k3 + D4 * k4 + D5 * k5 + D6 * k6 + D7 * k7);
+            const double t_new = t + h;
+            while (k_out < nout && tout[k_out] <= t_new) {
+                const double s = (tout[k_out] - t) / h, s1 = 1.0 - s;
+                Eigen::Map<Vec12>(yout + 12 * k_out) = y + s * (r2 + s1 * (r3 + s * (r4 + s1 * r5)));
+                ++k_out;
+            }
+            t = t_new;
+            y = ynew;
+            k1 = k7;   // first-same-as-last
+            ++nacc;
+            double fac = err == 0.0 ? MAX_FACTOR : SAFETY * std::pow(err, -ORDER_EXP);
+            fac = std::min(MAX_FACTOR, std::max(MIN_FACTOR, fac));
+            if (last_rejected) fac = std::min(1.0, fac);
+            *h_io = h;
+            h *= fac;
+            last_rejected = false;
+        } else {
+            ++nrej;
+            h *= std::max(MIN_FACTOR, SAFETY * std::pow(err, -ORDER_EXP));
+            last_rejected = true;
+        }
+    }
+    return finish(WASHER_OK);
+}
+
+}  // namespace
+}  // namespace washer
+
+extern "C" int washer_integrate(int system, int mode, double t0, const double *y0,
+                                const double *P, double rtol, double atol, int nout,
+                                const double *tout, double *yout, double *h_io, long max_steps,
+                                long *stats) {
+    using namespace washer;
+    if (nout < 0 || !(rtol > 0) || !(atol > 0)) return WASHER_EBAD_ARGUMENT;
+    for (int k = 1; k < nout; ++k)
+        if (!(tout[k] >= tout[k - 1])) return WASHER_EBAD_ARGUMENT;
+    if (!all_finite(y0, 12) || !std::isfinite(t0)) return WASHER_ENONFINITE_INPUT;
+    const Eigen::Map<const Vec12> y(y0);
+    if (system == 0)
+        return dopri5([&](double t, const Vec12 &u, Vec12 &du) {
+            return rhs_fixed(t, u.data(), P, mode, du.data());
+        }, t0, y, rtol, atol, nout, tout, yout, h_io, max_steps, stats);
+    if (system == 1)
+        return dopri5([&](double, const Vec12 &xi, Vec12 &dxi) {
+            return rhs_rot(xi.data(), P, mode, dxi.data());
+        }, t0, y, rtol, atol, nout, tout, yout, h_io, max_steps, stats);
+    return WASHER_EBAD_ARGUMENT;
+}

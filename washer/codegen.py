@@ -1,0 +1,178 @@
+"""Generate the C++ model kernel from the symbolic equations of motion.
+
+    python -m washer.codegen            # (re)write csrc/generated/
+    python -m washer.codegen --check    # exit 1 if the committed files are stale
+
+Writes two functions (see csrc/generated/washer_model.h):
+  * washer_gen_mf:     M(q, theta) (eq 49) and f(q, q_dot, theta, w, w_dot) (eq 48);
+  * washer_gen_derivs: df/dq, df/dq_dot, df/d(theta, w, w_dot), df/dP and the
+    derivatives of M(q, theta) a for a given acceleration a, which is all an
+    analytic Jacobian of q_ddot = M^-1 f needs without a symbolic inverse.
+The mass matrix is never inverted symbolically: C++ solves M a = f (LDLT).
+
+Differentiation and common-subexpression elimination run in symengine (sympy's
+own jacobian is ~100x slower on these expressions, ENGINEERING.md b). The
+output is deterministic and stamped with a hash of its inputs, so a test can
+tell when the committed code is stale.
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+OUT_DIR = ROOT / "csrc" / "generated"
+#: Files whose content determines the generated code.
+INPUTS = ("washer/layout.py", "washer/codegen.py", "washer/model/kinematics.py",
+          "washer/model/bodies.py", "washer/model/rods.py", "washer/model/lagrange.py",
+          "washer/model/cprinter.py")
+
+
+def input_hash() -> str:
+    """sha256 over the generator's input files (their bytes, in INPUTS order)."""
+    h = hashlib.sha256()
+    pkg = Path(__file__).resolve().parent
+    for rel in INPUTS:
+        h.update(rel.encode())
+        h.update((pkg.parent / rel).read_bytes())
+    return h.hexdigest()
+
+
+def stamp_of(text: str) -> str | None:
+    """The input hash recorded in a generated file, or None."""
+    for line in text.splitlines()[:12]:
+        if line.startswith("// inputs-sha256: "):
+            return line.split(": ", 1)[1].strip()
+    return None
+
+
+def _emit_function(name: str, args: str, outputs: list[tuple[str, list]], printer) -> str:
+    """One C++ function: a single CSE over every output, then assignments."""
+    import symengine as se
+    flat = [e for _, exprs in outputs for e in exprs]
+    reps, reduced = se.cse(flat)
+    lines = [f"void {name}({args})", "{"]
+    for sym, expr in reps:
+        lines.append(f"    const double {sym} = {printer(expr)};")
+    k = 0
+    for out, exprs in outputs:
+        for i in range(len(exprs)):
+            e = reduced[k]
+            k += 1
+            if e == 0:
+                lines.append(f"    {out}[{i}] = 0.0;")
+            else:
+                lines.append(f"    {out}[{i}] = {printer(e)};")
+    lines.append("}")
+    return "\n".join(lines) + "\n", len(reps)
+
+
+def generate() -> dict[str, str]:
+    """Derive, differentiate, CSE and print. Returns {filename: text}."""
+    import sympy
+    import symengine as se
+
+    from washer import layout
+    from washer.model.bodies import default_structure, param_symbols
+    from washer.model.cprinter import CxxPrinter
+    from washer.model.lagrange import coordinates, equations_of_motion
+
+    P = param_symbols()
+    c = coordinates()
+    eom = equations_of_motion(default_structure(P), c)
+
+    q = [se.sympify(s) for s in c.q]
+    qd = [se.sympify(s) for s in c.qd]
+    th, w, wd = (se.sympify(s) for s in (c.theta, c.w, c.wd))
+    pd = [se.sympify(P[n]) for n in layout.SYMBOLIC_DIFF_PARAMS]
+    a = [se.Symbol(f"acc{i}") for i in range(6)]
+
+    M = se.DenseMatrix(6, 6, [se.sympify(e) for e in eom.M])
+    f = se.DenseMatrix(6, 1, [se.sympify(e) for e in eom.f])
+    Ma = M * se.DenseMatrix(6, 1, a)
+
+    def jac(vec, xs):      # row-major 6 x len(xs)
+        J = vec.jacobian(se.DenseMatrix(len(xs), 1, xs))
+        return [J[i, j] for i in range(J.rows) for j in range(J.cols)]
+
+    names = {str(s): f"q[{i}]" for i, s in enumerate(q)}
+    names |= {str(s): f"qd[{i}]" for i, s in enumerate(qd)}
+    names |= {"theta": "th", "w": "w", "wd": "wd"}
+    names |= {f"acc{i}": f"a[{i}]" for i in range(6)}
+    names |= {n: f"P[{layout.INDEX[n]}]" for n in layout.PARAM_NAMES}
+    printer = CxxPrinter(names)
+
+    common = ("const double *q, const double *qd, double th, double w, double wd, "
+              "const double *P")
+    mf, n1 = _emit_function(
+        "washer_gen_mf", common + ", double *M, double *f",
+        [("M", [M[i, j] for i in range(6) for j in range(6)]), ("f", list(f))], printer)
+    derivs, n2 = _emit_function(
+        "washer_gen_derivs",
+        common + ", const double *a, double *fq, double *fqd, double *fth, double *fw, "
+        "double *fwd, double *fp, double *Gq, double *Gth, double *Gp",
+        [("fq", jac(f, q)), ("fqd", jac(f, qd)), ("fth", list(f.diff(th))),
+         ("fw", list(f.diff(w))), ("fwd", list(f.diff(wd))), ("fp", jac(f, pd)),
+         ("Gq", jac(Ma, q)), ("Gth", list(Ma.diff(th))), ("Gp", jac(Ma, pd))], printer)
+
+    stamp = [
+        "// GENERATED by `python -m washer.codegen` -- do not edit by hand.",
+        f"// inputs-sha256: {input_hash()}",
+        f"// sympy {sympy.__version__}, symengine {se.__version__}",
+        f"// structure: {len(layout.PARAM_NAMES)} parameters, {layout.N_RODS} rods; "
+        f"CSE temporaries: {n1} (mf), {n2} (derivs)",
+    ]
+    nsd = len(layout.SYMBOLIC_DIFF_PARAMS)
+    header = "\n".join(stamp + [
+        "#ifndef WASHER_MODEL_H", "#define WASHER_MODEL_H", "",
+        f"#define WASHER_N_PARAMS {len(layout.PARAM_NAMES)}",
+        f"#define WASHER_N_RODS {layout.N_RODS}",
+        f"#define WASHER_N_SYMDIFF {nsd}",
+        f"#define WASHER_N_DIFF {len(layout.DIFF_PARAMS)}",
+        f"#define WASHER_DIFF_OMEGA_COL {layout.DIFF_PARAMS.index('Omega')}",
+        f'#define WASHER_INPUTS_SHA256 "{input_hash()}"',
+        "",
+        "// Kernel parameter vector P[] (order of washer/layout.py).",
+        *[f"#define WP_{n} {i}" for i, n in enumerate(layout.PARAM_NAMES)],
+        "",
+        "// Columns of fp and Gp: parameters differentiated symbolically.",
+        "static const int WASHER_SYMDIFF_INDEX[WASHER_N_SYMDIFF] = {"
+        + ", ".join(f"WP_{n}" for n in layout.SYMBOLIC_DIFF_PARAMS) + "};",
+        "static const char *const WASHER_PARAM_NAMES[WASHER_N_PARAMS] = {"
+        + ", ".join(f'"{n}"' for n in layout.PARAM_NAMES) + "};",
+        "",
+        "// M row-major 6x6 (eq 49); f the rest of eq 48, so that M q_ddot = f.",
+        f"void washer_gen_mf({common}, double *M, double *f);",
+        "// Row-major 6xN derivatives of f and of G(a) = M(q, theta) a (a held fixed).",
+        f"void washer_gen_derivs({common}, const double *a, double *fq, double *fqd, "
+        "double *fth, double *fw, double *fwd, double *fp, double *Gq, double *Gth, double *Gp);",
+        "", "#endif", ""])
+    source = "\n".join(stamp + ['#include "washer_model.h"', "#include <cmath>", "",
+                                mf, derivs])
+    return {"washer_model.h": header, "washer_model.cpp": source}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m washer.codegen", description=__doc__.split("\n")[0])
+    ap.add_argument("--check", action="store_true",
+                    help="regenerate in memory and compare with csrc/generated/ (exit 1 if stale)")
+    ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder")
+    args = ap.parse_args(argv)
+    files = generate()
+    if args.check:
+        stale = [n for n, t in files.items()
+                 if not (args.out / n).exists() or (args.out / n).read_text() != t]
+        for n in stale:
+            print(f"stale: {args.out / n} differs from the generator's output", file=sys.stderr)
+        return 1 if stale else 0
+    args.out.mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        (args.out / name).write_text(text)
+        print(f"wrote {args.out / name} ({len(text.splitlines())} lines)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
