@@ -25,7 +25,7 @@ ffibuilder.set_source(
     sources=["csrc/kernel.cpp", "csrc/integrate.cpp", "csrc/generated/washer_model.cpp"],
     include_dirs=["csrc", EIGEN],
     source_extension=".cpp",
-    extra_compile_args=["-std=c++17", "-O2", "-DNDEBUG"],
+    extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],
     language="c++",
 )
 

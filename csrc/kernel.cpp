@@ -48,7 +48,7 @@ int accelerations(const double *q, const double *qd, double th, double w, double
     Eigen::LLT<Mat6> llt(M);
     if (llt.info() != Eigen::Success) return WASHER_ESINGULAR_MASS;
     // Cholesky succeeds on nearly singular matrices; refuse a tiny pivot.
-    const Vec6 diag = llt.matrixL().toDenseMatrix().diagonal();
+    const Vec6 diag = llt.matrixLLT().diagonal();
     if (diag.minCoeff() <= 1e-12 * diag.maxCoeff()) return WASHER_ESINGULAR_MASS;
     out.a = llt.solve(f);
     if (!derivs) return out.a.allFinite() ? WASHER_OK : WASHER_ENONFINITE_OUTPUT;

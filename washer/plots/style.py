@@ -1,0 +1,28 @@
+"""One place for figure styling: sizes, fonts, resolution, and saving PNG + PDF."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+
+RC = {"figure.figsize": (6.4, 4.0), "font.size": 10, "axes.grid": True, "grid.alpha": 0.3,
+      "lines.linewidth": 1.0, "savefig.dpi": 150, "legend.frameon": False}
+
+
+def figure(nrows: int = 1, ncols: int = 1, **kw):
+    """A styled figure and its axes (object-oriented API, nothing shown)."""
+    with plt.rc_context(RC):
+        return plt.subplots(nrows, ncols, constrained_layout=True, **kw)
+
+
+def save(fig, stem: Path, formats=("png", "pdf")) -> list[Path]:
+    """Save `fig` as stem.png and stem.pdf, close it, return the paths."""
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    paths = []
+    with plt.rc_context(RC):
+        for ext in formats:
+            p = stem.with_suffix("." + ext)
+            fig.savefig(p)
+            paths.append(p)
+    plt.close(fig)
+    return paths
