@@ -1,0 +1,299 @@
+"""AUTO-07p constants files (c.NAME): parsing, defaults, overrides. No numerics.
+
+Syntax (AUTO.md section 1.1): free-form `KEY = value` statements separated by
+commas, blanks or newlines; `#` and `!` start comments; values are Fortran
+numbers, quoted strings, [lists] and {dicts} (brackets may span lines); indices
+in ICP, THL, THU, UZR, UZSTOP, U and PAR may be names from parnames/unames, and
+'PERIOD' means 11. Defaults are AUTO-07p's (main.f90:INIT).
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+HUGE = 1.7976e308
+
+#: Every constant AUTO-07p knows, with its default (AUTO.md section 1.2).
+DEFAULTS: dict[str, object] = {
+    "e": "", "s": "", "dat": "", "sv": "", "unames": {}, "parnames": {}, "U": {}, "PAR": {},
+    "NDIM": 2, "IPS": 1, "IRS": 0, "ILP": 1, "ICP": [1], "NTST": 20, "NCOL": 4, "IAD": 3,
+    "ISP": 2, "ISW": 1, "IPLT": 0, "NBC": 0, "NINT": 0, "NMX": 0, "NPR": 0, "MXBF": 10,
+    "IID": 2, "ITMX": 9, "ITNW": 5, "NWTN": 3, "JAC": 0, "EPSL": 1e-7, "EPSU": 1e-7,
+    "EPSS": 1e-5, "DS": 0.01, "DSMIN": 0.005, "DSMAX": 0.1, "IADS": 1, "NPAR": 36,
+    "THL": {}, "THU": {}, "RL0": -HUGE, "RL1": HUGE, "A0": -HUGE, "A1": HUGE, "UZR": {},
+    "UZSTOP": {}, "SP": [], "STOP": [], "IIS": 3, "IBR": 0, "LAB": 0, "TY": "",
+    "NUNSTAB": -1, "NSTAB": -1, "IEQUIB": 1, "ITWIST": 0, "ISTART": 5, "IREV": [],
+    "IFIXED": [], "IPSI": [],
+}
+INT_KEYS = {"NDIM", "IPS", "ILP", "NTST", "NCOL", "IAD", "ISP", "ISW", "IPLT", "NBC", "NINT",
+            "NMX", "NPR", "MXBF", "IID", "ITMX", "ITNW", "NWTN", "JAC", "IADS", "NPAR", "IIS",
+            "IBR", "LAB", "NUNSTAB", "NSTAB", "IEQUIB", "ITWIST", "ISTART"}
+REAL_KEYS = {"EPSL", "EPSU", "EPSS", "DS", "DSMIN", "DSMAX", "RL0", "RL1", "A0", "A1"}
+STR_KEYS = {"e", "s", "dat", "sv", "TY"}
+#: Constants accepted but without effect in this engine, with the reason.
+IGNORED = {
+    "NTST": "mesh intervals: only algebraic problems (IPS = 0, 1) are implemented",
+    "NCOL": "collocation points: only algebraic problems are implemented",
+    "IAD": "mesh adaption: only algebraic problems are implemented",
+    "NBC": "boundary conditions: only algebraic problems are implemented",
+    "NINT": "integral conditions: only algebraic problems are implemented",
+    "NWTN": "algebraic problems always use full Newton (as AUTO)",
+    "IPLT": "the second b-file column is always the L2 norm",
+    "IID": "the d-file is always written at AUTO's level 2",
+    "IIS": "the direction is always stored in the s-file (AUTO's IIS = 3)",
+    "dat": "starting from data files needs periodic orbits (IPS = 2)",
+    "NUNSTAB": "HomCont", "NSTAB": "HomCont", "IEQUIB": "HomCont", "ITWIST": "HomCont",
+    "ISTART": "HomCont", "IREV": "HomCont", "IFIXED": "HomCont", "IPSI": "HomCont",
+}
+
+
+class ConstantsError(ValueError):
+    """A malformed constants file or value: the message gives file, line and expectation."""
+
+
+class _Scanner:
+    """Character scanner over the text with line numbers."""
+
+    def __init__(self, text: str, source: str):
+        self.text, self.source, self.i, self.line = text.replace("\t", " "), source, 0, 1
+
+    def error(self, what: str) -> ConstantsError:
+        return ConstantsError(f"{self.source}:{self.line}: {what}")
+
+    def peek(self) -> str:
+        return self.text[self.i] if self.i < len(self.text) else ""
+
+    def advance(self) -> str:
+        c = self.peek()
+        self.i += 1
+        if c == "\n":
+            self.line += 1
+        return c
+
+    def skip(self, newlines: bool = True, commas: bool = True) -> None:
+        """Skip blanks, separators and comments."""
+        while self.i < len(self.text):
+            c = self.peek()
+            if c in "#!":
+                while self.peek() not in ("\n", ""):
+                    self.advance()
+            elif c == "\n" and newlines or c in " \r" or c == "," and commas:
+                self.advance()
+            else:
+                break
+
+    def word(self) -> str:
+        m = re.compile(r"[A-Za-z_][A-Za-z0-9_]*").match(self.text, self.i)
+        if not m:
+            raise self.error(f"expected a constant name, found {self.text[self.i:self.i + 10]!r}")
+        self.i = m.end()
+        return m.group()
+
+    def value(self):
+        self.skip()
+        c = self.peek()
+        if c == "[":
+            self.advance()
+            items = []
+            while True:
+                self.skip()
+                if self.peek() == "]":
+                    self.advance()
+                    return items
+                if self.peek() == "":
+                    raise self.error("unclosed '[': expected ']'")
+                items.append(self.value())
+        if c == "{":
+            self.advance()
+            items = {}
+            while True:
+                self.skip()
+                if self.peek() == "}":
+                    self.advance()
+                    return items
+                if self.peek() == "":
+                    raise self.error("unclosed '{': expected '}'")
+                key = self.value()
+                self.skip(commas=False)
+                if self.advance() != ":":
+                    raise self.error("expected ':' after a dictionary key")
+                items[key] = self.value()
+        if c in "'\"":
+            return self._string(c)
+        m = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?").match(self.text, self.i)
+        if m and m.group():
+            self.i = m.end()
+            s = m.group().replace("d", "e").replace("D", "e")
+            return int(s) if re.fullmatch(r"[+-]?\d+", s) else float(s)
+        m = re.compile(r"[A-Za-z_][A-Za-z0-9_]*").match(self.text, self.i)
+        if m and m.group() in ("None", "True", "False"):
+            self.i = m.end()
+            return {"None": None, "True": True, "False": False}[m.group()]
+        raise self.error(f"expected a value (number, 'string', [list] or {{dict}}), found "
+                         f"{self.text[self.i:self.i + 12]!r}")
+
+    def _string(self, quote: str) -> str:
+        self.advance()
+        out = []
+        while True:
+            c = self.advance()
+            if c == "":
+                raise self.error("unterminated string")
+            if c == quote:
+                if self.peek() == quote:
+                    out.append(self.advance())
+                    continue
+                return "".join(out)
+            out.append(c)
+
+
+def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, int]]:
+    """Statements (key, value, line) of a constants file in the new format."""
+    sc = _Scanner(text, source)
+    sc.skip()
+    if sc.peek().isdigit():
+        raise sc.error("this is AUTO's old positional constants format; it is not supported "
+                       "here: convert it to KEY = value statements (AUTO's CLUI does so with "
+                       "`c = parseC(...); c.write(...)`)")
+    out = []
+    while True:
+        sc.skip()
+        if sc.peek() == "":
+            return out
+        line = sc.line
+        key = sc.word()
+        sc.skip(newlines=False, commas=False)
+        if sc.advance() != "=":
+            raise ConstantsError(f"{source}:{line}: expected '=' after {key}")
+        out.append((key, sc.value(), line))
+
+
+def check_value(key: str, value, where: str):
+    """Type-check one constant; returns the normalised value."""
+    if key not in DEFAULTS:
+        raise ConstantsError(f"{where}: unknown AUTO constant {key}")
+    if key in INT_KEYS:
+        if isinstance(value, float) and value.is_integer():
+            value = int(value)
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise ConstantsError(f"{where}: {key} expects an integer, got {value!r}")
+    elif key in REAL_KEYS:
+        if key == "DS" and value == "-":
+            return value            # AUTO CLUI: flip the sign of the current DS
+        if not isinstance(value, (int, float)) or isinstance(value, bool):
+            raise ConstantsError(f"{where}: {key} expects a number, got {value!r}")
+        value = float(value)
+    elif key in STR_KEYS:
+        if not isinstance(value, str):
+            raise ConstantsError(f"{where}: {key} expects a quoted string, got {value!r}")
+    elif key == "IRS":
+        if not isinstance(value, (int, str)) or isinstance(value, bool):
+            raise ConstantsError(f"{where}: IRS expects a label number or a name like 'HB1'")
+    elif key == "ICP":
+        if isinstance(value, (int, str)):
+            value = [value]
+        if not isinstance(value, list) or not value:
+            raise ConstantsError(f"{where}: ICP expects a list of parameter indices or names")
+    elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
+        if not isinstance(value, list):
+            raise ConstantsError(f"{where}: {key} expects a list")
+    else:   # dicts
+        if isinstance(value, list) and key in ("THL", "THU", "UZR", "UZSTOP", "U", "PAR"):
+            value = dict(value) if all(isinstance(v, list) and len(v) == 2 for v in value) else value
+        if not isinstance(value, dict):
+            raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
+    return value
+
+
+class Constants(dict):
+    """AUTO constants: a dict of every constant, defaults filled in.
+
+    `.given` holds the keys set by the user (file or overrides), `.source` the file.
+    """
+
+    def __init__(self, values: dict | None = None, source: str = "<defaults>"):
+        super().__init__({k: (v.copy() if isinstance(v, (dict, list)) else v)
+                          for k, v in DEFAULTS.items()})
+        self.source = source
+        self.given: dict[str, str] = {}
+        for k, v in (values or {}).items():
+            self.set(k, v, source)
+
+    def set(self, key: str, value, where: str = "<override>") -> None:
+        value = check_value(key, value, where)
+        if key == "DS" and value == "-":
+            value = -self["DS"]
+        self[key] = value
+        self.given[key] = where
+
+    def copy(self) -> "Constants":
+        c = Constants(source=self.source)
+        dict.update(c, {k: (v.copy() if isinstance(v, (dict, list)) else v) for k, v in self.items()})
+        c.given = dict(self.given)
+        return c
+
+    # ----------------------------------------------------------------- names
+    def par_index(self, key) -> int:
+        """1-based PAR index of an integer or a name (parnames, 'PERIOD' = 11);
+        a leading '-' on a name gives a negative index."""
+        if isinstance(key, bool):
+            raise ConstantsError(f"{self.source}: bad parameter index {key!r}")
+        if isinstance(key, int):
+            return key
+        if isinstance(key, str):
+            sign = -1 if key.startswith("-") else 1
+            name = key.lstrip("-")
+            if name == "PERIOD":
+                return 11 * sign
+            for i, n in self["parnames"].items():
+                if n == name:
+                    return int(i) * sign
+            if re.fullmatch(r"PAR\(\d+\)", name):
+                return int(name[4:-1]) * sign
+        raise ConstantsError(f"{self.source}: unknown parameter {key!r}; parnames = "
+                             f"{self['parnames']}")
+
+    def u_index(self, key) -> int:
+        if isinstance(key, int) and not isinstance(key, bool):
+            return key
+        for i, n in self["unames"].items():
+            if n == key:
+                return int(i)
+        raise ConstantsError(f"{self.source}: unknown state name {key!r}; unames = {self['unames']}")
+
+    def icp(self) -> list[int]:
+        return [self.par_index(k) for k in self["ICP"]]
+
+    def par_values(self, key: str) -> list[tuple[int, float]]:
+        """(index, value) pairs of UZR/UZSTOP/THL/PAR-style dicts, lists expanded."""
+        out = []
+        for k, v in self[key].items():
+            for x in (v if isinstance(v, list) else [v]):
+                out.append((self.par_index(k), float(x)))
+        return out
+
+
+def read_constants(path: str | Path) -> Constants:
+    """Read and check a constants file; errors name the file and line."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise ConstantsError(f"{path}: cannot read constants file ({exc.strerror})") from None
+    c = Constants(source=str(path))
+    for key, value, line in parse_text(text, str(path)):
+        c.set(key, value, f"{path}:{line}")
+    return c
+
+
+def parse_override(text: str) -> tuple[str, object]:
+    """'KEY=value' from a command line, with AUTO's value syntax (bare words are strings)."""
+    if "=" not in text:
+        raise ConstantsError(f"override {text!r}: expected KEY=value")
+    key, raw = text.split("=", 1)
+    key = key.strip()
+    try:
+        stmts = parse_text(f"{key} = {raw}", "<command line>")
+        return key, stmts[0][1]
+    except ConstantsError:
+        return key, raw.strip()          # e.g. IRS=HB1 or e=ab without quotes

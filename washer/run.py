@@ -1,0 +1,78 @@
+"""Run AUTO constants files: `python -m washer.run c.NAME [KEY=value ...]`.
+
+Like AUTO's run(c='NAME'): reads c.NAME, loads the equations named by e
+(e='washer' is the built-in model, e='washer:frozen' its frozen rotating
+frame; any other e='X' loads X.py beside the constants file), restarts from
+s.<s> (or s.NAME) when IRS is set, and writes b.<sv>, s.<sv>, d.<sv> (sv
+defaults to NAME) beside the constants file, printing AUTO's table of labelled
+points. Constants given on the command line override the file (ICP=[1,2],
+IRS=HB1, DS=-0.01, sv=hb).
+
+From Python, runs chain like an AUTO script:
+    from washer.run import run, load
+    eq = run("auto_constants/c.ab", sv="eq")
+    hb = run("auto_constants/c.ab", IRS="HB1", ICP=[1, 2], ISW=2, s="eq", sv="hb")
+    eq("HB1").par, load("auto_constants/b.hb")
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from washer.auto.constants import Constants, ConstantsError, parse_override, read_constants
+from washer.auto.files import read_b, read_s
+from washer.cont.driver import Run, RunError, RunResult
+from washer.cont.problem import ProblemError, load_python_problem
+
+
+def resolve_problem(c: Constants, folder: Path):
+    e = c["e"]
+    if not e:
+        raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py beside the file) "
+                       "or e='washer'")
+    if e.split(":")[0] == "washer":
+        from washer.auto_washer import washer_problem
+        return washer_problem(e, c)
+    return load_python_problem(e, folder, c["NDIM"])
+
+
+def run(constants, verbose: bool = True, **overrides) -> RunResult:
+    """Run a constants file (path) or a Constants object with overrides; returns the result."""
+    if isinstance(constants, Constants):
+        c, path = constants.copy(), Path(constants.source)
+    else:
+        path = Path(constants)
+        c = read_constants(path)
+    for k, v in overrides.items():
+        c.set(k, v, "<override>")
+    folder = path.parent if path.name else Path(".")
+    default_name = path.name[2:] if path.name.startswith("c.") else path.name
+    name = c["sv"] or default_name
+    restart = folder / f"s.{c['s'] or name}"
+    problem = resolve_problem(c, folder)
+    return Run(c, problem, folder, name, restart, verbose=verbose).execute()
+
+
+def load(path):
+    """Read an AUTO b- or s-file (ours or AUTO-07p's)."""
+    p = Path(path)
+    return read_s(p) if p.name.startswith("s.") else read_b(p)
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if not argv or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if argv else 2
+    try:
+        overrides = dict(parse_override(a) for a in argv[1:])
+        res = run(argv[0], **overrides)
+    except (ConstantsError, RunError, ProblemError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    print(f"Saved as {res.files.b_path}, {res.files.s_path}, {res.files.d_path}")
+    return 0 if res.status == "ok" else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
