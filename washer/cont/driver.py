@@ -124,10 +124,10 @@ class _Sink:
         if not r.verbose:
             return
         if not self.headed:
-            titles = "".join(t.strip().center(14) for t in r.titles)
+            titles = "".join(t.strip().center(14) for t in r.titles[:7])
             print(f"\n  BR    PT  TY  LAB {titles}")
             self.headed = True
-        vals = "".join(fmt_e(v, 14, 5) for v in row.values[:7 + (len(row.values) > 7) * 0])
+        vals = "".join(f"{v:14.5E}" for v in row.values[:7])
         print(f"{row.br:4d}{abs(row.pt):6d} {ty:>3}{row.lab:5d}{vals}", flush=True)
 
     # -- engine events

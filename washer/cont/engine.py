@@ -86,10 +86,13 @@ class Engine:
             else:
                 c = hyperplane @ (X - X_ref - ds * hyperplane)
                 row = hyperplane
+            M, rhs = np.vstack([J, row]), -np.r_[G, c]
             try:
-                dX = np.linalg.solve(np.vstack([J, row]), -np.r_[G, c])
+                dX = np.linalg.solve(M, rhs)
             except np.linalg.LinAlgError:
-                raise ConvergenceError("singular Newton matrix") from None
+                # Exactly at a branch point the Newton matrix is singular but the
+                # system is consistent: take the least-squares (minimum-norm) step.
+                dX = np.linalg.lstsq(M, rhs, rcond=None)[0]
             X = X + dX
             if not np.all(np.isfinite(X)):
                 raise ConvergenceError("non-finite Newton iterate")
@@ -111,7 +114,10 @@ class Engine:
         A = np.vstack([J, T_ref])
         e = np.zeros(len(X))
         e[-1] = 1.0
-        z = np.linalg.solve(A, e)
+        try:
+            z = np.linalg.solve(A, e)
+        except np.linalg.LinAlgError:
+            z = np.linalg.svd(J)[2][-1]        # singular exactly at a BP
         z /= np.linalg.norm(z)
         if z @ T_ref < 0:
             z = -z
@@ -186,23 +192,20 @@ class Engine:
         elif hidden_step:
             # AUTO's unwritten first step: it only provides a secant direction, and
             # the test functions start at zero, so nothing is detected up to PT 2.
-            X, it = self._step(start, ds)
+            got = self._retrying_step(start, ds)
+            if got is None:
+                return bps
+            X, it, ds = got
             current = self.evaluate(X, start.tangent, names)
             current.tests = {}
             self.sys.after_step(current.U, current.lam)
         counts: dict[str, int] = {}
         n_since_adapt = 0
         while True:
-            try:
-                X, it = self._step(current, ds)
-            except ConvergenceError as exc:
-                # Halve and retry until below DSMIN, then end with MX (AUTO's STEPAE).
-                ds /= 2
-                self.sink.note(f"NOTE:Retrying step ({exc})")
-                if abs(ds) < s.dsmin:
-                    self.sink.failed(current, "No convergence with minimum step size")
-                    return bps
-                continue
+            got = self._retrying_step(current, ds)
+            if got is None:
+                return bps
+            X, it, ds = got
             nxt = self.evaluate(X, current.tangent, names)
             nxt.newton_iterations = it
             hits = self.crossings(current, nxt, names)
@@ -233,6 +236,20 @@ class Engine:
 
     def _step(self, p: Point, ds):
         return self.correct(p.X + ds * p.tangent, p.X, ds)
+
+    def _retrying_step(self, p: Point, ds):
+        """A step from p; on failure halve and retry until below DSMIN, then end
+        the branch with MX (AUTO's STEPAE). Returns (X, iterations, ds) or None."""
+        while True:
+            try:
+                X, it = self._step(p, ds)
+                return X, it, ds
+            except ConvergenceError as exc:
+                ds /= 2
+                self.sink.note(f"NOTE:Retrying step ({exc})")
+                if abs(ds) < self.s.dsmin:
+                    self.sink.failed(p, "No convergence with minimum step size")
+                    return None
 
     def _stops(self, kind, name, counts) -> bool:
         s = self.s

@@ -38,7 +38,10 @@ class Problem:
         self.jac_mode = 0            # AUTO's JAC: 0 FD, 1 both analytic, -1 dfdu analytic
 
     def func(self, u, par) -> np.ndarray:
-        f = np.asarray(self._func(u, par), dtype=float)
+        try:
+            f = np.asarray(self._func(u, par), dtype=float)
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: {exc}") from exc
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
         return f

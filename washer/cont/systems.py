@@ -75,7 +75,8 @@ class EquilibriumSystem:
         """Hook after every converged point (phase conditions are updated here)."""
 
     def eigen(self, U, lam) -> np.ndarray:
-        return eigenvalues_sorted(self.problem.dfdu(U, self.params_at(U, lam)))
+        x = U[:self.n]
+        return eigenvalues_sorted(self.problem.dfdu(x, self.params_at(U, lam)))
 
     def period(self, U, lam, lam_eig) -> float | None:
         """PAR(11): 2 pi / |Im| of the pair closest to the imaginary axis."""

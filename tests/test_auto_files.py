@@ -1,0 +1,92 @@
+"""Constants files, b/s/d files, and the command line."""
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.auto.constants import ConstantsError, parse_override, read_constants
+from washer.auto.files import find_record, fmt_e, read_b, read_s
+from washer.run import main, run
+
+DATA = Path(__file__).parent / "data"
+
+
+def _c(tmp_path, text):
+    p = tmp_path / "c.x"
+    p.write_text(text)
+    return p
+
+
+def test_reads_auto_demo_constants_with_names_and_defaults(tmp_path):
+    c = read_constants(DATA / "lrz" / "c.lrz")
+    assert c.icp() == [1] and c["NMX"] == 50 and c["EPSS"] == 1e-4
+    assert c.par_values("UZSTOP") == [(1, 30.0)] and c.par_index("PERIOD") == 11
+    assert read_constants(_c(tmp_path, "NDIM=3"))["DSMAX"] == 0.1        # AUTO default
+    c = read_constants(_c(tmp_path, "UZR = {1: [1,\n 2]}  # spans lines\nDS = 1d-2 ! comment"))
+    assert c["UZR"] == {1: [1, 2]} and c["DS"] == 0.01
+
+
+@pytest.mark.parametrize("text,message", [
+    ("NDIM = 2\nFOO = 3", "c.x:2: unknown AUTO constant FOO"),
+    ("NDIM = 2\nNMX = 1.5", "c.x:2: NMX expects an integer"),
+    ("ICP = [1, 2", "c.x:1: unclosed '['"),
+    ("DS 0.1", "c.x:1: expected '=' after DS"),
+    ("e = 'ab", "unterminated string"),
+    ("2 1 0 1  NDIM,IPS,IRS,ILP", "old positional constants format"),
+])
+def test_malformed_constants(tmp_path, text, message):
+    with pytest.raises(ConstantsError, match=message.replace("[", r"\[")):
+        read_constants(_c(tmp_path, text))
+
+
+def test_overrides():
+    assert parse_override("IRS=HB1") == ("IRS", "HB1")
+    assert parse_override("ICP=[1,'sigma']") == ("ICP", [1, "sigma"])
+    assert parse_override("DS=-0.01") == ("DS", -0.01)
+
+
+def test_fortran_number_format():
+    assert fmt_e(8.20000002) == "  8.2000000200E+000"
+    assert fmt_e(-1.5e-12) == " -1.5000000000E-012"
+    assert fmt_e(0.0) == "  0.0000000000E+000"
+
+
+def test_our_files_have_auto_layout_and_restart(tmp_path):
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    res = run(tmp_path / "c.ab", verbose=False, sv="eq")
+    ref = read_s(DATA / "auto_reference" / "ab2p" / "s.eq")
+    ours = read_s(tmp_path / "s.eq")
+    assert [r.ty for r in ours] == [r.ty for r in ref]
+    assert [r.lab for r in ours] == [r.lab for r in ref]
+    hb, hb_ref = find_record(ours, "HB1"), find_record(ref, "HB1")
+    np.testing.assert_allclose(hb.U, hb_ref.U, rtol=1e-6)
+    assert hb.par[10] == pytest.approx(hb_ref.par[10], rel=1e-6)      # PAR(11) = period
+    header = (tmp_path / "s.eq").read_text().splitlines()[0]
+    assert len(header) == 93                                          # (6I6,I8,I6,I8,7I5)
+    rows = [l for l in (tmp_path / "b.eq").read_text().splitlines() if not l.startswith("   0")]
+    assert all(len(l) == 4 + 6 + 4 + 5 + 19 * 4 for l in rows)       # (I4,I6,I4,I5,4ES19.10)
+    assert res.status == "ok" and res("HB1").lab == 2
+
+
+def test_failed_run_keeps_points_and_ends_with_mx(tmp_path):
+    """A run that cannot converge keeps every point so far and ends with MX."""
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    res = run(tmp_path / "c.ab", verbose=False, sv="mx", ITNW=1, DSMIN=0.005)
+    rows = [r for b in read_b(tmp_path / "b.mx") for r in b]
+    assert rows[-1].ty == -9 and len(rows) >= 2
+    assert "No convergence" in res.status
+
+
+def test_cli_errors_name_file_and_line(tmp_path, capsys):
+    p = _c(tmp_path, "e = 'nothere'\nNDIM = 2\nBOGUS = 1\n")
+    assert main([str(p)]) == 2
+    assert "c.x:3: unknown AUTO constant BOGUS" in capsys.readouterr().err
+    p = _c(tmp_path, "e = 'nothere'\nNDIM = 2\n")
+    assert main([str(p)]) == 2
+    assert "no equations file" in capsys.readouterr().err
+    p = _c(tmp_path, "e = 'washer'\nNDIM = 12\nIPS = 2\n")
+    assert main([str(p)]) == 2
+    assert "IPS=2 is not implemented" in capsys.readouterr().err
