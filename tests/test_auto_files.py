@@ -90,3 +90,13 @@ def test_cli_errors_name_file_and_line(tmp_path, capsys):
     p = _c(tmp_path, "e = 'washer'\nNDIM = 12\nIPS = 2\n")
     assert main([str(p)]) == 2
     assert "IPS=2 is not implemented" in capsys.readouterr().err
+
+
+def test_plot_cli_draws_a_diagram(tmp_path):
+    from washer.plot import main as plot_main
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    run(tmp_path / "c.ab", verbose=False, sv="eq")
+    assert plot_main([str(tmp_path / "b.eq"), "--y", "2"]) == 0
+    assert (tmp_path / "b_eq_diagram.png").stat().st_size > 10000
+    assert plot_main([str(tmp_path / "b.missing")]) == 2
