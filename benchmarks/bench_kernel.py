@@ -15,7 +15,7 @@ import time
 import numpy as np
 
 import washer
-from washer import kernel, simulate
+from washer import kernel
 from washer.reference import newton_euler
 
 

@@ -72,13 +72,19 @@ static inline int symbolic_column(int j) { return j < WASHER_DIFF_OMEGA_COL ? j 
 
 // ---------------------------------------------------------------- ground frame (eq 48)
 
-int rhs_fixed(double t, const double *u, const double *P, int law, double *du) {
+// Accelerations at state u = (q, qd) and time t, theta(t) from the speed law.
+static int fixed_accelerations(double t, const double *u, const double *P, int law, bool derivs,
+                               Speed &s, Accel &A) {
     if (!all_finite(u, 12) || !std::isfinite(t)) return WASHER_ENONFINITE_INPUT;
-    Speed s;
     int rc = speed_law(t, P, law, s);
     if (rc) return rc;
+    return accelerations(u, u + 6, s.th, s.w, s.wd, P, derivs, A);
+}
+
+int rhs_fixed(double t, const double *u, const double *P, int law, double *du) {
+    Speed s;
     Accel A;
-    rc = accelerations(u, u + 6, s.th, s.w, s.wd, P, false, A);
+    int rc = fixed_accelerations(t, u, P, law, false, s, A);
     if (rc) return rc;
     std::memcpy(du, u + 6, 6 * sizeof(double));
     Eigen::Map<Vec6>(du + 6) = A.a;
@@ -86,12 +92,9 @@ int rhs_fixed(double t, const double *u, const double *P, int law, double *du) {
 }
 
 int jac_fixed(double t, const double *u, const double *P, int law, double *J, double *Jp) {
-    if (!all_finite(u, 12) || !std::isfinite(t)) return WASHER_ENONFINITE_INPUT;
     Speed s;
-    int rc = speed_law(t, P, law, s);
-    if (rc) return rc;
     Accel A;
-    rc = accelerations(u, u + 6, s.th, s.w, s.wd, P, true, A);
+    int rc = fixed_accelerations(t, u, P, law, true, s, A);
     if (rc) return rc;
     if (J) {
         Eigen::Map<Mat12> Jm(J);

@@ -19,11 +19,17 @@ DATA = Path(__file__).parent / "data"
 REF = DATA / "auto_reference"
 
 
+def demo_dir(tmp_path_factory, demo: str) -> Path:
+    """A scratch folder holding the demo's equations and constants."""
+    d = tmp_path_factory.mktemp(demo)
+    for f in (f"{demo}.py", f"c.{demo}"):
+        shutil.copy(DATA / demo / f, d)
+    return d
+
+
 @pytest.fixture(scope="module")
 def ab_runs(tmp_path_factory):
-    d = tmp_path_factory.mktemp("ab")
-    for f in ("ab.py", "c.ab"):
-        shutil.copy(DATA / "ab" / f, d)
+    d = demo_dir(tmp_path_factory, "ab")
     out = {"eq": run(d / "c.ab", verbose=False, sv="eq")}
     common = dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]},
                   PAR={}, s="eq", verbose=False)
@@ -36,9 +42,7 @@ def ab_runs(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def lrz_runs(tmp_path_factory):
-    d = tmp_path_factory.mktemp("lrz")
-    for f in ("lrz.py", "c.lrz"):
-        shutil.copy(DATA / "lrz" / f, d)
+    d = demo_dir(tmp_path_factory, "lrz")
     out = {"eq": run(d / "c.lrz", verbose=False, sv="eq")}
     common = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DSMAX=2.0,
                   UZR={"sigma": [5.0, 10.0, 20.0]}, UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0},

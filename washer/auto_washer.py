@@ -30,7 +30,6 @@ def washer_problem(e: str, constants) -> Problem:
         raise RunError(f"{constants.source}: e='{e}': expected 'washer', 'washer:averaged' or "
                        "'washer:frozen'")
     params = load_params()
-    model = Model(params)
     base = params.vector()
     tied = params.tied
     cols = {name: kernel.DIFF_NAMES.index(name) for name in PAR_NAMES.values()}
@@ -64,8 +63,6 @@ def washer_problem(e: str, constants) -> Problem:
         for i, name in PAR_NAMES.items():
             if i <= len(par):
                 par[i - 1] = params[name]
-        m = Model(params)
-        u[:] = np.r_[m.rotating_equilibrium(frame=frame), np.zeros(6)]
+        u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
 
-    p = Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR)
-    return p
+    return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR)

@@ -155,22 +155,18 @@ def _simulate_kernel(model, system, mode, y0, t_eval, rtol, atol, progress) -> R
 
 def _simulate_scipy(model, system, mode, y0, t_eval, rtol, atol, method) -> Response:
     from scipy.integrate import solve_ivp
-    counter = {"nfev": 0}
     if method == "scipy-numpy":
         if system != "fixed":
             raise ValueError("method 'scipy-numpy' exists for the ground frame only")
         from washer.reference import newton_euler
 
         def f(t, y):
-            counter["nfev"] += 1
             return newton_euler.rhs_fixed(t, y, model.params, mode)
     elif system == "fixed":
         def f(t, y):
-            counter["nfev"] += 1
             return kernel.rhs_fixed(t, y, model.P, mode)
     else:
         def f(t, y):
-            counter["nfev"] += 1
             return kernel.rhs_rot(y, model.P, mode)
     sol = solve_ivp(f, (t_eval[0], t_eval[-1]), y0, method="DOP853", t_eval=t_eval,
                     rtol=rtol, atol=atol)

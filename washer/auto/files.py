@@ -13,7 +13,7 @@ import numpy as np
 
 #: Two-letter names of AUTO's type codes (support.f90:LBTYPE), by |code| % 10.
 TYPE_NAMES = {1: "BP", 2: "LP", 3: "HB", 4: "", -4: "UZ", 5: "LP", 6: "BP", 7: "PD", 8: "TR",
-              9: "EP", -9: "MX", -1: "BT", -2: "CP", -3: "ZH", -32: "GH", 0: ""}
+              9: "EP", -9: "MX", -1: "BT", -2: "CP", -3: "ZH", 0: ""}
 
 
 def type_name(code: int) -> str:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.constants import Constants, ConstantsError
+from washer.auto.constants import Constants
 from washer.auto.files import OutputFiles, Record, Row, fmt_e, read_s, find_record, type_name
 from washer.cont.engine import PERTURB, ConvergenceError, Engine, Settings, stable_count
 from washer.cont.problem import Problem, ProblemError
@@ -105,7 +105,7 @@ class _Sink:
         r.files.row(row)
         if p.eig is not None and r.c["IPS"] == 1:
             r.files.diag(f"\n{r.br:4d}{ptn:6d}         Eigenvalues  :   Stable:{stable_count(p.eig):4d}")
-            for k, e in enumerate(p.eig[:r.ndim] if r.system.curve_type == 0 else p.eig, 1):
+            for k, e in enumerate(p.eig, 1):
                 r.files.diag(f"{r.br:4d}{ptn:6d}         Eigenvalue{k:3d}:{fmt_e(e.real, 14, 5)}"
                              f"{fmt_e(e.imag, 14, 5)}")
         if labelled:
@@ -144,7 +144,6 @@ class _Sink:
 
     def regular(self, p, prev) -> bool:
         r, c = self.r, self.r.c
-        par = r.system.params_at(p.U, p.lam)
         norm = float(np.sqrt(np.sum(p.U[:r.ndim] ** 2)))
         outside = not (c["RL0"] <= p.lam <= c["RL1"]) or not (c["A0"] <= norm <= c["A1"])
         at_nmx = c["NMX"] > 0 and self.pt + 1 >= c["NMX"]
@@ -237,7 +236,6 @@ class Run:
             par[c.par_index(k) - 1] = float(v)
         for k, v in c["U"].items():
             u[c.u_index(k) - 1] = float(v)
-        self.par0 = par
         if self.label == 0:
             self.label = mlab
         ty = type_name(rec.ty) if rec is not None else ""
@@ -245,18 +243,20 @@ class Run:
             if len(self.icp) < 2:
                 raise RunError(f"{c.source}: ISW=2 continues a locus in two parameters: ICP "
                                "needs two entries")
-            stored = np.asarray(rec.U, dtype=float) if rec is not None else None
-            if rec is not None and rec.ty % 10 == 3 and abs(rec.ty) >= 10 or (
-                    stored is not None and len(stored) == 2 * self.ndim + 2):
-                self.system = HopfSystem.from_record(self.problem, par, self.icp, stored)
+            # A record of a Hopf or fold curve stores the extended unknowns
+            # (2n + 2 or 2n + 1 values); an HB or LP label of a branch stores x only.
+            stored = np.asarray(rec.U, dtype=float) if rec is not None else np.empty(0)
+            if len(stored) == 2 * self.ndim + 2:
+                self.system = HopfSystem(self.problem, par, self.icp, stored)
+            elif len(stored) == 2 * self.ndim + 1:
+                self.system = FoldSystem(self.problem, par, self.icp, stored)
             elif ty == "HB":
                 if par[10] <= 0:
                     raise RunError(f"{restart_file}: HB label has no period PAR(11)")
-                self.system = HopfSystem(self.problem, par, self.icp, u, (2 * math.pi / par[10]) ** 2)
-            elif stored is not None and len(stored) == 2 * self.ndim + 1:
-                self.system = FoldSystem(self.problem, par, self.icp, u, U=stored)
+                self.system = HopfSystem.at_hopf_point(self.problem, par, self.icp, u,
+                                                       (2 * math.pi / par[10]) ** 2)
             elif ty == "LP":
-                self.system = FoldSystem(self.problem, par, self.icp, u)
+                self.system = FoldSystem.at_fold_point(self.problem, par, self.icp, u)
             else:
                 raise RunError(f"{c.source}: ISW=2 needs an LP or HB restart label, got "
                                f"{ty or 'a regular point'} (IRS={irs!r})")
@@ -335,8 +335,8 @@ class Run:
         if self.verbose:
             print(f"Starting {c['e'] or self.problem.name} ...")
         try:
-            X0 = self._initial_correction(engine)
-            T0 = self.T0 if self.T0 is not None else self._initial_tangent(engine, X0)
+            X0 = self._initial_correction()
+            T0 = self.T0 if self.T0 is not None else self._initial_tangent(X0)
             # The sign of DS sets the direction: steps are X + ds * T with T as chosen.
             bps = engine.run(X0, T0, names)
             if c["MXBF"] != 0 and self.system.curve_type == 0:
@@ -355,7 +355,7 @@ class Run:
             print(f"{c['e'] or self.problem.name} ... done")
         return RunResult(self.specials, self.rows, self.files, elapsed, self.status)
 
-    def _initial_correction(self, engine: Engine) -> np.ndarray:
+    def _initial_correction(self) -> np.ndarray:
         """Newton at fixed parameter: a start point that is not quite a solution
         (STPNT rounding, a restart in other parameters) is corrected first."""
         X = self.X0.copy()
@@ -367,7 +367,7 @@ class Run:
             X[:-1] -= np.linalg.solve(J, G)
         raise ConvergenceError("the starting point is not a solution and Newton did not fix it")
 
-    def _initial_tangent(self, engine: Engine, X) -> np.ndarray:
+    def _initial_tangent(self, X) -> np.ndarray:
         J = self.system.jacobian(X[:-1], X[-1])
         _, _, Vt = np.linalg.svd(J)
         T = Vt[-1]
@@ -388,4 +388,4 @@ class Run:
             d /= np.linalg.norm(d)
             self.br += 1
             for sign in ((1, -1) if self.c["MXBF"] > 0 else (1,)):
-                engine.run(bp.X, sign * d, names, hidden_step=False, switched_from=bp)
+                engine.run(bp.X, sign * d, names, switched=True)

@@ -34,7 +34,6 @@ class Point:
     tangent: np.ndarray = None
     eig: np.ndarray = None
     tests: dict = field(default_factory=dict)
-    newton_iterations: int = 0
 
     @property
     def X(self) -> np.ndarray:
@@ -172,30 +171,31 @@ class Engine:
             out.append((a / (a - b), code, name))
         return sorted(out)
 
-    def run(self, X0, T0, names, hidden_step=True, switched_from=None):
+    def run(self, X0, T0, names, switched: bool = False):
         """Continue one branch from X0 with direction T0; reports points to the sink.
+        `switched`: X0 is a branch point and T0 the new branch's direction (MXBF).
         Returns the list of BP points met (for MXBF branch switching)."""
         s = self.s
         ds = s.ds
         bps = []
         start = self.evaluate(X0, T0, names)
-        self.sink.start(start, switched=switched_from is not None)
+        self.sink.start(start, switched=switched)
         current = start
-        if switched_from is not None:
+        if switched:
             # First step of a switched branch: hyperplane orthogonal to the new direction.
-            X, it = self.correct(X0 + ds * T0, X0, ds, hyperplane=T0)
+            X, _ = self.correct(X0 + ds * T0, X0, ds, hyperplane=T0)
             current = self.evaluate(X, T0, names)
             self.sys.after_step(current.U, current.lam)
             if self.sink.regular(current, start):
                 return bps
             current.tests = {}           # no detection on the first interval
-        elif hidden_step:
+        else:
             # AUTO's unwritten first step: it only provides a secant direction, and
             # the test functions start at zero, so nothing is detected up to PT 2.
             got = self._retrying_step(start, ds)
             if got is None:
                 return bps
-            X, it, ds = got
+            X, _, ds = got
             current = self.evaluate(X, start.tangent, names)
             current.tests = {}
             self.sys.after_step(current.U, current.lam)
@@ -207,7 +207,6 @@ class Engine:
                 return bps
             X, it, ds = got
             nxt = self.evaluate(X, current.tangent, names)
-            nxt.newton_iterations = it
             hits = self.crossings(current, nxt, names)
             if hits:
                 _, code, name = hits[0]

@@ -118,25 +118,19 @@ class HopfSystem(EquilibriumSystem):
     """Hopf locus: U = (x, v, kappa, p2), lambda = PAR(icp[0])."""
     curve_type = 3
 
-    def __init__(self, problem, par, icp, x0, omega2, ips=1):
-        super().__init__(problem, par, icp, ips)
+    def __init__(self, problem, par, icp, U):
+        """Start from extended unknowns U = (x, v, kappa, p2), e.g. a stored Hopf-curve point."""
+        super().__init__(problem, par, icp, 1)
         n = self.n
-        A = problem.dfdu(x0, self.params_at(x0, par[icp[0] - 1]))
-        v = _null_vectors(A @ A + omega2 * np.eye(n), 2)[:, 0]
-        self.v_old = v / np.linalg.norm(v)
-        self.U0 = np.r_[x0, self.v_old, omega2, par[icp[1] - 1]]
-        self.w_prev = None
+        self.U0 = np.asarray(U, dtype=float).copy()
+        self.v_old = self.U0[n:2 * n] / np.linalg.norm(self.U0[n:2 * n])
 
     @classmethod
-    def from_record(cls, problem, par, icp, U):
-        """Restart from a stored Hopf-curve point (x, v, kappa, p2)."""
-        n = problem.ndim
-        self = cls.__new__(cls)
-        EquilibriumSystem.__init__(self, problem, par, icp, 1)
-        self.v_old = U[n:2 * n] / np.linalg.norm(U[n:2 * n])
-        self.U0 = np.asarray(U, dtype=float).copy()
-        self.w_prev = None
-        return self
+    def at_hopf_point(cls, problem, par, icp, x0, omega2):
+        """Start at an HB point x0 with omega^2: v spans the null space of A^2 + omega^2 I."""
+        A = problem.dfdu(x0, par)
+        v = _null_vectors(A @ A + omega2 * np.eye(len(x0)), 2)[:, 0]
+        return cls(problem, par, icp, np.r_[x0, v / np.linalg.norm(v), omega2, par[icp[1] - 1]])
 
     def params_at(self, U, lam):
         p = self.par.copy()
@@ -209,14 +203,17 @@ class FoldSystem(EquilibriumSystem):
     """Fold locus: U = (x, phi, p2), lambda = PAR(icp[0])."""
     curve_type = 2
 
-    def __init__(self, problem, par, icp, x0, ips=1, U=None):
-        super().__init__(problem, par, icp, ips)
-        if U is None:
-            A = problem.dfdu(x0, self.params_at(x0, par[icp[0] - 1]))
-            phi = _null_vectors(A, 1)[:, 0]
-            U = np.r_[x0, phi / np.linalg.norm(phi), par[icp[1] - 1]]
+    def __init__(self, problem, par, icp, U):
+        """Start from extended unknowns U = (x, phi, p2), e.g. a stored fold-curve point."""
+        super().__init__(problem, par, icp, 1)
         self.U0 = np.asarray(U, dtype=float).copy()
         self.w_prev = None
+
+    @classmethod
+    def at_fold_point(cls, problem, par, icp, x0):
+        """Start at an LP point x0: phi spans the null space of A."""
+        phi = _null_vectors(problem.dfdu(x0, par), 1)[:, 0]
+        return cls(problem, par, icp, np.r_[x0, phi / np.linalg.norm(phi), par[icp[1] - 1]])
 
     params_at = HopfSystem.params_at
     secondary = HopfSystem.secondary

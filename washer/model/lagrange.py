@@ -45,7 +45,6 @@ def _velocity_maps(S: Structure, c: Coordinates):
     """Per body: (m, Jv, bv, I, Jw, bw) with mass-centre velocity Jv qd + bv w
     (ground frame, eqs 6, 13) and angular velocity Jw qd + bw w with inertia I
     (both in tub-frame components, eqs 7, 14; the kinetic energy is invariant)."""
-    x = c.q[:3, :]
     A = rotation_rb(*c.q[3:, :])
     B = rate_matrix_b(c.q[4], c.q[5])
     I3, Z3 = sp.eye(3), sp.zeros(3, 3)

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from washer.plots import style
 
 UNITS = ("m", "m", "m", "rad", "rad", "rad")
