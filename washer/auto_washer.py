@@ -48,6 +48,9 @@ def washer_problem(e: str, constants) -> Problem:
     def dfdu(u, par):
         return kernel.jac_rot(u, kernel_params(par), frame)[0]
 
+    def dfdu_batch(us, pars):
+        return kernel.jac_rot_batch(us, np.array([kernel_params(p) for p in pars]), frame)[0]
+
     def dfdp(u, par):
         Jp = kernel.jac_rot(u, kernel_params(par), frame)[1]
         out = np.zeros((12, len(par)))
@@ -65,4 +68,4 @@ def washer_problem(e: str, constants) -> Problem:
                 par[i - 1] = params[name]
         u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
 
-    return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR)
+    return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR, dfdu_batch=dfdu_batch)

@@ -12,6 +12,9 @@ User problems live in NAME.py beside the constants file (e='NAME'):
     def stpnt(u, par):            # required: fill u and par in place
     def dfdu(u, par): ...         # optional (used when JAC = 1 or -1)
     def dfdp(u, par): ...         # optional (used when JAC = 1)
+
+Built-in problems may also pass `dfdu_batch(us, pars)` (k Jacobians in one
+call), which the Hopf-curve Jacobian uses for its k = ndim + 2 perturbed points.
 """
 from __future__ import annotations
 
@@ -32,8 +35,9 @@ class Problem:
     """Wraps user callables with checks and finite-difference fallbacks."""
 
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
-                 npar: int = 36):
+                 npar: int = 36, dfdu_batch=None):
         self.ndim, self.name, self.npar = ndim, name, npar
+        self._dfdu_batch = dfdu_batch
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self.jac_mode = 0            # AUTO's JAC: 0 FD, 1 both analytic, -1 dfdu analytic
 
@@ -45,6 +49,15 @@ class Problem:
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
         return f
+
+    def dfdu_many(self, us, pars) -> np.ndarray:
+        """Jacobians at k points at once: us (k, ndim), pars (k, npar) -> (k, ndim, ndim).
+
+        Problems may supply a batched `dfdu_batch(us, pars)` (one call into compiled
+        code); otherwise this loops over `dfdu`."""
+        if self._dfdu_batch is not None and self.jac_mode != 0:
+            return np.asarray(self._dfdu_batch(us, pars), dtype=float)
+        return np.array([self.dfdu(u, p) for u, p in zip(us, pars)])
 
     def dfdu(self, u, par) -> np.ndarray:
         if self._dfdu is not None and self.jac_mode != 0:

@@ -23,6 +23,8 @@ IMAG_TOL = 1e-8
 #: Finite-difference steps for second and third derivatives of f (normal forms,
 #: CP): about eps^(1/4) and eps^(1/5), balancing truncation and rounding errors.
 FD2_STEP = 1e-3
+#: Forward-difference step (relative) for derivatives of f_x in the Hopf-curve Jacobian.
+HESS_STEP = 1e-7
 FD3_STEP = 4e-3
 
 
@@ -151,17 +153,45 @@ class HopfSystem(EquilibriumSystem):
                      (A.T @ self.v_old - A @ self.v_old) @ v]
 
     def jacobian(self, U, lam):
-        """Central differences of the extended residual (AUTO differentiates the
-        extra rows numerically too); the f-rows use the problem's Jacobian."""
-        N = len(U)
-        J = np.empty((N, N + 1))
-        X = np.r_[U, lam]
-        for j in range(N + 1):
-            h = 1e-6 * (1 + abs(X[j]))
-            Xp, Xm = X.copy(), X.copy()
-            Xp[j] += h
-            Xm[j] -= h
-            J[:, j] = (self.residual(Xp[:-1], Xp[-1]) - self.residual(Xm[:-1], Xm[-1])) / (2 * h)
+        """[G_U, G_lambda] of the extended system, shape (2n+2, 2n+3).
+
+        Blocks in v and kappa are exact; the f-rows use the problem's Jacobians;
+        the derivatives of A = f_x along x, lambda and p2 (second derivatives
+        of f, which problems do not supply) are forward differences of A at the
+        n + 2 perturbed points, evaluated in one batched call when the problem
+        offers one. AUTO differentiates its extended systems numerically too.
+        """
+        n = self.n
+        x, v = U[:n], U[n:2 * n]
+        kappa = U[2 * n]
+        p = self.params_at(U, lam)
+        i_lam, i_p2 = self.icp[0] - 1, self.icp[1] - 1
+        A = self.problem.dfdu(x, p)
+        fp = self.problem.dfdp(x, p, [self.icp[0], self.icp[1]])
+        # Perturbed points: x + h e_j (j < n), then lambda + h, then p2 + h.
+        steps = HESS_STEP * (1 + np.abs(np.r_[x, p[i_lam], p[i_p2]]))
+        xs = np.repeat(x[None, :], n + 2, axis=0)
+        ps = np.repeat(p[None, :], n + 2, axis=0)
+        xs[np.arange(n), np.arange(n)] += steps[:n]
+        ps[n, i_lam] += steps[n]
+        ps[n + 1, i_p2] += steps[n + 1]
+        dA = (self.problem.dfdu_many(xs, ps) - A) / steps[:, None, None]    # (n+2, n, n)
+        Av, w = A @ v, A.T @ self.v_old - A @ self.v_old
+        # d/ds (A^2 v) = A_s (A v) + A (A_s v) for each perturbation direction s.
+        d_g = np.einsum("sij,j->is", dA, Av) + A @ np.einsum("sij,j->is", dA, v)
+        d_phase = np.einsum("sji,j,i->s", dA, self.v_old, v) - np.einsum("sij,j,i->s", dA, self.v_old, v)
+        J = np.zeros((2 * n + 2, 2 * n + 3))
+        # Columns: x (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), lambda (2n+2).
+        cols_s = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
+        J[:n, :n] = A
+        J[:n, 2 * n + 2] = fp[:, 0]
+        J[:n, 2 * n + 1] = fp[:, 1]
+        J[n:2 * n, cols_s] = d_g
+        J[n:2 * n, n:2 * n] = A @ A + kappa * np.eye(n)
+        J[n:2 * n, 2 * n] = v
+        J[2 * n, n:2 * n] = 2 * v
+        J[2 * n + 1, cols_s] = d_phase
+        J[2 * n + 1, n:2 * n] = w
         return J
 
     def after_step(self, U, lam):
@@ -217,7 +247,20 @@ class FoldSystem(EquilibriumSystem):
 
     params_at = HopfSystem.params_at
     secondary = HopfSystem.secondary
-    jacobian = HopfSystem.jacobian
+
+    def jacobian(self, U, lam):
+        """Central differences of the extended residual; the f-rows use the
+        problem's Jacobian through the residual."""
+        N = len(U)
+        J = np.empty((N, N + 1))
+        X = np.r_[U, lam]
+        for j in range(N + 1):
+            h = 1e-6 * (1 + abs(X[j]))
+            Xp, Xm = X.copy(), X.copy()
+            Xp[j] += h
+            Xm[j] -= h
+            J[:, j] = (self.residual(Xp[:-1], Xp[-1]) - self.residual(Xm[:-1], Xm[-1])) / (2 * h)
+        return J
 
     def residual(self, U, lam):
         n = self.n
