@@ -51,13 +51,13 @@ def main():
     d = Path(tempfile.mkdtemp())
     for f in ("ab.py", "c.ab"):
         shutil.copy(ROOT / "tests" / "data" / "ab" / f, d)
-    for f in ("c.washer", "c.washer.hopf"):
+    for f in ("c.washer", "c.washer.hopf.Omega"):
         shutil.copy(ROOT / "auto_constants" / f, d)
     bench("ab: equilibria in p1 (JAC=0)", d / "c.ab", sv="eq")
     bench("ab: Hopf curve from HB1", d / "c.ab", IRS="HB1", ICP=[1, 2], ISW=2, s="eq",
           sv="hb", UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]}, PAR={})
     w1 = bench("washer: branch in C_p (Fig 3)", d / "c.washer")
-    w2 = bench("washer: Hopf curve in (C_p, Omega)", d / "c.washer.hopf")
+    w2 = bench("washer: Hopf curve in (C_p, Omega)", d / "c.washer.hopf.Omega")
     print(f"washer branch + Hopf curve: {w1 + w2:.2f} s")
 
 

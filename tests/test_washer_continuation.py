@@ -12,7 +12,7 @@ CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants"
 @pytest.fixture(scope="module")
 def washer_eq(tmp_path_factory):
     d = tmp_path_factory.mktemp("washer")
-    for f in ("c.washer", "c.washer.hopf"):
+    for f in ("c.washer", "c.washer.hopf.Omega"):
         shutil.copy(CONSTANTS / f, d)
     return d, run(d / "c.washer", verbose=False)
 
@@ -31,7 +31,7 @@ def test_one_parameter_branch_finds_the_hopf_point(washer_eq):
 @pytest.mark.slow
 def test_hopf_curve_grows_with_omega(washer_eq):
     d, _ = washer_eq
-    fwd = run(d / "c.washer.hopf", verbose=False, NMX=60)
+    fwd = run(d / "c.washer.hopf.Omega", verbose=False, NMX=60)
     rows = fwd.rows
     cp = [r.values[0] for r in rows]
     om = [r.values[-1] for r in rows]

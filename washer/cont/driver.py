@@ -293,9 +293,12 @@ class Run:
         uz = [(abs(i), v, i < 0) for i, v, _ in uz] + [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
         N = len(self.X0)
         theta = np.ones(N)
+        # THU weighs U(i) in the arclength; on ISW = 2 curves it may also name the
+        # extended unknowns (Hopf: U(2n+1) = kappa = omega^2, whose scale can
+        # dominate the step), as AUTO's THU covers the extended NDIM.
         for i, v in c["THU"].items():
             k = c.u_index(i) - 1
-            if k < self.ndim:
+            if k < N - 1 - (len(self.free) > 1):
                 theta[k] = float(v)
         thl = {c.par_index(k): float(v) for k, v in c["THL"].items()}
         theta[-1] = thl.get(self.icp[0], 1.0)

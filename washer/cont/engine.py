@@ -14,10 +14,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from washer.cont.problem import ProblemError
+
 #: AUTO perturbs DS, DSMAX by (1 + 1e-7) and DSMIN by 1 / (1 + 1e-7) (INIT1).
 PERTURB = 1 + 1e-7
 #: A Newton iterate farther than this multiple of the first correction diverges (SOLVAE).
 DIVERGENCE_FACTOR = 20.0
+#: Regula falsi trials stay this fraction of the bracket away from its ends.
+LOCATE_GUARD = 1e-3
 #: Location stops when the arclength bracket is this small relative to (1 + |DS|).
 LOCATE_TOL = 1e-10
 LOCATE_MAX_ITER = 60
@@ -76,8 +80,15 @@ class Engine:
         delref = None
         for it in range(1, s.itnw + 1):
             U, lam = X[:-1], X[-1]
-            J = self.sys.jacobian(U, lam)
-            G = self.sys.residual(U, lam)
+            try:
+                J = self.sys.jacobian(U, lam)
+                G = self.sys.residual(U, lam)
+            except ProblemError as exc:
+                # A trial point outside the equations' domain (e.g. a negative
+                # mass): a failed step, retried with a smaller one.
+                raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
+            if not (np.all(np.isfinite(J)) and np.all(np.isfinite(G))):
+                raise ConvergenceError("non-finite residual or Jacobian at a Newton iterate")
             if hyperplane is None:
                 d = X - X_ref
                 c = (th * d) @ d / abs(ds) - abs(ds)
@@ -117,7 +128,9 @@ class Engine:
             z = np.linalg.solve(A, e)
         except np.linalg.LinAlgError:
             z = np.linalg.svd(J)[2][-1]        # singular exactly at a BP
-        z /= np.linalg.norm(z)
+        # Unit length in the arclength norm (THU/THL weights), as AUTO scales its
+        # direction vector: a predictor X + ds T then lands on the sphere of radius ds.
+        z /= np.sqrt(self.s.theta @ z**2)
         if z @ T_ref < 0:
             z = -z
         return z, J
@@ -135,18 +148,23 @@ class Engine:
         return p
 
     # ---------------------------------------------------------------- location
-    def locate(self, prev: Point, cur: Point, name: str, ds: float, names) -> Point:
-        """Zero of test `name` between prev and cur by Illinois regula falsi on
-        the arclength s from prev (each trial point is a continuation step)."""
+    def locate(self, prev: Point, cur: Point, name: str, ds: float, names) -> tuple[Point, float]:
+        """Zero of test `name` between prev and cur (at arclength ds from prev) by
+        Illinois regula falsi on the arclength s from prev (each trial point is a
+        continuation step). Returns the point and its arclength from prev."""
         a, fa = 0.0, prev.tests[name]
         b, fb = ds, cur.tests[name]
-        best = cur
+        best, s_best = cur, ds
         for _ in range(LOCATE_MAX_ITER):
             s_new = b - fb * (b - a) / (fb - fa)
+            # Keep the trial strictly inside the bracket: a test that starts at a
+            # located zero (value ~1e-300) would otherwise put it on prev (s = 0).
+            lo, hi = min(a, b), max(a, b)
+            s_new = min(max(s_new, lo + LOCATE_GUARD * (hi - lo)), hi - LOCATE_GUARD * (hi - lo))
             X, _ = self.correct(prev.X + s_new * prev.tangent, prev.X, s_new)
             pt = self.evaluate(X, prev.tangent, names)
             fc = pt.tests[name]
-            best = pt
+            best, s_best = pt, s_new
             if fc is None or fc == 0:
                 break
             if np.sign(fc) == np.sign(fb):
@@ -156,7 +174,24 @@ class Engine:
             b, fb = s_new, fc
             if abs(b - a) < LOCATE_TOL * (1 + abs(self.s.ds)):
                 break
-        return best
+        return best, s_best
+
+    def first_zero(self, prev: Point, cur: Point, ds: float, names):
+        """The first zero of any test function between prev and cur: (point, code,
+        name), or None. Linear estimates can misorder zeros that lie close
+        together (a GH next to a UZ stop): after locating one, the interval up to
+        it is searched again, so an earlier zero is never stepped over."""
+        target, span, found = cur, ds, None
+        for _ in range(len(names) + 1):       # each pass moves to a strictly earlier zero
+            hits = [h for h in self.crossings(prev, target, names)
+                    if found is None or h[2] != found[2]]
+            if not hits:
+                return found
+            _, code, name = hits[0]
+            sp, s_sp = self.locate(prev, target, name, span, names)
+            found = (sp, code, name)
+            target, span = sp, s_sp
+        return found
 
     # -------------------------------------------------------------------- loop
     def crossings(self, prev: Point, cur: Point, names) -> list[tuple[float, int, str]]:
@@ -207,10 +242,9 @@ class Engine:
                 return bps
             X, it, ds = got
             nxt = self.evaluate(X, current.tangent, names)
-            hits = self.crossings(current, nxt, names)
-            if hits:
-                _, code, name = hits[0]
-                sp = self.locate(current, nxt, name, ds, names)
+            hit = self.first_zero(current, nxt, ds, names)
+            if hit is not None:
+                sp, code, name = hit
                 # Past the located zero the test keeps the sign it has beyond it.
                 sp.tests[name] = 1e-300 * np.sign(nxt.tests[name])
                 self.sys.after_step(sp.U, sp.lam)

@@ -41,11 +41,16 @@ class Problem:
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self.jac_mode = 0            # AUTO's JAC: 0 FD, 1 both analytic, -1 dfdu analytic
 
-    def func(self, u, par) -> np.ndarray:
+    def _call(self, fn, what: str, *args) -> np.ndarray:
+        """Call a user function; any failure becomes a ProblemError naming it."""
         try:
-            f = np.asarray(self._func(u, par), dtype=float)
+            return np.asarray(fn(*args), dtype=float)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: {exc}") from exc
+            raise ProblemError(f"{self.name}: {what}(u, par) failed: {type(exc).__name__}: "
+                               f"{exc}") from exc
+
+    def func(self, u, par) -> np.ndarray:
+        f = self._call(self._func, "func", u, par)
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
         return f
@@ -56,12 +61,12 @@ class Problem:
         Problems may supply a batched `dfdu_batch(us, pars)` (one call into compiled
         code); otherwise this loops over `dfdu`."""
         if self._dfdu_batch is not None and self.jac_mode != 0:
-            return np.asarray(self._dfdu_batch(us, pars), dtype=float)
+            return self._call(self._dfdu_batch, "dfdu_batch", us, pars)
         return np.array([self.dfdu(u, p) for u, p in zip(us, pars)])
 
     def dfdu(self, u, par) -> np.ndarray:
         if self._dfdu is not None and self.jac_mode != 0:
-            return np.asarray(self._dfdu(u, par), dtype=float)
+            return self._call(self._dfdu, "dfdu", u, par)
         J = np.empty((self.ndim, self.ndim))
         for i in range(self.ndim):
             h = FD_STEP * (1 + abs(u[i]))
@@ -74,7 +79,7 @@ class Problem:
     def dfdp(self, u, par, indices) -> np.ndarray:
         """Columns d f / d PAR(i) for the 1-based `indices`, shape (ndim, len(indices))."""
         if self._dfdp is not None and self.jac_mode == 1:
-            full = np.asarray(self._dfdp(u, par), dtype=float)
+            full = self._call(self._dfdp, "dfdp", u, par)
             return full[:, [i - 1 for i in indices]]
         out = np.empty((self.ndim, len(indices)))
         for k, i in enumerate(indices):

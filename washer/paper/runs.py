@@ -1,0 +1,149 @@
+"""The AUTO runs behind the paper's Figs 3-7, executed from `auto_constants/`.
+
+Every run is a constants file a user can rerun by hand. The files are copied
+into `<out>/auto/` and run there, so the b./s./d. files sit beside the exact
+constants that made them; a curve traced both ways is two runs, the second with
+AUTO's `DS='-'` (as AUTO-07p scripts do), saved as `<name>.bwd`.
+"""
+from __future__ import annotations
+
+import shutil
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from washer.auto.constants import read_constants
+from washer.auto.files import read_b, type_name
+from washer.run import run
+
+#: Folder of the shipped constants files (source checkout layout).
+CONSTANTS_DIR = Path(__file__).resolve().parents[2] / "auto_constants"
+
+#: The frames compared throughout: AUTO equation names and file suffixes.
+FRAMES = {"averaged": ("washer", ""), "frozen": ("washer:frozen", ".frozen")}
+
+#: Second parameter of each Hopf curve in (C_p, X), and the paper's figure.
+HOPF_CURVES = {"Omega": "Fig. 4", "m_u": "Fig. 5(a)", "R_u": "Fig. 5(b)", "C_a": "Fig. 6",
+               "K_s": "Fig. 7(a)"}
+
+#: Quick mode: steps this many times larger (DS and DSMAX) on every curve.
+QUICK_STEP_FACTOR = 3.0
+
+
+@dataclass
+class Curve:
+    """A continuation curve from one or two b-files, ordered along the curve.
+
+    p1: PAR(ICP(1)) (n,), p2: PAR(ICP(2)) (n,) or None for a one-parameter
+    branch, u: U(1..5) as written in the b-file (n, 5), stable: (n,) bool (branches
+    only), specials: (type, index into the arrays, label) of labelled points;
+    ends: for each end, the point type AUTO wrote there ('UZ', 'EP', 'MX', 'BT', ...).
+    """
+    name: str
+    p1: np.ndarray
+    p2: np.ndarray | None
+    u: np.ndarray
+    stable: np.ndarray
+    specials: list = field(default_factory=list)
+    ends: tuple = ("", "")
+
+
+@dataclass
+class RunLog:
+    """What was run: command lines (relative to the output folder) and timings."""
+    commands: list = field(default_factory=list)
+    seconds: dict = field(default_factory=dict)
+    status: dict = field(default_factory=dict)
+
+
+def _rows_to_arrays(rows, two_par: bool):
+    vals = np.array([r.values for r in rows])
+    p1 = vals[:, 0]
+    p2 = vals[:, -1] if two_par else None
+    u = vals[:, 2:7] if not two_par else vals[:, 2:-1]
+    stable = np.array([r.pt < 0 for r in rows])
+    names = [(type_name(r.ty), r.lab) for r in rows]
+    return p1, p2, u, stable, names
+
+
+def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
+    """The curve of b.<name> joined with b.<name>.bwd when that exists: backward
+    part reversed, then the forward part (their shared start point once)."""
+    parts = []
+    for suffix in (".bwd", ""):
+        path = folder / f"b.{name}{suffix}"
+        if path.exists():
+            rows = [r for branch in read_b(path) for r in branch]
+            parts.append((suffix, _rows_to_arrays(rows, two_par)))
+    if not parts:
+        raise FileNotFoundError(f"no b.{name} in {folder}")
+    seqs = []
+    for suffix, (p1, p2, u, st, names) in parts:
+        idx = np.arange(len(p1))
+        if suffix == ".bwd":
+            idx = idx[::-1][:-1] if len(parts) == 2 else idx[::-1]
+        seqs.append((p1[idx], None if p2 is None else p2[idx], u[idx], st[idx],
+                     [names[i] for i in idx]))
+    p1 = np.concatenate([s[0] for s in seqs])
+    p2 = None if not two_par else np.concatenate([s[1] for s in seqs])
+    u = np.concatenate([s[2] for s in seqs])
+    stable = np.concatenate([s[3] for s in seqs])
+    names = [n for s in seqs for n in s[4]]
+    specials = [(t, i, lab) for i, (t, lab) in enumerate(names) if t and lab]
+    ends = (names[0][0], names[-1][0])
+    return Curve(name, p1, p2, u, stable, specials, ends)
+
+
+def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):
+    t0 = time.perf_counter()
+    res = run(folder / cfile, verbose=False, **overrides)
+    log.seconds[label] = time.perf_counter() - t0
+    log.status[label] = res.status
+    args = " ".join(f"{k}={v}" for k, v in overrides.items())
+    log.commands.append(f"python -m washer.run auto/{cfile} {args}".rstrip())
+    return res
+
+
+def run_all(out: Path, quick: bool = False, progress=print) -> tuple[dict, dict, RunLog]:
+    """Run every constants file of the paper's Figs 3-7 into out/auto.
+
+    Returns (branches, results, log): branches maps a run name ('washer',
+    'washer.hopf.C_a.frozen', ...) to its Curve; results maps the one-parameter
+    runs to their RunResult (labelled points with eigenvalue information).
+    """
+    if not CONSTANTS_DIR.is_dir():
+        raise FileNotFoundError(f"{CONSTANTS_DIR}: the constants files are not there; run "
+                                "from a source checkout (pip install -e .)")
+    folder = out / "auto"
+    folder.mkdir(parents=True, exist_ok=True)
+    for old in list(folder.glob("[bsd].*")):
+        old.unlink()          # AUTO appends to nothing: start each reproduction clean
+    for c in sorted(CONSTANTS_DIR.glob("c.washer*")):
+        shutil.copy(c, folder / c.name)
+    log = RunLog()
+    curves, results = {}, {}
+    for frame, (_, suffix) in FRAMES.items():
+        name = f"washer{suffix}"
+        progress(f"  Fig 3 branch in C_p ({frame})")
+        results[name] = _run(folder, f"c.{name}", log, name)
+        curves[name] = read_curve(folder, name, two_par=False)
+    def both_ways(name: str, two_par: bool):
+        fwd, bwd = {}, {"DS": "-"}
+        if quick:
+            c = read_constants(folder / f"c.{name}")
+            ds = c["DS"] * QUICK_STEP_FACTOR
+            fwd = {"DS": ds, "DSMAX": c["DSMAX"] * QUICK_STEP_FACTOR}
+            bwd = dict(fwd, DS=-ds)
+        _run(folder, f"c.{name}", log, name, **fwd)
+        _run(folder, f"c.{name}", log, f"{name}.bwd", **bwd, sv=f"{name}.bwd")
+        curves[name] = read_curve(folder, name, two_par)
+
+    for key, fig in list(HOPF_CURVES.items()) + [("m_u_R_u", "Fig. 5(c)")]:
+        for frame, (_, suffix) in FRAMES.items():
+            progress(f"  {fig} Hopf curve {key} ({frame})")
+            both_ways(f"washer.hopf.{key}{suffix}", two_par=True)
+    progress("  Fig. 7(b) equilibrium in K_s")
+    both_ways("washer.eps3", two_par=False)
+    return curves, results, log
