@@ -37,13 +37,14 @@ class Curve:
     """A continuation curve from one or two b-files, ordered along the curve.
 
     p1: PAR(ICP(1)) (n,), p2: PAR(ICP(2)) (n,) or None for a one-parameter
-    branch, u: U(1..5) as written in the b-file (n, 5), stable: (n,) bool (branches
+    branch, norm: AUTO's L2-norm of the state (n,), u: U(1..5) as written in the b-file (n, 5), stable: (n,) bool (branches
     only), specials: (type, index into the arrays, label) of labelled points;
     ends: for each end, the point type AUTO wrote there ('UZ', 'EP', 'MX', 'BT', ...).
     """
     name: str
     p1: np.ndarray
     p2: np.ndarray | None
+    norm: np.ndarray
     u: np.ndarray
     stable: np.ndarray
     specials: list = field(default_factory=list)
@@ -63,6 +64,7 @@ def _rows_to_arrays(rows, two_par: bool):
     p1 = vals[:, 0]
     p2 = vals[:, -1] if two_par else None
     u = vals[:, 2:7] if not two_par else vals[:, 2:-1]
+    u = np.column_stack([vals[:, 1], u])        # norm first, split off below
     stable = np.array([r.pt < 0 for r in rows])
     names = [(type_name(r.ty), r.lab) for r in rows]
     return p1, p2, u, stable, names
@@ -93,7 +95,7 @@ def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
     names = [n for s in seqs for n in s[4]]
     specials = [(t, i, lab) for i, (t, lab) in enumerate(names) if t and lab]
     ends = (names[0][0], names[-1][0])
-    return Curve(name, p1, p2, u, stable, specials, ends)
+    return Curve(name, p1, p2, u[:, 0], u[:, 1:], stable, specials, ends)
 
 
 def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):

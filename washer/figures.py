@@ -1,0 +1,158 @@
+"""Reproduce the paper's section 3 (Figs 3-11) and report how close it comes.
+
+    python -m washer.figures [--quick] [--out out/paper]
+
+Runs every AUTO constants file of Figs 3-7 (copied into OUT/auto and run
+there), the time responses of Figs 8-11, measures what the paper claims, and
+writes the figures (PNG + PDF) and OUT/report.md. `--quick` takes steps three
+times larger on every curve and shortens Figs 8-9 to 25 s: the same analyses,
+coarser. Parameters: the shipped reference set (`washer/data/reference.toml`).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from washer.machine import Model
+from washer.paper import analysis as an
+from washer.paper.runs import FRAMES, run_all
+from washer.params import load_params
+from washer.simulate import PAPER_EPS3_0, simulate
+
+#: Fig 8-9 duration (s), full and quick; Figs 10-11 always run the paper's 50 s.
+T_ROT = {False: 50.0, True: 25.0}
+T_SPIN = 50.0
+#: Late windows (s): the paper's trajectory plots and our spectra (20 s: 0.05 Hz bins).
+ORBIT_PLOT_FROM = {"fig10": 30.0, "fig11": 45.0}
+SPECTRUM_FROM = 30.0
+
+
+def time_responses(params, quick: bool, progress=print) -> dict:
+    """Figs 8-9 in both frames and Figs 10-11, with their measurements."""
+    out = {}
+    for fig, cp in (("fig8", 0.15), ("fig9", 0.0)):
+        model = Model(params.replace(C_p=cp))
+        y0 = np.zeros(12)
+        y0[2] = PAPER_EPS3_0
+        rs, eqs, meas, sigma = {}, {}, {}, {}
+        for frame in FRAMES:
+            progress(f"  {fig}: rotating frame ({frame}), C_p = {cp:g}, {T_ROT[quick]:g} s")
+            rs[frame] = simulate(model, T_ROT[quick], system="rotating", frame=frame, y0=y0,
+                                 samples_per_s=200.0, progress=False)
+            eqs[frame] = model.rotating_equilibrium(frame=frame)
+            meas[frame] = an.settling(rs[frame], eqs[frame])
+            # Linear decay rate of the slowest mode at eps* (1/s; negative: growth).
+            lam = model.eigenvalues(eqs[frame], frame=frame)
+            sigma[frame] = float(-lam.real.max())
+        out[fig] = dict(C_p=cp, responses=rs, eq=eqs, settling=meas, sigma=sigma)
+    for fig, cp in (("fig10", 0.15), ("fig11", 0.0)):
+        progress(f"  {fig}: spin-up (eq 66), C_p = {cp:g}, {T_SPIN:g} s")
+        model = Model(params.replace(C_p=cp))
+        r = simulate(model, T_SPIN, system="fixed", law="spinup", samples_per_s=500.0,
+                     progress=False)
+        out[fig] = dict(C_p=cp, response=r, orbit=an.orbit(r, SPECTRUM_FROM),
+                        z_static=float(model.static_equilibrium()[2]))
+    return out
+
+
+def measure(curves: dict, results: dict, params) -> dict:
+    """Everything the report states, from the runs."""
+    m = {"hopf": {}, "trends": {}, "ends": {}, "fit": {}, "peak": {}, "gh": {}}
+    for frame, (_, sfx) in FRAMES.items():
+        hb = results[f"washer{sfx}"]("HB1")
+        m["hopf"][frame] = dict(C_p=float(hb.par[0]), omega=2 * np.pi / float(hb.par[10]),
+                                l1=hb.info.get("l1"), criticality=hb.info.get("criticality"),
+                                stable_low=bool(results[f"washer{sfx}"]("EP1").stable),
+                                stable_high=bool(results[f"washer{sfx}"]("UZ1").stable))
+        for key in ("Omega", "m_u", "R_u", "C_a", "K_s"):
+            c = curves[f"washer.hopf.{key}{sfx}"]
+            m["trends"][(key, frame)] = an.hopf_trend(c)
+            m["ends"][(key, frame)] = an.curve_end_reasons(c, "C_p", key)
+            m["gh"][(key, frame)] = an.specials_of(c, "GH")
+        c = curves[f"washer.hopf.C_a{sfx}"]
+        m["peak"][frame] = an.curve_peak(c)
+        mr = curves[f"washer.hopf.m_u_R_u{sfx}"]
+        inside = (mr.p1 > 0) & (mr.p2 > 0)
+        m["fit"][frame] = an.fit_inverse(mr.p1[inside], mr.p2[inside])
+        m["ends"][("m_u_R_u", frame)] = an.curve_end_reasons(mr, "m_u", "R_u")
+    model = Model(params)
+    m["q_star"] = model.static_equilibrium()
+    m["q_star_no_imbalance"] = Model(params.replace(m_u=0.0)).static_equilibrium()
+    m["eps_star"] = {f: model.rotating_equilibrium(frame=f) for f in FRAMES}
+    e3 = curves["washer.eps3"]
+    order = np.argsort(e3.p1)
+    m["eps3_K_s"] = (e3.p1[order], e3.u[order, 2])
+    return m
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m washer.figures", description=__doc__.split("\n")[1])
+    ap.add_argument("--quick", action="store_true", help="coarser steps, shorter Figs 8-9")
+    ap.add_argument("--out", type=Path, default=Path("out/paper"), help="output folder")
+    args = ap.parse_args(argv)
+
+    import matplotlib
+    matplotlib.use("Agg")
+    from washer.paper import report
+    from washer.plots import paper as plots
+
+    t0 = time.perf_counter()
+    params = load_params()
+    mode = "quick" if args.quick else "full"
+    print(f"Reproducing the paper's section 3 ({mode} mode) into {args.out}")
+    print("AUTO runs (Figs 3-7):")
+    curves, results, log = run_all(args.out, quick=args.quick)
+    t_auto = time.perf_counter() - t0
+    print("Time responses (Figs 8-11):")
+    t1 = time.perf_counter()
+    resp = time_responses(params, args.quick)
+    t_sim = time.perf_counter() - t1
+    meas = measure(curves, results, params)
+
+    print("Figures:")
+    figs = {}
+    both = lambda key: {f: curves[f"{key}{sfx}"] for f, (_, sfx) in FRAMES.items()}
+    d = args.out
+    figs["fig3"] = plots.fig3(both("washer"), d / "fig3_branch_Cp")
+    figs["fig4"] = plots.fig_hopf(both("washer.hopf.Omega"), "Omega",
+                                  r"Fig. 4: Hopf curve in $(\Omega, C_p)$", d / "fig4_hopf_Omega")
+    figs["fig5"] = plots.fig5(both("washer.hopf.m_u"), both("washer.hopf.R_u"),
+                              both("washer.hopf.m_u_R_u"), meas["fit"], d / "fig5_hopf_imbalance")
+    figs["fig6"] = plots.fig_hopf(both("washer.hopf.C_a"), "C_a",
+                                  r"Fig. 6: Hopf curve in $(C_a, C_p)$", d / "fig6_hopf_Ca",
+                                  paper_x=an.PAPER["C_a_peak"],
+                                  paper_label=f"paper's peak, $C_a$ = {an.PAPER['C_a_peak']:g}")
+    figs["fig7"] = plots.fig7(both("washer.hopf.K_s"), curves["washer.eps3"], d / "fig7_Ks")
+    for fig, title in (("fig8", "Fig. 8: rotating frame, $C_p$ = 0.15 N m s/rad"),
+                       ("fig9", "Fig. 9: rotating frame, $C_p$ = 0 N m s/rad")):
+        figs[fig] = plots.fig_rotating(resp[fig]["responses"], resp[fig]["eq"], title,
+                                       d / f"{fig}_rotating")
+    for fig, title in (("fig10", "Fig. 10: spin-up, $C_p$ = 0.15 N m s/rad"),
+                       ("fig11", "Fig. 11: spin-up, $C_p$ = 0 N m s/rad")):
+        figs[fig] = plots.fig_spinup(resp[fig]["response"], resp[fig]["orbit"], title,
+                                     d / f"{fig}_spinup", plot_from=ORBIT_PLOT_FROM[fig])
+    for fig in ("fig10", "fig11"):
+        resp[fig]["response"].save(d / "data" / fig)
+    for fig in ("fig8", "fig9"):
+        for frame, r in resp[fig]["responses"].items():
+            r.save(d / "data" / f"{fig}_{frame}")
+    wall = time.perf_counter() - t0
+    path = report.write(d, params, meas, resp, figs, log, mode=mode,
+                        timing=dict(auto=t_auto, sim=t_sim, total=wall))
+    for k, paths in figs.items():
+        print(f"  {k}: " + ", ".join(p.name for p in paths))
+    print(f"Report: {path}")
+    print(f"Wall time ({mode} mode): {time.perf_counter() - t0:.1f} s "
+          f"(AUTO runs {t_auto:.1f} s, time responses {t_sim:.1f} s)")
+    failed = {k: v for k, v in log.status.items() if v != "ok"}
+    for k, v in failed.items():
+        print(f"warning: run {k}: {v}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

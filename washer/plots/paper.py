@@ -1,0 +1,165 @@
+"""The paper's Figs 3-11 drawn from our runs: averaged frame in colour, the frozen
+(tau0 = 0) frame dashed grey, the paper's own figure where it gives one.
+
+Each function takes Curves (`washer.paper.runs`) or Responses
+(`washer.simulate`) plus the measured numbers, and saves PNG + PDF under `stem`.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from washer.paper.analysis import PAPER, spectrum
+from washer.plots import style
+
+LABELS = {"C_p": r"$C_p$ (N m s/rad)", "Omega": r"$\Omega$ (Hz)", "m_u": r"$m_u$ (kg)",
+          "R_u": r"$R_u$ (m)", "C_a": r"$C_a$ (N s/m)", "K_s": r"$K_s$ (N/m)",
+          "eps3": r"$\varepsilon_3$ (m)"}
+FRAME_STYLE = {"averaged": dict(color="C0", lw=1.6, label="averaged over the frame angle"),
+               "frozen": dict(color="0.45", lw=1.2, ls="--", label=r"frozen at $\tau_0 = 0$")}
+
+
+def _mark_specials(ax, curve, x_of, y_of, kinds=("HB", "LP", "GH", "BT", "ZH")):
+    for t, i, _ in curve.specials:
+        if t in kinds:
+            ax.plot(x_of[i], y_of[i], "*" if t == "HB" else "o", color="C3", ms=8 if t == "HB" else 5,
+                    zorder=5)
+            ax.annotate(t, (x_of[i], y_of[i]), textcoords="offset points", xytext=(4, 4),
+                        fontsize=8, color="C3")
+
+
+def fig3(curves: dict, stem: Path) -> list[Path]:
+    """Equilibrium branches in C_p: stable thick solid, unstable dotted; HB starred."""
+    fig, ax = style.figure()
+    for frame, c in curves.items():
+        st = FRAME_STYLE[frame]
+        for k in range(len(c.p1) - 1):
+            stable = c.stable[k + 1]
+            ax.plot(c.p1[k:k + 2], c.norm[k:k + 2], color=st["color"],
+                    lw=2.4 if stable else 1.0, ls="-" if stable else ":")
+        ax.plot([], [], color=st["color"], lw=2.4, label=f"{st['label']}: stable")
+        ax.plot([], [], color=st["color"], lw=1.0, ls=":", label=f"{st['label']}: unstable")
+        _mark_specials(ax, c, c.p1, c.norm, ("HB",))
+    ax.set_xlabel(LABELS["C_p"])
+    ax.set_ylabel(r"$L_2$-norm of $(\varepsilon, \dot\varepsilon)$")
+    ax.set_title(r"Fig. 3: equilibrium against $C_p$ ($C_{ox} = C_{oy} = C_{oz} = C_p$)")
+    ax.legend(fontsize=8)
+    return style.save(fig, stem)
+
+
+def hopf_panel(ax, curves: dict, xname: str, yname: str = "C_p", peak=None):
+    """Hopf curves of both frames in (xname, yname); stable side labelled."""
+    for frame, c in curves.items():
+        if yname == "C_p":
+            x, y = c.p2, c.p1
+        else:
+            x, y = c.p1, c.p2
+        ax.plot(x, y, **FRAME_STYLE[frame])
+        _mark_specials(ax, c, x, y, ("LP", "GH", "BT", "ZH"))
+    if yname == "C_p":
+        ax.text(0.03, 0.95, "stable above H\nunstable below", transform=ax.transAxes, va="top",
+                fontsize=8)
+    ax.set_xlabel(LABELS[xname])
+    ax.set_ylabel(LABELS[yname] if yname != "C_p" else r"critical $C_p$ (N m s/rad)")
+
+
+def fig_hopf(curves: dict, xname: str, title: str, stem: Path, paper_x: float | None = None,
+             paper_label: str = "") -> list[Path]:
+    fig, ax = style.figure()
+    hopf_panel(ax, curves, xname)
+    if paper_x is not None:
+        ax.axvline(paper_x, color="C1", lw=1, ls="-.", label=paper_label)
+    ax.set_title(title)
+    ax.legend(fontsize=8, loc="lower right")
+    return style.save(fig, stem)
+
+
+def fig5(mu: dict, ru: dict, mr: dict, fits: dict, stem: Path) -> list[Path]:
+    """(a) m_u-C_p, (b) R_u-C_p, (c) m_u-R_u with the R_u = a/m_u + b fits."""
+    fig, axes = style.figure(1, 3, figsize=(13, 4.0))
+    hopf_panel(axes[0], mu, "m_u")
+    axes[0].set_title("(a) Hopf curve in $(m_u, C_p)$")
+    hopf_panel(axes[1], ru, "R_u")
+    axes[1].set_title("(b) Hopf curve in $(R_u, C_p)$")
+    hopf_panel(axes[2], mr, "m_u", "R_u")
+    m = np.linspace(max(0.3, min(c.p1.min() for c in mr.values())), 2.5, 200)
+    f = fits["averaged"]
+    axes[2].plot(m, f.slope / m + f.intercept, color="C2", lw=1, ls="-.",
+                 label=f"fit: $R_u$ = {f.slope:.4f}/$m_u$ + {f.intercept:.4f}")
+    axes[2].plot(m, PAPER["fit_slope"] / m + PAPER["fit_intercept"], color="C1", lw=1, ls=":",
+                 label=f"paper: $R_u$ = {PAPER['fit_slope']}/$m_u$ + {PAPER['fit_intercept']}")
+    axes[2].set_ylim(0, 0.26)
+    axes[2].set_title("(c) Hopf curve in $(m_u, R_u)$ at the nominal critical $C_p$")
+    axes[2].legend(fontsize=7)
+    axes[0].legend(fontsize=7, loc="lower right")
+    return style.save(fig, stem)
+
+
+def fig7(ks: dict, eps3_curve, stem: Path) -> list[Path]:
+    fig, axes = style.figure(1, 2, figsize=(10, 4.0))
+    hopf_panel(axes[0], ks, "K_s")
+    axes[0].set_title("(a) Hopf curve in $(K_s, C_p)$")
+    axes[0].legend(fontsize=7, loc="lower right")
+    order = np.argsort(eps3_curve.p1)
+    axes[1].plot(eps3_curve.p1[order], eps3_curve.u[order, 2], color="C0", lw=1.6,
+                 label="averaged system, $C_p$ = 0.101")
+    axes[1].axhline(PAPER["eps3"], color="C1", ls=":", lw=1, label=r"paper's $\varepsilon_3$ = 0.408 at $K_s$ = 1800")
+    axes[1].set_xlabel(LABELS["K_s"])
+    axes[1].set_ylabel(r"equilibrium $\varepsilon_3$ (m)")
+    axes[1].set_title(r"(b) $\varepsilon_3$ at the equilibrium")
+    axes[1].legend(fontsize=7)
+    return style.save(fig, stem)
+
+
+EPS_LABELS = [r"$\varepsilon_1$ (m)", r"$\varepsilon_2$ (m)", r"$\varepsilon_3$ (m)",
+              r"$\varepsilon_4$ (rad)", r"$\varepsilon_5$ (rad)", r"$\varepsilon_6$ (rad)"]
+
+
+def fig_rotating(responses: dict, eq: dict, title: str, stem: Path) -> list[Path]:
+    """Figs 8-9: the six rotating-frame components against time, both frames,
+    with each frame's equilibrium as a thin line."""
+    fig, axes = style.figure(3, 2, figsize=(10, 7.5), sharex=True)
+    for i, ax in enumerate(axes.T.ravel()):
+        for frame, r in responses.items():
+            st = dict(FRAME_STYLE[frame], lw=0.9)
+            ax.plot(r.t, r.y[:, i], **st)
+            ax.axhline(eq[frame][i], color=st["color"], lw=0.6, ls=":")
+        ax.set_ylabel(EPS_LABELS[i])
+    for ax in axes[-1]:
+        ax.set_xlabel("t (s)")
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle(title)
+    return style.save(fig, stem)
+
+
+def fig_spinup(r, orbit, title: str, stem: Path, plot_from: float) -> list[Path]:
+    """Figs 10-11: y(t), z(t) of O_b, its XY trajectory for t >= plot_from (the
+    paper's windows) and the amplitude spectrum of y(t) over the orbit's window."""
+    fig, axes = style.figure(2, 2, figsize=(10, 7.0))
+    axes[0, 0].plot(r.t, r.y[:, 1] * 1e3, lw=0.6)
+    axes[0, 0].set_xlabel("t (s)")
+    axes[0, 0].set_ylabel("y (mm)")
+    axes[0, 0].set_title("(a) Y-direction movement of $O_b$")
+    axes[0, 1].plot(r.t, r.y[:, 2] * 1e3, lw=0.6)
+    axes[0, 1].set_xlabel("t (s)")
+    axes[0, 1].set_ylabel("z (mm)")
+    axes[0, 1].set_title("(b) Z-direction movement of $O_b$")
+    sel = r.t >= plot_from
+    axes[1, 0].plot(r.y[sel, 0] * 1e3, r.y[sel, 1] * 1e3, lw=0.6)
+    axes[1, 0].set_aspect("equal", adjustable="datalim")
+    axes[1, 0].set_xlabel("x (mm)")
+    axes[1, 0].set_ylabel("y (mm)")
+    axes[1, 0].set_title(f"(c) trajectory in plane XY, t in [{plot_from:g}, {r.t[-1]:g}] s")
+    sel = r.t >= orbit.t_from
+    f, amp = spectrum(r.t[sel], r.y[sel, 1])
+    axes[1, 1].semilogy(f, np.maximum(amp * 1e3, 1e-9), lw=0.8)
+    for fp in orbit.peaks:
+        axes[1, 1].axvline(fp, color="C3", lw=0.5, ls=":")
+    axes[1, 1].set_xlim(0, 25)
+    axes[1, 1].set_ylim(max(1e-6, amp[1:].max() * 1e3 * 1e-5), amp[1:].max() * 1e3 * 3)
+    axes[1, 1].set_xlabel("frequency (Hz)")
+    axes[1, 1].set_ylabel("amplitude of y (mm)")
+    axes[1, 1].set_title(f"(d) spectrum of y(t), t in [{orbit.t_from:g}, {r.t[-1]:g}] s")
+    fig.suptitle(title)
+    return style.save(fig, stem)
