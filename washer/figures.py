@@ -11,6 +11,7 @@ coarser. Parameters: the shipped reference set (`washer/data/reference.toml`).
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path
@@ -89,6 +90,22 @@ def measure(curves: dict, results: dict, params) -> dict:
     return m
 
 
+def write_summary(path: Path, m: dict, resp: dict) -> None:
+    """The headline numbers in machine-readable form (SI units, Omega in Hz)."""
+    from dataclasses import asdict
+    out = {"hopf": m["hopf"],
+           "C_a_peak": {f: dict(zip(("C_a", "C_p", "interior"), v)) for f, v in m["peak"].items()},
+           "fit_R_u_vs_inv_m_u": {f: asdict(v) for f, v in m["fit"].items()},
+           "trends": {f"{k}/{f}": asdict(v) for (k, f), v in m["trends"].items()},
+           "q_star": list(m["q_star"]), "eps_star": {f: list(v) for f, v in m["eps_star"].items()}}
+    for fig in ("fig8", "fig9"):
+        out[fig] = {f: dict(asdict(resp[fig]["settling"][f]), sigma=resp[fig]["sigma"][f])
+                    for f in FRAMES}
+    for fig in ("fig10", "fig11"):
+        out[fig] = asdict(resp[fig]["orbit"])
+    path.write_text(json.dumps(out, indent=1, default=float))
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m washer.figures", description=__doc__.split("\n")[1])
     ap.add_argument("--quick", action="store_true", help="coarser steps, shorter Figs 8-9")
@@ -125,7 +142,8 @@ def main(argv: list[str] | None = None) -> int:
     figs["fig6"] = plots.fig_hopf(both("washer.hopf.C_a"), "C_a",
                                   r"Fig. 6: Hopf curve in $(C_a, C_p)$", d / "fig6_hopf_Ca",
                                   paper_x=an.PAPER["C_a_peak"],
-                                  paper_label=f"paper's peak, $C_a$ = {an.PAPER['C_a_peak']:g}")
+                                  paper_label=f"paper's peak, $C_a$ = {an.PAPER['C_a_peak']:g}",
+                                  note_right=True)
     figs["fig7"] = plots.fig7(both("washer.hopf.K_s"), curves["washer.eps3"], d / "fig7_Ks")
     for fig, title in (("fig8", "Fig. 8: rotating frame, $C_p$ = 0.15 N m s/rad"),
                        ("fig9", "Fig. 9: rotating frame, $C_p$ = 0 N m s/rad")):
@@ -141,6 +159,7 @@ def main(argv: list[str] | None = None) -> int:
         for frame, r in resp[fig]["responses"].items():
             r.save(d / "data" / f"{fig}_{frame}")
     wall = time.perf_counter() - t0
+    write_summary(d / "measurements.json", meas, resp)
     path = report.write(d, params, meas, resp, figs, log, mode=mode,
                         timing=dict(auto=t_auto, sim=t_sim, total=wall))
     for k, paths in figs.items():

@@ -245,13 +245,19 @@ def write(out: Path, params, m: dict, resp: dict, figs: dict, log, mode: str, ti
                 where = f"{NAMES[key]} = {v2:.5g} {UNITS[key]}, C_p = {v1:.4g}"
             rows.append((key if key != "m_u_R_u" else "(m_u, R_u)", frame, where, why))
     L.append(_table(["curve", "frame", "end point", "why it ends there"], rows) + "\n")
-    gh = [(k, f, p) for (k, f), pts in m["gh"].items() for p in pts]
-    if gh:
-        L.append("Generalised Hopf (GH) points met on the curves: " + "; ".join(
-            f"{NAMES[k]} = {x:.4g}, C_p = {c:.3g} ({f})" for k, f, (x, c) in gh) +
-                 ". Where C_p,crit ≈ 0 and the parameter ≈ 0 together, the system has lost all "
-                 "damping: the first Lyapunov coefficient (finite differences) is ill-conditioned "
-                 "there and the GH location is not to be trusted beyond its existence.\n")
+    for (key, frame), pts in m["gh"].items():
+        if pts:
+            xs, cs = [p[0] for p in pts], [p[1] for p in pts]
+            if max(cs) >= 1e-3:
+                L.append(f"- generalised Hopf (GH) point(s) on the {NAMES[key]} curve ({frame}): "
+                         + "; ".join(f"{NAMES[key]} = {x:.4g}, C_p = {c:.4g}" for x, c in pts))
+                continue
+            L.append(f"- {len(pts)} generalised Hopf (GH) point(s) on the {NAMES[key]} curve "
+                     f"({frame}), all within {NAMES[key]} ∈ [{min(xs):.3g}, {max(xs):.3g}], "
+                     f"C_p ≤ {max(cs):.2g}: next to the end where C_p,crit and {NAMES[key]} vanish "
+                     "together and the system has no damping left, the first Lyapunov coefficient "
+                     "(finite differences) is ill-conditioned, so these locate a degenerate corner, "
+                     "not a reliable codimension-2 point.")
     for frame in ("averaged", "frozen"):
         x, c, interior = m["peak"][frame]
         L.append(f"- C_a curve ({frame}): C_p,crit is largest at C_a = {x:.1f} N s/m "

@@ -48,7 +48,7 @@ def fig3(curves: dict, stem: Path) -> list[Path]:
     return style.save(fig, stem)
 
 
-def hopf_panel(ax, curves: dict, xname: str, yname: str = "C_p", peak=None):
+def hopf_panel(ax, curves: dict, xname: str, yname: str = "C_p", note_right: bool = False):
     """Hopf curves of both frames in (xname, yname); stable side labelled."""
     for frame, c in curves.items():
         if yname == "C_p":
@@ -58,16 +58,16 @@ def hopf_panel(ax, curves: dict, xname: str, yname: str = "C_p", peak=None):
         ax.plot(x, y, **FRAME_STYLE[frame])
         _mark_specials(ax, c, x, y, ("LP", "GH", "BT", "ZH"))
     if yname == "C_p":
-        ax.text(0.03, 0.95, "stable above H\nunstable below", transform=ax.transAxes, va="top",
-                fontsize=8)
+        ax.text(0.97 if note_right else 0.03, 0.95, "stable above H\nunstable below",
+                transform=ax.transAxes, va="top", ha="right" if note_right else "left", fontsize=8)
     ax.set_xlabel(LABELS[xname])
     ax.set_ylabel(LABELS[yname] if yname != "C_p" else r"critical $C_p$ (N m s/rad)")
 
 
 def fig_hopf(curves: dict, xname: str, title: str, stem: Path, paper_x: float | None = None,
-             paper_label: str = "") -> list[Path]:
+             paper_label: str = "", note_right: bool = False) -> list[Path]:
     fig, ax = style.figure()
-    hopf_panel(ax, curves, xname)
+    hopf_panel(ax, curves, xname, note_right=note_right)
     if paper_x is not None:
         ax.axvline(paper_x, color="C1", lw=1, ls="-.", label=paper_label)
     ax.set_title(title)
@@ -90,7 +90,7 @@ def fig5(mu: dict, ru: dict, mr: dict, fits: dict, stem: Path) -> list[Path]:
     axes[2].plot(m, PAPER["fit_slope"] / m + PAPER["fit_intercept"], color="C1", lw=1, ls=":",
                  label=f"paper: $R_u$ = {PAPER['fit_slope']}/$m_u$ + {PAPER['fit_intercept']}")
     axes[2].set_ylim(0, 0.26)
-    axes[2].set_title("(c) Hopf curve in $(m_u, R_u)$ at the nominal critical $C_p$")
+    axes[2].set_title("(c) Hopf curve in $(m_u, R_u)$, $C_p$ fixed")
     axes[2].legend(fontsize=7)
     axes[0].legend(fontsize=7, loc="lower right")
     return style.save(fig, stem)
