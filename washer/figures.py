@@ -144,7 +144,8 @@ def main(argv: list[str] | None = None) -> int:
                                   paper_x=an.PAPER["C_a_peak"],
                                   paper_label=f"paper's peak, $C_a$ = {an.PAPER['C_a_peak']:g}",
                                   note_right=True)
-    figs["fig7"] = plots.fig7(both("washer.hopf.K_s"), curves["washer.eps3"], d / "fig7_Ks")
+    figs["fig7"] = plots.fig7(both("washer.hopf.K_s"), curves["washer.eps3"], params["C_p"],
+                              d / "fig7_Ks")
     for fig, title in (("fig8", "Fig. 8: rotating frame, $C_p$ = 0.15 N m s/rad"),
                        ("fig9", "Fig. 9: rotating frame, $C_p$ = 0 N m s/rad")):
         figs[fig] = plots.fig_rotating(resp[fig]["responses"], resp[fig]["eq"], title,

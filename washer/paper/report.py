@@ -29,7 +29,7 @@ FIG_OF = {"Omega": "Fig. 4", "m_u": "Fig. 5(a)", "R_u": "Fig. 5(b)", "C_a": "Fig
 
 
 def _g(x, n=4):
-    return f"{x:.{n}g}"
+    return "0" if abs(x) < 1e-9 else f"{x:.{n}g}"
 
 
 def _rel(a, b):
@@ -91,8 +91,11 @@ def claims(m: dict, resp: dict) -> list[tuple[str, str, str, str, str]]:
                  f"peak at C_a = {xf:.1f} N s/m (C_p = {cf:.4f})" if if_ else "no interior peak", v))
     fa, ff = m["fit"]["averaged"], m["fit"]["frozen"]
     es, ei = _rel(fa.slope, PAPER["fit_slope"]), fa.intercept - PAPER["fit_intercept"]
+    # Both curves pass through the nominal point (1 kg, 0.15 m), where the Hopf C_p was
+    # calibrated, so a + b = 0.15 holds by construction: the split into a and b is the test.
     if abs(es) <= MATCH_REL and abs(ei) <= 0.002:
-        v = "**reproduced**"
+        v = (f"**reproduced**: slope {100 * es:+.1f}%, intercept {1e3 * ei:+.1f} mm (a + b = "
+             f"R_u at m_u = 1 kg is fixed by the calibrated nominal point; the split is the test)")
     elif fa.slope > 0:
         v = (f"**qualitatively**: R_u falls as 1/m_u (max residual {1e3 * fa.max_residual:.1f} mm); "
              f"slope {100 * es:+.0f}%, intercept {1e3 * ei:+.1f} mm off the paper's")
@@ -113,10 +116,16 @@ def claims(m: dict, resp: dict) -> list[tuple[str, str, str, str, str]]:
     rows.append(("ε3 at the equilibrium (section 3.2.1, Fig. 7(b))", f"{PAPER['eps3']} m",
                  f"{e3a:.4f} m", f"{e3f:.4f} m",
                  "**reproduced**" if abs(e) <= MATCH_REL else
-                 f"**not reproduced** ({100 * e:+.1f}%): our ε3 stays near the static z; the "
-                 "paper's value is not consistent with its own q* (z = 0.395 m)"))
+                 f"**not reproduced** ({100 * e:+.1f}%): in our model spinning moves the height "
+                 f"by {1e3 * (e3a - q0[2]):+.1f} mm from the static z, while the paper's ε3 is "
+                 f"{1e3 * (PAPER['eps3'] - PAPER['q_star'][2]):+.0f} mm above its static q*; the "
+                 "paper does not give what would explain the difference"))
     ks, e3 = m["eps3_K_s"]
     up = np.all(np.diff(e3) > 0)
+    if up and e3[0] <= PAPER["eps3"] <= e3[-1]:
+        k408 = float(np.interp(PAPER["eps3"], e3, ks))
+        rows[-1] = rows[-1][:4] + (rows[-1][4] + f"; our ε3 reaches {PAPER['eps3']} m at "
+                                   f"K_s = {k408:.0f} N/m (Fig. 7(b))",)
     rows.append(("ε3 falls as K_s decreases: small K_s puts the tub too low (Fig. 7(b))",
                  "ε3 increasing in K_s",
                  f"ε3 {e3[0]:.4f} m at K_s = {ks[0]:g} → {e3[-1]:.4f} m at {ks[-1]:g} N/m", "—",

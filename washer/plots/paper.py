@@ -96,14 +96,14 @@ def fig5(mu: dict, ru: dict, mr: dict, fits: dict, stem: Path) -> list[Path]:
     return style.save(fig, stem)
 
 
-def fig7(ks: dict, eps3_curve, stem: Path) -> list[Path]:
+def fig7(ks: dict, eps3_curve, C_p: float, stem: Path) -> list[Path]:
     fig, axes = style.figure(1, 2, figsize=(10, 4.0))
     hopf_panel(axes[0], ks, "K_s")
     axes[0].set_title("(a) Hopf curve in $(K_s, C_p)$")
     axes[0].legend(fontsize=7, loc="lower right")
     order = np.argsort(eps3_curve.p1)
     axes[1].plot(eps3_curve.p1[order], eps3_curve.u[order, 2], color="C0", lw=1.6,
-                 label="averaged system, $C_p$ = 0.101")
+                 label=f"averaged system, $C_p$ = {C_p:g}")
     axes[1].axhline(PAPER["eps3"], color="C1", ls=":", lw=1, label=r"paper's $\varepsilon_3$ = 0.408 at $K_s$ = 1800")
     axes[1].set_xlabel(LABELS["K_s"])
     axes[1].set_ylabel(r"equilibrium $\varepsilon_3$ (m)")
