@@ -22,27 +22,27 @@ from washer.machine import Model
 from washer.paper import analysis as an
 from washer.paper.runs import FRAMES, run_all
 from washer.params import load_params
-from washer.simulate import PAPER_EPS3_0, simulate
+from washer.simulate import SETUPS, simulate
 
-#: Fig 8-9 duration (s), full and quick; Figs 10-11 always run the paper's 50 s.
-T_ROT = {False: 50.0, True: 25.0}
-T_SPIN = 50.0
-#: Late windows (s): the paper's trajectory plots and our spectra (20 s: 0.05 Hz bins).
-ORBIT_PLOT_FROM = {"fig10": 30.0, "fig11": 45.0}
+#: Figs 8-9 duration in quick mode (s); otherwise the paper's setups
+#: (`washer.simulate.SETUPS`: C_p, durations, the trajectory windows of Figs 10c/11c).
+T_ROT_QUICK = 25.0
+#: Start of the late window for the orbit measures and spectra (s; 20 s: 0.05 Hz bins).
 SPECTRUM_FROM = 30.0
 
 
 def time_responses(params, quick: bool, progress=print) -> dict:
     """Figs 8-9 in both frames and Figs 10-11, with their measurements."""
     out = {}
-    for fig, cp in (("fig8", 0.15), ("fig9", 0.0)):
+    for fig in ("fig8", "fig9"):
+        cp = SETUPS[fig]["C_p"]
+        t_end = T_ROT_QUICK if quick else SETUPS[fig]["t_end"]
         model = Model(params.replace(C_p=cp))
-        y0 = np.zeros(12)
-        y0[2] = PAPER_EPS3_0
         rs, eqs, meas, sigma = {}, {}, {}, {}
         for frame in FRAMES:
-            progress(f"  {fig}: rotating frame ({frame}), C_p = {cp:g}, {T_ROT[quick]:g} s")
-            rs[frame] = simulate(model, T_ROT[quick], system="rotating", frame=frame, y0=y0,
+            # Initial state: the paper's eps3 = 0.408 m, all else zero (the default).
+            progress(f"  {fig}: rotating frame ({frame}), C_p = {cp:g}, {t_end:g} s")
+            rs[frame] = simulate(model, t_end, system="rotating", frame=frame,
                                  samples_per_s=200.0, progress=False)
             eqs[frame] = model.rotating_equilibrium(frame=frame)
             meas[frame] = an.settling(rs[frame], eqs[frame])
@@ -50,10 +50,11 @@ def time_responses(params, quick: bool, progress=print) -> dict:
             lam = model.eigenvalues(eqs[frame], frame=frame)
             sigma[frame] = float(-lam.real.max())
         out[fig] = dict(C_p=cp, responses=rs, eq=eqs, settling=meas, sigma=sigma)
-    for fig, cp in (("fig10", 0.15), ("fig11", 0.0)):
-        progress(f"  {fig}: spin-up (eq 66), C_p = {cp:g}, {T_SPIN:g} s")
+    for fig in ("fig10", "fig11"):
+        cp, t_end = SETUPS[fig]["C_p"], SETUPS[fig]["t_end"]
+        progress(f"  {fig}: spin-up (eq 66), C_p = {cp:g}, {t_end:g} s")
         model = Model(params.replace(C_p=cp))
-        r = simulate(model, T_SPIN, system="fixed", law="spinup", samples_per_s=500.0,
+        r = simulate(model, t_end, system="fixed", law="spinup", samples_per_s=500.0,
                      progress=False)
         out[fig] = dict(C_p=cp, response=r, orbit=an.orbit(r, SPECTRUM_FROM),
                         z_static=float(model.static_equilibrium()[2]))
@@ -153,7 +154,7 @@ def main(argv: list[str] | None = None) -> int:
     for fig, title in (("fig10", "Fig. 10: spin-up, $C_p$ = 0.15 N m s/rad"),
                        ("fig11", "Fig. 11: spin-up, $C_p$ = 0 N m s/rad")):
         figs[fig] = plots.fig_spinup(resp[fig]["response"], resp[fig]["orbit"], title,
-                                     d / f"{fig}_spinup", plot_from=ORBIT_PLOT_FROM[fig])
+                                     d / f"{fig}_spinup", plot_from=SETUPS[fig]["orbit_from"])
     for fig in ("fig10", "fig11"):
         resp[fig]["response"].save(d / "data" / fig)
     for fig in ("fig8", "fig9"):

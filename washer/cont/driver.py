@@ -296,9 +296,10 @@ class Run:
         # THU weighs U(i) in the arclength; on ISW = 2 curves it may also name the
         # extended unknowns (Hopf: U(2n+1) = kappa = omega^2, whose scale can
         # dominate the step), as AUTO's THU covers the extended NDIM.
+        n_state = N - len(self.free)       # X = (state unknowns, free parameters)
         for i, v in c["THU"].items():
             k = c.u_index(i) - 1
-            if k < N - 1 - (len(self.free) > 1):
+            if k < n_state:
                 theta[k] = float(v)
         thl = {c.par_index(k): float(v) for k, v in c["THL"].items()}
         theta[-1] = thl.get(self.icp[0], 1.0)

@@ -23,9 +23,9 @@ IMAG_TOL = 1e-8
 #: Finite-difference steps for second and third derivatives of f (normal forms,
 #: CP): about eps^(1/4) and eps^(1/5), balancing truncation and rounding errors.
 FD2_STEP = 1e-3
+FD3_STEP = 4e-3
 #: Forward-difference step (relative) for derivatives of f_x in the Hopf-curve Jacobian.
 HESS_STEP = 1e-7
-FD3_STEP = 4e-3
 
 
 def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:

@@ -21,7 +21,6 @@ PAPER = {
     "q_star": [0.0, 0.05, 0.395, 0.095, 0.0, 0.0],     # m, rad (section 3.2.2)
     "eps3": 0.408,              # m (section 3.2.1)
     "settle_fig8": 20.0,        # s, "a fixed solution is achieved after t ~ 20 s"
-    "steady_fig10": 30.0,       # s, "keeps stable after t ~ 30"
 }
 
 #: Table 1's ranges (Omega in Hz; Table 1 gives K_s in "N s/m", a typo for N/m).

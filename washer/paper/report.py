@@ -207,10 +207,7 @@ def params_table(path: Path | None = None) -> list[tuple[str, str, str, str]]:
             continue
         kv = re.match(r"\s*(\w+)\s*=\s*([^#]+?)\s*(?:#\s*(.*))?$", line)
         if kv and section:
-            note = kv.group(3) or ""
-            if section in ("tub", "basket") and not note:
-                note = "estimate"
-            out.append((section, kv.group(1), kv.group(2), note))
+            out.append((section, kv.group(1), kv.group(2), kv.group(3) or ""))
     return out
 
 

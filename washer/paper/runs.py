@@ -59,43 +59,20 @@ class RunLog:
     status: dict = field(default_factory=dict)
 
 
-def _rows_to_arrays(rows, two_par: bool):
-    vals = np.array([r.values for r in rows])
-    p1 = vals[:, 0]
-    p2 = vals[:, -1] if two_par else None
-    u = vals[:, 2:7] if not two_par else vals[:, 2:-1]
-    u = np.column_stack([vals[:, 1], u])        # norm first, split off below
-    stable = np.array([r.pt < 0 for r in rows])
-    names = [(type_name(r.ty), r.lab) for r in rows]
-    return p1, p2, u, stable, names
-
-
 def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
     """The curve of b.<name> joined with b.<name>.bwd when that exists: backward
     part reversed, then the forward part (their shared start point once)."""
-    parts = []
-    for suffix in (".bwd", ""):
-        path = folder / f"b.{name}{suffix}"
-        if path.exists():
-            rows = [r for branch in read_b(path) for r in branch]
-            parts.append((suffix, _rows_to_arrays(rows, two_par)))
-    if not parts:
+    read = lambda path: [r for branch in read_b(path) for r in branch] if path.exists() else []
+    bwd, fwd = read(folder / f"b.{name}.bwd")[::-1], read(folder / f"b.{name}")
+    rows = bwd[:-1] + fwd if (bwd and fwd) else bwd + fwd
+    if not rows:
         raise FileNotFoundError(f"no b.{name} in {folder}")
-    seqs = []
-    for suffix, (p1, p2, u, st, names) in parts:
-        idx = np.arange(len(p1))
-        if suffix == ".bwd":
-            idx = idx[::-1][:-1] if len(parts) == 2 else idx[::-1]
-        seqs.append((p1[idx], None if p2 is None else p2[idx], u[idx], st[idx],
-                     [names[i] for i in idx]))
-    p1 = np.concatenate([s[0] for s in seqs])
-    p2 = None if not two_par else np.concatenate([s[1] for s in seqs])
-    u = np.concatenate([s[2] for s in seqs])
-    stable = np.concatenate([s[3] for s in seqs])
-    names = [n for s in seqs for n in s[4]]
+    vals = np.array([r.values for r in rows])
+    names = [(type_name(r.ty), r.lab) for r in rows]
     specials = [(t, i, lab) for i, (t, lab) in enumerate(names) if t and lab]
-    ends = (names[0][0], names[-1][0])
-    return Curve(name, p1, p2, u[:, 0], u[:, 1:], stable, specials, ends)
+    return Curve(name, vals[:, 0], vals[:, -1] if two_par else None, vals[:, 1],
+                 vals[:, 2:-1] if two_par else vals[:, 2:7], np.array([r.pt < 0 for r in rows]),
+                 specials, (names[0][0], names[-1][0]))
 
 
 def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):
