@@ -42,6 +42,9 @@ int accelerations(const double *q, const double *qd, double th, double w, double
 
 int rhs_fixed(double t, const double *u, const double *P, int law, double *du);
 int jac_fixed(double t, const double *u, const double *P, int law, double *J, double *Jp);
+// rhs and Jacobians from one factorization of M; any output may be NULL.
+int rhs_jac_fixed(double t, const double *u, const double *P, int law, double *du, double *J,
+                  double *Jp);
 int rhs_rot(const double *xi, const double *P, int frame, double *dxi);
 int jac_rot(const double *xi, const double *P, int frame, double *J, double *Jp);
 

@@ -38,20 +38,22 @@ constexpr double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32700
                  D4 = -10690763975.0 / 1880347072.0, D5 = 701980252875.0 / 199316789632.0,
                  D6 = -1453857185.0 / 822651844.0, D7 = 69997945.0 / 29380423.0;
 
-template <class Rhs>
-int dopri5(Rhs &&f, double t, Vec12 y, double rtol, double atol, int nout, const double *tout,
-           double *yout, double *h_io, long max_steps, long *stats) {
+// Integrates y' = f(t, y), y of length N, from t with outputs at tout (see washer_integrate).
+template <int N, class Rhs>
+int dopri5(Rhs &&f, double t, Eigen::Matrix<double, N, 1> y, double rtol, double atol, int nout,
+           const double *tout, double *yout, double *h_io, long max_steps, long *stats) {
+    using Vec = Eigen::Matrix<double, N, 1>;
     long nfev = 0, nacc = 0, nrej = 0;
     int k_out = 0;
-    Vec12 k1, k2, k3, k4, k5, k6, k7, ynew, yerr;
-    auto eval = [&](double tt, const Vec12 &yy, Vec12 &out) { ++nfev; return f(tt, yy, out); };
+    Vec k1, k2, k3, k4, k5, k6, k7, ynew, yerr;
+    auto eval = [&](double tt, const Vec &yy, Vec &out) { ++nfev; return f(tt, yy, out); };
     auto finish = [&](int rc) {
         stats[0] += nfev; stats[1] += nacc; stats[2] += nrej; stats[4] = k_out;
         return rc;
     };
     // Outputs at (or before) the start time.
     while (k_out < nout && tout[k_out] <= t) {
-        Eigen::Map<Vec12>(yout + 12 * k_out) = y;
+        Eigen::Map<Vec>(yout + N * k_out) = y;
         ++k_out;
     }
     if (k_out == nout) return finish(WASHER_OK);
@@ -59,19 +61,19 @@ int dopri5(Rhs &&f, double t, Vec12 y, double rtol, double atol, int nout, const
     int rc = eval(t, y, k1);
     if (rc) return finish(rc);
 
-    auto scale = [&](const Vec12 &a, const Vec12 &b) {
+    auto scale = [&](const Vec &a, const Vec &b) {
         return (atol + rtol * a.cwiseAbs().cwiseMax(b.cwiseAbs()).array()).matrix();
     };
     double h = *h_io;
     if (!(h > 0.0)) {   // Hairer's starting-step heuristic
-        const Vec12 sc = scale(y, y);
-        const double d0 = std::sqrt(y.cwiseQuotient(sc).squaredNorm() / 12);
-        const double d1 = std::sqrt(k1.cwiseQuotient(sc).squaredNorm() / 12);
+        const Vec sc = scale(y, y);
+        const double d0 = std::sqrt(y.cwiseQuotient(sc).squaredNorm() / N);
+        const double d1 = std::sqrt(k1.cwiseQuotient(sc).squaredNorm() / N);
         double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
         h0 = std::min(h0, t_end - t);
-        rc = eval(t + h0, Vec12(y + h0 * k1), k2);
+        rc = eval(t + h0, Vec(y + h0 * k1), k2);
         if (rc) return finish(rc);
-        const double d2 = std::sqrt((k2 - k1).cwiseQuotient(sc).squaredNorm() / 12) / h0;
+        const double d2 = std::sqrt((k2 - k1).cwiseQuotient(sc).squaredNorm() / N) / h0;
         const double dm = std::max(d1, d2);
         const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / 5);
         h = std::min(100 * h0, h1);
@@ -81,32 +83,32 @@ int dopri5(Rhs &&f, double t, Vec12 y, double rtol, double atol, int nout, const
         if (max_steps > 0 && nacc + nrej >= max_steps) return finish(WASHER_EMAX_STEPS);
         h = std::min(h, t_end - t);
         if (h < 1e-14 * std::max(1.0, std::fabs(t))) return finish(WASHER_ESTEP_TOO_SMALL);
-        if ((rc = eval(t + C2 * h, Vec12(y + h * A21 * k1), k2))) return finish(rc);
-        if ((rc = eval(t + C3 * h, Vec12(y + h * (A31 * k1 + A32 * k2)), k3))) return finish(rc);
-        if ((rc = eval(t + C4 * h, Vec12(y + h * (A41 * k1 + A42 * k2 + A43 * k3)), k4)))
+        if ((rc = eval(t + C2 * h, Vec(y + h * A21 * k1), k2))) return finish(rc);
+        if ((rc = eval(t + C3 * h, Vec(y + h * (A31 * k1 + A32 * k2)), k3))) return finish(rc);
+        if ((rc = eval(t + C4 * h, Vec(y + h * (A41 * k1 + A42 * k2 + A43 * k3)), k4)))
             return finish(rc);
         if ((rc = eval(t + C5 * h,
-                       Vec12(y + h * (A51 * k1 + A52 * k2 + A53 * k3 + A54 * k4)), k5)))
+                       Vec(y + h * (A51 * k1 + A52 * k2 + A53 * k3 + A54 * k4)), k5)))
             return finish(rc);
         if ((rc = eval(t + h,
-                       Vec12(y + h * (A61 * k1 + A62 * k2 + A63 * k3 + A64 * k4 + A65 * k5)),
+                       Vec(y + h * (A61 * k1 + A62 * k2 + A63 * k3 + A64 * k4 + A65 * k5)),
                        k6)))
             return finish(rc);
         ynew = y + h * (A71 * k1 + A73 * k3 + A74 * k4 + A75 * k5 + A76 * k6);
         if ((rc = eval(t + h, ynew, k7))) return finish(rc);
         yerr = h * (E1 * k1 + E3 * k3 + E4 * k4 + E5 * k5 + E6 * k6 + E7 * k7);
-        const double err = std::sqrt(yerr.cwiseQuotient(scale(y, ynew)).squaredNorm() / 12);
+        const double err = std::sqrt(yerr.cwiseQuotient(scale(y, ynew)).squaredNorm() / N);
         if (!std::isfinite(err)) return finish(WASHER_ENONFINITE_OUTPUT);
         if (err <= 1.0) {
             // Dense output on [t, t + h] for every requested time inside it.
-            const Vec12 r2 = ynew - y;
-            const Vec12 r3 = h * k1 - r2;
-            const Vec12 r4 = r2 - h * k7 - r3;
-            const Vec12 r5 = h * (D1 * k1 + D3 * k3 + D4 * k4 + D5 * k5 + D6 * k6 + D7 * k7);
+            const Vec r2 = ynew - y;
+            const Vec r3 = h * k1 - r2;
+            const Vec r4 = r2 - h * k7 - r3;
+            const Vec r5 = h * (D1 * k1 + D3 * k3 + D4 * k4 + D5 * k5 + D6 * k6 + D7 * k7);
             const double t_new = t + h;
             while (k_out < nout && tout[k_out] <= t_new) {
                 const double s = (tout[k_out] - t) / h, s1 = 1.0 - s;
-                Eigen::Map<Vec12>(yout + 12 * k_out) = y + s * (r2 + s1 * (r3 + s * (r4 + s1 * r5)));
+                Eigen::Map<Vec>(yout + N * k_out) = y + s * (r2 + s1 * (r3 + s * (r4 + s1 * r5)));
                 ++k_out;
             }
             t = t_new;
@@ -142,12 +144,62 @@ extern "C" int washer_integrate(int system, int mode, double t0, const double *y
     if (!all_finite(y0, 12) || !std::isfinite(t0)) return WASHER_ENONFINITE_INPUT;
     const Eigen::Map<const Vec12> y(y0);
     if (system == 0)
-        return dopri5([&](double t, const Vec12 &u, Vec12 &du) {
+        return dopri5<12>([&](double t, const Vec12 &u, Vec12 &du) {
             return rhs_fixed(t, u.data(), P, mode, du.data());
         }, t0, y, rtol, atol, nout, tout, yout, h_io, max_steps, stats);
     if (system == 1)
-        return dopri5([&](double, const Vec12 &xi, Vec12 &dxi) {
+        return dopri5<12>([&](double, const Vec12 &xi, Vec12 &dxi) {
             return rhs_rot(xi.data(), P, mode, dxi.data());
         }, t0, y, rtol, atol, nout, tout, yout, h_io, max_steps, stats);
     return WASHER_EBAD_ARGUMENT;
+}
+
+// ------------------------------------------------------- variational equations
+// Ground-frame flow u(t1) of eq 48 together with its derivatives: the state
+// transition matrix Phi = du(t1)/du(t0), Phi' = J(t, u) Phi, Phi(t0) = I
+// (at constant speed over one period T = 1/Omega, the monodromy matrix), and
+// the sensitivity s = du(t1)/dp along the parameter direction dir (weights of the
+// Jp columns), s' = J s + Jp dir, s(t0) = 0. One augmented DOPRI5 run whose error
+// control covers all 12 + 144 + 12 components, so the derivatives are as accurate
+// as the flow (the variational equations are the exact derivative of the
+// continuous flow, not of the discrete method: they agree with finite differences
+// of the numerical flow to the integration tolerance).
+extern "C" int washer_flow_variational(int law, double t0, double t1, const double *u0,
+                                       const double *P, const double *dir, double rtol,
+                                       double atol, double *u1, double *Phi, double *s,
+                                       double *h_io, long max_steps, long *stats) {
+    using namespace washer;
+    constexpr int NA = 12 + 144 + 12;
+    using VecA = Eigen::Matrix<double, NA, 1>;
+    if (!(rtol > 0) || !(atol > 0) || !(t1 >= t0)) return WASHER_EBAD_ARGUMENT;
+    if (!all_finite(u0, 12) || !std::isfinite(t0) || !std::isfinite(t1))
+        return WASHER_ENONFINITE_INPUT;
+    Eigen::Matrix<double, WASHER_N_DIFF, 1> w = Eigen::Matrix<double, WASHER_N_DIFF, 1>::Zero();
+    if (dir) w = Eigen::Map<const Eigen::Matrix<double, WASHER_N_DIFF, 1>>(dir);
+    const bool with_p = dir != nullptr;
+    VecA y = VecA::Zero();
+    y.head<12>() = Eigen::Map<const Vec12>(u0);
+    Eigen::Map<Mat12>(y.data() + 12).setIdentity();
+    VecA yend;
+    double h_local = 0.0;
+    long stats_local[5] = {0, 0, 0, 0, 0};
+    if (!h_io) h_io = &h_local;
+    if (!stats) stats = stats_local;
+    const int rc = dopri5<NA>([&](double t, const VecA &x, VecA &dx) -> int {
+        Mat12 J;
+        Mat12xD Jp;
+        const int r = rhs_jac_fixed(t, x.data(), P, law, dx.data(), J.data(),
+                                    with_p ? Jp.data() : nullptr);
+        if (r) return r;
+        Eigen::Map<Mat12>(dx.data() + 12) = J * Eigen::Map<const Mat12>(x.data() + 12);
+        Eigen::Map<Vec12> ds(dx.data() + 156);
+        ds = J * Eigen::Map<const Vec12>(x.data() + 156);
+        if (with_p) ds += Jp * w;
+        return WASHER_OK;
+    }, t0, y, rtol, atol, 1, &t1, yend.data(), h_io, max_steps, stats);
+    if (rc) return rc;
+    if (u1) std::copy(yend.data(), yend.data() + 12, u1);
+    if (Phi) std::copy(yend.data() + 12, yend.data() + 156, Phi);
+    if (s) std::copy(yend.data() + 156, yend.data() + NA, s);
+    return WASHER_OK;
 }

@@ -92,10 +92,19 @@ int rhs_fixed(double t, const double *u, const double *P, int law, double *du) {
 }
 
 int jac_fixed(double t, const double *u, const double *P, int law, double *J, double *Jp) {
+    return rhs_jac_fixed(t, u, P, law, nullptr, J, Jp);
+}
+
+int rhs_jac_fixed(double t, const double *u, const double *P, int law, double *du, double *J,
+                  double *Jp) {
     Speed s;
     Accel A;
     int rc = fixed_accelerations(t, u, P, law, true, s, A);
     if (rc) return rc;
+    if (du) {
+        std::memcpy(du, u + 6, 6 * sizeof(double));
+        Eigen::Map<Vec6>(du + 6) = A.a;
+    }
     if (J) {
         Eigen::Map<Mat12> Jm(J);
         Jm.setZero();

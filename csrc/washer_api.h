@@ -51,3 +51,13 @@ int washer_jac_rot_batch(int n, const double *xi, const double *P, int pstride, 
 int washer_integrate(int system, int mode, double t0, const double *y0, const double *P,
                      double rtol, double atol, int nout, const double *tout, double *yout,
                      double *h_io, long max_steps, long *stats);
+
+/* Ground-frame flow with variational equations, in one DOPRI5 run (mode = law):
+ * u1 = u(t1) from u(t0) = u0 (12), Phi = du(t1)/du0 (row-major 12x12; over one period
+ * t1 - t0 = 1/Omega at constant speed: the monodromy matrix), and s = du(t1)/dp along
+ * the direction dir (length washer_n_diff(), weights of the Jp columns; NULL: s = 0).
+ * Error control covers the flow and its derivatives. u1, Phi, s may be NULL;
+ * h_io, max_steps and stats as for washer_integrate. */
+int washer_flow_variational(int law, double t0, double t1, const double *u0, const double *P,
+                            const double *dir, double rtol, double atol, double *u1,
+                            double *Phi, double *s, double *h_io, long max_steps, long *stats);

@@ -212,3 +212,28 @@ def integrate(system: str, mode: str, t0: float, y0, P, tout, rtol: float, atol:
         err.partial = (tout[:stats[4]], Y[:stats[4]], info)
         raise err
     return Y, h[0], info
+
+
+def flow_variational(t0: float, t1: float, u0, P, law: str = "constant", direction=None,
+                     rtol: float = 1e-10, atol: float = 1e-12, h0: float = 0.0,
+                     max_steps: int = 0):
+    """Ground-frame flow of eq 48 with its variational equations, in one kernel call.
+
+    Integrates u' = f(t, u), Phi' = J(t, u) Phi (Phi(t0) = I) and, if `direction` is
+    given, s' = J s + Jp @ direction (s(t0) = 0) with DOPRI5, error control on all
+    components. `direction` (N_DIFF,) weighs the parameter-Jacobian columns DIFF_NAMES
+    (e.g. C_p + C_ox + C_oz for the tied joint damping).
+
+    Returns (u1 (12,) = u(t1), Phi (12, 12) = du(t1)/du0, s (12,) = du(t1)/dp or zeros,
+    stats dict nfev/naccept/nreject). With law 'constant' and t1 - t0 = 1/Omega (s),
+    Phi is the monodromy matrix of the forced response.
+    """
+    u1, Phi, s = np.empty(12), np.empty((12, 12)), np.zeros(12)
+    d = None if direction is None else _in(direction, N_DIFF, "direction")
+    h = ffi.new("double *", h0)
+    stats = ffi.new("long[5]")
+    _call(lib.washer_flow_variational(_law(law), t0, t1, _ptr(_in(u0, 12, "u0")),
+                                      _ptr(_params(P)), _ptr(d), rtol, atol, _ptr(u1),
+                                      _ptr(Phi), _ptr(s), h, max_steps, stats),
+          "flow_variational")
+    return u1, Phi, s, {"nfev": stats[0], "naccept": stats[1], "nreject": stats[2]}
