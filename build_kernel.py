@@ -1,7 +1,7 @@
 """cffi builder of the compiled kernel `washer._kernel` (out-of-line API mode).
 
 Used by `pip install .` through setup.py (cffi_modules), or directly for an
-in-place development build: `python build.py`.
+in-place development build: `python build_kernel.py`.
 Eigen's headers are taken from $EIGEN3_INCLUDE_DIR, default /usr/include/eigen3
 (Debian's libeigen3-dev).
 """
@@ -26,6 +26,8 @@ ffibuilder.set_source(
     include_dirs=["csrc", EIGEN],
     source_extension=".cpp",
     extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],
+    # -s: strip the symbol table (the unstripped kernel is ~30 MB, mostly symbols).
+    extra_link_args=["-s"],
     language="c++",
 )
 

@@ -1,5 +1,32 @@
 # cffi cannot be configured from pyproject.toml (python-cffi/cffi#55): the
 # extension is declared here, everything else lives in pyproject.toml.
-from setuptools import setup
+import shutil
+from pathlib import Path
 
-setup(cffi_modules=["build.py:ffibuilder"])
+from setuptools import setup
+from setuptools.command.build_py import build_py
+
+HERE = Path(__file__).resolve().parent
+
+
+class build_py_with_constants(build_py):
+    """Also ship the AUTO constants files of auto_constants/ as washer/auto_constants/.
+
+    They stay at the top of the source tree (where the README, the tests and
+    users of a checkout run them); a wheel carries a copy inside the package so
+    that `python -m washer.run --copy-examples DIR` and washer.paper find them
+    without a checkout. An editable install reads the checkout's folder instead.
+    """
+
+    def run(self):
+        super().run()
+        if getattr(self, "editable_mode", False):
+            return
+        dst = Path(self.build_lib) / "washer" / "auto_constants"
+        dst.mkdir(parents=True, exist_ok=True)
+        for f in sorted((HERE / "auto_constants").glob("c.*")):
+            shutil.copy2(f, dst / f.name)
+
+
+setup(cffi_modules=["build_kernel.py:ffibuilder"],
+      cmdclass={"build_py": build_py_with_constants})
