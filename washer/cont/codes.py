@@ -1,0 +1,91 @@
+"""AUTO-07p's point-type codes (support.f90:LBTYPE), in one place.
+
+A point's type is an integer `ITP`. On a one-parameter branch it is the base
+code below. On a codim-1 curve continued with ISW = 2 from a point of type
+ITPST (2 = LP, 3 = HB, 1 = BP, 5 = LP of cycles, 7 = PD, 8 = TR) every
+nonzero code becomes `base + sign(base) * 10 * ITPST` (AUTO.md section 2.1):
+UZ -34, EP 39, BT -31, GH -32, ZH -33, BP 31, LP 32 and regular NPR points 34 on
+a Hopf curve; UZ -24, EP 29, BT -21, CP -22 on a fold curve. Unlabelled points
+keep code 0 everywhere.
+"""
+from __future__ import annotations
+
+from enum import IntEnum
+
+
+class Code(IntEnum):
+    """Base type codes. `Code.GH` and `Code.CP` share the base -2: AUTO tells
+    them apart by the curve (GH on Hopf curves, CP on fold curves)."""
+    NONE = 0        # regular point, no label
+    BP = 1          # branch point (algebraic)
+    LP = 2          # fold (algebraic)
+    HB = 3          # Hopf bifurcation
+    RG = 4          # regular point labelled every NPR steps
+    UZ = -4         # user point (UZR / UZSTOP / PVLS values)
+    LPC = 5         # fold of periodic orbits (BVP)
+    BPC = 6         # branch point of periodic orbits (BVP)
+    PD = 7          # period doubling
+    TR = 8          # torus (Neimark-Sacker)
+    EP = 9          # end point
+    MX = -9         # abnormal end (no convergence)
+    BT = -1         # Bogdanov-Takens (codim 2)
+    CP = -2         # cusp on fold curves; generalized Hopf (GH) on Hopf curves
+    ZH = -3         # zero-Hopf
+    R1 = -5
+    R2 = -6
+    R3 = -7
+    R4 = -8
+
+
+#: Two-letter names of base codes, as AUTO prints them (blank for regular points).
+_NAMES = {0: "", 1: "BP", 2: "LP", 3: "HB", 4: "", -4: "UZ", 5: "LP", 6: "BP", 7: "PD",
+          8: "TR", 9: "EP", -9: "MX", -1: "BT", -2: "CP", -3: "ZH", -5: "R1", -6: "R2",
+          -7: "R3", -8: "R4"}
+#: Name to base code (for STOP/SP lists and IRS='HB2' style labels).
+BASE_OF_NAME = {"BP": 1, "LP": 2, "HB": 3, "UZ": -4, "PD": 7, "TR": 8, "EP": 9, "MX": -9,
+                "BT": -1, "CP": -2, "GH": -2, "ZH": -3, "R1": -5, "R2": -6, "R3": -7, "R4": -8}
+
+
+def curve_code(base: int, curve_type: int) -> int:
+    """The code AUTO writes for a point of type `base` on a curve started from
+    a point of type `curve_type` (0 on ordinary branches)."""
+    base = int(base)
+    if curve_type == 0 or base == 0:
+        return base
+    return base + (10 * curve_type if base > 0 else -10 * curve_type)
+
+
+def split_code(code: int) -> tuple[int, int]:
+    """(base, curve_type) of a written code: 34 -> (4, 3), -32 -> (-2, 3), -9 -> (-9, 0)."""
+    code = int(code)
+    if -9 <= code <= 9:
+        return code, 0
+    mag = abs(code)
+    return (mag % 10) * (1 if code > 0 else -1), mag // 10
+
+
+def type_name(code: int) -> str:
+    """'HB', 'UZ', 'GH', 'BT', ... for any written code, including curve codes."""
+    base, curve = split_code(code)
+    if base == -2 and curve == 3:
+        return "GH"
+    return _NAMES.get(base, "")
+
+
+def parse_label(key) -> tuple[str, int] | int:
+    """A restart key: an integer label, -n (the n-th record), or 'HB2' (type, count).
+
+    Returns the integer for numeric keys, else (TYPE, count) with count >= 1."""
+    if isinstance(key, bool):
+        raise ValueError(f"bad label {key!r}")
+    if isinstance(key, int):
+        return key
+    text = str(key).strip()
+    if text.lstrip("+-").isdigit():
+        return int(text)
+    name = text.rstrip("0123456789").upper()
+    count = int(text[len(name):] or 1)
+    if name not in BASE_OF_NAME and name != "RG":
+        raise ValueError(f"bad label {key!r}: expected a number or a type name such as 'HB2' "
+                         f"(types: {', '.join(sorted(BASE_OF_NAME))})")
+    return name, count

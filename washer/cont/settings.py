@@ -1,0 +1,151 @@
+"""The run's constants, resolved for the engine: AUTO's names, checked values.
+
+`Settings.from_constants(c, ...)` maps an AUTO constants object (washer.auto.
+constants.Constants) onto this frozen record once, so that the engine never
+parses names or applies AUTO's internal redefinitions again (main.f90:INIT1,
+support.f90:INIT2: DS = 0 -> 0.1, DSMIN = 0 -> 1e-4 |DS|, the 1 + 1e-7
+perturbations, NPAR raised to 11 or 12, THL's default {11: 0} for IPS = 2).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+#: AUTO perturbs DS, DSMAX by (1 + 1e-7) and DSMIN by 1 / (1 + 1e-7) (INIT1), so
+#: that b-files show 8.2000000200 rather than 8.2: we do the same.
+PERTURB = 1 + 1e-7
+
+
+class SettingsError(ValueError):
+    """Constants that no run can use (a step rule that would never end, ...)."""
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Everything the iterator, events and systems read. Field names are AUTO's.
+
+    Units: DS, DSMIN, DSMAX are arclength in the THL/THU-weighted norm of the
+    unknowns; EPSL, EPSU relative Newton tolerances; EPSS the relative
+    location tolerance (|delta s| / (1 + sqrt(|DS DSMAX|)) < EPSS).
+    """
+    IPS: int = 1
+    ISW: int = 1
+    ICP: tuple = (1,)          # 1-based PAR indices, principal first
+    NDIM: int = 2
+    NPAR: int = 36
+    DS: float = 0.01 * PERTURB
+    DSMIN: float = 0.005 / PERTURB
+    DSMAX: float = 0.1 * PERTURB
+    IADS: int = 1
+    NMX: int = 0
+    NPR: int = 0
+    ITMX: int = 9
+    ITNW: int = 5
+    NWTN: int = 3
+    EPSL: float = 1e-7
+    EPSU: float = 1e-7
+    EPSS: float = 1e-5
+    ILP: int = 1
+    ISP: int = 2
+    MXBF: int = 10
+    JAC: int = 0
+    RL0: float = -1.7976e308
+    RL1: float = 1.7976e308
+    A0: float = -1.7976e308
+    A1: float = 1.7976e308
+    NTST: int = 20
+    NCOL: int = 4
+    IAD: int = 3
+    IPLT: int = 0
+    IID: int = 2
+    IIS: int = 3
+    THL: dict = field(default_factory=dict)      # {PAR index: weight}
+    THU: dict = field(default_factory=dict)      # {U index (1-based): weight}
+    UZR: tuple = ()            # ((PAR index, value, stop?), ...)
+    STOP: dict = field(default_factory=dict)     # {'HB': 3}: stop at the 3rd HB
+    SP_OFF: frozenset = frozenset()              # types switched off by SP ('LP0')
+    SP_ON: frozenset = frozenset()               # types switched on by SP ('HB')
+
+    def theta_par(self, index: int) -> float:
+        """THL weight of PAR(index) (1 unless set)."""
+        return float(self.THL.get(index, 1.0))
+
+    def theta_u(self, n: int) -> np.ndarray:
+        """THU weights of the first n state unknowns, shape (n,)."""
+        th = np.ones(n)
+        for i, v in self.THU.items():
+            if 1 <= i <= n:
+                th[i - 1] = v
+        return th
+
+    def with_(self, **kw) -> "Settings":
+        return replace(self, **kw)
+
+    @classmethod
+    def from_constants(cls, c) -> "Settings":
+        """Resolve AUTO constants (names, defaults, internal redefinitions).
+        Raises SettingsError for step settings that cannot work."""
+        src = getattr(c, "source", "<constants>")
+        ds, dsmin, dsmax = c["DS"], c["DSMIN"], c["DSMAX"]
+        for key, v in (("DS", ds), ("DSMIN", dsmin), ("DSMAX", dsmax), ("EPSL", c["EPSL"]),
+                       ("EPSU", c["EPSU"]), ("EPSS", c["EPSS"])):
+            if not math.isfinite(v):
+                raise SettingsError(f"{src}: {key} = {v} is not a finite number")
+        if ds == 0:
+            ds = 0.1                       # AUTO (INIT1): DS = 0 means 0.1
+        if dsmax <= 0:
+            raise SettingsError(f"{src}: DSMAX = {dsmax}: expected a positive maximum step")
+        if dsmin < 0:
+            raise SettingsError(f"{src}: DSMIN = {dsmin}: expected DSMIN >= 0")
+        if dsmin == 0:
+            dsmin = 1e-4 * abs(ds)         # AUTO (INIT1)
+        if dsmin > dsmax:
+            raise SettingsError(f"{src}: DSMIN = {dsmin} > DSMAX = {dsmax}: no step size can "
+                                "satisfy both; expected DSMIN <= |DS| <= DSMAX")
+        for key in ("EPSL", "EPSU", "EPSS"):
+            if c[key] <= 0:
+                raise SettingsError(f"{src}: {key} = {c[key]}: expected a positive tolerance")
+        if c["ITNW"] < 1 or c["ITMX"] < 1 and c["ITMX"] != 0:
+            raise SettingsError(f"{src}: ITNW = {c['ITNW']}, ITMX = {c['ITMX']}: expected "
+                                "ITNW >= 1 and ITMX >= 0")
+        icp = tuple(c.icp())
+        for i in icp:
+            if i < 1:
+                raise SettingsError(f"{src}: ICP = {c['ICP']}: parameter indices start at 1")
+        ips = c["IPS"]
+        npar = c["NPAR"]
+        if ips in (1, -1, 2) or ips >= 7:
+            npar = max(npar, 11)             # PAR(11) holds the period (INIT2)
+        if ips == 2:
+            npar = max(npar, 12)             # PAR(12): torus angle
+        npar = max(npar, max(icp))
+        thl = {c.par_index(k): float(v) for k, v in c["THL"].items()}
+        if ips in (2, 12) and "THL" not in getattr(c, "given", {}):
+            thl = {11: 0.0}
+        thu = {c.u_index(k): float(v) for k, v in c["THU"].items()}
+        uz = [(abs(i), v, i < 0) for i, v in c.par_values("UZR")]
+        uz += [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
+        stop, off, on = {}, set(), set()
+        for entry in list(c["STOP"]):
+            name = entry.rstrip("0123456789").upper()
+            stop[name] = int(entry[len(name):] or 1)
+        for entry in list(c["SP"]):
+            name = entry.rstrip("0123456789").upper()
+            num = entry[len(name):]
+            if num == "0":
+                off.add(name)
+            else:
+                on.add(name)
+                if num:
+                    stop[name] = int(num)
+        isw = c["ISW"] if c["ISW"] != 0 else 1
+        return cls(IPS=ips, ISW=isw, ICP=icp, NDIM=c["NDIM"], NPAR=npar,
+                   DS=ds * PERTURB, DSMIN=dsmin / PERTURB, DSMAX=dsmax * PERTURB,
+                   IADS=c["IADS"], NMX=c["NMX"], NPR=c["NPR"], ITMX=c["ITMX"], ITNW=c["ITNW"],
+                   NWTN=c["NWTN"], EPSL=c["EPSL"], EPSU=c["EPSU"], EPSS=c["EPSS"],
+                   ILP=c["ILP"], ISP=c["ISP"], MXBF=c["MXBF"], JAC=c["JAC"], RL0=c["RL0"],
+                   RL1=c["RL1"], A0=c["A0"], A1=c["A1"], NTST=c["NTST"], NCOL=c["NCOL"],
+                   IAD=c["IAD"], IPLT=c["IPLT"], IID=c["IID"], IIS=c["IIS"], THL=thl, THU=thu,
+                   UZR=tuple(uz), STOP=stop, SP_OFF=frozenset(off), SP_ON=frozenset(on))

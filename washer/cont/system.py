@@ -1,0 +1,223 @@
+"""The contract between the continuation iterator and what it continues.
+
+A *continued system* is a nonlinear system G(x) = 0 with N equations in N + 1
+unknowns x = (state unknowns, free parameter(s)); the iterator adds the
+arclength condition. Equilibria (AUTO's FUNI), the fold and Hopf loci (FNLP,
+FNHB), periodic orbits (FNPS + collocation) are all continued systems: each
+lives in `washer.cont.systems` and is found through `SYSTEMS`, keyed by AUTO's
+(IPS, ISW, start kind). The iterator knows nothing else about them.
+
+The unknown vector x always ends with the principal continuation parameter
+PAR(ICP(1)) (AUTO's RL(1)); what comes before it is the system's business
+(x, v, kappa, PAR(ICP(2)) on a Hopf curve; mesh values and the period on a
+periodic branch).
+
+Fields and methods, in the manner of scipy's OdeSolver contract:
+
+Attributes
+----------
+n_eq : int
+    N, the number of equations (the length of x is N + 1).
+curve_type : int
+    AUTO's ITPST: 0 on ordinary branches, 2 on fold curves, 3 on Hopf curves,
+    5/7/8 on loci of cycle folds / period doublings / tori. Written codes are
+    `codes.curve_code(base, curve_type)`.
+arclength : str
+    "sphere": AUTO's algebraic corrector (SOLVAE), |x - x_old|_theta^2 = ds^2,
+    full Newton, one hidden first step. "plane": the BVP corrector (SOLVBV),
+    <x - x_old, xdot_old>_theta = ds, Newton-chord (NWTN), no hidden step.
+free : list[int]
+    The free parameters, 1-based PAR indices, principal first (AUTO's ICP(1..NFPR)).
+
+Methods
+-------
+residual(x) -> ndarray (N,)
+jacobian(x) -> ndarray (N, N + 1) or a scipy.sparse matrix of that shape
+    dG/dx. Built from the problem's Jacobians or finite differences (JAC = 0).
+factor(J, border) -> Factor
+    A factorisation of the square matrix [J; border] (border: (N + 1,) row) with
+    `.solve(rhs) -> (N + 1,)` and `.sign_logdet() -> (sign, log|det|)` (AUTO's BP
+    test on algebraic branches is this determinant). `dense_factor` below is the
+    default; collocation systems supply a structured one.
+inner(a, b) -> float
+    AUTO's weighted inner product of two unknown vectors (THU on the state,
+    THL on the parameters; integrals over [0, 1] for periodic orbits). The
+    tangent is unit in this norm, so DS is in its units.
+border(t) -> ndarray (N + 1,)
+    The row r with r @ a == inner(a, t) for every a: the iterator borders J
+    with it (pseudo-arclength row, tangent solves).
+params(x) -> ndarray (NPAR,)
+    The full PAR vector at x (free parameters set, PAR(11) the period where
+    defined, and the user's `pvls(u, par)` applied): UZR/UZSTOP test values
+    PAR(i) - value are read from it.
+start() -> (x0, tangent0 or None)
+    The starting point and, when the start data fix it (a stored direction, the
+    Hopf eigenvector of STHOPF, a branch-switching direction), its direction.
+    None lets the iterator compute the tangent (null vector of J, PAR(ICP(1))-dot > 0).
+stability(x, J) -> Stability or None
+    Eigenvalues (IPS = 1) or Floquet multipliers (IPS = 2) and the stable count
+    (AUTO's NINS); None where stability is not defined (IPS = 0, ISW = 2 curves).
+active_tests() -> list[int]
+    Base codes of the test functions this system evaluates under the run's
+    ILP/ISP/SP settings (UZ tests are added by the iterator).
+test_functions(x, tangent, J, stability, factor, codes) -> dict[int, float | None]
+    Values of the test functions `codes` (a subset of active_tests(); during
+    location only the one being located is asked for, so expensive ones such
+    as the first Lyapunov coefficient are not evaluated needlessly), keyed by
+    base code (Code.LP, Code.BP, Code.HB, Code.BT, ...). Pure: no state is
+    changed. None: undefined here. `factor` factorises [J; border(secant)].
+accept(code, prev, cur) -> bool
+    AUTO's acceptance rule for a sign change of test `code` between two points
+    (`prev`, `cur`: `washer.cont.branch.Point`): e.g. HB only if the stable count
+    changed by >= 2, PD/TR only if it changed at all.
+update(x, tangent) -> None
+    Called once per accepted point: move reference data that the residual uses
+    (the old Hopf eigenvector, the previous orbit of the phase condition).
+solution(x, tangent) -> Solution
+    What the sinks write: the full PAR vector, b-file columns, the stored state
+    and direction for an s-record.
+column_titles() -> list[str]
+    Titles of `Solution.columns` (after PAR(ICP(1))): 'L2-NORM', 'U(1)', or 'MAX U(1)'.
+directions(x, tangent, code) -> list[ndarray]
+    Directions of the other branch(es) at a located branch point (BP switching).
+    Empty if the system cannot switch there.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Protocol
+
+import numpy as np
+import scipy.linalg
+
+
+@dataclass
+class Stability:
+    """Spectrum at a point: `values` are eigenvalues (IPS = 1, sorted by
+    decreasing real part) or Floquet multipliers (IPS = 2, the one closest to 1
+    first); `n_stable` is AUTO's NINS; `stable` is the sign of PT in the b-file."""
+    values: np.ndarray
+    n_stable: int
+    stable: bool
+    kind: str = "eigenvalues"           # or "multipliers"
+    notes: list[str] = field(default_factory=list)   # e.g. "Multiplier inaccurate"
+
+
+@dataclass
+class Solution:
+    """One point as the output files see it.
+
+    par : (NPAR,) full parameter vector, PAR(i) = par[i - 1], PAR(11) the period.
+    columns : b-file values after PAR(ICP(1)): measure (L2-NORM), then U(1..N2)
+        for algebraic problems or MAX U(i) for BVPs (`column_titles` names them).
+    u : stored state for the s-record: (NSTATE,) algebraic (extended on loci) or
+        (NTPL, NDIM) mesh values of a periodic orbit.
+    t : (NTPL,) mesh times in [0, 1] of a BVP record, None for algebraic ones.
+    udot, rldot : the direction in the same layouts, and d PAR(free)/ds.
+    ntst, ncol : the s-record header's NTST/NCOL of a BVP (0, 0 for algebraic).
+    ndim_user : the user's NDIM (s-record field 14).
+    """
+    par: np.ndarray
+    columns: list
+    u: np.ndarray
+    t: np.ndarray | None = None
+    udot: np.ndarray | None = None
+    rldot: list = field(default_factory=list)
+    ntst: int = 0
+    ncol: int = 0
+    ndim_user: int = 0
+
+
+class Factor(Protocol):
+    def solve(self, rhs: np.ndarray) -> np.ndarray: ...
+    def sign_logdet(self) -> tuple[float, float]: ...
+
+
+class DenseFactor:
+    """LU of a dense square matrix (AUTO's GEL: Gaussian elimination with pivoting)."""
+
+    def __init__(self, M: np.ndarray):
+        self.M = M
+        self.lu, self.piv = scipy.linalg.lu_factor(M, check_finite=False)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return scipy.linalg.lu_solve((self.lu, self.piv), rhs, check_finite=False)
+
+    def sign_logdet(self) -> tuple[float, float]:
+        d = np.diag(self.lu)
+        if np.any(d == 0):
+            return 0.0, -np.inf
+        swaps = np.sum(self.piv != np.arange(len(self.piv)))
+        sign = (-1.0) ** swaps * np.prod(np.sign(d))
+        return float(sign), float(np.sum(np.log(np.abs(d))))
+
+
+def dense_factor(J, border: np.ndarray) -> DenseFactor:
+    """Default `factor`: LU of [J; border] for dense J."""
+    return DenseFactor(np.vstack([np.asarray(J), border]))
+
+
+class ContinuedSystem(Protocol):
+    n_eq: int
+    curve_type: int
+    arclength: str
+    free: list
+
+    def residual(self, x: np.ndarray) -> np.ndarray: ...
+    def jacobian(self, x: np.ndarray): ...
+    def factor(self, J, border: np.ndarray) -> Factor: ...
+    def inner(self, a: np.ndarray, b: np.ndarray) -> float: ...
+    def border(self, t: np.ndarray) -> np.ndarray: ...
+    def params(self, x: np.ndarray) -> np.ndarray: ...
+    def start(self) -> tuple[np.ndarray, np.ndarray | None]: ...
+    def stability(self, x: np.ndarray, J) -> Stability | None: ...
+    def active_tests(self) -> list: ...
+    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict: ...
+    def accept(self, code: int, prev, cur) -> bool: ...
+    def update(self, x: np.ndarray, tangent: np.ndarray) -> None: ...
+    def solution(self, x: np.ndarray, tangent: np.ndarray) -> Solution: ...
+    def column_titles(self) -> list: ...
+    def directions(self, x: np.ndarray, tangent: np.ndarray, code: int) -> list: ...
+
+
+@dataclass
+class StartData:
+    """What a system is built from: the user's problem, the resolved settings,
+    the start state and parameters, and the restart record if any.
+
+    u : (NDIM,) start state (IRS = 0 or an algebraic record), or the stored
+        (extended) state of the record. par : (NPAR,) full parameter vector.
+    record : the s-file record restarted from (washer.auto.files.Record) or None.
+    kind : the start kind, AUTO's type name of the record ('EP', 'HB', 'LP',
+        'BP', 'PD', ...; '' for a regular point or IRS = 0).
+    """
+    problem: object
+    settings: object
+    u: np.ndarray
+    par: np.ndarray
+    record: object = None
+    kind: str = ""
+
+
+#: (IPS, ISW, start kind) -> constructor(StartData) -> ContinuedSystem. '*' matches
+#: any start kind. Filled by the modules of washer.cont.systems at import.
+SYSTEMS: dict[tuple[int, int, str], Callable] = {}
+
+
+def register(ips: int, isw: int, kind: str = "*"):
+    """Class decorator: `@register(1, 2, 'HB')` makes the class the system for
+    IPS = 1, ISW = 2 restarts at HB labels."""
+    def deco(cls):
+        SYSTEMS[(ips, isw, kind)] = cls
+        return cls
+    return deco
+
+
+def lookup(ips: int, isw: int, kind: str):
+    """The constructor for (IPS, ISW, start kind), or a KeyError naming what exists."""
+    for key in ((ips, isw, kind), (ips, isw, "*")):
+        if key in SYSTEMS:
+            return SYSTEMS[key]
+    known = ", ".join(f"IPS={i} ISW={w} from {k}" for i, w, k in sorted(SYSTEMS, key=str))
+    raise KeyError(f"no continued system for IPS={ips}, ISW={isw} starting at "
+                   f"'{kind or 'a regular point'}' (implemented: {known})")
