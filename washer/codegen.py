@@ -160,6 +160,15 @@ def main(argv: list[str] | None = None) -> int:
                     help="regenerate in memory and compare with csrc/generated/ (exit 1 if stale)")
     ap.add_argument("--out", type=Path, default=OUT_DIR, help="output folder")
     args = ap.parse_args(argv)
+    if not (args.out.parent / "washer_api.h").exists() and args.out == OUT_DIR:
+        # An installed wheel has no csrc/: the generated C++ is compiled into
+        # washer/_kernel already, and regenerating it only makes sense where it
+        # can be rebuilt.
+        print(f"error: {OUT_DIR.parent} does not exist: `python -m washer.codegen` regenerates "
+              "the C++ sources of a source checkout (git clone, then `pip install -e .`); "
+              "an installed wheel has none. Use --out DIR to write the generated files "
+              "elsewhere.", file=sys.stderr)
+        return 2
     files = generate()
     if args.check:
         stale = [n for n, t in files.items()

@@ -1,5 +1,7 @@
 """Run AUTO constants files: `python -m washer.run c.NAME [KEY=value ...]`.
 
+    python -m washer.run --copy-examples DIR   # the shipped constants files into DIR
+
 Like AUTO's run(c='NAME'): reads c.NAME, loads the equations named by e
 (e='washer' is the built-in model, e='washer:frozen' its frozen rotating
 frame; any other e='X' loads X.py beside the constants file), restarts from
@@ -19,7 +21,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from washer.auto.constants import Constants, ConstantsError, parse_override, read_constants
+from washer.auto.constants import (Constants, ConstantsError, copy_examples, parse_override,
+                                   read_constants)
 from washer.auto.files import read_b, read_s
 from washer.cont.driver import Run, RunError, RunResult
 from washer.cont.problem import ProblemError, load_python_problem
@@ -45,6 +48,11 @@ def run(constants, verbose: bool = True, **overrides) -> RunResult:
         c = read_constants(path)
     for k, v in overrides.items():
         c.set(k, v, "<override>")
+    if c["e"].split(":")[0] == "washer":
+        # The built-in problem names its parameters, so ICP=['m_u'] works without
+        # parnames in the constants file (names the file gives win).
+        from washer.auto_washer import PAR_NAMES
+        c = c.with_default_names(PAR_NAMES)
     folder = path.parent if path.name else Path(".")
     default_name = path.name[2:] if path.name.startswith("c.") else path.name
     name = c["sv"] or default_name
@@ -59,11 +67,31 @@ def load(path):
     return read_s(p) if p.name.startswith("s.") else read_b(p)
 
 
+def _copy_examples(args: list[str]) -> int:
+    """`--copy-examples DIR`: the shipped constants files into DIR, to run them there."""
+    if len(args) != 1:
+        print("usage: python -m washer.run --copy-examples DIR", file=sys.stderr)
+        return 2
+    try:
+        copied, skipped = copy_examples(args[0])
+    except ConstantsError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    for p in copied:
+        print(f"copied {p}")
+    for p in skipped:
+        print(f"kept {p} (exists; not overwritten)")
+    print(f"run one with: cd {args[0]} && python -m washer.run c.washer")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2
+    if argv[0] == "--copy-examples":
+        return _copy_examples(argv[1:])
     try:
         overrides = dict(parse_override(a) for a in argv[1:])
         res = run(argv[0], **overrides)

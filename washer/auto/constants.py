@@ -8,7 +8,9 @@ in ICP, THL, THU, UZR, UZSTOP, U and PAR may be names from parnames/unames, and
 """
 from __future__ import annotations
 
+import math
 import re
+import shutil
 from pathlib import Path
 
 HUGE = 1.7976e308
@@ -45,6 +47,18 @@ IGNORED = {
     "NUNSTAB": "HomCont", "NSTAB": "HomCont", "IEQUIB": "HomCont", "ITWIST": "HomCont",
     "ISTART": "HomCont", "IREV": "HomCont", "IFIXED": "HomCont", "IPSI": "HomCont",
 }
+
+
+#: Name constants: AUTO appends them to 'b.', 's.', 'd.' (or reads NAME.py for e), so
+#: they are file-name suffixes in the run's folder, never paths.
+NAME_KEYS = ("e", "s", "dat", "sv")
+#: Reals AUTO needs finite (an infinite step or tolerance never ends a step loop).
+FINITE_KEYS = ("DS", "DSMIN", "DSMAX", "EPSL", "EPSU", "EPSS")
+#: Lower bounds of reals and integers: (bound, strict).
+LOWER_BOUNDS = {"DSMIN": (0.0, False), "DSMAX": (0.0, True), "EPSL": (0.0, False),
+                "EPSU": (0.0, False), "EPSS": (0.0, False), "NDIM": (1, False),
+                "NPAR": (1, False), "NMX": (0, False), "NPR": (0, False), "ITMX": (1, False),
+                "ITNW": (1, False)}
 
 
 class ConstantsError(ValueError):
@@ -177,15 +191,21 @@ def check_value(key: str, value, where: str):
             value = int(value)
         if not isinstance(value, int) or isinstance(value, bool):
             raise ConstantsError(f"{where}: {key} expects an integer, got {value!r}")
+        _check_bound(key, value, where)
     elif key in REAL_KEYS:
         if key == "DS" and value == "-":
             return value            # AUTO CLUI: flip the sign of the current DS
         if not isinstance(value, (int, float)) or isinstance(value, bool):
             raise ConstantsError(f"{where}: {key} expects a number, got {value!r}")
         value = float(value)
+        if math.isnan(value) or (key in FINITE_KEYS and math.isinf(value)):
+            raise ConstantsError(f"{where}: {key} expects a finite number, got {value!r}")
+        _check_bound(key, value, where)
     elif key in STR_KEYS:
         if not isinstance(value, str):
             raise ConstantsError(f"{where}: {key} expects a quoted string, got {value!r}")
+        if key in NAME_KEYS:
+            check_name(key, value, where)
     elif key == "IRS":
         if not isinstance(value, (int, str)) or isinstance(value, bool):
             raise ConstantsError(f"{where}: IRS expects a label number or a name like 'HB1'")
@@ -194,6 +214,10 @@ def check_value(key: str, value, where: str):
             value = [value]
         if not isinstance(value, list) or not value:
             raise ConstantsError(f"{where}: ICP expects a list of parameter indices or names")
+        for i in value:
+            if isinstance(i, bool) or not isinstance(i, (int, str)) or isinstance(i, int) and i < 1:
+                raise ConstantsError(f"{where}: ICP entries are parameter indices >= 1 "
+                                     f"(PAR(1), PAR(2), ...) or names, got {i!r}")
     elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
         if not isinstance(value, list):
             raise ConstantsError(f"{where}: {key} expects a list")
@@ -203,6 +227,30 @@ def check_value(key: str, value, where: str):
         if not isinstance(value, dict):
             raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
     return value
+
+
+def _check_bound(key: str, value, where: str) -> None:
+    if key in LOWER_BOUNDS:
+        bound, strict = LOWER_BOUNDS[key]
+        if value < bound or strict and value == bound:
+            raise ConstantsError(f"{where}: {key} expects a value {'>' if strict else '>='} "
+                                 f"{bound}, got {value!r}")
+
+
+def check_name(key: str, value: str, where: str) -> None:
+    """Refuse a path in a name constant (e, s, dat, sv).
+
+    AUTO uses these as name suffixes: sv='x' writes b.x, s.x, d.x in the run's
+    folder. A separator or '..' would make washer read or write outside that
+    folder, which a constants file should never do by accident.
+    """
+    bad = [c for c in ("/", "\\", "\0") if c in value]
+    if bad or ".." in value:
+        what = "a path separator" if bad and bad[0] != "\0" else "a NUL byte" if bad else "'..'"
+        raise ConstantsError(
+            f"{where}: {key}={value!r} contains {what}: {key} is a name (AUTO writes and reads "
+            f"b.NAME, s.NAME, d.NAME in the constants file's folder), not a path; run from "
+            f"the folder you want the files in, or copy the files there")
 
 
 class Constants(dict):
@@ -262,7 +310,36 @@ class Constants(dict):
         raise ConstantsError(f"{self.source}: unknown state name {key!r}; unames = {self['unames']}")
 
     def icp(self) -> list[int]:
-        return [self.par_index(k) for k in self["ICP"]]
+        """ICP as 1-based PAR indices (names resolved); every entry >= 1."""
+        out = [self.par_index(k) for k in self["ICP"]]
+        for k, i in zip(self["ICP"], out):
+            if i < 1:
+                raise ConstantsError(f"{self.given.get('ICP', self.source)}: ICP entry {k!r} is "
+                                     f"PAR({i}): continuation parameters are PAR(1), PAR(2), ...")
+        return out
+
+    def with_default_names(self, parnames: dict | None = None,
+                           unames: dict | None = None) -> "Constants":
+        """A copy whose parnames/unames are completed by a problem's own names.
+
+        parnames, unames: {1-based index: name}, e.g. the built-in washer's
+        {1: 'C_p', 2: 'Omega', ...}. Names the constants file (or an override)
+        gives win: a default is skipped when its index is named already or its
+        name is used for another index, so the user's meaning never changes.
+        The defaults are not marked as given by the user.
+        """
+        c = self.copy()
+        for key, defaults in (("parnames", parnames), ("unames", unames)):
+            if not defaults:
+                continue
+            names = {int(i): n for i, n in c[key].items()}
+            used = set(names.values())
+            for i, n in defaults.items():
+                if int(i) not in names and n not in used:
+                    names[int(i)] = n
+                    used.add(n)
+            dict.__setitem__(c, key, dict(sorted(names.items())))
+        return c
 
     def par_values(self, key: str) -> list[tuple[int, float]]:
         """(index, value) pairs of UZR/UZSTOP/THL/PAR-style dicts, lists expanded."""
@@ -273,17 +350,94 @@ class Constants(dict):
         return out
 
 
+def decode_text(data: bytes, source: str, what: str, error=ValueError) -> str:
+    """UTF-8 text of a file's bytes, or `error` naming the file, line and the bad byte.
+
+    AUTO's files are plain ASCII; a NUL byte or an undecodable byte means a
+    binary or corrupt file, which must not be read as (partly) empty.
+    """
+    nul = data.find(b"\0")
+    if nul >= 0:
+        line = data.count(b"\n", 0, nul) + 1
+        raise error(f"{source}:{line}: a NUL byte: this is a binary file, not {what}")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise error(f"{source}:{line}: byte 0x{data[exc.start]:02x} is not UTF-8 text: "
+                    f"expected {what} (plain text)") from None
+
+
 def read_constants(path: str | Path) -> Constants:
     """Read and check a constants file; errors name the file and line."""
     path = Path(path)
     try:
-        text = path.read_text()
+        data = path.read_bytes()
+    except FileNotFoundError:
+        hint = ""
+        if path.name in shipped_constants():
+            hint = (f"; washer ships a constants file of that name: copy the examples with "
+                    f"`python -m washer.run --copy-examples DIR`")
+        raise ConstantsError(f"{path}: no such constants file{hint}") from None
     except OSError as exc:
         raise ConstantsError(f"{path}: cannot read constants file ({exc.strerror})") from None
+    text = decode_text(data, str(path), "an AUTO constants file", ConstantsError)
     c = Constants(source=str(path))
-    for key, value, line in parse_text(text, str(path)):
+    statements = parse_text(text, str(path))
+    if not statements and text.strip():
+        raise ConstantsError(f"{path}: no KEY = value statements (only comments): expected "
+                             "an AUTO constants file such as `NDIM = 2, ICP = [1]`")
+    for key, value, line in statements:
         c.set(key, value, f"{path}:{line}")
     return c
+
+
+# ------------------------------------------------------------- shipped examples
+
+def shipped_constants_dir() -> Path | None:
+    """Folder of the constants files shipped with washer, or None.
+
+    An installed wheel carries them as washer/auto_constants/ (setup.py copies
+    them there); a source checkout (editable install) has auto_constants/ at
+    the top of the tree.
+    """
+    pkg = Path(__file__).resolve().parents[1]
+    for folder in (pkg / "auto_constants", pkg.parent / "auto_constants"):
+        if folder.is_dir() and any(folder.glob("c.*")):
+            return folder
+    return None
+
+
+def shipped_constants() -> dict[str, Path]:
+    """{file name: path} of every shipped constants file (c.washer, c.washer.hopf.Omega, ...)."""
+    folder = shipped_constants_dir()
+    return {p.name: p for p in sorted(folder.glob("c.*"))} if folder else {}
+
+
+def copy_examples(dest: str | Path, overwrite: bool = False) -> tuple[list[Path], list[Path]]:
+    """Copy the shipped constants files into `dest` (created if missing).
+
+    Returns (copied, skipped): an existing file is kept unless overwrite=True,
+    so a user's edited constants are never replaced silently.
+    """
+    files = shipped_constants()
+    if not files:
+        raise ConstantsError("no shipped constants files found: this washer installation "
+                             "lacks washer/auto_constants/ (reinstall the package)")
+    dest = Path(dest)
+    try:
+        dest.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ConstantsError(f"{dest}: cannot create the folder ({exc.strerror})") from None
+    copied, skipped = [], []
+    for name, src in files.items():
+        target = dest / name
+        if target.exists() and not overwrite:
+            skipped.append(target)
+            continue
+        shutil.copyfile(src, target)
+        copied.append(target)
+    return copied, skipped
 
 
 def parse_override(text: str) -> tuple[str, object]:

@@ -14,12 +14,13 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.constants import read_constants
+from washer.auto.constants import read_constants, shipped_constants_dir
 from washer.auto.files import read_b, type_name
 from washer.run import run
 
-#: Folder of the shipped constants files (source checkout layout).
-CONSTANTS_DIR = Path(__file__).resolve().parents[2] / "auto_constants"
+#: Folder of the shipped constants files: auto_constants/ of a checkout, or the
+#: copy an installed wheel carries as washer/auto_constants/.
+CONSTANTS_DIR = shipped_constants_dir() or Path(__file__).resolve().parents[2] / "auto_constants"
 
 #: The frames compared throughout: AUTO equation names and file suffixes.
 FRAMES = {"averaged": ("washer", ""), "frozen": ("washer:frozen", ".frozen")}
