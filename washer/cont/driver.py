@@ -18,7 +18,7 @@ from washer.auto.constants import Constants
 from washer.auto.files import OutputFiles, Record, Row, fmt_e, read_s, find_record, type_name
 from washer.cont.engine import PERTURB, ConvergenceError, Engine, Settings, stable_count
 from washer.cont.problem import Problem, ProblemError
-from washer.cont.systems import EquilibriumSystem, FoldSystem, HopfSystem, first_lyapunov
+from washer.cont._legacy_systems import EquilibriumSystem, FoldSystem, HopfSystem, first_lyapunov
 
 
 class RunError(RuntimeError):
@@ -198,7 +198,7 @@ class Run:
         if c["NDIM"] != problem.ndim:
             raise RunError(f"{c.source}: NDIM={c['NDIM']} but the equations '{problem.name}' "
                            f"have {problem.ndim} unknowns")
-        problem.jac_mode = c["JAC"]
+        problem.jac = c["JAC"]
         self.ndim = problem.ndim
         self.icp = c.icp()
         isw = c["ISW"] if c["ISW"] not in (0, -1) else 1

@@ -1,29 +1,36 @@
-"""What the continuation engine solves: u' = f(u, par), AUTO's FUNC and STPNT.
+"""What the continuation engine solves: u' = f(u, par), AUTO's FUNC, STPNT, PVLS.
 
-A problem is any object with `ndim`, `func(u, par) -> (ndim,)`, optionally
-`dfdu(u, par) -> (ndim, ndim)` and `dfdp(u, par) -> (ndim, npar)`, and
-`stpnt(u, par)` filling the starting point in place. Arrays are 0-based as in
-AUTO's C interface: par[i - 1] is PAR(i). Missing Jacobians are finite
-differences, as AUTO's JAC = 0.
+A problem wraps the user's callables with checks and finite-difference
+fallbacks (AUTO's JAC = 0). Arrays are 0-based as in AUTO's C interface:
+par[i - 1] is PAR(i).
 
 User problems live in NAME.py beside the constants file (e='NAME'):
 
-    def func(u, par):             # required: right-hand side, numpy arrays
-    def stpnt(u, par):            # required: fill u and par in place
-    def dfdu(u, par): ...         # optional (used when JAC = 1 or -1)
-    def dfdp(u, par): ...         # optional (used when JAC = 1)
+    def func(u, par):             # required: right-hand side, numpy arrays (NDIM,), (NPAR,)
+    def stpnt(u, par):            # required for IRS = 0: fill u and par in place
+    def dfdu(u, par): ...         # optional (used when JAC = 1 or -1), (NDIM, NDIM)
+    def dfdp(u, par): ...         # optional (used when JAC = 1), (NDIM, NPAR)
+    def pvls(u, par): ...         # optional, AUTO's PVLS: set PAR entries in place
+                                  # from the solution u ((NDIM,) for equilibria,
+                                  # (NTPL, NDIM) mesh values for periodic orbits)
 
-Built-in problems may also pass `dfdu_batch(us, pars)` (k Jacobians in one
-call), which the Hopf-curve Jacobian uses for its k = ndim + 2 perturbed points.
+Built-in problems may also pass batched callables, `func_batch(us, pars)`
+((k, NDIM), (k, NPAR) -> (k, NDIM)) and `dfdu_batch(us, pars)` (-> (k, NDIM,
+NDIM)): every finite-difference stencil of the engine (Jacobians, the second
+and third derivatives of the first Lyapunov coefficient) is evaluated as one
+batched call, so a compiled right-hand side pays the Python overhead once per
+stencil, not once per point.
 """
 from __future__ import annotations
 
+import copy
 import importlib.util
 from pathlib import Path
 
 import numpy as np
 
-#: Relative finite-difference step for Jacobians (AUTO uses 1e-7 (1 + |u|) too).
+#: Relative finite-difference step for Jacobians: AUTO's HMACH = 1e-7, central
+#: differences with h = 1e-7 (1 + |u_i|) (ae.f90:FUNI).
 FD_STEP = 1e-7
 
 
@@ -32,19 +39,41 @@ class ProblemError(RuntimeError):
 
 
 class Problem:
-    """Wraps user callables with checks and finite-difference fallbacks."""
+    """The user's equations with checks and batched finite-difference fallbacks.
+
+    `jac` is AUTO's JAC: 0 finite differences, 1 dfdu and dfdp supplied,
+    -1 dfdu only. Use `with_jac` for a configured copy (problems are never
+    changed behind their owner's back).
+    """
 
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
-                 npar: int = 36, dfdu_batch=None):
+                 npar: int = 36, dfdu_batch=None, func_batch=None, pvls=None,
+                 parnames: dict | None = None, unames: dict | None = None, jac: int = 0):
         self.ndim, self.name, self.npar = ndim, name, npar
-        self._dfdu_batch = dfdu_batch
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
-        self.jac_mode = 0            # AUTO's JAC: 0 FD, 1 both analytic, -1 dfdu analytic
+        self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
+        self.parnames = dict(parnames or {})
+        self.unames = dict(unames or {})
+        self.jac = jac
 
+    def with_jac(self, jac: int) -> "Problem":
+        """A copy using AUTO's JAC = jac (0, 1 or -1)."""
+        p = copy.copy(self)
+        p.jac = jac
+        return p
+
+    @property
+    def has_pvls(self) -> bool:
+        return self._pvls is not None
+
+    # ------------------------------------------------------------------ calls
     def _call(self, fn, what: str, *args) -> np.ndarray:
         """Call a user function; any failure becomes a ProblemError naming it."""
         try:
-            return np.asarray(fn(*args), dtype=float)
+            with np.errstate(over="ignore", invalid="ignore"):
+                return np.asarray(fn(*args), dtype=float)
+        except ProblemError:
+            raise
         except Exception as exc:
             raise ProblemError(f"{self.name}: {what}(u, par) failed: {type(exc).__name__}: "
                                f"{exc}") from exc
@@ -55,52 +84,108 @@ class Problem:
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
         return f
 
-    def dfdu_many(self, us, pars) -> np.ndarray:
-        """Jacobians at k points at once: us (k, ndim), pars (k, npar) -> (k, ndim, ndim).
-
-        Problems may supply a batched `dfdu_batch(us, pars)` (one call into compiled
-        code); otherwise this loops over `dfdu`."""
-        if self._dfdu_batch is not None and self.jac_mode != 0:
-            return self._call(self._dfdu_batch, "dfdu_batch", us, pars)
-        return np.array([self.dfdu(u, p) for u, p in zip(us, pars)])
+    def func_many(self, us, pars) -> np.ndarray:
+        """f at k points: us (k, ndim), pars (k, npar) or (npar,) -> (k, ndim)."""
+        us = np.asarray(us, dtype=float)
+        pars = np.asarray(pars, dtype=float)
+        if pars.ndim == 1:
+            pars = np.broadcast_to(pars, (len(us), len(pars)))
+        if self._func_batch is not None:
+            out = self._call(self._func_batch, "func_batch", us, np.ascontiguousarray(pars))
+            if out.shape != (len(us), self.ndim):
+                raise ProblemError(f"{self.name}: func_batch returned shape {out.shape}, "
+                                   f"expected ({len(us)}, {self.ndim})")
+            return out
+        return np.array([self.func(u, p) for u, p in zip(us, pars)]).reshape(len(us), self.ndim)
 
     def dfdu(self, u, par) -> np.ndarray:
-        if self._dfdu is not None and self.jac_mode != 0:
-            return self._call(self._dfdu, "dfdu", u, par)
-        J = np.empty((self.ndim, self.ndim))
-        for i in range(self.ndim):
-            h = FD_STEP * (1 + abs(u[i]))
-            up, um = u.copy(), u.copy()
-            up[i] += h
-            um[i] -= h
-            J[:, i] = (self.func(up, par) - self.func(um, par)) / (2 * h)
-        return J
+        """(ndim, ndim) Jacobian: the user's (JAC != 0) or central differences in one batch."""
+        if self._dfdu is not None and self.jac != 0:
+            J = self._call(self._dfdu, "dfdu", u, par)
+            if J.shape != (self.ndim, self.ndim):
+                raise ProblemError(f"{self.name}: dfdu returned shape {J.shape}, expected "
+                                   f"({self.ndim}, {self.ndim})")
+            return J
+        u = np.asarray(u, dtype=float)
+        h = FD_STEP * (1 + np.abs(u))
+        E = np.diag(h)
+        F = self.func_many(np.vstack([u + E, u - E]), par)
+        n = self.ndim
+        return ((F[:n] - F[n:]) / (2 * h[:, None])).T
+
+    def dfdu_many(self, us, pars) -> np.ndarray:
+        """Jacobians at k points at once: us (k, ndim), pars (k, npar) -> (k, ndim, ndim)."""
+        if self._dfdu_batch is not None and self.jac != 0:
+            return self._call(self._dfdu_batch, "dfdu_batch", us, pars)
+        if self._dfdu is not None and self.jac != 0:
+            return np.array([self.dfdu(u, p) for u, p in zip(us, pars)])
+        # Central differences at all k points in one batched call.
+        us = np.asarray(us, dtype=float)
+        pars = np.asarray(pars, dtype=float)
+        k, n = us.shape
+        h = FD_STEP * (1 + np.abs(us))                      # (k, n)
+        pts = np.empty((k, 2 * n, n))
+        pts[:] = us[:, None, :]
+        idx = np.arange(n)
+        pts[:, idx, idx] += h
+        pts[:, n + idx, idx] -= h
+        F = self.func_many(pts.reshape(-1, n), np.repeat(pars, 2 * n, axis=0)).reshape(k, 2 * n, n)
+        return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))
 
     def dfdp(self, u, par, indices) -> np.ndarray:
         """Columns d f / d PAR(i) for the 1-based `indices`, shape (ndim, len(indices))."""
-        if self._dfdp is not None and self.jac_mode == 1:
+        if self._dfdp is not None and self.jac == 1:
             full = self._call(self._dfdp, "dfdp", u, par)
+            if full.ndim != 2 or full.shape[0] != self.ndim or full.shape[1] < max(indices):
+                raise ProblemError(f"{self.name}: dfdp returned shape {full.shape}, expected "
+                                   f"({self.ndim}, >= {max(indices)})")
             return full[:, [i - 1 for i in indices]]
-        out = np.empty((self.ndim, len(indices)))
+        par = np.asarray(par, dtype=float)
+        m = len(indices)
+        pars = np.repeat(par[None, :], 2 * m, axis=0)
+        h = np.empty(m)
         for k, i in enumerate(indices):
-            h = FD_STEP * (1 + abs(par[i - 1]))
-            pp, pm = par.copy(), par.copy()
-            pp[i - 1] += h
-            pm[i - 1] -= h
-            out[:, k] = (self.func(u, pp) - self.func(u, pm)) / (2 * h)
-        return out
+            h[k] = FD_STEP * (1 + abs(par[i - 1]))
+            pars[k, i - 1] += h[k]
+            pars[m + k, i - 1] -= h[k]
+        F = self.func_many(np.repeat(np.asarray(u, float)[None, :], 2 * m, axis=0), pars)
+        return ((F[:m] - F[m:]) / (2 * h[:, None])).T
+
+    def pvls(self, u, par) -> np.ndarray:
+        """PAR after the user's pvls(u, par) (a copy; unchanged without pvls)."""
+        par = np.array(par, dtype=float)
+        if self._pvls is not None:
+            try:
+                self._pvls(np.array(u, dtype=float), par)
+            except Exception as exc:
+                raise ProblemError(f"{self.name}: pvls(u, par) failed: {type(exc).__name__}: "
+                                   f"{exc}") from exc
+        return par
 
     def start(self, npar: int) -> tuple[np.ndarray, np.ndarray]:
+        """AUTO's STPNT: the starting state (ndim,) and parameters (npar,)."""
         if self._stpnt is None:
             raise ProblemError(f"{self.name}: no stpnt(u, par) to start from (IRS = 0)")
         u, par = np.zeros(self.ndim), np.zeros(npar)
-        self._stpnt(u, par)
+        try:
+            self._stpnt(u, par)
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: stpnt(u, par) failed: {type(exc).__name__}: "
+                               f"{exc}") from exc
+        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(par))):
+            raise ProblemError(f"{self.name}: stpnt(u, par) left non-finite values in u or par")
         return u, par
 
 
 def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
-    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp)."""
-    path = folder / f"{name}.py"
+    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls).
+
+    Only a plain name is accepted: the module is looked up beside the
+    constants file, never elsewhere on disk."""
+    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
+        raise ProblemError(f"e='{name}': expected the name of NAME.py beside the constants "
+                           "file (no paths)")
+    path = Path(folder) / f"{name}.py"
     if not path.exists():
         raise ProblemError(f"e='{name}': no equations file {path} (expected func(u, par) and "
                            "stpnt(u, par) there)")
@@ -109,8 +194,8 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     try:
         spec.loader.exec_module(mod)
     except Exception as exc:
-        raise ProblemError(f"{path}: failed to import: {exc}") from exc
+        raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
     if not callable(getattr(mod, "func", None)):
         raise ProblemError(f"{path}: defines no func(u, par)")
     return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
-                   getattr(mod, "dfdp", None), name=name)
+                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None))

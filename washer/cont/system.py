@@ -197,6 +197,7 @@ class StartData:
     par: np.ndarray
     record: object = None
     kind: str = ""
+    unames: dict = field(default_factory=dict)     # {U index: name} for column titles
 
 
 #: (IPS, ISW, start kind) -> constructor(StartData) -> ContinuedSystem. '*' matches

@@ -1,0 +1,14 @@
+"""The continued systems, one module each; importing this package fills the
+registry `washer.cont.system.SYSTEMS` (each module registers its classes).
+
+equilibrium  f(u, par) = 0 in one parameter (IPS = 0, 1; AUTO's FUNI)
+fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
+hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
+periodic     periodic orbits by collocation (IPS = 2; FNPS), when present
+"""
+import importlib
+import pkgutil
+
+for _mod in pkgutil.iter_modules(__path__):
+    if not _mod.name.startswith("_"):
+        importlib.import_module(f"{__name__}.{_mod.name}")

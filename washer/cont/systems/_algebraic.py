@@ -1,0 +1,92 @@
+"""What the algebraic systems (equilibria, fold and Hopf loci) share: the
+weighted norm, the sphere corrector, dense linear algebra, b-file columns,
+branch-point directions and the BP/LP test functions (AUTO's ae.f90)."""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.cont.codes import Code
+from washer.cont.system import Solution, dense_factor
+
+
+def null_vectors(A: np.ndarray, k: int) -> np.ndarray:
+    """k right singular vectors of the smallest singular values, shape (cols, k)."""
+    _, _, Vt = np.linalg.svd(A)
+    return Vt[-k:].T
+
+
+def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
+    """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
+    if it is negligible, the first non-negligible component positive."""
+    if abs(t[lam_index]) / (1 + abs(lam)) > epsl:
+        return t if t[lam_index] > 0 else -t
+    big = np.flatnonzero(np.abs(t) > 1e-8 * np.max(np.abs(t)))
+    return t if t[big[0]] > 0 else -t
+
+
+class AlgebraicSystem:
+    """Base of systems G(x) = 0 whose unknowns are a plain vector.
+
+    Subclasses set `n_eq`, `free`, `theta` ((N + 1,) THU/THL weights), `ndim`,
+    `par` (the fixed parameters) and implement residual, jacobian, params.
+    """
+    arclength = "sphere"
+    curve_type = 0
+
+    # --------------------------------------------------------------- norms
+    def inner(self, a, b) -> float:
+        return float(np.sum(self.theta * a * b))
+
+    def border(self, t) -> np.ndarray:
+        return self.theta * t
+
+    def factor(self, J, border):
+        return dense_factor(J, border)
+
+    def update(self, x, tangent) -> None:
+        """Nothing moves with the branch by default."""
+
+    # ------------------------------------------------------------- tests
+    def _lp_bp(self, tangent, factor, codes) -> dict:
+        out = {}
+        if Code.LP in codes:
+            out[Code.LP] = float(tangent[-1])
+        if Code.BP in codes:
+            # AUTO's FNBPAE: the determinant of the Newton matrix [G_x; border].
+            sign, logdet = factor.sign_logdet()
+            out[Code.BP] = float(sign * np.exp(min(logdet, 700.0))) if sign != 0 else 0.0
+        return out
+
+    def accept(self, code, prev, cur) -> bool:
+        return True
+
+    def directions(self, x, tangent, code) -> list:
+        """At a BP: the null direction of G_x orthogonal to the branch's tangent."""
+        J = np.asarray(self.jacobian(x))
+        V = null_vectors(J, 2)
+        n1, n2 = V[:, 0], V[:, 1]
+        d = n1 * (n2 @ tangent) - n2 * (n1 @ tangent)
+        nd = np.sqrt(self.inner(d, d))
+        if not np.isfinite(nd) or nd < 1e-12:
+            return []
+        return [orient(d / nd, len(d) - 1, 1e-7, x[-1])]
+
+    # ------------------------------------------------------------- output
+    def solution(self, x, tangent) -> Solution:
+        par = self.params(x)
+        u = x[:self.ndim]
+        ncols = self.n_columns
+        cols = [float(np.sqrt(np.sum(u ** 2)))] + [float(v) for v in u[:ncols]]
+        rldot = [float(tangent[-1])] + [float(tangent[-1 - k]) for k in range(1, len(self.free))]
+        return Solution(par=par, columns=cols, u=np.array(x[:-1]), udot=np.array(tangent[:-1]),
+                        rldot=rldot, ndim_user=self.ndim)
+
+    def column_titles(self) -> list:
+        un = self.unames
+        return ["L2-NORM"] + [un.get(i, f"U({i})") for i in range(1, self.n_columns + 1)]
+
+    @property
+    def n_columns(self) -> int:
+        """AUTO's N2 = min(NDM, 7 - NICP): how many U(i) the b-file shows."""
+        nicp = len(self.settings.ICP)
+        return 0 if nicp > 7 else min(self.ndim, 7 - nicp)

@@ -1,0 +1,158 @@
+"""Equilibria f(u, par) = 0 continued in PAR(ICP(1)) (AUTO's IPS = 0, 1; FUNI,
+STPNAE; test functions FNLPAE, FNBPAE, FNHBEQ).
+
+Unknowns x = (u, PAR(ICP(1))), N = NDIM equations. Stability (IPS = 1): the
+eigenvalues of f_u sorted by decreasing real part; NINS counts Re <= 0.
+Test functions: LP the lambda-component of the unit tangent, BP the
+determinant of the Newton matrix, HB the real part of the complex pair
+closest to the imaginary axis, accepted only if NINS changed by >= 2 (a real
+pair crossing zero is no Hopf point).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.cont.codes import Code
+from washer.cont.system import Stability, StartData, register
+from washer.cont.systems._algebraic import AlgebraicSystem, null_vectors, orient
+
+#: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
+#: test needs Im != 0, and finite-difference Jacobians leave rounding-level
+#: imaginary parts on real pairs.
+IMAG_TOL = 1e-8
+
+
+def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
+    lam = np.linalg.eigvals(A)
+    return lam[np.argsort(-lam.real, kind="stable")]
+
+
+def is_complex(lam: np.ndarray) -> np.ndarray:
+    return np.abs(lam.imag) > IMAG_TOL * (1 + np.abs(lam))
+
+
+def hopf_test(lam: np.ndarray) -> float | None:
+    """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
+    cplx = lam[is_complex(lam)]
+    if cplx.size == 0:
+        return None
+    return float(cplx[np.argmin(np.abs(cplx.real))].real)
+
+
+def hopf_period(lam: np.ndarray) -> float | None:
+    """PAR(11) = 2 pi / |Im| of the pair closest to the imaginary axis (PVLSAE)."""
+    cplx = lam[is_complex(lam)]
+    if cplx.size == 0:
+        return None
+    return float(2 * np.pi / abs(cplx[np.argmin(np.abs(cplx.real))].imag))
+
+
+def spectrum(lam: np.ndarray) -> Stability:
+    n_stable = int(np.sum(lam.real <= 0.0))
+    return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam))
+
+
+@register(0, 1)
+@register(1, 1)
+@register(0, -1, "BP")
+@register(1, -1, "BP")
+class EquilibriumSystem(AlgebraicSystem):
+    """f(u, par) = 0 with unknowns x = (u, PAR(ICP(1)))."""
+
+    def __init__(self, start: StartData):
+        s = start.settings
+        self.problem, self.settings = start.problem, s
+        self.ndim = self.n_eq = start.problem.ndim
+        self.par = np.array(start.par, dtype=float)
+        self.free = [s.ICP[0]]
+        self.unames = dict(start.unames)
+        self.theta = np.r_[s.theta_u(self.ndim), s.theta_par(s.ICP[0])]
+        u = np.asarray(start.u, dtype=float)[:self.ndim]
+        self._x0 = np.r_[u, self.par[s.ICP[0] - 1]]
+        self._t0 = None
+        rec = start.record
+        if rec is not None and rec.udot is not None and len(rec.rldot) and \
+                list(rec.icp[:1]) == self.free and len(rec.udot) >= self.ndim:
+            # A stored direction with the same free parameter is reused (AUTO).
+            self._t0 = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+        self._switch = s.ISW == -1 and start.kind == "BP"
+
+    # ------------------------------------------------------------ equations
+    def params(self, x) -> np.ndarray:
+        p = self.par.copy()
+        p[self.free[0] - 1] = x[-1]
+        if self.problem.has_pvls:
+            p = self.problem.pvls(x[:self.ndim], p)
+        return p
+
+    def _p(self, x) -> np.ndarray:
+        p = self.par.copy()
+        p[self.free[0] - 1] = x[-1]
+        return p
+
+    def residual(self, x) -> np.ndarray:
+        return self.problem.func(x[:-1], self._p(x))
+
+    def jacobian(self, x) -> np.ndarray:
+        """[f_u, f_lambda], shape (N, N + 1)."""
+        p = self._p(x)
+        return np.hstack([self.problem.dfdu(x[:-1], p), self.problem.dfdp(x[:-1], p, self.free)])
+
+    def start(self):
+        if self._switch:
+            # ISW = -1 at a BP label: start along the other branch (AUTO's STBIF).
+            t = self._t0
+            if t is None:
+                t = null_vectors(self.jacobian(self._x0), 1)[:, 0]
+            d = self.directions(self._x0, t / np.sqrt(self.inner(t, t)), Code.BP)
+            return self._x0.copy(), (d[0] if d else None)
+        return self._x0.copy(), self._t0
+
+    # ------------------------------------------------------------ stability
+    def stability(self, x, J) -> Stability | None:
+        if self.settings.IPS != 1:
+            return None
+        lam = eigenvalues_sorted(np.asarray(J)[:, :self.ndim])
+        self._last_spectrum = (np.array(x), lam)      # reused by solution() for PAR(11)
+        return spectrum(lam)
+
+    def active_tests(self) -> list:
+        s = self.settings
+        out = []
+        if (s.ILP != 0 or "LP" in s.SP_ON) and "LP" not in s.SP_OFF:
+            out.append(Code.LP)
+        if (s.ISP != 0 or "BP" in s.SP_ON) and "BP" not in s.SP_OFF:
+            out.append(Code.BP)
+        if s.IPS in (1, -1, 11) and ((s.ISP not in (0, 3)) or "HB" in s.SP_ON) \
+                and "HB" not in s.SP_OFF:
+            out.append(Code.HB)
+        return out
+
+    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
+        out = self._lp_bp(tangent, factor, codes)
+        if Code.HB in codes:
+            out[Code.HB] = hopf_test(stability.values) if stability is not None else None
+        return out
+
+    def accept(self, code, prev, cur) -> bool:
+        if code == Code.HB:
+            if prev.stability is None or cur.stability is None:
+                return False
+            return abs(prev.stability.n_stable - cur.stability.n_stable) >= 2
+        return True
+
+    def solution(self, x, tangent):
+        sol = super().solution(x, tangent)
+        if self.settings.IPS == 1 and len(sol.par) >= 11:
+            cached = getattr(self, "_last_spectrum", None)
+            if cached is not None and np.array_equal(cached[0], x):
+                lam = cached[1]
+            else:
+                lam = eigenvalues_sorted(self.problem.dfdu(x[:-1], self._p(x)))
+            per = hopf_period(lam)
+            if per is not None:
+                sol.par[10] = per
+        return sol
+
+
+__all__ = ["EquilibriumSystem", "eigenvalues_sorted", "hopf_test", "hopf_period", "orient"]

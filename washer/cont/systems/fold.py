@@ -1,0 +1,117 @@
+"""The fold locus in two parameters (AUTO's ISW = 2 from an LP label; FNLP,
+FFLP in toolboxae.f90).
+
+Unknowns x = (u, phi, PAR(ICP(2)), PAR(ICP(1))), 2n + 1 equations:
+
+    f(u, p) = 0,   A phi = 0,   <phi, phi> - 1 = 0        (A = f_u(u, p))
+
+Test functions (written as -22, -21, -23, 21 on the curve): CP (-2) the
+quadratic coefficient <w, B(phi, phi)> with w the left null vector of A, BT
+(-1) <w, phi>, ZH (-3) the product of Re(lambda) over the complex pairs, BP (1)
+the determinant of the Newton matrix. The sign of w is kept continuous along
+the curve by orienting it against the previous point's w (moved in `update`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.cont.codes import Code
+from washer.cont.normal_form import FD2_STEP
+from washer.cont.system import StartData, register
+from washer.cont.systems._algebraic import null_vectors
+from washer.cont.systems._loci import LocusSystem
+from washer.cont.systems.equilibrium import eigenvalues_sorted, is_complex
+
+
+@register(1, 2, "LP")
+@register(0, 2, "LP")
+@register(1, 2, "LP-curve")
+@register(0, 2, "LP-curve")
+class FoldSystem(LocusSystem):
+    curve_type = 2
+
+    def __init__(self, start: StartData):
+        self._setup(start, start.problem.ndim)
+        n = self.ndim
+        stored = np.asarray(start.u, dtype=float)
+        if start.kind == "LP-curve":
+            if len(stored) != 2 * n + 1:
+                raise ValueError(f"a fold-curve record stores 2 NDIM + 1 = {2 * n + 1} values, "
+                                 f"this one {len(stored)}")
+            ext = stored.copy()
+        else:
+            u = stored[:n]
+            phi = null_vectors(self.problem.dfdu(u, self.par), 1)[:, 0]
+            ext = np.r_[u, phi / np.linalg.norm(phi), self.par[self.free[1] - 1]]
+        self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
+        A = self.problem.dfdu(self._x0[:n], self._p(self._x0))
+        self.w_ref = null_vectors(A.T, 1)[:, 0]
+        self._t0 = None
+        rec = start.record
+        if start.kind == "LP-curve" and rec is not None and rec.udot is not None \
+                and list(rec.icp[:2]) == self.free and len(rec.udot) == 2 * n + 1:
+            self._t0 = np.r_[rec.udot, rec.rldot[0]]
+
+    def start(self):
+        return self._x0.copy(), self._t0
+
+    def residual(self, x):
+        n = self.ndim
+        u, phi = x[:n], x[n:2 * n]
+        p = self._p(x)
+        return np.r_[self.problem.func(u, p), self.problem.dfdu(u, p) @ phi, phi @ phi - 1.0]
+
+    def jacobian(self, x):
+        """dG/dx, shape (2n + 1, 2n + 2): exact in phi, the problem's Jacobians in
+        the f-rows, forward differences of A for d(A phi)."""
+        n = self.ndim
+        phi = x[n:2 * n]
+        A, fp, dA = self.f_blocks(x)
+        J = np.zeros((2 * n + 1, 2 * n + 2))
+        cols_s = np.r_[np.arange(n), 2 * n + 1, 2 * n]     # u, p1, p2
+        J[:n, :n] = A
+        J[:n, 2 * n + 1] = fp[:, 0]
+        J[:n, 2 * n] = fp[:, 1]
+        J[n:2 * n, cols_s] = np.einsum("sij,j->is", dA, phi)
+        J[n:2 * n, n:2 * n] = A
+        J[2 * n, n:2 * n] = 2 * phi
+        return J
+
+    def _w(self, A):
+        w = null_vectors(A.T, 1)[:, 0]
+        return w if w @ self.w_ref >= 0 else -w
+
+    def update(self, x, tangent):
+        n = self.ndim
+        self.w_ref = self._w(self.problem.dfdu(x[:n], self._p(x)))
+
+    def active_tests(self) -> list:
+        s = self.settings
+        on = lambda name, default: (default or name in s.SP_ON) and name not in s.SP_OFF
+        out = []
+        if on("BP", s.ISP != 0):
+            out.append(Code.BP)
+        codim2 = s.IPS in (1, -1, 11) and s.ISP not in (0, 3)
+        for name, code in (("CP", Code.CP), ("BT", Code.BT), ("ZH", Code.ZH)):
+            if on(name, codim2 or (name == "CP" and s.ISP != 0)):
+                out.append(code)
+        return out
+
+    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
+        n = self.ndim
+        u, phi = x[:n], x[n:2 * n]
+        p = self._p(x)
+        A = np.asarray(J)[:n, :n]
+        out = self._lp_bp(tangent, factor, codes)
+        w = self._w(A)
+        if Code.CP in codes:
+            h = FD2_STEP
+            F = self.problem.func_many(np.array([u + h * phi, u, u - h * phi]), p)
+            out[Code.CP] = float(w @ ((F[0] - 2 * F[1] + F[2]) / h ** 2))
+        if Code.BT in codes:
+            out[Code.BT] = float(w @ phi)
+        if Code.ZH in codes:
+            lam = eigenvalues_sorted(A)
+            pairs = lam[is_complex(lam) & (lam.imag > 0)]
+            out[Code.ZH] = float(np.prod(pairs.real)) if pairs.size else None
+        return out

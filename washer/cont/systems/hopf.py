@@ -1,0 +1,153 @@
+"""The Hopf locus in two parameters (AUTO's ISW = 2 from an HB label; FNHB,
+FFHB, STPNHB in equilibrium.f90; Kuznetsov, 3rd ed., eqs 10.80 and 10.83).
+
+Unknowns x = (u, v, kappa = omega^2, PAR(ICP(2)), PAR(ICP(1))), 2n + 2 equations:
+
+    f(u, p) = 0,   (A^2 + kappa I) v = 0,   <v, v> - 1 = 0,   <A^T v_old - A v_old, v> = 0
+
+with A = f_u(u, p) and v_old the previous point's v (moved in `update`).
+Test functions (base codes; written as -31, -32, -33, 32, 31 on the curve):
+BT (-1) kappa crosses 0 (the run always stops there), GH (-2) the first
+Lyapunov coefficient, ZH (-3) a real eigenvalue crosses 0, LP (2) the curve
+folds with respect to PAR(ICP(1)), BP (1) the Newton matrix is singular (a
+crossing with another Hopf locus that shares the frequency, or a branch point
+of the equilibria on the locus); MXBF switching there follows the other branch.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.cont.codes import Code
+from washer.cont.normal_form import first_lyapunov
+from washer.cont.system import StartData, register
+from washer.cont.systems._algebraic import null_vectors
+from washer.cont.systems._loci import LocusSystem
+from washer.cont.systems.equilibrium import eigenvalues_sorted
+
+
+@register(1, 2, "HB")
+@register(1, 2, "HB-curve")
+class HopfSystem(LocusSystem):
+    curve_type = 3
+
+    def __init__(self, start: StartData):
+        self._setup(start, start.problem.ndim + 1)
+        n = self.ndim
+        stored = np.asarray(start.u, dtype=float)
+        p2 = self.par[self.free[1] - 1]
+        if start.kind == "HB-curve":
+            if len(stored) != 2 * n + 2:
+                raise ValueError(f"a Hopf-curve record stores 2 NDIM + 2 = {2 * n + 2} values, "
+                                 f"this one {len(stored)}")
+            ext = stored.copy()
+        else:
+            u = stored[:n]
+            period = self.par[10] if len(self.par) > 10 else 0.0
+            if not period > 0:
+                raise ValueError("the HB record has no period PAR(11) > 0 to start the Hopf "
+                                 "curve from")
+            kappa = (2 * np.pi / period) ** 2
+            A = self.problem.dfdu(u, self.par)
+            v = null_vectors(A @ A + kappa * np.eye(n), 2)[:, 0]
+            ext = np.r_[u, v / np.linalg.norm(v), kappa, p2]
+        self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
+        self.v_old = self._x0[n:2 * n] / np.linalg.norm(self._x0[n:2 * n])
+        self._t0 = None
+        rec = start.record
+        if start.kind == "HB-curve" and rec is not None and rec.udot is not None \
+                and list(rec.icp[:2]) == self.free and len(rec.udot) == 2 * n + 2:
+            self._t0 = np.r_[rec.udot, rec.rldot[0]]
+
+    def start(self):
+        return self._x0.copy(), self._t0
+
+    # ------------------------------------------------------------ equations
+    def residual(self, x):
+        n = self.ndim
+        u, v, kappa = x[:n], x[n:2 * n], x[2 * n]
+        p = self._p(x)
+        A = self.problem.dfdu(u, p)
+        return np.r_[self.problem.func(u, p), A @ (A @ v) + kappa * v, v @ v - 1.0,
+                     (A.T @ self.v_old - A @ self.v_old) @ v]
+
+    def jacobian(self, x):
+        """dG/dx, shape (2n + 2, 2n + 3). Blocks in v and kappa are exact; the
+        f-rows use the problem's Jacobians; the derivatives of A (second
+        derivatives of f, which problems do not supply) are forward differences."""
+        n = self.ndim
+        v, kappa = x[n:2 * n], x[2 * n]
+        A, fp, dA = self.f_blocks(x)
+        Av, vo = A @ v, self.v_old
+        w = A.T @ vo - A @ vo
+        # d/ds (A^2 v) = A_s (A v) + A (A_s v) for each perturbation direction s.
+        d_g = np.einsum("sij,j->is", dA, Av) + A @ np.einsum("sij,j->is", dA, v)
+        d_phase = np.einsum("sji,j,i->s", dA, vo, v) - np.einsum("sij,j,i->s", dA, vo, v)
+        J = np.zeros((2 * n + 2, 2 * n + 3))
+        # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2).
+        cols_s = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
+        J[:n, :n] = A
+        J[:n, 2 * n + 2] = fp[:, 0]
+        J[:n, 2 * n + 1] = fp[:, 1]
+        J[n:2 * n, cols_s] = d_g
+        J[n:2 * n, n:2 * n] = A @ A + kappa * np.eye(n)
+        J[n:2 * n, 2 * n] = v
+        J[2 * n, n:2 * n] = 2 * v
+        J[2 * n + 1, cols_s] = d_phase
+        J[2 * n + 1, n:2 * n] = w
+        return J
+
+    def update(self, x, tangent):
+        v = x[self.ndim:2 * self.ndim]
+        self.v_old = v / np.linalg.norm(v)
+
+    # ---------------------------------------------------------------- tests
+    def active_tests(self) -> list:
+        s = self.settings
+        on = lambda name, default: (default or name in s.SP_ON) and name not in s.SP_OFF
+        out = []
+        if on("LP", s.ILP != 0):
+            out.append(Code.LP)
+        if on("BP", s.ISP != 0):
+            out.append(Code.BP)
+        codim2 = s.ISP not in (0, 3)
+        for name, code in (("BT", Code.BT), ("GH", Code.CP), ("ZH", Code.ZH)):
+            if on(name, codim2):
+                out.append(code)
+        return out
+
+    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
+        n = self.ndim
+        kappa = x[2 * n]
+        out = self._lp_bp(tangent, factor, codes)
+        if Code.BT in codes:
+            out[Code.BT] = float(kappa)
+        A = np.asarray(J)[:n, :n]
+        if Code.CP in codes:           # GH: base code -2 on a Hopf curve
+            out[Code.CP] = first_lyapunov(self.problem, x[:n], self._p(x), np.sqrt(kappa), A) \
+                if kappa > 0 else None
+        if Code.ZH in codes:
+            # Product of the eigenvalues other than the Hopf pair: it changes sign
+            # when a real eigenvalue crosses zero.
+            if n > 2 and kappa > 0:
+                lam = eigenvalues_sorted(A)
+                k = np.argsort(np.abs(np.abs(lam.imag) - np.sqrt(kappa)) + np.abs(lam.real))
+                out[Code.ZH] = float(np.prod(lam[k[2:]]).real)
+            else:
+                out[Code.ZH] = None
+        return out
+
+    def solution(self, x, tangent):
+        sol = super().solution(x, tangent)
+        kappa = x[2 * self.ndim]
+        if len(sol.par) >= 11 and kappa > 0:
+            sol.par[10] = 2 * np.pi / np.sqrt(kappa)     # PAR(11), as AUTO on Hopf curves
+        return sol
+
+    def info(self, x, code) -> dict:
+        """Extra results for the d-file and the API at a labelled point."""
+        n = self.ndim
+        kappa = x[2 * n]
+        if code == Code.CP and kappa > 0:
+            l1 = first_lyapunov(self.problem, x[:n], self._p(x), np.sqrt(kappa))
+            return {"omega": float(np.sqrt(kappa)), "l1": l1}
+        return {}
