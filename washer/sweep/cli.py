@@ -1,0 +1,96 @@
+"""Command line of washer.sweep.
+
+    python -m washer.sweep SPEC.toml [--out DIR] [--scheduler tcp://HOST:PORT | --serial]
+                           [--workers N] [--batch-size N] [--retry-failed] [--no-plot]
+                           [--progress | --no-progress]
+    python -m washer.sweep plot DIR [--no-hopf]
+
+Exit status: 0 when every point is ok, 1 when some failed (they are in the
+table with their errors), 2 for a bad spec or arguments, 130 when interrupted
+(re-run the same command to resume).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] == "plot":
+        return _plot(argv[1:])
+    ap = argparse.ArgumentParser(prog="python -m washer.sweep",
+                                 description="Parameter sweeps of the washer (stability, "
+                                 "critical values, time responses) on Dask. "
+                                 "`python -m washer.sweep plot DIR` redraws the maps.")
+    ap.add_argument("spec", type=Path, help="sweep spec (TOML; see examples/sweep_small.toml)")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="results folder (default out/sweep/SPEC-NAME); re-using it resumes")
+    how = ap.add_mutually_exclusive_group()
+    how.add_argument("--scheduler", metavar="ADDRESS",
+                     help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    how.add_argument("--serial", action="store_true", help="compute in this process")
+    ap.add_argument("--workers", type=int, default=None,
+                    help="local worker processes (default: one per core)")
+    ap.add_argument("--batch-size", type=int, default=None, help="points per task")
+    ap.add_argument("--retry-failed", action="store_true",
+                    help="recompute the points recorded as failed")
+    ap.add_argument("--no-plot", action="store_true", help="skip the maps at the end")
+    bar = ap.add_mutually_exclusive_group()
+    bar.add_argument("--progress", dest="progress", action="store_true", default=None)
+    bar.add_argument("--no-progress", dest="progress", action="store_false")
+    args = ap.parse_args(argv)
+
+    from washer.sweep import SpecError, SweepInterrupted, load_spec, run
+    try:
+        spec = load_spec(args.spec)
+    except SpecError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    if args.workers is not None and args.workers < 1 or \
+            args.batch_size is not None and args.batch_size < 1:
+        print("error: --workers and --batch-size must be >= 1", file=sys.stderr)
+        return 2
+    out = args.out or Path("out/sweep") / args.spec.name.removesuffix(".toml")
+    client = None
+    if args.scheduler:
+        from distributed import Client
+        client = Client(args.scheduler)
+    t0 = time.perf_counter()
+    try:
+        df = run(spec, client, out=out, serial=args.serial, n_workers=args.workers,
+                 batch_size=args.batch_size, progress=args.progress, plot=not args.no_plot,
+                 retry_failed=args.retry_failed)
+    except SweepInterrupted as exc:
+        print(f"\n{exc}", file=sys.stderr)
+        return 130
+    finally:
+        if client is not None:
+            client.close()
+    failed = df[df["status"] != "ok"]
+    print(f"{len(df)} points ({len(failed)} failed) in {time.perf_counter() - t0:.1f} s; "
+          f"table {out / 'results.parquet'}, maps in {out / 'plots'}")
+    for _, r in failed.head(5).iterrows():
+        print(f"  failed {r['study']}[{r['index']}] {r['id']}: {r['error']}")
+    if len(failed) > 5:
+        print(f"  ... and {len(failed) - 5} more (column 'error' of the table)")
+    return 1 if len(failed) else 0
+
+
+def _plot(argv: list[str]) -> int:
+    ap = argparse.ArgumentParser(prog="python -m washer.sweep plot",
+                                 description="Draw the maps of a sweep's results folder.")
+    ap.add_argument("folder", type=Path)
+    ap.add_argument("--no-hopf", action="store_true",
+                    help="skip the continuation's Hopf curve overlay")
+    args = ap.parse_args(argv)
+    if not (args.folder / "results.parquet").exists():
+        print(f"error: {args.folder}: no results.parquet (run a sweep there first)",
+              file=sys.stderr)
+        return 2
+    from washer.sweep.plots import plot_dir
+    for p in plot_dir(args.folder, hopf=not args.no_hopf):
+        print(f"wrote {p}")
+    return 0

@@ -1,0 +1,119 @@
+"""The continuation's Hopf curve in the two parameters of a map (for overlays and checks).
+
+`hopf_curve(params, x, (x0, x1), y, (y0, y1), folder)` runs the engine of
+washer.run (e='washer', averaged frame) in `folder`, as an AUTO script would:
+
+1. a one-parameter continuation of the equilibrium in x across its range (y at
+   mid-range, then at its ends; then the roles swapped) until a Hopf point HB1
+   is found;
+2. the Hopf curve from HB1 in (x, y) (ISW = 2), both directions, stopped at the
+   edges of the map (UZSTOP);
+
+and returns the curve read back from the b-files (`washer.auto.files.read_b`)
+as a list of branches, arrays (k, 2) of (x, y). The b-files stay in `folder`
+(b.hopf_fwd, b.hopf_bwd), so `python -m washer.plot` can draw them too.
+
+Both parameters must be PAR entries of e='washer'; every other parameter is
+taken from `params` through PAR (the engine starts from the shipped reference
+set, see tasks.critical).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from washer.params import Params
+from washer.sweep.tasks import critical_constants
+
+#: The ranges are widened by this fraction of their span so that a boundary
+#: lying on the map's edge is still drawn.
+EDGE = 0.02
+#: Steps along the curve in the normalised parameters (THL = 1/span^2 makes the
+#: arclength of crossing the map about 1): DSMAX = 1/HOPF_STEPS.
+HOPF_STEPS = 60
+#: Weight of kappa = omega^2 (U(25), ~3e3-1e4 (rad/s)^2) in the arclength: its
+#: change over a map (~1e4) then counts about as much as the parameters.
+KAPPA_WEIGHT = 1e-8
+
+
+class HopfCurveError(RuntimeError):
+    """No Hopf curve could be computed for the map (the message says why)."""
+
+
+HOPF_CONSTANTS = """# written by washer.sweep (hopf): Hopf curve in ({x}, {y}) from HB1 of s.start
+e = 'washer'
+s = 'start'
+parnames = {parnames}
+NDIM = 12, IPS = 1, IRS = 'HB1', ILP = 1
+ICP = ['{x}', '{y}']
+ISP = 2, ISW = 2, MXBF = 0
+NMX = {nmx}, NPR = 0, ITMX = 8, ITNW = 7, JAC = 1
+EPSL = 1e-07, EPSU = 1e-07, EPSS = 1e-05
+THL = {{'{x}': {thx!r}, '{y}': {thy!r}}}
+THU = {{25: {kappa!r}}}
+DS = {ds!r}, DSMIN = {dsmin!r}, DSMAX = {dsmax!r}, IADS = 1
+NPAR = 16
+UZSTOP = {{'{x}': [{x0!r}, {x1!r}], '{y}': [{y0!r}, {y1!r}]}}
+"""
+
+
+def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarray]:
+    """Branches (k, 2) of the averaged system's Hopf curve in (x, y) within xr x yr."""
+    from washer.auto.files import read_b
+    from washer.auto_washer import PAR_NAMES
+    from washer.run import run
+    for name in (x, y):
+        if name not in PAR_NAMES.values():
+            raise HopfCurveError(f"{name!r} is not a PAR of e='washer': no continuation")
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    (x0, x1), (y0, y1) = _widen(xr), _widen(yr)
+    start = folder / "c.start"
+    tried = []
+    for cont, (c0, c1), other, (o0, o1) in ((x, (x0, x1), y, (y0, y1)), (y, (y0, y1), x, (x0, x1))):
+        for ov in (0.5 * (o0 + o1), o0, o1):
+            p = params.replace(**{other: max(ov, 0.0)})
+            start.write_text(critical_constants(p, cont, max(c0, 0.0), c1))
+            res = run(start, verbose=False, sv="start")
+            tried.append(f"{cont} in [{max(c0, 0):g}, {c1:g}] at {other} = {ov:g}")
+            if any(s.ty == "HB" for s in res.specials):
+                break
+        else:
+            continue
+        break
+    else:
+        raise HopfCurveError("no Hopf point on " + "; ".join(tried))
+    c = folder / "c.hopf"
+    c.write_text(HOPF_CONSTANTS.format(
+        x=x, y=y, parnames=repr(dict(PAR_NAMES)), nmx=20 * HOPF_STEPS,
+        thx=1.0 / (x1 - x0) ** 2, thy=1.0 / (y1 - y0) ** 2, kappa=KAPPA_WEIGHT,
+        ds=0.2 / HOPF_STEPS, dsmin=1e-5, dsmax=1.0 / HOPF_STEPS,
+        x0=x0, x1=x1, y0=y0, y1=y1))
+    branches = []
+    for sign, sv in ((1, "hopf_fwd"), (-1, "hopf_bwd")):
+        res = run(c, verbose=False, sv=sv, DS=sign * 0.2 / HOPF_STEPS)
+        for rows in read_b(folder / f"b.{sv}"):
+            # b-file columns: PAR(ICP(1)), L2-norm, U(1..), PAR(ICP(2)) last.
+            pts = np.array([[r.values[0], r.values[-1]] for r in rows])
+            if len(pts):
+                branches.append(pts)
+        if res.status != "ok" and not branches:
+            raise HopfCurveError(f"Hopf curve continuation ended with {res.status!r}")
+    return branches
+
+
+def _widen(r) -> tuple[float, float]:
+    lo, hi = float(min(r)), float(max(r))
+    pad = EDGE * (hi - lo)
+    return lo - pad, hi + pad
+
+
+def crossing_on_curve(branches: list[np.ndarray], y_value: float) -> list[float]:
+    """x values where the curve crosses the line y = y_value (linear interpolation)."""
+    out = []
+    for b in branches:
+        for (xa, ya), (xb, yb) in zip(b[:-1], b[1:]):
+            if (ya - y_value) * (yb - y_value) <= 0 and ya != yb:
+                out.append(xa + (y_value - ya) * (xb - xa) / (yb - ya))
+    return out

@@ -1,0 +1,279 @@
+"""What a sweep computes at a point: plain functions of plain data.
+
+`compute_batch(points, base)` is the unit of work shipped to a worker: a list
+of point dicts (see `washer.sweep.points`) and the base parameter set as
+{"values", "tied", "source"}; it returns one flat row (dict) per point. Every
+kind is wrapped so that an exception becomes the point's error and never stops
+the batch. Workers import the kernel through these imports (cffi objects never
+cross a process boundary).
+
+Kinds and their output columns (SI units, Omega in Hz, angles in rad):
+
+stability  averaged (or frozen) rotating-frame equilibrium eps* (eqs 60-65) and
+           the eigenvalues of its Jacobian (12, sorted by real part):
+    stab_margin          largest real part, 1/s (< 0: stable)
+    stab_whirl           |Im| of that eigenvalue, rad/s, rotating frame
+    stab_whirl_ground    |2 pi Omega - stab_whirl|, rad/s: the same mode seen from
+                         the ground (a whirl of the (x, y) plane; ~4 rad/s at the
+                         reference point, as MODEL.md section 4)
+    stab_damping_ratio   -Re/|lambda| of that eigenvalue (negative when unstable)
+    stab_eps1..6         eps* (m, m, m, rad, rad, rad)
+    stab_radius          hypot(eps1, eps2), m: the steady whirl radius of the
+                         periodic response the equilibrium stands for
+critical   the critical value of one parameter at this point: the first Hopf
+           point (HB) of a one-parameter continuation of the averaged equilibrium
+           from `from` to `to` (the engine of washer.run, e='washer'):
+    crit_value           the parameter at the HB (its units)
+    crit_whirl           the crossing frequency 2 pi / PAR(11), rad/s, rotating frame
+    crit_n_hopf          HB points found in [from, to]
+    crit_source          "HB" (the engine's first Hopf point) or "margin" (no HB
+                         before the engine's first step: the root of the margin,
+                         see _critical_fallback)
+response   a time response (kernel DOPRI5) summarised over the last `window` s:
+    resp_whirl_radius    mean of hypot(x, y) over the window, m (x, y: tub origin,
+                         plane A; eps1, eps2 in the rotating frame: same radius)
+    resp_whirl_radius_min, resp_whirl_radius_max    over the window, m
+    resp_lift_max        max of z - z_static over the whole response, m
+    resp_tilt_max        max tilt of the tub axis arccos(cos alpha cos beta) over
+                         the whole response, rad (Cardan x-y-z, eq 2)
+    resp_freq1, resp_freq2     the two largest peaks of the spectrum of
+                         x + i y (mean removed, Hann window) over the window, Hz,
+                         signed (> 0: counter-clockwise), in the simulated frame
+    resp_amp1, resp_amp2 their amplitudes, m
+    resp_nfev            right-hand-side evaluations
+"""
+from __future__ import annotations
+
+import math
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from washer.machine import Model
+from washer.params import Params
+
+#: Output columns per kind (every row of a kind has all of them; NaN on failure).
+OUTPUTS: dict[str, tuple[str, ...]] = {
+    "stability": ("stab_margin", "stab_whirl", "stab_whirl_ground", "stab_damping_ratio",
+                  "stab_eps1", "stab_eps2", "stab_eps3", "stab_eps4", "stab_eps5", "stab_eps6",
+                  "stab_radius"),
+    "critical": ("crit_value", "crit_whirl", "crit_n_hopf", "crit_source"),
+    "response": ("resp_whirl_radius", "resp_whirl_radius_min", "resp_whirl_radius_max",
+                 "resp_lift_max", "resp_tilt_max", "resp_freq1", "resp_amp1", "resp_freq2",
+                 "resp_amp2", "resp_nfev"),
+}
+#: Output columns holding text (empty when the kind failed); the others are floats (NaN).
+TEXT_OUTPUTS = {"crit_source"}
+
+
+def empty_outputs(kind: str) -> dict:
+    """The kind's columns as they stand when it fails."""
+    return {c: "" if c in TEXT_OUTPUTS else math.nan for c in OUTPUTS[kind]}
+
+
+#: Bins either side of the first spectral peak excluded when looking for the
+#: second (a Hann window spreads one line over about 2 bins each side).
+PEAK_GUARD_BINS = 3
+
+
+class PointError(RuntimeError):
+    """A kind could not produce its outputs at a point (the message says why)."""
+
+
+# ------------------------------------------------------------------------ kinds
+
+def stability(params: Params, frame: str = "averaged") -> dict:
+    """Equilibrium of the rotating-frame system and its leading eigenvalue."""
+    m = Model(params)
+    eps = m.rotating_equilibrium(frame=frame)
+    lam = m.eigenvalues(eps, frame=frame)
+    lead = lam[0]
+    whirl = abs(lead.imag)
+    out = {"stab_margin": float(lead.real), "stab_whirl": float(whirl),
+           "stab_whirl_ground": float(abs(2 * math.pi * params["Omega"] - whirl)),
+           "stab_damping_ratio": float(-lead.real / abs(lead)) if abs(lead) > 0 else math.nan,
+           "stab_radius": float(math.hypot(eps[0], eps[1]))}
+    out.update({f"stab_eps{i + 1}": float(e) for i, e in enumerate(eps)})
+    return out
+
+
+#: Constants of the one-parameter search for `critical` (AUTO names; see
+#: auto_constants/c.washer, which this mirrors). Steps scale with the range:
+#: DSMAX = range / CRIT_STEPS keeps two Hopf points of one range from falling
+#: into one step; NMX allows for step reductions and a fold or two.
+CRIT_STEPS = 40
+#: Tolerance of the fallback root search, as a fraction of the range (the
+#: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
+CRIT_XTOL = 1e-9
+CRIT_CONSTANTS = """# written by washer.sweep (critical): one-parameter search for the first HB
+e = 'washer'
+parnames = {parnames}
+NDIM = 12, IPS = 1, IRS = 0, ILP = 1
+ICP = ['{name}']
+ISP = 2, ISW = 1, MXBF = 0
+NMX = {nmx}, NPR = 0, ITMX = 8, ITNW = 7, JAC = 1
+EPSL = 1e-07, EPSU = 1e-07, EPSS = 1e-05
+DS = {ds!r}, DSMIN = {dsmin!r}, DSMAX = {dsmax!r}, IADS = 1
+NPAR = 16
+PAR = {par}
+UZSTOP = {{'{name}': {hi!r}}}
+"""
+
+
+def critical_constants(params: Params, name: str, lo: float, hi: float) -> str:
+    """Text of a constants file continuing the averaged equilibrium in `name` from lo to hi."""
+    from washer.auto_washer import PAR_NAMES
+    par = {n: float(params[n]) for n in PAR_NAMES.values()}
+    par[name] = float(lo)
+    span = hi - lo
+    return CRIT_CONSTANTS.format(
+        parnames=repr(dict(PAR_NAMES)), name=name, nmx=10 * CRIT_STEPS,
+        ds=span / (5 * CRIT_STEPS), dsmin=span * 1e-6, dsmax=span / CRIT_STEPS,
+        par=repr(par), hi=float(hi))
+
+
+def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float = 3.0,
+             engine: str = "continuation") -> dict:
+    """Critical value of `parameter`: its first Hopf point from lo to hi.
+
+    engine: "continuation" (the averaged system's Hopf point, washer.run);
+    "floquet" is the hook for the exact result (the Neimark-Sacker point of the
+    periodic response at constant speed, MODEL.md section 4) once the
+    forced-response solver exists: it raises until then."""
+    if engine == "floquet":
+        raise PointError("critical: engine 'floquet' is not available yet (needs the "
+                         "periodic forced response and its Floquet multipliers)")
+    if engine != "continuation":
+        raise PointError(f"critical: unknown engine {engine!r}")
+    if not params.tied:
+        raise PointError("critical: e='washer' ties C_ox and C_oz to C_p; untied dampings "
+                         "cannot be passed to the continuation engine yet")
+    from washer.auto_washer import PAR_NAMES
+    from washer.run import run
+    idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
+    with tempfile.TemporaryDirectory(prefix="washer-critical-") as d:
+        path = Path(d) / "c.critical"
+        path.write_text(critical_constants(params, parameter, lo, hi))
+        res = run(path, verbose=False)
+    hbs = [s for s in res.specials if s.ty == "HB"]
+    if hbs:
+        period = float(hbs[0].par[10])
+        return {"crit_value": float(hbs[0].par[idx - 1]),
+                "crit_whirl": 2 * math.pi / period if period > 0 else math.nan,
+                "crit_n_hopf": float(len(hbs)), "crit_source": "HB"}
+    return _critical_fallback(params, parameter, lo, hi, res.status)
+
+
+def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
+                       status: str) -> dict:
+    """No HB on the branch. If the equilibrium is unstable at lo and stable at hi,
+    the crossing lies before the engine's first step, where the engine does not
+    test for bifurcations (seen at Omega = 9 Hz, m_u = 0.25 kg: crossing at C_p
+    ~ 1.5e-4 with DS = 0.015): locate it on the stability margin by Brent's
+    method, and say so in crit_source. Otherwise raise, with the margins at the ends."""
+    def margin(v):
+        return stability(params.replace(**{parameter: v}))["stab_margin"]
+
+    try:
+        m_lo, m_hi = margin(lo), margin(hi)
+    except Exception as exc:  # noqa: BLE001 - only explains the failure
+        raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]; "
+                         f"equilibrium not found at the ends ({exc})") from None
+    if m_lo > 0 > m_hi and status == "ok":
+        from scipy.optimize import brentq
+        v = brentq(margin, lo, hi, xtol=CRIT_XTOL * (hi - lo), rtol=1e-12)
+        s = stability(params.replace(**{parameter: v}))
+        return {"crit_value": float(v), "crit_whirl": s["stab_whirl"], "crit_n_hopf": 0.0,
+                "crit_source": "margin"}
+    why = f"continuation ended with status {status!r}; " if status != "ok" else ""
+    why += (f"stable throughout (margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g})"
+            if max(m_lo, m_hi) < 0 else f"margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g}")
+    raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: {why}")
+
+
+def response(params: Params, system: str = "fixed", law: str = "spinup",
+             frame: str = "averaged", t_end: float = 30.0, window: float = 10.0,
+             samples_per_s: float = 200.0, rtol: float = 1e-8, atol: float = 1e-10) -> dict:
+    """Time response from the paper's initial state, summarised (see module docstring)."""
+    m = Model(params)
+    r = m.simulate(t_end, system=system, law=law, frame=frame, samples_per_s=samples_per_s,
+                   rtol=rtol, atol=atol, progress=False)
+    if r.status != "ok":
+        raise PointError(f"response: integration stopped at t = {r.t[-1] if len(r.t) else 0:g} "
+                         f"s: {r.status}")
+    return summarise_response(r.t, r.y, m.static_equilibrium()[2], window) | {
+        "resp_nfev": float(r.stats["nfev"])}
+
+
+def summarise_response(t: np.ndarray, y: np.ndarray, z_static: float, window: float) -> dict:
+    """Summaries of one history t (n,), y (n, 12) = (x, y, z, alpha, beta, gamma, rates)."""
+    x, yy, z, a, b = y[:, 0], y[:, 1], y[:, 2], y[:, 3], y[:, 4]
+    w = t >= t[-1] - window - 1e-12
+    rad = np.hypot(x[w], yy[w])
+    tilt = np.arccos(np.clip(np.cos(a) * np.cos(b), -1.0, 1.0))
+    out = {"resp_whirl_radius": float(rad.mean()), "resp_whirl_radius_min": float(rad.min()),
+           "resp_whirl_radius_max": float(rad.max()),
+           "resp_lift_max": float(np.max(z - z_static)), "resp_tilt_max": float(tilt.max())}
+    (f1, a1), (f2, a2) = dominant_frequencies(t[w], x[w] + 1j * yy[w])
+    out.update(resp_freq1=f1, resp_amp1=a1, resp_freq2=f2, resp_amp2=a2)
+    return out
+
+
+def dominant_frequencies(t: np.ndarray, s: np.ndarray):
+    """The two largest spectral lines of a complex signal s(t) on a uniform grid:
+    ((f1 Hz, amplitude1), (f2, amplitude2)); frequencies signed, amplitudes of
+    A e^{i 2 pi f t} in the units of s. The second is looked for outside
+    PEAK_GUARD_BINS of the first."""
+    n = len(s)
+    if n < 4:
+        return (math.nan, math.nan), (math.nan, math.nan)
+    dt = (t[-1] - t[0]) / (n - 1)
+    win = np.hanning(n)
+    S = np.fft.fft((s - s.mean()) * win) / win.sum()
+    f = np.fft.fftfreq(n, dt)
+    A = np.abs(S)
+    k1 = int(np.argmax(A))
+    mask = np.ones(n, bool)
+    idx = (np.arange(k1 - PEAK_GUARD_BINS, k1 + PEAK_GUARD_BINS + 1)) % n
+    mask[idx] = False
+    k2 = int(np.flatnonzero(mask)[np.argmax(A[mask])])
+    return (float(f[k1]), float(A[k1])), (float(f[k2]), float(A[k2]))
+
+
+KINDS = {"stability": lambda p, o: stability(p, **o),
+         "critical": lambda p, o: critical(p, o["parameter"], o["from"], o["to"], o["engine"]),
+         "response": lambda p, o: response(p, **o)}
+
+
+# ------------------------------------------------------------------------ batches
+
+def compute_point(point: dict, base: dict) -> dict:
+    """One row: the point's id, study, index, inputs, status, error, timing and outputs."""
+    t0 = time.perf_counter()
+    row = {"id": point["id"], "study": point["study"], "index": point["index"]}
+    row.update(point["inputs"])
+    errors = []
+    for kind in point["kinds"]:
+        row.update(empty_outputs(kind))
+    try:
+        params = Params(dict(base["values"]), base["tied"], base["source"]).replace(**point["set"])
+    except Exception as exc:  # noqa: BLE001 - any bad point is recorded, never raised
+        errors.append(f"parameters: {exc}")
+    else:
+        for kind in point["kinds"]:
+            try:
+                row.update(KINDS[kind](params, point["options"][kind]))
+            except Exception as exc:  # noqa: BLE001
+                msg = str(exc)
+                errors.append(msg if msg.startswith(kind) else f"{kind}: {type(exc).__name__}: {msg}")
+    row["status"] = "failed" if errors else "ok"
+    row["error"] = "; ".join(errors)
+    row["elapsed_s"] = time.perf_counter() - t0
+    return row
+
+
+def compute_batch(points: list[dict], base: dict) -> list[dict]:
+    """Rows of a batch of points (the task a worker runs)."""
+    return [compute_point(p, base) for p in points]
