@@ -1,11 +1,23 @@
 """AUTO-07p's b., s. and d. files (AUTO.md section 2): writers and readers. No numerics.
 
 Writers append and flush one point at a time, so a run that fails half-way
-keeps every point computed so far.
+keeps every point computed so far. The layouts are AUTO-07p's (io.f90: STHD,
+HEADNG, WRLINE; ae.f90: WRTSP8, PRINTEIG), so AUTO's own Python tools (parseB,
+parseS, parseD) read what washer writes:
+  * a b-file header is written together with the branch's first point, so a run
+    that fails before its first point leaves an empty b-file, not a header
+    without data (which parseB cannot read);
+  * every point is repeated in the d-file in screen format after a bar of 47
+    '=', as AUTO does, so parseD finds each point's branch, number, label and
+    eigenvalues.
+Outputs never follow a symlink (a link at an output path is replaced, its
+target untouched) and never truncate a protected file (the restart source).
 """
 from __future__ import annotations
 
 import math
+import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,6 +26,14 @@ import numpy as np
 #: Two-letter names of AUTO's type codes (support.f90:LBTYPE), by |code| % 10.
 TYPE_NAMES = {1: "BP", 2: "LP", 3: "HB", 4: "", -4: "UZ", 5: "LP", 6: "BP", 7: "PD", 8: "TR",
               9: "EP", -9: "MX", -1: "BT", -2: "CP", -3: "ZH", 0: ""}
+
+#: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
+D_BAR = "=" * 47
+
+
+class AutoFileError(ValueError):
+    """An AUTO file that cannot be read: the message names the file, the line and what
+    was expected there."""
 
 
 def type_name(code: int) -> str:
@@ -24,30 +44,120 @@ def type_name(code: int) -> str:
     return TYPE_NAMES.get(base, "")
 
 
+def _fortran_special(x: float, width: int) -> str | None:
+    """gfortran's text for NaN and infinities, right-justified; None for finite x."""
+    if math.isnan(x):
+        return "NaN".rjust(width)
+    if math.isinf(x):
+        return ("Infinity" if x > 0 else "-Infinity").rjust(width)
+    return None
+
+
+def _mantissa_exponent(x: float, digits: int) -> tuple[str, int]:
+    """Mantissa text in [1, 10) with `digits` decimals (sign included) and the exponent."""
+    mant, exp = f"{x:.{digits}e}".split("e")     # Python rounds once, correctly
+    return mant, int(exp)
+
+
 def fmt_e(x: float, width: int = 19, digits: int = 10) -> str:
-    """Fortran ESw.dE3: mantissa in [1, 10) and a 3-digit exponent."""
-    if x == 0 or not math.isfinite(x):
-        mant, exp = (0.0, 0) if x == 0 else (x, 0)
-    else:
-        exp = int(math.floor(math.log10(abs(x))))
-        mant = x / 10**exp
-        if round(abs(mant), digits) >= 10:
-            mant, exp = mant / 10, exp + 1
-    s = f"{mant:.{digits}f}E{'+' if exp >= 0 else '-'}{abs(exp):03d}"
-    if x == 0 and math.copysign(1, x) < 0:
-        s = "-" + s
-    return s.rjust(width)
+    """Fortran ESw.dE3: mantissa in [1, 10) and a 3-digit exponent (b- and s-file data)."""
+    x = float(x)
+    special = _fortran_special(x, width)
+    if special:
+        return special
+    mant, exp = _mantissa_exponent(x, digits)
+    return f"{mant}E{'+' if exp >= 0 else '-'}{abs(exp):03d}".rjust(width)
+
+
+def fmt_es(x: float, width: int, digits: int) -> str:
+    """Fortran ESw.d (no Ee): a 2-digit exponent 'E-07'; for |exponent| > 99 the 'E' is
+    dropped ('-1.7976+308'), as gfortran does. b-file header reals (ES11.4, ES12.4) and
+    d-file values (ES14.5)."""
+    x = float(x)
+    special = _fortran_special(x, width)
+    if special:
+        return special
+    mant, exp = _mantissa_exponent(x, digits)
+    sign = "+" if exp >= 0 else "-"
+    text = f"{mant}E{sign}{abs(exp):02d}" if abs(exp) <= 99 else f"{mant}{sign}{abs(exp):03d}"
+    return text.rjust(width)
+
+
+def _fortran_float(token: str) -> float:
+    """A real as AUTO writes it: 1.0E-07, 1.0D-07, 1.0-100 (ESw.d with a 3-digit exponent)."""
+    try:
+        return float(token)
+    except ValueError:
+        pass
+    t = token.replace("D", "E").replace("d", "e")
+    m = re.fullmatch(r"([+-]?\d*\.?\d*)([+-]\d{3})", t)
+    if m and m.group(1) not in ("", "+", "-"):
+        t = f"{m.group(1)}E{m.group(2)}"
+    return float(t)          # ValueError if still not a number
+
+
+def _index_str(k) -> str:
+    """A dict key as STHD writes it: a number plain, a name quoted."""
+    if isinstance(k, str) and not k.strip().lstrip("-").isdigit():
+        return f"'{k}'"
+    return str(int(k))
+
+
+def _value_str(x) -> str:
+    """A dict value as STHD writes it: integral values as integers (I19), else ES19.10E3."""
+    x = float(x)
+    if x.is_integer() and abs(x) < 2**31:
+        return str(int(x))
+    return fmt_e(x).strip()
 
 
 def _dict_str(d: dict) -> str:
+    """AUTO's WRITELIST/WRITEUZRLIST: {11: 0}, {2: [14, 15]}; brackets only for 2+ values."""
     items = []
     for k, v in d.items():
-        key = f"'{k}'" if isinstance(k, str) else str(k)
-        vals = v if isinstance(v, list) else [v]
-        txt = [str(int(x)) if float(x).is_integer() and abs(x) < 1e15 else fmt_e(x).strip()
-               for x in vals]
-        items.append(f"{key}: " + (f"[{', '.join(txt)}]" if isinstance(v, list) else txt[0]))
+        vals = v if isinstance(v, (list, tuple)) else [v]
+        txt = [_value_str(x) for x in vals]
+        items.append(f"{_index_str(k)}: " + (f"[{', '.join(txt)}]" if len(txt) > 1 else txt[0]))
     return "{" + ", ".join(items) + "}"
+
+
+def _names_str(d: dict) -> str:
+    """AUTO's WRITESTRLIST: {1: 'x', 2: 'y'}."""
+    return "{" + ", ".join(f"{int(k)}: '{v}'" for k, v in d.items()) + "}"
+
+
+#: Where HEADNG's WRITECOL puts a column title (1-based start in a 19-character
+#: field): PAR(i) and L2-NORM at 4, U(i) at 6, MAX/MIN U(i) at 4, PERIOD at 5,
+#: INTEGRAL/L2-NORM U(i) at 2; any other title is a user's name, centred.
+_TITLE_COLUMNS = ((r"PAR\(\d+\)", 4), (r"L2-NORM", 4), (r"U\(\d+\)", 6), (r"(MAX|MIN) U\(\d+\)", 4),
+                  (r"PERIOD", 5), (r"(INTEGRAL|L2-NORM) U\(\d+\)", 2))
+#: AUTO keeps names in CHARACTER(13) (io.f90: getname).
+NAME_LENGTH = 13
+
+
+def column_title(title: str) -> str:
+    """The 19-character b-file column title of HEADNG (the screen and d-file show its
+    first 14 characters). A name is centred at column max(7 - (len - 1) // 2, 2)."""
+    title = title.strip()
+    for pattern, col in _TITLE_COLUMNS:
+        if re.fullmatch(pattern, title):
+            break
+    else:
+        title = title[:NAME_LENGTH]
+        col = max(7 - (len(title) - 1) // 2, 2)
+    return (" " * (col - 1) + title).ljust(19)[:19]
+
+
+def screen_heading(titles: list[str]) -> str:
+    """'  BR    PT  TY  LAB ' and the A14 column titles (screen and d-file), at most 8 columns."""
+    return "  BR    PT  TY  LAB " + "".join(column_title(t)[:14] for t in titles[:8])
+
+
+def screen_line(row: "Row") -> str:
+    """A point in screen format (I4,I6,1X,A3,I5,ES14.5...) as the d-file repeats it; the
+    b-file's signs of BR and PT are kept (the terminal shows absolute values)."""
+    vals = "".join(fmt_es(v, 14, 5) for v in row.values[:8])
+    return f"{row.br:4d}{row.pt:6d} {type_name(row.ty):>3}{row.lab:5d}{vals}"
 
 
 @dataclass
@@ -76,8 +186,15 @@ class Record:
     icp: list = field(default_factory=list)
     rldot: list = field(default_factory=list)
     udot: np.ndarray | None = None
+    #: BVP records (NTPL > 1): the mesh times t (NTPL,) in [0, 1], U of shape
+    #: (NTPL, NDIM), udot (NTPL, NDIM) or flat, and the header's NTST, NCOL.
+    t: np.ndarray | None = None
+    ntst: int = 0
+    ncol: int = 0
 
     def text(self) -> str:
+        if np.ndim(self.U) == 2:
+            return self._text_bvp()
         n = len(self.U)
         npar = len(self.par)
         has_dir = self.udot is not None
@@ -97,74 +214,221 @@ class Record:
         lines += _rows(list(self.par))
         return "\n".join(lines) + "\n"
 
+    def _text_bvp(self) -> str:
+        """A BVP/periodic record as bvp.f90:WRTBV8 writes it: NTPL blocks `t U(1..NDIM)`
+        (7 values a line), then ICP, RLDOT and NTPL blocks of UDOT (without t) if the
+        direction is stored, then PAR."""
+        U = np.asarray(self.U, float)
+        ntpl, n = U.shape
+        t = np.linspace(0, 1, ntpl) if self.t is None else np.asarray(self.t, float)
+        npar = len(self.par)
+        has_dir = self.udot is not None
+        nrow = (n // 7 + 1) * ntpl + (npar + 6) // 7
+        if has_dir:
+            nrow += (self.nfpr + 19) // 20 + (self.nfpr + 6) // 7 + ((n + 6) // 7) * ntpl
+        head = (f"{self.br:6d}{self.pt:6d}{self.ty:6d}{self.lab:6d}{self.nfpr:6d}{self.isw:6d}"
+                f"{ntpl:8d}{n + 1:6d}{nrow:8d}{self.ntst:5d}{self.ncol:5d}{npar:5d}{0:5d}"
+                f"{self.ndim_user:5d}{self.ips:5d}{0:5d}")
+        lines = [head]
+        for j in range(ntpl):
+            vals = [t[j]] + list(U[j])
+            lines += _rows(vals[:7]) + _rows(vals[7:])
+        if has_dir:
+            ud = np.asarray(self.udot, float).reshape(ntpl, n)
+            lines.append("".join(f"{i:5d}" for i in self.icp[:self.nfpr]))
+            lines += _rows(self.rldot)
+            for j in range(ntpl):
+                lines += _rows(list(ud[j]))
+        lines += _rows(list(self.par))
+        return "\n".join(lines) + "\n"
+
 
 def _rows(vals) -> list[str]:
     return ["    " + "".join(fmt_e(v) for v in vals[i:i + 7]) for i in range(0, len(vals), 7)]
 
 
-class OutputFiles:
-    """b./s./d. files of one run (sv name), written point by point."""
+def prepare_output(path: Path, protect=()) -> Path | None:
+    """Make `path` ready to be written from scratch, safely.
 
-    def __init__(self, folder: Path, name: str):
+    A symlink at `path` is removed (the new file replaces the link; its target
+    is never opened). An existing file that is one of `protect` (the restart
+    source, compared by identity, not by name) is renamed to `path~` instead of
+    being truncated: its records survive a crash of the new run. Returns that
+    backup path, or None.
+    """
+    path = Path(path)
+    if path.is_symlink():
+        path.unlink()
+        return None
+    if path.exists():
+        for q in protect:
+            try:
+                same = q is not None and Path(q).exists() and os.path.samefile(path, q)
+            except OSError:
+                same = False
+            if same:
+                backup = path.with_name(path.name + "~")
+                os.replace(path, backup)
+                return backup
+    return None
+
+
+def _open_output(path: Path, append: bool):
+    """A text handle on `path` that never follows a symlink (O_NOFOLLOW)."""
+    flags = os.O_WRONLY | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0)
+    flags |= os.O_APPEND if append else os.O_TRUNC
+    return os.fdopen(os.open(path, flags, 0o666), "a" if append else "w", encoding="utf-8")
+
+
+class OutputFiles:
+    """b./s./d. files of one run (sv name), written point by point.
+
+    protect: files that must not be truncated, above all the s-file the run
+    restarts from (AUTO's default sv is the restart file's own name): if an
+    output path is one of them, the old file is kept as `NAME~` (see
+    `prepare_output`; `.backups` lists them). Construct OutputFiles only after
+    the restart data has been read into memory.
+    """
+
+    def __init__(self, folder: Path, name: str, protect=()):
+        folder = Path(folder)
         self.b_path, self.s_path, self.d_path = (folder / f"{k}.{name}" for k in "bsd")
+        self.backups: list[Path] = []
         for p in (self.b_path, self.s_path, self.d_path):
-            p.write_text("")
+            backup = prepare_output(p, protect)
+            if backup is not None:
+                self.backups.append(backup)
+            with _open_output(p, append=False):
+                pass
+        self.column_titles: list[str] = []
+        self._pending_b = ""        # header lines waiting for the branch's first point
+        self._d_points = 0
 
     def _append(self, path: Path, text: str) -> None:
-        with open(path, "a") as fh:
+        with _open_output(path, append=True) as fh:
             fh.write(text)
             fh.flush()
 
     def header(self, c, ndim_internal: int, npar: int, column_titles: list[str],
-               curve_type: int = 0, curve_name: str = "") -> None:
-        lines = [f"   0 {fmt_e(c['RL0'], 12, 4)}{fmt_e(c['RL1'], 12, 4)}{fmt_e(c['A0'], 12, 4)}"
-                 f"{fmt_e(c['A1'], 12, 4)}".replace("E+308", "+308").replace("E-308", "-308")]
-        d3 = lambda *kv: "   0" + "".join(f"{k:>8}{fmt_e(v, 11, 4)}" for k, v in kv)
+               curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,
+               nfpr: int | None = None, ds: float | None = None, dsmin: float | None = None,
+               dsmax: float | None = None) -> None:
+        """The run's header block (io.f90:STHD), in AUTO-07p's exact layout.
+
+        c: the user's constants; ndim_internal, npar: NDIM and NPAR as the
+        engine uses them (extended NDIM on ISW=2 curves, NPAR raised to 11 for
+        IPS=1); irs: the restart label actually used (default: IRS if it is a
+        number, else 0); nfpr: number of free parameters (default 2 on |ISW|=2
+        curves, else 1); ds, dsmin, dsmax: the engine's step sizes (default the
+        user's). Where an internal value differs from the user's, AUTO lists the
+        user's under 'User-specified constants, where different from above'.
+        The block is written with the first point (`row`), never alone.
+        """
+        user_irs = c["IRS"] if isinstance(c["IRS"], int) else None
+        irs = irs if irs is not None else (user_irs or 0)
+        nfpr = nfpr if nfpr is not None else (2 if abs(c["ISW"]) == 2 else 1)
+        steps = {"DS": ds, "DSMIN": dsmin, "DSMAX": dsmax}
+        steps = {k: (c[k] if v is None else v) for k, v in steps.items()}
+        d3 = lambda *kv: "   0" + "".join(f"{k:>8}{fmt_es(v, 11, 4)}" for k, v in kv)
         i4 = lambda *kv: "   0" + "".join(f"{k:>8}{v:4d}" for k, v in kv)
+        lines = ["   0 " + "".join(fmt_es(c[k], 12, 4) for k in ("RL0", "RL1", "A0", "A1"))]
         lines.append(d3(("EPSL=", c["EPSL"]), ("EPSU =", c["EPSU"]), ("EPSS =", c["EPSS"])))
-        lines.append(d3(("DS  =", c["DS"]), ("DSMIN=", c["DSMIN"]), ("DSMAX=", c["DSMAX"])))
-        irs = c["IRS"] if isinstance(c["IRS"], int) else 1
+        lines.append(d3(("DS  =", steps["DS"]), ("DSMIN=", steps["DSMIN"]),
+                        ("DSMAX=", steps["DSMAX"])))
         lines.append(i4(("NDIM=", ndim_internal), ("IPS =", c["IPS"]), ("IRS =", irs),
                         ("ILP =", c["ILP"])))
         lines.append(i4(("NTST=", c["NTST"]), ("NCOL=", c["NCOL"]), ("IAD =", c["IAD"]),
                         ("ISP =", c["ISP"])))
         lines.append(i4(("ISW =", c["ISW"]), ("IPLT=", c["IPLT"]), ("NBC =", c["NBC"]),
                         ("NINT=", c["NINT"])))
-        lines.append(f"   0{'NMX=':>7}{c['NMX']:5d}{'NPR=':>7}{c['NPR']:5d}{'MXBF=':>8}{c['MXBF']:4d}"
+        lines.append(f"   0{' NMX=':>7}{c['NMX']:5d}{'NPR=':>7}{c['NPR']:5d}{'MXBF=':>8}{c['MXBF']:4d}"
                      f"{'IID =':>8}{c['IID']:4d}{'IADS=':>8}{c['IADS']:4d}")
-        nuzr = sum(len(v) if isinstance(v, list) else 1
+        nuzr = sum(len(v) if isinstance(v, (list, tuple)) else 1
                    for key in ("UZR", "UZSTOP") for v in c[key].values())
         lines.append(i4(("ITMX=", c["ITMX"]), ("ITNW=", c["ITNW"]), ("NWTN=", c["NWTN"]),
-                        ("JAC =", c["JAC"]), ("NUZR=", nuzr)))
-        lines.append(f"   0   NPAR={npar:4d}   THL = {_dict_str(c['THL'])}    THU = {_dict_str(c['THU'])}")
+                        ("JAC =", c["JAC"]), ("  NUZR=", nuzr)))
+        if c["IBR"] > 0 or c["LAB"] > 0 or c["TY"].strip() or c["IIS"] < 3:
+            extra = [("IIS =", c["IIS"])] if c["IIS"] < 3 else []
+            extra += [(k, c[k[:3]]) for k in ("IBR =", "LAB =") if c[k[:3]] > 0]
+            line = i4(*extra)
+            if c["TY"].strip():
+                line += f"{chr(39).join(['TY = ', '']):>9}{c['TY'].strip()}'"
+            lines.append(line)
+        lines.append(f"   0   NPAR={npar:4d}   THL = {_dict_str(c['THL'])}"
+                     f"    THU = {_dict_str(c['THU'])}")
         for key in ("UZR", "UZSTOP"):
             if c[key]:
                 lines.append(f"   0   {key} = {_dict_str(c[key])}")
-        strs = " ".join(f"{k} = '{c[k]}'" for k in ("e", "s", "dat", "sv") if c[k])
+        strs = "".join(f" {k} = '{c[k]}'" for k in ("e", "s", "dat", "sv") if c[k])
         if strs:
-            lines.append("   0   " + strs)
+            lines.append("   0  " + strs)
         if c["parnames"]:
-            lines.append(f"   0   parnames = {c['parnames']}")
+            lines.append(f"   0   parnames = {_names_str(c['parnames'])}")
         if c["unames"]:
-            lines.append(f"   0   unames   = {c['unames']}")
-        icp = c["ICP"]
-        label = "parameters:" if len(icp) > 1 else "parameter: "
-        fmt_icp = "".join(f"{i:>5}" if isinstance(i, int) else f" '{i}'" for i in icp)
-        lines.append(f"   0   User-specified {label}      {fmt_icp}")
-        lines.append(f"   0   Active continuation {label}  {fmt_icp}")
+            lines.append(f"   0   unames   = {_names_str(c['unames'])}")
+        if c["PAR"]:
+            lines.append(f"   0   PAR     = {_dict_str(c['PAR'])}")
+        if c["U"]:
+            lines.append(f"   0   U       = {_dict_str(c['U'])}")
+        for key, label in (("SP", "SP="), ("STOP", "STOP=")):
+            if c[key]:
+                lines.append(f"   0   {label}[" + ", ".join(f"'{s}'" for s in c[key]) + "]")
+        lines += self._user_specified(c, ndim_internal, npar, irs, user_irs, steps)
+        icp_user = c["ICP"]
+        names = {int(k): v for k, v in c["parnames"].items()}
+        lines.append("   0   User-specified parameter" + (":       " if len(icp_user) == 1 else
+                     "s:      ") + "".join(f"   {i}" if isinstance(i, int) else f" '{i}'"
+                                           for i in icp_user))
+        active = c.icp()[:nfpr]
+        lines.append("   0   Active continuation parameter" + (":  " if nfpr == 1 else "s: ")
+                     + "".join(f" '{names[i]}'" if i in names else f"   {i}" for i in active))
         if curve_type:
             lines.append(f"   0   Branch type: {curve_type:2d}    TY = '{curve_name:<3}'")
-        self._append(self.b_path, "\n".join(lines) + "\n")
+        self._pending_b += "\n".join(lines) + "\n"
         self.column_titles = column_titles
 
+    @staticmethod
+    def _user_specified(c, ndim, npar, irs, user_irs, steps) -> list[str]:
+        """STHD's 'User-specified constants, where different from above' lines."""
+        ds_diff = [(k, fmt_es(c[k], 11, 4)) for k in ("DS", "DSMIN", "DSMAX")
+                   if fmt_es(c[k], 11, 4) != fmt_es(steps[k], 11, 4)]
+        ints = [("NDIM=", c["NDIM"], ndim), ("IRS =", user_irs, irs), ("NPAR=", c["NPAR"], npar)]
+        int_diff = [(k, u) for k, u, a in ints if u is not None and u != a]
+        if not ds_diff and not int_diff:
+            return []
+        lines = ["   0   User-specified constants, where different from above:"]
+        if ds_diff:
+            label = {"DS": "DS  =", "DSMIN": "DSMIN=", "DSMAX": "DSMAX="}
+            lines.append("   0" + "".join(f"{label[k]:>8}{v}" for k, v in ds_diff))
+        if int_diff:
+            lines.append("   0" + "".join(f"{k:>8}{u:4d}" for k, u in int_diff))
+        return lines
+
     def branch_start(self) -> None:
-        """The two-line column header written at the first point of every branch."""
-        titles = "".join(t.ljust(19) for t in self.column_titles)
-        self._append(self.b_path, f"   0\n   0    PT  TY  LAB {titles}\n")
+        """The two-line column header written at the first point of every branch
+        (HEADNG, unit 7); it goes to the file with that first point."""
+        titles = "".join(column_title(t) for t in self.column_titles)
+        self._pending_b += f"   0\n   0    PT  TY  LAB {titles}\n"
 
     def row(self, r: Row) -> None:
+        """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
+        the same point in screen format (unit 9), opening the point's block."""
         vals = "".join(fmt_e(v) for v in r.values)
-        self._append(self.b_path, f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
+        self._append(self.b_path, self._pending_b + f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
+        self._pending_b = ""
+        bar = f"{D_BAR}\n" if self._d_points else ""
+        self._d_points += 1
+        self._append(self.d_path, f"{bar}\n{screen_heading(self.column_titles)}\n{screen_line(r)}\n")
+
+    def eigenvalues(self, br: int, pt: int, eig) -> None:
+        """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
+        'Eigenvalue  k:' with real and imaginary parts (ES14.5). pt: unsigned point number."""
+        eig = np.asarray(eig, dtype=complex)
+        stable = int(np.sum(eig.real < 0))
+        lines = [f"\n{br:4d}{pt:6d}         Eigenvalues  :   Stable:{stable:4d}"]
+        lines += [f"{br:4d}{pt:6d}         Eigenvalue{k:3d}:{fmt_es(e.real, 14, 5)}"
+                  f"{fmt_es(e.imag, 14, 5)}" for k, e in enumerate(eig, 1)]
+        self.diag("\n".join(lines))
 
     def record(self, rec: Record) -> None:
         self._append(self.s_path, rec.text())
@@ -175,11 +439,21 @@ class OutputFiles:
 
 # ----------------------------------------------------------------------- readers
 
+def _read_text(path: Path, what: str) -> str:
+    """A file's text; AutoFileError for a missing, binary or non-UTF-8 file."""
+    from washer.auto.constants import decode_text
+    try:
+        data = Path(path).read_bytes()
+    except OSError as exc:
+        raise AutoFileError(f"{path}: cannot read {what} ({exc.strerror})") from None
+    return decode_text(data, str(path), what, AutoFileError)
+
+
 def read_b(path: Path) -> list[list[Row]]:
     """Branches of a b-file: lists of Rows (header lines skipped)."""
     branches: list[list[Row]] = []
     new = True
-    for line in Path(path).read_text().splitlines():
+    for line in _read_text(path, "an AUTO b-file").splitlines():
         f = line.split()
         if not f:
             continue
@@ -188,7 +462,7 @@ def read_b(path: Path) -> list[list[Row]]:
             continue
         try:
             br, pt, ty, lab = (int(x) for x in f[:4])
-            vals = [float(x.replace("D", "E")) for x in f[4:]]
+            vals = [_fortran_float(x) for x in f[4:]]
         except ValueError:
             continue
         if new or not branches:
@@ -198,41 +472,88 @@ def read_b(path: Path) -> list[list[Row]]:
     return branches
 
 
+#: Names of the s-file header integers (bvp.f90:WRTBV8), for error messages.
+S_HEADER = "IBR NTOT ITP LAB NFPR ISW NTPL NAR NROWPR NTST NCOL NPAR [NPARI NDIM IPS IPRIV]"
+
+
 def read_s(path: Path) -> list[Record]:
-    """All records of an s-file (ours or AUTO's)."""
-    lines = Path(path).read_text().splitlines()
+    """All records of an s-file (ours or AUTO's), checked.
+
+    Each record is a header of 12 or 16 integers and NROWPR lines of numbers
+    (AUTO.md 2.2); a header that is not integers, a record cut short, a number
+    that does not parse or a block of the wrong size raises AutoFileError naming
+    the file, the line and what was expected there, so a corrupt restart file
+    never starts a run from wrong data.
+    """
+    path = Path(path)
+    lines = _read_text(path, "an AUTO s-file").splitlines()
     out, i = [], 0
     while i < len(lines):
-        h = lines[i].split()
-        if not h:
+        if not lines[i].split():
             i += 1
             continue
-        h = [int(x) for x in h]
-        br, ntot, itp, lab, nfpr, isw, ntpl, nar, nrowpr = h[:9]
-        ntst = h[9]
-        npar = h[11]
-        ndim_user = h[13] if len(h) > 13 else nar - 1
-        ips = h[14] if len(h) > 14 else 1
-        body = lines[i + 1:i + 1 + nrowpr]
+        rec, nrowpr = _read_record(path, lines, i)
+        out.append(rec)
         i += 1 + nrowpr
-        n = nar - 1
-        k = n // 7 + 1                                  # lines of one t-block
-        tvals = [float(x) for ln in body[:k * ntpl] for x in ln.split()]
-        U = np.array(tvals[1:nar]) if ntpl == 1 else np.array(tvals).reshape(ntpl, nar)[:, 1:]
-        rest = body[k * ntpl:]
-        icp, rldot, udot = [], [], None
-        has_dir = ntst > 0 and nrowpr > (n // 7 + 1) * ntpl + (npar + 6) // 7
-        if has_dir:
-            nicp = (nfpr + 19) // 20
-            icp = [int(x) for ln in rest[:nicp] for x in ln.split()]
-            nr = (nfpr + 6) // 7
-            rldot = [float(x) for ln in rest[nicp:nicp + nr] for x in ln.split()]
-            nu = ((n + 6) // 7) * ntpl
-            udot = np.array([float(x) for ln in rest[nicp + nr:nicp + nr + nu] for x in ln.split()])
-            rest = rest[nicp + nr + nu:]
-        par = np.array([float(x) for ln in rest for x in ln.split()])
-        out.append(Record(br, ntot, itp, lab, nfpr, isw, ndim_user, ips, U, par, icp, rldot, udot))
     return out
+
+
+def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
+    """The record whose header is lines[i], and its NROWPR."""
+    where = f"{path}:{i + 1}"
+    try:
+        h = [int(x) for x in lines[i].split()]
+    except ValueError:
+        raise AutoFileError(f"{where}: expected an s-file record header of 12 or 16 integers "
+                            f"({S_HEADER}), got {lines[i].strip()[:60]!r}") from None
+    if len(h) not in (12, 16):
+        raise AutoFileError(f"{where}: an s-file record header has 12 or 16 integers "
+                            f"({S_HEADER}), this one has {len(h)}")
+    br, ntot, itp, lab, nfpr, isw, ntpl, nar, nrowpr, ntst, ncol, npar = h[:12]
+    for name, value, low in (("NFPR", nfpr, 0), ("NTPL", ntpl, 1), ("NAR", nar, 2),
+                             ("NROWPR", nrowpr, 1), ("NPAR", npar, 0)):
+        if value < low:
+            raise AutoFileError(f"{where}: header field {name} = {value}, expected >= {low}")
+    ndim_user = h[13] if len(h) > 13 else nar - 1
+    ips = h[14] if len(h) > 14 else 1
+    if i + 1 + nrowpr > len(lines):
+        raise AutoFileError(f"{where}: the record announces NROWPR = {nrowpr} lines, only "
+                            f"{len(lines) - i - 1} follow: the file is truncated")
+    first = i + 1                                    # index of the body's first line
+
+    def numbers(a: int, b: int, count: int, what: str, conv=_fortran_float) -> list:
+        """`count` numbers from body lines a..b (0-based in the body)."""
+        vals = []
+        for k in range(a, b):
+            for tok in lines[first + k].split():
+                try:
+                    vals.append(conv(tok))
+                except ValueError:
+                    raise AutoFileError(f"{path}:{first + k + 1}: expected a number in {what}, "
+                                        f"got {tok!r}") from None
+        if len(vals) != count:
+            raise AutoFileError(f"{path}:{first + a + 1}: {what} should hold {count} numbers "
+                                f"(header at line {i + 1}), found {len(vals)}")
+        return vals
+
+    n = nar - 1
+    k = n // 7 + 1                                   # lines of one t-block
+    tvals = numbers(0, k * ntpl, ntpl * nar, "the solution block (t, U)")
+    U = np.array(tvals[1:nar]) if ntpl == 1 else np.array(tvals).reshape(ntpl, nar)[:, 1:]
+    pos = k * ntpl
+    icp, rldot, udot = [], [], None
+    has_dir = ntst > 0 and nrowpr > (n // 7 + 1) * ntpl + (npar + 6) // 7
+    if has_dir:
+        nicp, nr, nu = (nfpr + 19) // 20, (nfpr + 6) // 7, ((n + 6) // 7) * ntpl
+        icp = numbers(pos, pos + nicp, nfpr, "the free-parameter indices ICP", int)
+        rldot = numbers(pos + nicp, pos + nicp + nr, nfpr, "the parameter direction RLDOT")
+        udot = np.array(numbers(pos + nicp + nr, pos + nicp + nr + nu, n * ntpl,
+                                "the direction UDOT"))
+        pos += nicp + nr + nu
+    par = np.array(numbers(pos, nrowpr, npar, "the parameters PAR(1..NPAR)"))
+    t = np.array(tvals[::nar]) if ntpl > 1 else None
+    return Record(br, ntot, itp, lab, nfpr, isw, ndim_user, ips, U, par, icp, rldot, udot,
+                  t=t, ntst=ntst, ncol=ncol), nrowpr
 
 
 def find_record(records: list[Record], irs) -> Record:
