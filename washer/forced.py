@@ -18,6 +18,7 @@ bifurcation of this orbit: a complex pair leaving the unit circle.
     >>> r = periodic_response(p)                  # nominal values, start from averaging
     >>> r.multipliers[:2], r.stable
     >>> b = continue_response(p, "C_p", 0.2)      # pseudo-arclength, TR/PD/LP located
+    >>> b.special[0].type, b.special[0].value     # ('TR', 0.10101...)
     >>> c = critical_cp(p)                        # exact C_p,crit beside averaged/frozen
     >>> curve = critical_curve(p, np.linspace(4.5, 15, 8))   # the exact Fig 4 curve
 
@@ -229,7 +230,7 @@ def periodic_response(params: Params, u0=None, *, tol: float = NEWTON_TOL,
 
 # ------------------------------------------------------------------ test functions
 
-def test_functions(mu) -> dict[str, float]:
+def bifurcation_functions(mu) -> dict[str, float]:
     """Test functions of the special points, zero at them, smooth in the multipliers mu:
 
     TR (Neimark-Sacker): prod over complex pairs (Im mu > 0) of (|mu|^2 - 1);
@@ -255,16 +256,19 @@ def critical_pair(mu) -> complex:
 
 @dataclass
 class SpecialPoint:
-    """A located special point: type (TR, PD, LP), parameter value, the response there."""
+    """A located special point: type (TR, PD, LP), parameter `name` = value, the orbit's
+    initial state u0 (n,) and multipliers (n,) there, and max|u(T) - u0| at it."""
     type: str
     name: str
     value: float
-    response: ForcedResponse
+    u0: np.ndarray
+    multipliers: np.ndarray
+    residual: float
 
     @property
     def crossing(self) -> complex:
-        """The critical multiplier: the complex pair member (TR), or the real one near -1/+1."""
-        mu = self.response.multipliers
+        """The critical multiplier: leading complex one (TR), or the real one nearest -1/+1."""
+        mu = self.multipliers
         if self.type == "TR":
             return critical_pair(mu)
         target = -1.0 if self.type == "PD" else 1.0
@@ -272,11 +276,12 @@ class SpecialPoint:
 
 
 @dataclass
-class ForcedBranch:
-    """A continued branch of forced responses in parameter `name`.
+class Branch:
+    """A continued branch of periodic orbits in parameter `name`.
 
-    values (n,): parameter; u0 (n, 12): the orbit's state at t = 0; multipliers (n, 12);
-    stable (n,) bool; special: located TR/PD/LP points in the order met."""
+    values (m,): parameter; u0 (m, n): the orbit's state at t = 0; multipliers (m, n),
+    each row by decreasing modulus; stable (m,) bool; special: located TR/PD/LP points in
+    the order met; wall: seconds."""
     name: str
     values: np.ndarray
     u0: np.ndarray
@@ -287,27 +292,26 @@ class ForcedBranch:
 
 
 class _Continuer:
-    """Pseudo-arclength continuation of G(u0, p) = phi_T(u0; p) - u0 = 0 in X = (u0, p/ps)."""
+    """Pseudo-arclength continuation of G(u0, p) = u(T; u0, p) - u0 = 0 in X = (u0, p / ps).
 
-    def __init__(self, params: Params, name: str):
-        self.base, self.name = params, name
-        self.ps = max(abs(params[name]), 1e-3)   # parameter scale of the arclength
+    flow(u0, p) -> (u(T) (n,), Phi (n, n), du(T)/dp (n,)): one period of any periodically
+    forced system with its monodromy matrix and parameter sensitivity."""
 
-    def params_at(self, p: float) -> Params:
-        return self.base.replace(**{self.name: p})
+    def __init__(self, flow, n: int, ps: float):
+        self.flow, self.n, self.ps = flow, n, ps
 
     def G(self, X):
-        prm = self.params_at(X[12] * self.ps)
-        uT, Phi, gp, _ = shoot(prm, X[:12], self.name)
-        A = np.hstack([Phi - np.eye(12), (gp * self.ps)[:, None]])
-        return uT - X[:12], A, Phi
+        n = self.n
+        uT, Phi, gp = self.flow(X[:n], X[n] * self.ps)
+        A = np.hstack([Phi - np.eye(n), (np.asarray(gp) * self.ps)[:, None]])
+        return uT - X[:n], A, Phi
 
     def correct(self, Xp, tangent, tol=NEWTON_TOL, max_iter=8):
         """Newton on [G(X); tangent . (X - Xp)] = 0 from the predictor Xp."""
         X = Xp.copy()
         for it in range(max_iter):
             G, A, Phi = self.G(X)
-            if np.abs(G).max() <= tol * (1 + np.abs(X[:12]).max()) and it > 0:
+            if np.abs(G).max() <= tol * (1 + np.abs(X[:self.n]).max()) and it > 0:
                 return X, A, Phi
             dX = np.linalg.solve(np.vstack([A, tangent]), -np.r_[G, tangent @ (X - Xp)])
             X = X + dX
@@ -315,95 +319,112 @@ class _Continuer:
 
     @staticmethod
     def tangent(A, prev=None):
-        """Unit null vector of the 12 x 13 Jacobian A, oriented along prev."""
+        """Unit null vector of the n x (n + 1) Jacobian A, oriented along prev."""
         t = np.linalg.svd(A)[2][-1]
         if prev is not None and t @ prev < 0:
             t = -t
         return t
 
 
-def continue_response(params: Params, name: str, stop: float, *, ds: float = 0.02,
-                      ds_max: float = 0.1, ds_min: float = 1e-5, max_points: int = 400,
-                      start: ForcedResponse | None = None, locate: bool = True) -> ForcedBranch:
-    """Continue the forced response of `params` in parameter `name` until it reaches `stop`.
+def continue_orbit(flow, u0, p0: float, stop: float, *, name: str = "p", ds: float = 0.02,
+                   ds_max: float = 0.1, ds_min: float = 1e-5, max_points: int = 400,
+                   p_scale: float | None = None, locate: bool = True) -> Branch:
+    """Continue the T-periodic orbit through (u0, p0) (u0 a converged orbit) until the
+    parameter reaches `stop`, for any forced system given by its one-period
+    flow(u0, p) -> (u(T), Phi, du(T)/dp).
 
-    Pseudo-arclength (so folds of the response are passed) in X = (u0, p / ps),
-    ps = |p0| (steps ds are relative to the parameter's starting value); secant
-    predictor; steps halve on corrector failure and grow 1.5x after easy ones.
-    Multipliers at every point; sign changes of the `test_functions` between
-    consecutive points are located (`locate=True`) by Brent's method along the chord
-    between them (corrector orthogonal to the chord), so LP is located as well as TR, PD.
-    """
+    Pseudo-arclength, so folds of the response are passed, in X = (u0, p / p_scale)
+    (p_scale default max(|p0|, 1e-3): steps ds are then relative to the starting value);
+    secant predictor along the tangent; steps halve on corrector failure and grow 1.5x
+    after each success up to ds_max. Multipliers at every point; sign changes of the
+    `bifurcation_functions` between consecutive points are located (`locate=True`) by
+    Brent's method along the chord between them (corrector orthogonal to the chord), so
+    LP is located as well as TR and PD."""
     import time
     t_wall = time.perf_counter()
-    c = _Continuer(params, name)
-    r = start if start is not None else periodic_response(params)
-    X = np.r_[r.u0, params[name] / c.ps]
+    u0 = np.asarray(u0, dtype=float)
+    n = u0.size
+    c = _Continuer(flow, n, p_scale if p_scale is not None else max(abs(p0), 1e-3))
+    X = np.r_[u0, p0 / c.ps]
     _, A, Phi = c.G(X)
-    direction = np.sign(stop - params[name]) or 1.0
+    direction = np.sign(stop - p0) or 1.0
     tan = c.tangent(A)
-    if tan[12] * direction < 0:
+    if tan[n] * direction < 0:
         tan = -tan
     pts = [(X, sort_multipliers(np.linalg.eigvals(Phi)))]
     special = []
     h = ds
     while len(pts) < max_points:
-        Xp = X + h * tan
         try:
-            Xn, An, Phin = c.correct(Xp, tan)
+            Xn, An, Phin = c.correct(X + h * tan, tan)
         except (ShootingError, kernel.KernelError, np.linalg.LinAlgError):
             h /= 2
             if h < ds_min:
                 break
             continue
         mu = sort_multipliers(np.linalg.eigvals(Phin))
-        tf0, tf1 = test_functions(pts[-1][1]), test_functions(mu)
+        tf0, tf1 = bifurcation_functions(pts[-1][1]), bifurcation_functions(mu)
         if locate:
             for typ in TYPES:
-                if np.sign(tf0[typ]) != np.sign(tf1[typ]) and tf0[typ] != 0:
-                    sp = _locate_on_chord(c, X, Xn, typ)
+                if tf0[typ] != 0 and np.sign(tf0[typ]) != np.sign(tf1[typ]):
+                    sp = _locate_on_chord(c, X, Xn, typ, name)
                     if sp is not None:
                         special.append(sp)
-        tan_new = c.tangent(An, tan)
-        X, tan = Xn, tan_new
+        tan = c.tangent(An, tan)
+        X = Xn
         pts.append((X, mu))
         h = min(ds_max, 1.5 * h)
-        p = X[12] * c.ps
-        if (p - stop) * direction >= 0:
+        if (X[n] * c.ps - stop) * direction >= 0:
             break
     Xs = np.array([x for x, _ in pts])
     mus = np.array([m for _, m in pts])
-    return ForcedBranch(name, Xs[:, 12] * c.ps, Xs[:, :12], mus,
-                        np.abs(mus).max(axis=1) < 1.0, special, time.perf_counter() - t_wall)
+    return Branch(name, Xs[:, n] * c.ps, Xs[:, :n], mus, np.abs(mus).max(axis=1) < 1.0,
+                  special, time.perf_counter() - t_wall)
 
 
-def _locate_on_chord(c: _Continuer, Xa, Xb, typ: str, xtol: float = 1e-12):
-    """Zero of test function `typ` between branch points Xa, Xb: points of the branch on
-    the hyperplanes orthogonal to the chord at fraction sigma, Brent on sigma."""
+def _locate_on_chord(c: _Continuer, Xa, Xb, typ: str, name: str, xtol: float = 1e-12):
+    """Zero of bifurcation function `typ` between branch points Xa, Xb: points of the branch
+    on the hyperplanes orthogonal to the chord at fraction sigma, Brent on sigma."""
     chord = Xb - Xa
-    chord_unit = chord / np.linalg.norm(chord)
+    unit = chord / np.linalg.norm(chord)
     cache = {}
 
     def point(sigma):
-        X, _, Phi = c.correct(Xa + sigma * chord, chord_unit)
+        X, _, Phi = c.correct(Xa + sigma * chord, unit)
         mu = sort_multipliers(np.linalg.eigvals(Phi))
-        cache[sigma] = (X, Phi, mu)
-        return test_functions(mu)[typ]
+        cache[sigma] = (X, mu)
+        return bifurcation_functions(mu)[typ]
 
     try:
         sigma = brentq(point, 0.0, 1.0, xtol=xtol, rtol=4 * np.finfo(float).eps)
-    except (ValueError, ShootingError, kernel.KernelError):
+        if sigma not in cache:
+            point(sigma)
+    except (ValueError, ShootingError, kernel.KernelError, np.linalg.LinAlgError):
         return None
-    X, Phi, mu = cache[sigma] if sigma in cache else (None, None, None)
-    if X is None:
-        point(sigma)
-        X, Phi, mu = cache[sigma]
-    p = X[12] * c.ps
-    prm = c.params_at(p)
-    G = shoot(prm, X[:12])[0] - X[:12]
-    resp = ForcedResponse(prm, X[:12], 1.0 / prm["Omega"], Phi, mu, float(np.abs(G).max()),
-                          0, 0)
-    return SpecialPoint(typ, c.name, p, resp)
+    X, mu = cache[sigma]
+    G = c.G(X)[0]
+    return SpecialPoint(typ, name, X[c.n] * c.ps, X[:c.n], mu, float(np.abs(G).max()))
+
+
+def washer_flow(params: Params, name: str):
+    """flow(u0, p) of the washer (eq 48, constant speed) with parameter `name` set to p."""
+    def flow(u0, p):
+        uT, Phi, gp, _ = shoot(params.replace(**{name: p}), u0, name)
+        return uT, Phi, gp
+    return flow
+
+
+def continue_response(params: Params, name: str, stop: float, *, start=None,
+                      **kwargs) -> Branch:
+    """Continue the washer's forced response in parameter `name` (one of PARAMETERS:
+    C_p, Omega, m_u, R_u, C_a, K_s, ...) from its value in `params` to `stop`, with the
+    multipliers at every point and TR/PD/LP located (`continue_orbit`; kwargs: ds, ds_max,
+    ds_min, max_points, locate). start: a ForcedResponse at `params` (default: computed)."""
+    if name not in PARAMETERS:
+        raise ValueError(f"parameter: expected one of {', '.join(PARAMETERS)}, got {name!r}")
+    r = start if start is not None else periodic_response(params)
+    return continue_orbit(washer_flow(params, name), r.u0, params[name], stop, name=name,
+                          **kwargs)
 
 
 # ------------------------------------------------------------------ TR in one and two parameters
@@ -415,11 +436,12 @@ def tr_test(params: Params, name: str, value: float, u0=None) -> tuple[float, Fo
 
 
 def locate_tr(params: Params, name: str, bracket: tuple[float, float], u0=None,
-              xtol: float = 1e-12) -> SpecialPoint:
+              xtol: float = 1e-12) -> tuple[ForcedResponse, SpecialPoint]:
     """The Neimark-Sacker (TR) point in parameter `name` inside `bracket` (a, b), where
     |mu_c| - 1 changes sign: Brent's method on the parameter, each evaluation a converged
     periodic response (warm-started from the last). The TR point is not a fold of the
-    response, so the parameter is a good coordinate there."""
+    response, so the parameter is a good coordinate there. Returns (the ForcedResponse at
+    the TR point, the SpecialPoint)."""
     state = {"u0": u0}
 
     def g(v):
@@ -434,7 +456,7 @@ def locate_tr(params: Params, name: str, bracket: tuple[float, float], u0=None,
                          f"({ga:+.3e}, {gb:+.3e})")
     v = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps)
     _, r = tr_test(params, name, v, state["u0"])
-    return SpecialPoint("TR", name, v, r)
+    return r, SpecialPoint("TR", name, v, r.u0, r.multipliers, r.residual)
 
 
 def averaged_hopf(params: Params, frame: str = "averaged", bracket=(0.0, 0.5),
@@ -481,13 +503,12 @@ def critical_cp(params: Params, rel_bracket: float = 0.05, abs_bracket: float = 
         half = rel_bracket * abs(cp_avg) + abs_bracket
         bracket = (max(cp_avg - half, 0.0), cp_avg + half)
         start = averaged_start(params.replace(C_p=cp_avg))
-    sp = locate_tr(params, "C_p", bracket, start)
-    mu_c = critical_pair(sp.response.multipliers)
+    r, sp = locate_tr(params, "C_p", bracket, start)
+    mu_c = critical_pair(r.multipliers)
     return {"Omega": params["Omega"], "C_p_exact": sp.value, "C_p_averaged": cp_avg,
-            "C_p_frozen": cp_frozen, "multipliers": sp.response.multipliers,
-            "critical_multiplier": mu_c,
-            "critical_exponent": np.log(mu_c) / sp.response.T,
-            "averaged_eigenvalues": lam_avg, "response": sp.response}
+            "C_p_frozen": cp_frozen, "multipliers": r.multipliers,
+            "critical_multiplier": mu_c, "critical_exponent": np.log(mu_c) / r.T,
+            "averaged_eigenvalues": lam_avg, "response": r}
 
 
 def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
@@ -497,7 +518,7 @@ def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
     stable even without joint damping."""
     q = params.replace(C_p=0.0)
     if kind == "exact":
-        return locate_tr(q, "Omega", bracket).value
+        return locate_tr(q, "Omega", bracket)[1].value
     state = {"eps": None}
 
     def g(om):
