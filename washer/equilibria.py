@@ -141,10 +141,13 @@ def _newton(res, jac, x0, tol, max_iter):
     return None
 
 
-def follow(res, jac, x_ref, P_ref, P_target, *, tol: float = 1e-11, what: str = "equilibrium"):
+def follow(res, jac, x_ref, P_ref, P_target, *, tol: float = 1e-11, what: str = "equilibrium",
+           on_step=None):
     """Natural continuation of res(x, P) = 0 from (x_ref, P_ref) to P_target.
 
-    res(x, P) -> (6,), jac(x, P) -> (6, 6); x_ref must solve res(x, P_ref) = 0.
+    res(x, P) -> (n,), jac(x, P) -> (n, n); x_ref must solve res(x, P_ref) = 0;
+    P may be any float vector (the kernel's parameters, or one applied load).
+    on_step(x, P), when given, is called at every accepted point (the curve).
     Returns (x, steps, halvings). Raises EquilibriumError (with `.partial` =
     (x, P) at the last accepted point) when the step falls below H_MIN."""
     P_ref, P_target = np.asarray(P_ref, float), np.asarray(P_target, float)
@@ -171,6 +174,8 @@ def follow(res, jac, x_ref, P_ref, P_target, *, tol: float = 1e-11, what: str = 
             continue
         x_prev, h_prev, x, s = x, h, xn, s + h
         steps += 1
+        if on_step is not None:
+            on_step(x, P)
         h = min(2 * h, 1.0)
     return x, steps, halvings
 

@@ -20,6 +20,7 @@ import numpy as np
 
 from washer.machine import Model
 from washer.paper import analysis as an
+from washer.paper import spinup as sp
 from washer.paper.runs import FRAMES, run_all
 from washer.params import load_params
 from washer.simulate import SETUPS, simulate
@@ -29,6 +30,14 @@ from washer.simulate import SETUPS, simulate
 T_ROT_QUICK = 25.0
 #: Start of the late window for the orbit measures and spectra (s; 20 s: 0.05 Hz bins).
 SPECTRUM_FROM = 30.0
+#: The long C_p = 0 run lasts the paper's 50 s plus this many e-folding times of
+#: the unstable whirl (e^20 ~ 5e8: any seed from numerical noise up grows to its
+#: nonlinear size or diverges well within the run).
+LONG_EFOLDINGS = 20.0
+#: Samples per second of the long run (Nyquist 50 Hz, above the 10 Hz spin).
+LONG_SAMPLES = 100.0
+#: Window of the long run's mean height and orbit radius (s).
+WINDOW = 10.0
 
 
 def time_responses(params, quick: bool, progress=print) -> dict:
@@ -57,8 +66,56 @@ def time_responses(params, quick: bool, progress=print) -> dict:
         r = simulate(model, t_end, system="fixed", law="spinup", samples_per_s=500.0,
                      progress=False)
         out[fig] = dict(C_p=cp, response=r, orbit=an.orbit(r, SPECTRUM_FROM),
-                        z_static=float(model.static_equilibrium()[2]))
+                        z_static=float(model.static_equilibrium()[2]),
+                        yaw=sp.yaw_response(r, 3 * params["tau_s"]))
+    out["spinup"] = spinup_study(params, out, progress)
+    out["fig11_long"] = long_whirl(params, progress)
     return out
+
+
+def spinup_study(params, resp: dict, progress=print) -> dict:
+    """The lift of Figs 10-11 (washer.paper.spinup): the spin-up torque against the
+    suspension's static yaw curve, and Figs 10-11 rerun with the slower spin-up
+    that curve calls for (tau_s from `spinup.slow_tau_s`)."""
+    curve = sp.yaw_curve(params)
+    tau = sp.slow_tau_s(params, curve)
+    slow = {}
+    for fig in ("fig10", "fig11"):
+        cp, t_end = SETUPS[fig]["C_p"], SETUPS[fig]["t_end"]
+        progress(f"  {fig} with a slower spin-up: tau_s = {tau:g} s, C_p = {cp:g}, {t_end:g} s")
+        model = Model(params.replace(C_p=cp, tau_s=tau))
+        r = simulate(model, t_end, system="fixed", law="spinup", samples_per_s=500.0,
+                     progress=False)
+        slow[fig] = dict(response=r, orbit=an.orbit(r, SPECTRUM_FROM),
+                         yaw=sp.yaw_response(r, 3 * tau))
+    return dict(curve=curve, torque=sp.spin_torque(params),
+                torque_slow=sp.spin_torque(params.replace(tau_s=tau)), tau_slow=tau, slow=slow,
+                paper={fig: resp[fig]["yaw"] for fig in ("fig10", "fig11")})
+
+
+def long_whirl(params, progress=print) -> dict:
+    """Fig 11 (C_p = 0) run long enough for the whirl to grow: the paper's 50 s plus
+    LONG_EFOLDINGS e-folding times of the averaged system's unstable pair at C_p = 0."""
+    cp = SETUPS["fig11"]["C_p"]
+    model = Model(params.replace(C_p=cp))
+    sigma = float(model.eigenvalues(model.rotating_equilibrium()).real.max())   # 1/s
+    t_end = float(np.ceil((SETUPS["fig11"]["t_end"] + LONG_EFOLDINGS / sigma) / 10) * 10)
+    progress(f"  fig11 long: C_p = {cp:g}, {t_end:g} s (growth rate {sigma:.4f} 1/s)")
+    r = simulate(model, t_end, system="fixed", law="spinup", samples_per_s=LONG_SAMPLES,
+                 progress=False)
+    return dict(C_p=cp, sigma=sigma, efoldings=LONG_EFOLDINGS, response=r, z_static=float(model.static_equilibrium()[2]),
+                rise=an.height_rise(r, WINDOW))
+
+
+def simulation_failures(resp: dict) -> dict:
+    """{run: status} of the time responses that did not reach their end ("ok")."""
+    runs = {f"{fig} ({frame})": r for fig in ("fig8", "fig9")
+            for frame, r in resp[fig]["responses"].items()}
+    runs.update({fig: resp[fig]["response"] for fig in ("fig10", "fig11")})
+    runs.update({f"{fig} (tau_s = {resp['spinup']['tau_slow']:g} s)": v["response"]
+                 for fig, v in resp["spinup"]["slow"].items()})
+    runs["fig11 long"] = resp["fig11_long"]["response"]
+    return {k: r.status for k, r in runs.items() if r.status != "ok"}
 
 
 def measure(curves: dict, results: dict, params) -> dict:
@@ -104,6 +161,19 @@ def write_summary(path: Path, m: dict, resp: dict) -> None:
                     for f in FRAMES}
     for fig in ("fig10", "fig11"):
         out[fig] = asdict(resp[fig]["orbit"])
+    S, c = resp["spinup"], resp["spinup"]["curve"]
+    out["spinup"] = dict(torque=asdict(S["torque"]), torque_slow=asdict(S["torque_slow"]),
+                         yaw_stiffness_lin=c.k_lin, yaw_moment_max=c.M_max,
+                         gamma_at_fold=c.gamma_max, tau_slow=S["tau_slow"],
+                         paper={f: asdict(v) for f, v in S["paper"].items()},
+                         slow={f: dict(yaw=asdict(v["yaw"]), orbit=asdict(v["orbit"]))
+                               for f, v in S["slow"].items()})
+    L = resp["fig11_long"]
+    rise = L["rise"]
+    out["fig11_long"] = dict(sigma=L["sigma"], t_end=float(L["response"].t[-1]),
+                             z_static=L["z_static"], z_end=rise.z_end, dz_last=rise.dz_last,
+                             t_level=rise.t_level, radius_end=float(rise.radius[-1]),
+                             window_z=rise.z.tolist(), window_radius=rise.radius.tolist())
     path.write_text(json.dumps(out, indent=1, default=float))
 
 
@@ -122,13 +192,28 @@ def main(argv: list[str] | None = None) -> int:
     params = load_params()
     mode = "quick" if args.quick else "full"
     print(f"Reproducing the paper's section 3 ({mode} mode) into {args.out}")
-    print("AUTO runs (Figs 3-7):")
-    curves, results, log = run_all(args.out, quick=args.quick)
-    t_auto = time.perf_counter() - t0
-    print("Time responses (Figs 8-11):")
-    t1 = time.perf_counter()
-    resp = time_responses(params, args.quick)
-    t_sim = time.perf_counter() - t1
+    try:
+        print("AUTO runs (Figs 3-7):")
+        curves, results, log = run_all(args.out, quick=args.quick)
+        t_auto = time.perf_counter() - t0
+        print("Time responses (Figs 8-11):")
+        t1 = time.perf_counter()
+        resp = time_responses(params, args.quick)
+        t_sim = time.perf_counter() - t1
+    except KeyboardInterrupt as exc:
+        print(f"\ninterrupted{': ' + str(exc) if str(exc) else ''}; no report written",
+              file=sys.stderr)
+        return 130
+    # Judging a curve that did not finish would call a partial result "reproduced":
+    # any failed run (AUTO or time response) means no verdicts, only the failures.
+    failed = dict(log.failed(), **simulation_failures(resp))
+    if failed:
+        timing = dict(auto=t_auto, sim=t_sim, total=time.perf_counter() - t0)
+        path = report.write_incomplete(args.out, failed, log, mode=mode, timing=timing)
+        for k, v in failed.items():
+            print(f"error: run {k} failed: {v}", file=sys.stderr)
+        print(f"Report (incomplete, no verdicts): {path}", file=sys.stderr)
+        return 1
     meas = measure(curves, results, params)
 
     print("Figures:")
@@ -155,8 +240,14 @@ def main(argv: list[str] | None = None) -> int:
                        ("fig11", "Fig. 11: spin-up, $C_p$ = 0 N m s/rad")):
         figs[fig] = plots.fig_spinup(resp[fig]["response"], resp[fig]["orbit"], title,
                                      d / f"{fig}_spinup", plot_from=SETUPS[fig]["orbit_from"])
+    figs["spinup"] = plots.fig_yaw(resp["spinup"], {f: resp[f] for f in ("fig10", "fig11")},
+                                   d / "fig10_11_yaw")
+    figs["fig11_long"] = plots.fig_long(resp["fig11_long"], d / "fig11_long",
+                                        SETUPS["fig11"]["t_end"])
     for fig in ("fig10", "fig11"):
         resp[fig]["response"].save(d / "data" / fig)
+        resp["spinup"]["slow"][fig]["response"].save(d / "data" / f"{fig}_slow")
+    resp["fig11_long"]["response"].save(d / "data" / "fig11_long")
     for fig in ("fig8", "fig9"):
         for frame, r in resp[fig]["responses"].items():
             r.save(d / "data" / f"{fig}_{frame}")
@@ -169,9 +260,6 @@ def main(argv: list[str] | None = None) -> int:
     print(f"Report: {path}")
     print(f"Wall time ({mode} mode): {time.perf_counter() - t0:.1f} s "
           f"(AUTO runs {t_auto:.1f} s, time responses {t_sim:.1f} s)")
-    failed = {k: v for k, v in log.status.items() if v != "ok"}
-    for k, v in failed.items():
-        print(f"warning: run {k}: {v}", file=sys.stderr)
     return 0
 
 

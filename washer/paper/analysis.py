@@ -194,6 +194,46 @@ def orbit(r, t_from: float, rel: float = 0.1) -> Orbit:
                  float(rad[h:].max() / rad[:h].max()), float(f[1] - f[0]))
 
 
+#: Mean height above the static one that counts as "O_b higher" (m): 30 times the
+#: 0.3 mm the stable spin moves it (eps3 - z at C_p = 0.15).
+RISE_MIN = 0.010
+#: Window-to-window rise of the mean height that counts as "still rising" (m).
+RISE_STEP = 0.001
+
+
+@dataclass
+class Rise:
+    """Height of O_b over a long run, in consecutive windows of `window` s.
+
+    t: window starts (n,) s; z: mean z per window (n,) m; radius: max distance of O_b
+    from the window's mean XY position (n,) m; z_end: the last window's mean z (m);
+    dz_last: last window's mean minus the one before (m); t_level: start of the first
+    window after which the mean never changes by RISE_STEP or more (s; nan if it still
+    does at the end)."""
+    window: float
+    t: np.ndarray
+    z: np.ndarray
+    radius: np.ndarray
+    z_end: float
+    dz_last: float
+    t_level: float
+
+
+def height_rise(r, window: float) -> Rise:
+    n = int(r.t[-1] // window)
+    t0 = np.arange(n) * window
+    z, rad = np.empty(n), np.empty(n)
+    for k, a in enumerate(t0):
+        sel = (r.t >= a) & (r.t < a + window)
+        x, y = r.y[sel, 0], r.y[sel, 1]
+        z[k] = r.y[sel, 2].mean()
+        rad[k] = np.hypot(x - x.mean(), y - y.mean()).max()
+    moving = np.nonzero(np.abs(np.diff(z)) >= RISE_STEP)[0]
+    t_level = float(t0[moving[-1] + 1]) if moving.size and moving[-1] + 1 < n - 1 else (
+        float("nan") if moving.size else 0.0)
+    return Rise(window, t0, z, rad, float(z[-1]), float(z[-1] - z[-2]), t_level)
+
+
 def spectrum(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """One-sided amplitude spectrum of y(t) on a uniform grid, Hann window:
     (frequencies in Hz, amplitudes in y's unit; a sinusoid of amplitude A shows A)."""

@@ -54,10 +54,15 @@ class Curve:
 
 @dataclass
 class RunLog:
-    """What was run: command lines (relative to the output folder) and timings."""
+    """What was run: command lines (relative to the output folder), timings and the
+    status of each run ("ok" when it finished normally)."""
     commands: list = field(default_factory=list)
     seconds: dict = field(default_factory=dict)
     status: dict = field(default_factory=dict)
+
+    def failed(self) -> dict:
+        """{run label: status} of the runs that did not finish "ok"."""
+        return {k: v for k, v in self.status.items() if v != "ok"}
 
 
 def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
@@ -77,20 +82,42 @@ def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
 
 
 def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):
+    """One AUTO run; its status goes into the log. A run that raises is recorded as
+    failed and the others still run (the report then gives no verdicts); an
+    interrupt (Ctrl-C, which the engine turns into a status) stops the whole job."""
     t0 = time.perf_counter()
-    res = run(folder / cfile, verbose=False, **overrides)
-    log.seconds[label] = time.perf_counter() - t0
-    log.status[label] = res.status
     args = " ".join(f"{k}={v}" for k, v in overrides.items())
     log.commands.append(f"python -m washer.run auto/{cfile} {args}".rstrip())
+    try:
+        res = run(folder / cfile, verbose=False, **overrides)
+        status = str(res.status)
+    except Exception as exc:      # noqa: BLE001 - any failure of one run is that run's status
+        res, status = None, f"error: {type(exc).__name__}: {exc}"
+    log.seconds[label] = time.perf_counter() - t0
+    log.status[label] = status
+    if status.startswith("interrupted"):
+        raise KeyboardInterrupt(f"run {label}: {status}")
     return res
+
+
+def _read(folder: Path, name: str, two_par: bool, log: RunLog, labels) -> Curve | None:
+    """The curve of a run, or None when one of its runs failed or left no points."""
+    if any(log.status.get(k) != "ok" for k in labels):
+        return None
+    try:
+        return read_curve(folder, name, two_par)
+    except (OSError, ValueError) as exc:
+        for k in labels:
+            log.status[k] = f"finished, but its b-file cannot be read: {exc}"
+        return None
 
 
 def run_all(out: Path, quick: bool = False, progress=print) -> tuple[dict, dict, RunLog]:
     """Run every constants file of the paper's Figs 3-7 into out/auto.
 
     Returns (branches, results, log): branches maps a run name ('washer',
-    'washer.hopf.C_a.frozen', ...) to its Curve; results maps the one-parameter
+    'washer.hopf.C_a.frozen', ...) to its Curve (None when a run failed: see
+    log.failed()); results maps the one-parameter
     runs to their RunResult (labelled points with eigenvalue information).
     """
     if not CONSTANTS_DIR.is_dir():
@@ -108,7 +135,7 @@ def run_all(out: Path, quick: bool = False, progress=print) -> tuple[dict, dict,
         name = f"washer{suffix}"
         progress(f"  Fig 3 branch in C_p ({frame})")
         results[name] = _run(folder, f"c.{name}", log, name)
-        curves[name] = read_curve(folder, name, two_par=False)
+        curves[name] = _read(folder, name, False, log, [name])
     def both_ways(name: str, two_par: bool):
         fwd, bwd = {}, {"DS": "-"}
         if quick:
@@ -118,7 +145,7 @@ def run_all(out: Path, quick: bool = False, progress=print) -> tuple[dict, dict,
             bwd = dict(fwd, DS=-ds)
         _run(folder, f"c.{name}", log, name, **fwd)
         _run(folder, f"c.{name}", log, f"{name}.bwd", **bwd, sv=f"{name}.bwd")
-        curves[name] = read_curve(folder, name, two_par)
+        curves[name] = _read(folder, name, two_par, log, [name, f"{name}.bwd"])
 
     for key, fig in list(HOPF_CURVES.items()) + [("m_u_R_u", "Fig. 5(c)")]:
         for frame, (_, suffix) in FRAMES.items():

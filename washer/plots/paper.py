@@ -163,3 +163,67 @@ def fig_spinup(r, orbit, title: str, stem: Path, plot_from: float) -> list[Path]
     axes[1, 1].set_title(f"(d) spectrum of y(t), t in [{orbit.t_from:g}, {r.t[-1]:g}] s")
     fig.suptitle(title)
     return style.save(fig, stem)
+
+
+def fig_yaw(study: dict, paper: dict, stem: Path, t_show: float = 10.0) -> list[Path]:
+    """The lift of Figs 10-11 explained: (a) the tub's yaw gamma(t) and (b) the height
+    z(t) of O_b during the spin-up, at the paper's tau_s and the slower one, for both
+    C_p; (c) the static yaw moment-angle curve of the suspension with the peak
+    spin-up torques (`washer.paper.spinup`)."""
+    fig, axes = style.figure(1, 3, figsize=(14, 4.2))
+    tau, tau_slow = study["torque"].tau_s, study["tau_slow"]
+    runs = [(f"$\\tau_s$ = {tau:g} s", paper, "-"), (f"$\\tau_s$ = {tau_slow:g} s", study["slow"], "--")]
+    for label, rs, ls in runs:
+        for fig_name, color in (("fig10", "C0"), ("fig11", "C3")):
+            r = rs[fig_name]["response"]
+            sel = r.t <= t_show
+            cp = "0.15" if fig_name == "fig10" else "0"
+            axes[0].plot(r.t[sel], r.y[sel, 5], ls=ls, color=color, lw=0.9,
+                         label=f"{label}, $C_p$ = {cp}")
+            axes[1].plot(r.t[sel], r.y[sel, 2] * 1e3, ls=ls, color=color, lw=0.9)
+    axes[0].set_xlabel("t (s)")
+    axes[0].set_ylabel(r"yaw $\gamma$ (rad)")
+    axes[0].set_title(r"(a) the tub's yaw $\gamma(t)$")
+    axes[0].legend(fontsize=7)
+    axes[1].set_xlabel("t (s)")
+    axes[1].set_ylabel("z (mm)")
+    axes[1].set_title("(b) height of $O_b$")
+    c = study["curve"]
+    axes[2].plot(np.abs(c.gamma), np.abs(c.Q), "k-", lw=1.4, label="static curve (at rest)")
+    axes[2].plot(abs(c.gamma_max), c.M_max, "ko", ms=5)
+    axes[2].annotate(f"fold: {c.M_max:.1f} N m", (abs(c.gamma_max), c.M_max),
+                     textcoords="offset points", xytext=(-60, 8), fontsize=8)
+    g = np.linspace(0, abs(c.gamma_max), 10)
+    axes[2].plot(g, c.k_lin * g, ":", color="0.4", label=f"linearised, {c.k_lin:.1f} N m/rad")
+    for st, color in ((study["torque"], "C3"), (study["torque_slow"], "C2")):
+        axes[2].axhline(st.T_peak, color=color, lw=1.0, ls="--",
+                        label=f"peak spin-up torque, $\\tau_s$ = {st.tau_s:g} s: {st.T_peak:.1f} N m")
+    axes[2].set_ylim(0, study["torque"].T_peak * 1.15)
+    axes[2].set_xlabel(r"$|\gamma|$ (rad)")
+    axes[2].set_ylabel("yaw moment (N m)")
+    axes[2].set_title("(c) suspension's yaw moment vs spin-up torque")
+    axes[2].legend(fontsize=7, loc="center right")
+    fig.suptitle("Why the tub lifts in Figs 10-11: the spin-up torque twists it beyond what the rods hold")
+    return style.save(fig, stem)
+
+
+def fig_long(long: dict, stem: Path, t_paper: float) -> list[Path]:
+    """Fig 11 continued: z(t) of O_b and the orbit radius per window over the long
+    C_p = 0 run, the paper's 50 s window marked."""
+    r, rise = long["response"], long["rise"]
+    fig, axes = style.figure(1, 2, figsize=(11, 4.0))
+    axes[0].plot(r.t, r.y[:, 2] * 1e3, lw=0.4, color="C0")
+    axes[0].step(rise.t, rise.z * 1e3, where="post", color="k", lw=1.2,
+                 label=f"mean over {rise.window:g} s windows")
+    axes[0].axhline(long["z_static"] * 1e3, color="0.5", ls=":", label="static z")
+    axes[1].step(rise.t, rise.radius * 1e3, where="post", color="C3", lw=1.2)
+    for ax in axes:
+        ax.axvline(t_paper, color="0.4", ls="--", lw=0.8)
+        ax.set_xlabel("t (s)")
+    axes[0].set_ylabel("z (mm)")
+    axes[0].set_title(f"(b) Z-direction movement of $O_b$, $C_p$ = {long['C_p']:g}")
+    axes[0].legend(fontsize=8)
+    axes[1].set_ylabel("orbit radius (mm)")
+    axes[1].set_title("max distance of $O_b$ from its window mean (XY)")
+    fig.suptitle(f"Fig. 11 run for {r.t[-1]:g} s (dashed: the paper's {t_paper:g} s)")
+    return style.save(fig, stem)
