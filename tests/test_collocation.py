@@ -1,0 +1,154 @@
+"""The collocation numerics (washer.cont.collocation) against AUTO's tables and
+closed forms: weights, quadrature, interpolation, mesh adaptation, Floquet
+multipliers of a linear periodic system, and the superconvergence of the period."""
+import math
+
+import numpy as np
+import pytest
+
+from washer.cont import collocation as col
+
+
+# ---------------------------------------------------------------- weights (AUTO tables)
+
+def test_gauss_points_match_autos_cpnts_for_ncol_4():
+    # CPNTS, NCOL = 4: 0.5 -+ 0.5 sqrt(3/7 +- c4), c4 = 0.5 sqrt((6/7)^2 - 12/35) ... written
+    # out in AUTO as C41/C42; the Gauss points of degree 4 are the roots of P4.
+    r = 6 / 7
+    c4 = 0.5 * math.sqrt(r ** 2 - 12 / 35)
+    c41, c42 = 0.5 * math.sqrt(3 / 7 + c4), 0.5 * math.sqrt(3 / 7 - c4)
+    np.testing.assert_allclose(col.gauss_points(4), [0.5 - c41, 0.5 - c42, 0.5 + c42, 0.5 + c41],
+                               rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("ncol,table", [
+    (2, [1 / 6, 4 / 6, 1 / 6]),
+    (3, [1 / 8, 3 / 8, 3 / 8, 1 / 8]),
+    (4, [7 / 90, 32 / 90, 12 / 90, 32 / 90, 7 / 90]),
+    (5, [19 / 288, 25 / 96, 25 / 144, 25 / 144, 25 / 96, 19 / 288]),
+    (6, [41 / 840, 9 / 35, 9 / 280, 34 / 105, 9 / 280, 9 / 35, 41 / 840]),
+    (7, [751 / 17280, 3577 / 17280, 49 / 640, 2989 / 17280, 2989 / 17280, 49 / 640,
+         3577 / 17280, 751 / 17280]),
+])
+def test_integration_weights_are_autos_wint(ncol, table):
+    np.testing.assert_allclose(col.integration_weights(ncol), table, rtol=1e-13)
+
+
+@pytest.mark.parametrize("ncol", [2, 3, 4, 5, 6, 7])
+def test_lagrange_weights_reproduce_polynomials(ncol):
+    """WT interpolates and WP differentiates every polynomial of degree <= NCOL exactly."""
+    WT, WP = col.lagrange_weights(ncol)
+    z = col.gauss_points(ncol)
+    nodes = np.arange(ncol + 1) / ncol
+    for deg in range(ncol + 1):
+        np.testing.assert_allclose(nodes ** deg @ WT, z ** deg, atol=1e-12)
+        np.testing.assert_allclose(nodes ** deg @ WP, deg * z ** max(deg - 1, 0) if deg else 0,
+                                   atol=1e-11)
+
+
+def test_node_weights_integrate_piecewise_polynomials_exactly():
+    rng = np.random.default_rng(1)
+    tm = np.r_[0, np.sort(rng.uniform(0, 1, 6)), 1]
+    mesh = col.Mesh(tm, 4)
+    t = mesh.node_times()
+    assert t[0] == 0 and t[-1] == 1 and len(t) == 7 * 4 + 1
+    # a global polynomial of degree 4 is a piecewise one: integral exact
+    g = 3 * t ** 4 - t ** 3 + 2 * t - 0.5
+    assert abs(mesh.node_weights() @ g - (3 / 5 - 1 / 4 + 1 - 0.5)) < 1e-14
+
+
+def test_interpolation_is_exact_for_the_piecewise_polynomial():
+    rng = np.random.default_rng(2)
+    mesh = col.Mesh(np.r_[0, np.sort(rng.uniform(0, 1, 9)), 1], 3)
+    t = mesh.node_times()
+    U = np.c_[np.cos(2 * np.pi * t), t ** 3]          # second column: a cubic, exact
+    tm_new = np.linspace(0, 1, 8) ** 1.3
+    V = col.interpolate(mesh, U, tm_new, 5)
+    tn = col.Mesh(tm_new, 5).node_times()
+    np.testing.assert_allclose(V[:, 1], tn ** 3, atol=1e-13)
+    # the cosine within the cubic interpolation bound max|f''''| / 4! * max|prod(t - t_i)|,
+    # with max|s (s - 1)(s - 2)(s - 3)| = 1 on [0, 3] for node spacing h / 3
+    bound = (2 * np.pi) ** 4 / 24 * (np.max(mesh.dtm) / 3) ** 4
+    assert np.max(np.abs(V[:, 0] - np.cos(2 * np.pi * tn))) < bound
+
+
+def test_new_mesh_concentrates_where_the_profile_is_steep():
+    """EQDF/NEWMSH: a profile with a sharp pulse near t = 0.3 gets small intervals there."""
+    mesh = col.Mesh.uniform(40, 4)
+    t = mesh.node_times()
+    U = np.exp(-((t - 0.3) / 0.03) ** 2)[:, None]
+    tm = col.new_mesh(mesh, U, 40)
+    dt = np.diff(tm)
+    assert tm[0] == 0 and tm[-1] == 1 and np.all(dt > 0)
+    # 30 of the 39 interior points within the pulse's +-0.15 (uniform: 12)
+    assert np.sum((tm > 0.15) & (tm < 0.45)) >= 30
+
+
+def test_new_mesh_keeps_a_uniform_mesh_for_a_polynomial_of_low_degree():
+    """'Small derivative' case of EQDF: NCOL-th derivative 0 -> uniform mesh."""
+    mesh = col.Mesh.uniform(10, 4)
+    t = mesh.node_times()
+    tm = col.new_mesh(mesh, (t ** 2)[:, None], 10)
+    np.testing.assert_allclose(tm, np.linspace(0, 1, 11), atol=1e-14)
+
+
+# ---------------------------------------------------------------- Floquet multipliers
+
+def _linear_blocks(A_of_t, T, mesh):
+    """Collocation blocks of y' = T A(t) y on `mesh`."""
+    coll = col.Collocation(mesh, A_of_t(0.0).shape[0])
+    z = col.gauss_points(mesh.ncol)
+    tg = mesh.tm[:-1, None] + mesh.dtm[:, None] * z[None, :]
+    A = np.array([[A_of_t(t) for t in row] for row in tg])
+    return coll.local_blocks(T, A)
+
+
+def test_monodromy_of_a_constant_linear_system():
+    """y' = T A y on [0, 1]: monodromy exp(T A); multipliers exp(T lambda_i). The
+    collocation error of the exponential on 20 x 4 is far below the 1e-9 asserted."""
+    A = np.array([[-0.3, 2.0, 0.0], [-2.0, -0.3, 0.0], [0.0, 0.0, 0.7]])
+    T = 1.7
+    mesh = col.Mesh.uniform(20, 4)
+    P0, P1 = col.condense_blocks(_linear_blocks(lambda t: A, T, mesh), 3)
+    M = -np.linalg.solve(P1, P0)
+    import scipy.linalg
+    np.testing.assert_allclose(M, scipy.linalg.expm(T * A), atol=1e-9)
+    mu = col.floquet_multipliers(P0, P1)
+    expect = np.exp(T * np.linalg.eigvals(A))
+    for m in expect:
+        assert np.min(np.abs(mu - m)) < 1e-9
+
+
+def test_huge_multipliers_do_not_overflow():
+    """A multiplier of e^600 (lrz near its homoclinic orbit has such): the pencil keeps
+    it finite-or-inf without overflow warnings, and the others stay accurate."""
+    A = np.diag([20.0, -1.0, 0.0])
+    T = 30.0
+    mesh = col.Mesh.uniform(100, 4)
+    P0, P1 = col.condense_blocks(_linear_blocks(lambda t: A, T, mesh), 3)
+    mu = col.floquet_multipliers(P0, P1)
+    assert abs(mu[0] - 1) < 1e-12                      # the zero exponent: mu = 1
+    big = mu[-1]
+    assert np.isinf(big) or abs(math.log(abs(big)) / 600 - 1) < 1e-3   # e^600 = 4e260
+    assert abs(mu[1] - math.exp(-30)) < 1e-9 * math.exp(-30)
+
+
+def test_multipliers_of_a_time_periodic_linear_system():
+    """y' = T A(t) y with A(t) = R(t) B R(t)^T, R the rotation by 2 pi t: in rotating
+    coordinates w = R^T y, w' = T (B - S/T) w with S = 2 pi [[0,-1],[1,0]], so the
+    monodromy is exp(T B - S) and the multipliers its eigenvalues (closed form)."""
+    B = np.array([[-0.5, 1.0], [0.2, -1.0]])
+    T = 2.3
+    S = 2 * np.pi * np.array([[0.0, -1.0], [1.0, 0.0]])
+
+    def R(t):
+        c, s = math.cos(2 * math.pi * t), math.sin(2 * math.pi * t)
+        return np.array([[c, -s], [s, c]])
+
+    mesh = col.Mesh.uniform(40, 4)
+    P0, P1 = col.condense_blocks(_linear_blocks(lambda t: R(t) @ B @ R(t).T, T, mesh), 2)
+    import scipy.linalg
+    expect = np.linalg.eigvals(scipy.linalg.expm(T * B - S))
+    mu = col.floquet_multipliers(P0, P1)
+    for m in expect:
+        assert np.min(np.abs(mu - m)) < 1e-9 * max(1, abs(m))

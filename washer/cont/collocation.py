@@ -1,0 +1,373 @@
+"""Orthogonal collocation for periodic orbits, the way AUTO-07p discretises them.
+
+The boundary-value problem on the unit interval (AUTO's FNPS / BCPS / ICPS):
+
+    u'(t) = T f(u(t), p),  t in [0, 1]           (T = PAR(11), the period)
+    u(0) - u(1) = 0                               (periodicity, NBC = NDIM)
+    int_0^1 <u(t) - u_old(t), u'_old(t)> dt = 0   (integral phase condition, NINT = 1)
+
+is discretised on a mesh 0 = tm[0] < ... < tm[NTST] = 1 by continuous piecewise
+polynomials of degree NCOL. As in AUTO (mesh.f90) the unknowns are the values at
+NCOL + 1 *equally spaced* nodes per interval, tm[j] + k dtm[j] / NCOL, k = 0..NCOL
+(the first node of an interval is the last of the previous one), so a profile is an
+array U of shape (NTST*NCOL + 1, NDIM): exactly the t-rows of an s-file record.
+The collocation equations are imposed at the NCOL Gauss-Legendre points of each
+interval (CPNTS), with the Lagrange weights of GENWTS:
+
+    sum_k WP[k, c] U[j*NCOL + k] - dtm[j] T f(sum_k WT[k, c] U[j*NCOL + k], p) = 0
+
+(the equations are multiplied by dtm[j], as AUTO does). Integrals over [0, 1] use the
+closed Newton-Cotes weights WI of the NCOL + 1 nodes (WINT), which integrate the
+piecewise polynomial exactly.
+
+Contents, with the AUTO routine each follows:
+
+* `gauss_points`, `lagrange_weights` (CPNTS, GENWTS), `integration_weights` (WINT),
+  `interpolation_weights` (INTWTS).
+* `Mesh`: tm, dtm, node times (the s-record t column), node quadrature weights.
+* `Collocation`: residual and sparse Jacobian of the discretised BVP with a fixed
+  sparsity pattern (the CSC structure is built once per mesh, each evaluation only
+  fills the values), and the dense local blocks of every interval.
+* `condense_blocks` / `floquet_multipliers` (CONPAR + REDUCE + FLOWKM): the
+  interior unknowns of each interval are eliminated (condensation of parameters),
+  then the chain of intervals is reduced pairwise (cyclic reduction with orthogonal
+  transformations), which leaves P0 u(0) + P1 u(1) = 0; the monodromy matrix is
+  -P1^-1 P0 and its eigenvalues are computed as the QZ eigenvalues of the pencil
+  (P0, -P1), so that huge multipliers (long orbits near a homoclinic one) come out
+  as large or infinite values instead of overflowing a product of matrices.
+* `eqdf`, `new_mesh`, `interpolate` (EQDF, NEWMSH, INTERP): mesh adaptation by
+  equidistribution of the (NCOL+1)-st derivative's NCOL+1-st root.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+
+#: AUTO's EQDF treats NCOL-th derivatives below this as zero ("small derivative" case:
+#: the mesh then stays uniform).
+EQDF_SMALL = 1e-7
+
+
+# --------------------------------------------------------------------------- weights
+
+def gauss_points(ncol: int) -> np.ndarray:
+    """The NCOL Gauss-Legendre points on [0, 1] (AUTO's CPNTS), increasing, shape (ncol,)."""
+    if not 1 <= ncol <= 20:
+        raise ValueError(f"NCOL = {ncol}: expected 2..7 as AUTO (1..20 accepted here)")
+    x, _ = np.polynomial.legendre.leggauss(ncol)
+    return 0.5 * (x + 1.0)
+
+
+def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Values and derivatives of the Lagrange basis on `nodes` at points `z`:
+    both of shape (len(nodes), len(z))."""
+    nodes = np.asarray(nodes, float)
+    z = np.atleast_1d(np.asarray(z, float))
+    n = len(nodes)
+    L = np.ones((n, len(z)))
+    D = np.zeros((n, len(z)))
+    for b in range(n):
+        others = [k for k in range(n) if k != b]
+        denom = np.prod(nodes[b] - nodes[others])
+        for k in others:
+            L[b] *= z - nodes[k]
+        for l in others:
+            term = np.ones(len(z))
+            for k in others:
+                if k != l:
+                    term *= z - nodes[k]
+            D[b] += term
+        L[b] /= denom
+        D[b] /= denom
+    return L, D
+
+
+def lagrange_weights(ncol: int) -> tuple[np.ndarray, np.ndarray]:
+    """(WT, WP) of GENWTS, each shape (ncol + 1, ncol): the Lagrange basis on the
+    NCOL + 1 equally spaced nodes k / NCOL of [0, 1] and its derivative (per unit of
+    the local variable z in [0, 1]) at the Gauss points."""
+    nodes = np.arange(ncol + 1) / ncol
+    return _lagrange(nodes, gauss_points(ncol))
+
+
+def integration_weights(ncol: int) -> np.ndarray:
+    """WI of WINT, shape (ncol + 1,): closed Newton-Cotes weights on [0, 1] for the
+    NCOL + 1 equally spaced nodes (the integrals of the Lagrange basis)."""
+    nodes = np.arange(ncol + 1) / ncol
+    xg, wg = np.polynomial.legendre.leggauss(ncol + 2)       # exact for degree 2 ncol + 3
+    L, _ = _lagrange(nodes, 0.5 * (xg + 1))
+    return L @ (0.5 * wg)
+
+
+def interpolation_weights(ncol: int, z) -> np.ndarray:
+    """INTWTS: Lagrange weights on the nodes k / NCOL at local points z in [0, 1],
+    shape (len(z), ncol + 1)."""
+    L, _ = _lagrange(np.arange(ncol + 1) / ncol, z)
+    return L.T
+
+
+# --------------------------------------------------------------------------- mesh
+
+@dataclass
+class Mesh:
+    """A mesh of [0, 1]: tm (NTST + 1,) increasing from 0 to 1, NCOL nodes per interval."""
+    tm: np.ndarray
+    ncol: int
+
+    @classmethod
+    def uniform(cls, ntst: int, ncol: int) -> "Mesh":
+        """AUTO's MSH."""
+        return cls(np.arange(ntst + 1) / ntst, ncol)
+
+    @property
+    def ntst(self) -> int:
+        return len(self.tm) - 1
+
+    @property
+    def dtm(self) -> np.ndarray:
+        return np.diff(self.tm)
+
+    @property
+    def n_nodes(self) -> int:
+        return self.ntst * self.ncol + 1
+
+    def node_times(self) -> np.ndarray:
+        """t of every node, (NTST*NCOL + 1,): tm[j] + k dtm[j]/NCOL and finally 1
+        (the t column of an s-record)."""
+        k = np.arange(self.ncol) / self.ncol
+        t = (self.tm[:-1, None] + self.dtm[:, None] * k[None, :]).ravel()
+        return np.r_[t, self.tm[-1]]
+
+    def node_weights(self) -> np.ndarray:
+        """Quadrature weight of every node, (NTST*NCOL + 1,): sum_j dtm[j] WI[k] over
+        the intervals the node belongs to, so that int_0^1 g dt = w @ g(nodes) for
+        any continuous piecewise polynomial of degree NCOL (AUTO's RINPR, RNRMSQ)."""
+        wi = integration_weights(self.ncol)
+        w = np.zeros(self.n_nodes)
+        m = self.ncol
+        for k in range(m + 1):
+            w[k:k + self.ntst * m:m] += self.dtm * wi[k]
+        return w
+
+
+# --------------------------------------------------------------------------- collocation
+
+class Collocation:
+    """The discretised periodic BVP on a fixed mesh, for NDIM components and two free
+    parameters (AUTO's NFPR = 2 for IPS = 2).
+
+    Unknown layout of the (N + 1,) vector x: the profile U (NTST*NCOL + 1, NDIM)
+    flattened row by row (node-major), then the two free parameters in the order
+    the caller chooses (periodic.py puts PAR(ICP(2)) then PAR(ICP(1))).
+    Equation layout of the (N,) residual: the collocation equations ordered by
+    (interval, Gauss point, component), then the NDIM periodicity conditions
+    u(0) - u(1), then the phase condition.
+    """
+
+    def __init__(self, mesh: Mesh, ndim: int):
+        self.mesh, self.ndim = mesh, ndim
+        m, n, N = mesh.ncol, ndim, mesh.ntst
+        self.WT, self.WP = lagrange_weights(m)
+        self.n_u = mesh.n_nodes * n
+        self.n_coll = N * m * n
+        self.n_eq = self.n_coll + n + 1
+        self.n_x = self.n_u + 2
+        #: local node indices of interval j: j*m + k, shape (N, m + 1)
+        self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
+        self.w_node = mesh.node_weights()
+        self._pattern()
+
+    # -- sparsity pattern, built once per mesh
+    def _pattern(self) -> None:
+        m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
+        j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
+                                    np.arange(n), indexing="ij")
+        rows_blk = ((j * m + c) * n + i).ravel()
+        cols_blk = ((j * m + k) * n + l).ravel()
+        jj, cc, ii = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), indexing="ij")
+        rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), 2)
+        cols_par = np.r_[np.full(N * m * n, self.n_u), np.full(N * m * n, self.n_u + 1)]
+        pr = self.n_coll + np.arange(n)
+        rows_bc = np.r_[pr, pr]
+        cols_bc = np.r_[np.arange(n), (self.mesh.n_nodes - 1) * n + np.arange(n)]
+        rows_ph = np.full(self.n_u, self.n_coll + n)
+        cols_ph = np.arange(self.n_u)
+        rows = np.r_[rows_blk, rows_par, rows_bc, rows_ph]
+        cols = np.r_[cols_blk, cols_par, cols_bc, cols_ph]
+        self.nnz = len(rows)
+        # CSC order of the entries; entries with the same (row, col) never occur
+        order = np.lexsort((rows, cols))
+        self._order = order
+        self._indices = rows[order].astype(np.int32)
+        counts = np.bincount(cols, minlength=self.n_x)
+        self._indptr = np.r_[0, np.cumsum(counts)].astype(np.int32)
+        self._bc_vals = np.r_[np.ones(n), -np.ones(n)]
+        self._n_blk = len(rows_blk)
+
+    # -- helpers
+    def profile(self, x: np.ndarray) -> np.ndarray:
+        """The profile U (NTST*NCOL + 1, NDIM) of an unknown vector (a view)."""
+        return x[:self.n_u].reshape(-1, self.ndim)
+
+    def at_gauss(self, U: np.ndarray) -> np.ndarray:
+        """u at the Gauss points, shape (NTST, NCOL, NDIM)."""
+        return np.einsum("kc,jkn->jcn", self.WT, U[self.local])
+
+    def residual(self, U: np.ndarray, T: float, fg: np.ndarray, U_old: np.ndarray,
+                 up_old: np.ndarray) -> np.ndarray:
+        """The (N,) residual. U: profile; T: the period; fg: f at the Gauss points
+        (NTST, NCOL, NDIM); U_old, up_old: the reference profile and its time
+        derivative T_old f(U_old) at the nodes (AUTO's UOLDPS, UPOLDP)."""
+        loc = U[self.local]                                  # (N, m+1, n)
+        coll = np.einsum("kc,jkn->jcn", self.WP, loc) - (self.mesh.dtm[:, None, None] * T) * fg
+        bc = U[0] - U[-1]
+        phase = self.w_node @ np.sum((U - U_old) * up_old, axis=1)
+        return np.r_[coll.ravel(), bc, phase]
+
+    def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
+        """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,
+        (NCOL+1)*NDIM), from A = f_u at the Gauss points (NTST, NCOL, NDIM, NDIM)."""
+        m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
+        eye = np.eye(n)
+        blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
+               - (self.mesh.dtm[:, None, None, None, None] * T)
+               * self.WT.T[None, :, None, :, None] * A[:, :, :, None, :])
+        return blk.reshape(N, m * n, (m + 1) * n)
+
+    def jacobian(self, T: float, blocks: np.ndarray, dpar: np.ndarray,
+                 up_old: np.ndarray) -> sp.csc_matrix:
+        """The sparse (N, N + 1) Jacobian. blocks: from `local_blocks`; dpar: the
+        derivatives of the collocation equations with respect to the two free
+        parameters, (2, NTST, NCOL, NDIM); up_old: (n_nodes, NDIM)."""
+        vals = np.r_[blocks.ravel(), dpar.ravel(), self._bc_vals,
+                     (self.w_node[:, None] * up_old).ravel()]
+        return sp.csc_matrix((vals[self._order], self._indices, self._indptr),
+                             shape=(self.n_eq, self.n_x))
+
+    def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
+        """[J; border] as a CSC matrix (N + 1, N + 1)."""
+        return sp.vstack([J, sp.csr_matrix(border[None, :])], format="csc")
+
+
+# --------------------------------------------------------------------------- Floquet
+
+def condense_blocks(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]:
+    """AUTO's condensation of parameters (CONPAR) and reduction (REDUCE), for the
+    homogeneous collocation system of the variational equation.
+
+    blocks : (NTST, NCOL*NDIM, (NCOL+1)*NDIM) local collocation blocks, columns
+        ordered node 0 (NDIM), interior nodes, node NCOL (NDIM).
+    Returns (P0, P1), each (NDIM, NDIM), with P0 y(0) + P1 y(1) = 0 for every
+    solution y of the discretised linearised equations (Householder transformations
+    only, so no pivoting decisions and no growth).
+    """
+    n = ndim
+    nint = blocks.shape[2] - 2 * n
+    if nint > 0:
+        Q, _ = np.linalg.qr(blocks[:, :, n:n + nint], mode="complete")
+        E = np.swapaxes(Q, 1, 2)[:, nint:, :]          # rows annihilating the interior
+        A = E @ blocks[:, :, :n]
+        B = E @ blocks[:, :, -n:]
+    else:
+        A, B = blocks[:, :, :n], blocks[:, :, -n:]
+    while len(A) > 1:
+        K = len(A)
+        p = K // 2
+        Aa, Ba, Ab, Bb = A[0:2 * p:2], B[0:2 * p:2], A[1:2 * p:2], B[1:2 * p:2]
+        Q, _ = np.linalg.qr(np.concatenate([Ba, Ab], axis=1), mode="complete")
+        G = np.swapaxes(Q, 1, 2)[:, n:, :]              # (p, n, 2n)
+        An = G[:, :, :n] @ Aa
+        Bn = G[:, :, n:] @ Bb
+        if K % 2:
+            An = np.concatenate([An, A[-1:]])
+            Bn = np.concatenate([Bn, B[-1:]])
+        A, B = An, Bn
+    return A[0], B[0]
+
+
+def floquet_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the monodromy matrix -P1^-1 P0 (FLOWKM), as the generalized
+    eigenvalues of the pencil (P0, -P1) by QZ; infinite ones come out as inf.
+    Sorted as AUTO prints them (FNSPBV): the one closest to 1 first, the others by
+    increasing distance of |mu| from 1. Shape (NDIM,), complex."""
+    with np.errstate(all="ignore"):
+        mu = scipy.linalg.eigvals(P0, -P1)
+    mu = np.where(np.isfinite(mu), mu, np.inf + 0j)
+    return sort_multipliers(mu)
+
+
+def sort_multipliers(mu: np.ndarray) -> np.ndarray:
+    """AUTO's order: the multiplier closest to 1 first, then by ||mu| - 1|."""
+    mu = np.asarray(mu, complex)
+    if len(mu) == 0:
+        return mu
+    with np.errstate(invalid="ignore"):
+        i1 = int(np.nanargmin(np.abs(mu - 1)))
+        rest = np.delete(mu, i1)
+        rest = rest[np.argsort(np.abs(np.abs(rest) - 1), kind="stable")]
+    return np.r_[mu[i1], rest]
+
+
+# --------------------------------------------------------------------------- adaptation
+
+def eqdf(mesh: Mesh, U: np.ndarray, periodic: bool = True) -> np.ndarray:
+    """AUTO's EQDF: the monotone function (NTST + 1,) whose increments are to be
+    equidistributed: the (NCOL+1)-st root of the jump of the NCOL-th derivative of
+    the piecewise polynomial, summed over components, integrated over the mesh."""
+    m, N = mesh.ncol, mesh.ntst
+    dtm = mesh.dtm
+    wh = np.array([(-1) ** (m - k) * _binom(m, k) for k in range(m + 1)], float)   # CNTDIF
+    loc = U[np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]]                 # (N, m+1, n)
+    hd = ((m / dtm) ** m)[:, None] * np.einsum("k,jkn->jn", wh, loc)               # (N, n)
+    pwr = 1.0 / (m + 1)
+    eqf = np.zeros(N + 1)
+    if N > 1:
+        e = np.sum(np.abs(2 * (hd[1:] - hd[:-1]) / (dtm[:-1] + dtm[1:])[:, None]) ** pwr, axis=1)
+        eqf[1:N] = np.cumsum(dtm[:-1] * e)
+    if periodic:
+        jj, dtav = 0, (dtm[-1] + dtm[0]) / 2
+    else:
+        jj, dtav = max(N - 2, 0), dtm[-1]
+    e = np.sum(np.abs((hd[jj] - hd[-1]) / dtav) ** pwr)
+    eqf[N] = eqf[N - 1] + dtm[-1] * e
+    if np.all(np.abs(hd) <= EQDF_SMALL):
+        eqf = np.arange(N + 1, dtype=float)
+    return eqf
+
+
+def _binom(n: int, k: int) -> int:
+    from math import comb
+    return comb(n, k)
+
+
+def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) -> np.ndarray:
+    """AUTO's NEWMSH: a mesh (ntst_new + 1,) that divides the range of EQDF uniformly."""
+    eqf = eqdf(mesh, U, periodic)
+    if not np.all(np.diff(eqf) > 0):
+        # flat pieces (a component with vanishing derivative over an interval):
+        # keep the function strictly increasing so the inverse is defined.
+        eqf = eqf + 1e-12 * eqf[-1] * np.arange(len(eqf)) / max(len(eqf) - 1, 1)
+    targets = eqf[-1] * np.arange(1, ntst_new) / ntst_new
+    tm_new = np.interp(targets, eqf, mesh.tm)
+    return np.r_[mesh.tm[0], tm_new, mesh.tm[-1]]
+
+
+def interpolate(mesh: Mesh, U: np.ndarray, tm_new: np.ndarray, ncol_new: int) -> np.ndarray:
+    """AUTO's INTERP: the piecewise polynomial (mesh, U) evaluated at the nodes of the
+    mesh tm_new with ncol_new nodes per interval. U (n_nodes, ...) -> (n_nodes_new, ...)."""
+    target = Mesh(np.asarray(tm_new, float), ncol_new).node_times()
+    return evaluate(mesh, U, target)
+
+
+def evaluate(mesh: Mesh, U: np.ndarray, t) -> np.ndarray:
+    """The piecewise polynomial (mesh, U) at times t in [0, 1], shape (len(t), ...)."""
+    t = np.asarray(t, float)
+    m = mesh.ncol
+    j = np.clip(np.searchsorted(mesh.tm, t, side="right") - 1, 0, mesh.ntst - 1)
+    z = (t - mesh.tm[j]) / mesh.dtm[j]
+    W = interpolation_weights(m, z)                                   # (len(t), m+1)
+    idx = j[:, None] * m + np.arange(m + 1)[None, :]
+    return np.einsum("tk,tk...->t...", W, U[idx])
