@@ -1,0 +1,233 @@
+"""Bad AUTO input is a clear error naming file, line and expectation; outputs never
+escape the run's folder, follow a symlink or truncate the restart file."""
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.auto.constants import Constants, ConstantsError, parse_override, read_constants
+from washer.auto.files import AutoFileError, OutputFiles, read_b, read_s
+
+from test_auto_formats import check_parseB_rules
+
+DATA = Path(__file__).parent / "data"
+S_EQ = DATA / "auto_reference" / "ab2p" / "s.eq"
+#: The built-in washer's parameter names (auto_washer.PAR_NAMES), typed from the README.
+WASHER_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
+                8: "C_ox", 9: "C_oz", 10: "l0", 12: "J_bz", 13: "J_bt", 14: "m_b", 15: "h_b",
+                16: "m_t"}
+
+
+def _c(tmp_path, text, name="c.x"):
+    p = tmp_path / name
+    p.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return p
+
+
+# ------------------------------------------------------------ name constants
+@pytest.mark.parametrize("stmt", ["sv = '../x'", "sv = 'out/x'", "s = '..'", "s = '/tmp/eq'",
+                                  "e = '../models/evil'", "sv = 'a\\b'", "dat = 'x/../../y'"])
+def test_paths_in_names_are_refused_in_files(tmp_path, stmt):
+    with pytest.raises(ConstantsError) as err:
+        read_constants(_c(tmp_path, f"NDIM = 2\n{stmt}\n"))
+    msg = str(err.value)
+    assert msg.startswith(f"{tmp_path / 'c.x'}:2:") and "is a name" in msg and "not a path" in msg
+
+
+@pytest.mark.parametrize("override", ["sv=../x", "s=../../etc/x", "sv=sub/x"])
+def test_paths_in_names_are_refused_as_overrides(override):
+    key, value = parse_override(override)
+    with pytest.raises(ConstantsError, match="is a name"):
+        Constants().set(key, value)
+
+
+def test_plain_names_pass():
+    c = Constants({"sv": "hopf.bwd", "s": "eq", "e": "washer:frozen"})
+    assert (c["sv"], c["s"], c["e"]) == ("hopf.bwd", "eq", "washer:frozen")
+
+
+# ----------------------------------------------------------- values and ICP
+@pytest.mark.parametrize("stmt,message", [
+    ("DS = 1e999", "DS expects a finite number"),
+    ("DSMAX = 1d400", "DSMAX expects a finite number"),
+    ("DSMIN = -0.001", "DSMIN expects a value >= 0.0"),
+    ("DSMAX = 0", "DSMAX expects a value > 0.0"),
+    ("EPSL = -1e-7", "EPSL expects a value >= 0.0"),
+    ("NDIM = 0", "NDIM expects a value >= 1"),
+    ("ICP = [0]", "ICP entries are parameter indices >= 1"),
+    ("ICP = [1, -1]", "ICP entries are parameter indices >= 1"),
+])
+def test_bad_values_name_file_and_line(tmp_path, stmt, message):
+    with pytest.raises(ConstantsError, match=message) as err:
+        read_constants(_c(tmp_path, f"NDIM = 2\n\n{stmt}\n"))
+    assert str(err.value).startswith(f"{tmp_path / 'c.x'}:3:")
+
+
+@pytest.mark.parametrize("key", ["DS", "DSMIN", "DSMAX", "EPSL", "EPSU", "EPSS"])
+def test_nan_and_inf_overrides(key):
+    for bad in (float("nan"), float("inf")):
+        with pytest.raises(ConstantsError, match=f"{key} expects a finite number"):
+            Constants().set(key, bad)
+
+
+def test_icp_name_resolving_to_par0_is_refused():
+    with pytest.raises(ConstantsError, match=r"ICP entry 'PAR\(0\)' is PAR\(0\)"):
+        Constants({"ICP": ["PAR(0)"]}).icp()
+
+
+# --------------------------------------------------- binary and garbage files
+@pytest.mark.parametrize("content,line,message", [
+    (b"NDIM = 2\n\x00\x01\x02\x03", 2, "a NUL byte: this is a binary file"),
+    (b"NDIM = 2\nICP = [1]\n# caf\xe9\n", 3, "byte 0xe9 is not UTF-8 text"),
+    (b"\x1f\x8b\x08\x00garbage", 1, "a NUL byte: this is a binary file"),      # gzip
+    (b"NDIM = 2\n\x01\x02 ~~~ garbage", 2, "expected a constant name"),
+    (b"# only a comment\n! and another\n", None, "no KEY = value statements"),
+])
+def test_binary_and_garbage_constants_files(tmp_path, content, line, message):
+    with pytest.raises(ConstantsError, match=message) as err:
+        read_constants(_c(tmp_path, content))
+    where = str(tmp_path / "c.x") + (f":{line}:" if line else ":")
+    assert str(err.value).startswith(where)
+
+
+def test_missing_file_names_the_shipped_examples(tmp_path):
+    with pytest.raises(ConstantsError, match="--copy-examples"):
+        read_constants(tmp_path / "c.washer")
+
+
+# ------------------------------------------------------- corrupt s-files
+def _corrupt(tmp_path, edit) -> Path:
+    lines = S_EQ.read_text().splitlines(keepends=True)
+    p = tmp_path / "s.eq"
+    data = edit(lines)
+    p.write_bytes(data if isinstance(data, bytes) else "".join(data).encode())
+    return p
+
+
+@pytest.mark.parametrize("edit,line,message", [
+    (lambda L: L[:-2], 36, "announces NROWPR = 6 lines, only 4 follow: the file is truncated"),
+    (lambda L: ["   garbage in the header\n"] + L[1:], 1, "expected an s-file record header"),
+    (lambda L: [L[0].replace("    0\n", "    0    7\n")] + L[1:], 1, "this one has 17"),
+    (lambda L: [L[0], L[1].replace("E+000", "E+0x0", 1)] + L[2:], 2,
+     "expected a number in the solution block"),
+    (lambda L: L[:5] + [L[5].rsplit(" ", 1)[0] + "\n"] + L[6:], 6,
+     "the parameters PAR(1..NPAR) should hold 11 numbers"),
+    (lambda L: "".join(L).encode()[:300] + b"\xff\xfe" + "".join(L).encode()[300:], 6,
+     "not UTF-8"),
+])
+def test_corrupt_s_files_are_clear_errors(tmp_path, edit, line, message):
+    p = _corrupt(tmp_path, edit)
+    with pytest.raises(AutoFileError) as err:
+        read_s(p)
+    assert str(err.value).startswith(f"{p}:{line}:"), str(err.value)
+    assert message in str(err.value)
+
+
+def test_reference_s_file_reads_unchanged():
+    """The checks accept AUTO's own file (6 records, HB at label 2)."""
+    recs = read_s(S_EQ)
+    assert [r.lab for r in recs] == [1, 2, 3, 4, 5, 6] and recs[1].ty == 3
+    assert len(recs[1].U) == 2 and len(recs[1].par) == 11
+
+
+def test_binary_b_file_is_an_error(tmp_path):
+    p = tmp_path / "b.x"
+    p.write_bytes(b"\x00" * 10)
+    with pytest.raises(AutoFileError, match="binary"):
+        read_b(p)
+
+
+# ------------------------------------------------------------ output safety
+def test_outputs_replace_symlinks_never_their_targets(tmp_path):
+    precious = tmp_path / "precious.txt"
+    precious.write_text("keep me")
+    (tmp_path / "b.x").symlink_to(precious)
+    (tmp_path / "d.x").symlink_to(tmp_path / "missing-target")
+    out = OutputFiles(tmp_path, "x")
+    out.diag("a note")
+    assert precious.read_text() == "keep me"
+    assert not (tmp_path / "b.x").is_symlink() and (tmp_path / "b.x").read_text() == ""
+    assert not (tmp_path / "missing-target").exists()
+
+
+def test_restart_file_is_kept_not_truncated(tmp_path):
+    """sv equal to the restart file's name: the old records move to s.x~ first."""
+    shutil.copy(S_EQ, tmp_path / "s.x")
+    (tmp_path / "sub").mkdir()
+    restart = tmp_path / "sub" / ".." / "s.x"          # same file, other spelling
+    out = OutputFiles(tmp_path, "x", protect=[restart])
+    assert out.backups == [tmp_path / "s.x~"]
+    assert (tmp_path / "s.x~").read_text() == S_EQ.read_text()
+    assert (tmp_path / "s.x").read_text() == ""
+    # Without protection an output of the same name is started afresh (AUTO's behaviour).
+    OutputFiles(tmp_path, "y")
+    assert (tmp_path / "s.y").read_text() == ""
+
+
+# ------------------------------------------------------- default parnames
+def test_default_names_complete_but_never_override_the_users():
+    c = Constants({"e": "washer", "ICP": ["m_u", "Omega"]})
+    with pytest.raises(ConstantsError, match="unknown parameter 'm_u'"):
+        c.icp()
+    assert c.with_default_names(WASHER_NAMES).icp() == [3, 2]
+    # The user's names win: index 5 is called 'Omega' here, so the default for 2 is skipped.
+    mine = Constants({"parnames": {5: "Omega", 3: "mass"}, "ICP": ["Omega", "mass", "K_s"]})
+    named = mine.with_default_names(WASHER_NAMES)
+    assert named.icp() == [5, 3, 7]
+    assert 2 not in named["parnames"] and named["parnames"][16] == "m_t"
+    assert mine["parnames"] == {5: "Omega", 3: "mass"}               # a copy, not an edit
+    assert "parnames" not in c.with_default_names(WASHER_NAMES).given  # defaults, not the user's
+
+
+def test_builtin_washer_supplies_its_names():
+    from washer.auto_washer import PAR_NAMES
+    assert PAR_NAMES == WASHER_NAMES
+
+
+# ------------------------------------------------------- through washer.run
+def _ab(tmp_path):
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    return tmp_path / "c.ab"
+
+
+def test_command_line_refuses_paths_and_corrupt_restarts(tmp_path, capsys):
+    from washer.run import main
+    c = _ab(tmp_path)
+    assert main([str(c), "sv=../escape"]) == 2
+    assert "is a name" in capsys.readouterr().err
+    assert not (tmp_path.parent / "b.escape").exists()
+    _corrupt(tmp_path, lambda L: L[:-2])                        # tmp_path / s.eq, truncated
+    assert main([str(c), "IRS=2", "s=eq", "sv=again"]) == 2
+    err = capsys.readouterr().err
+    assert "s.eq:36:" in err and "truncated" in err
+
+
+def test_run_failing_before_its_first_point_leaves_a_readable_b_file(tmp_path):
+    """Equations that are NaN at the start point: no point, so no header-only b-file."""
+    (tmp_path / "nanf.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.full(2, np.nan)\n"
+        "def stpnt(u, par):\n    u[:] = 0.0\n    par[:2] = [0.0, 1.0]\n")
+    c = _c(tmp_path, "e = 'nanf'\nNDIM = 2\nICP = [1]\nNMX = 5\n")
+    from washer.run import main
+    assert main([str(c)]) != 0                          # the run did fail
+    b = tmp_path / "b.x"
+    if b.exists():
+        assert check_parseB_rules(b.read_text()) == 0    # empty: nothing parseB chokes on
+
+
+def test_icp_by_washer_name_without_parnames(tmp_path):
+    """e='washer' knows its parameter names: ICP=['m_u'] with no parnames in the file."""
+    from washer.run import run
+    c = _c(tmp_path, "e = 'washer'\nNDIM = 12\nICP = ['m_u']\nJAC = 1\nNMX = 3\nNPAR = 16\n"
+                     "DS = 0.01\nDSMAX = 0.05\n", name="c.names")
+    res = run(c, verbose=False)
+    rows = [r for b in read_b(tmp_path / "b.names") for r in b]
+    assert len(rows) == 3
+    par3 = [r.values[0] for r in rows]
+    assert len(set(par3)) == 3                            # PAR(3) = m_u moves along the branch
+    header = [l for l in (tmp_path / "b.names").read_text().splitlines() if l.startswith("   0")]
+    assert header[-3].endswith(" 'm_u'") and "Active continuation parameter" in header[-3]
+    assert header[-1].split()[4] == "m_u"                # the first column's title
