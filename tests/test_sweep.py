@@ -1,0 +1,220 @@
+"""washer.sweep: specs, points, serial == Dask, resume after a kill, failures, and the
+sweep's stability boundary against the continuation's Hopf curve."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from washer.sweep import SpecError, load_spec, parse_spec, run
+from washer.sweep.hopf import crossing_on_curve, hopf_curve
+from washer.sweep.plots import boundary_crossings
+from washer.sweep.points import make_points, sample
+from washer.sweep.results import ResultStore
+
+ROOT = Path(__file__).resolve().parents[1]
+SMALL = ROOT / "examples" / "sweep_small.toml"
+DESIGN = ROOT / "examples" / "sweep_design.toml"
+#: Columns that legitimately differ between two runs of the same points.
+TIMING = ["elapsed_s"]
+
+
+@pytest.fixture(scope="module")
+def small_serial(tmp_path_factory):
+    out = tmp_path_factory.mktemp("small_serial")
+    return out, run(SMALL, serial=True, out=out, plot=False)
+
+
+# ------------------------------------------------------------------ specs and points
+
+def test_shipped_specs_parse_and_are_big_enough():
+    small, design = load_spec(SMALL), load_spec(DESIGN)
+    pts = make_points(small)
+    assert len(pts) >= 12
+    assert {k for p in pts for k in p["kinds"]} == {"stability", "critical", "response"}
+    assert all(len(s.axes) == 2 for s in small.studies + design.studies)
+    ids = [p["id"] for p in make_points(design)]
+    assert len(ids) == len(set(ids))
+
+
+@pytest.mark.parametrize("text, where, what", [
+    ("[[study]]\nkinds = ['stability']\n[study.vary]\nOmegga = [1.0, 2.0]\n", ":4", "Omegga"),
+    ("[[study]]\nkinds = ['stability', 'swirl']\n[study.vary]\nOmega = [1.0]\n", ":2", "kinds"),
+    ("[[study]]\nkinds = ['critical']\n[study.vary]\nC_p = [0.1, 0.2]\n", ":", "also swept"),
+    ("[[study]]\nkinds = ['response']\n[study.vary]\nm_u = [1.0]\n[study.response]\n"
+     "t_end = 5.0\nwindow = 10.0\n", ":7", "window"),
+    ("[[study]]\nkinds = ['stability']\nsample = 'lhs'\nn = 5\n[study.vary]\nm_u = [1.0]\n", ":6",
+     "explicit values"),
+    ("[[study]]\nkinds = ['critical']\n[study.vary]\nm_u = [1.0]\n[study.critical]\n"
+     "engine = 'floquet'\n", ":6", "not available yet"),
+])
+def test_spec_errors_name_file_line_and_cause(text, where, what):
+    with pytest.raises(SpecError) as err:
+        parse_spec(text, "bad.toml")
+    msg = str(err.value)
+    assert msg.startswith("bad.toml" + where), msg
+    assert what in msg
+
+
+def test_random_and_lhs_samples_are_seeded_and_in_range():
+    text = ("[[study]]\nkinds = ['stability']\nsample = '{s}'\nn = 40\nseed = 3\n[study.vary]\n"
+            "Omega = {{from = 5.0, to = 15.0}}\nK_s = {{from = 500.0, to = 4500.0, log = true}}\n")
+    for s in ("random", "lhs"):
+        st = parse_spec(text.format(s=s)).studies[0]
+        X = sample(st)
+        assert X.shape == (40, 2)
+        assert np.array_equal(X, sample(st))                  # same seed, same points
+        assert (X[:, 0] >= 5).all() and (X[:, 0] <= 15).all()
+        assert (X[:, 1] >= 500).all() and (X[:, 1] <= 4500).all()
+    lhs = sample(parse_spec(text.format(s="lhs")).studies[0])
+    # Latin hypercube: exactly one point in each of the 40 equal strata of each axis.
+    strata = np.floor((lhs[:, 0] - 5) / 10 * 40).astype(int)
+    assert sorted(strata) == list(range(40))
+
+
+def test_point_ids_depend_on_inputs_only():
+    a = [p["id"] for p in make_points(load_spec(SMALL))]
+    text = SMALL.read_text()
+    assert a == [p["id"] for p in make_points(parse_spec(text + "\n# a comment\n"))]
+    changed = [p["id"] for p in make_points(parse_spec(text.replace("t_end = 20.0", "t_end = 21.0")))]
+    assert not set(a) & set(changed)
+
+
+# ------------------------------------------------------------------ execution
+
+def test_small_sweep_serial_results(small_serial):
+    out, df = small_serial
+    pts = make_points(load_spec(SMALL))
+    assert list(df["id"]) == [p["id"] for p in pts]
+    ok = df[df["status"] == "ok"]
+    # Stable equilibrium exactly where the critical C_p lies below the C_p of the map.
+    both = ok.dropna(subset=["crit_value"])
+    assert len(both) >= 12
+    assert ((both["stab_margin"] < 0) == (both["crit_value"] < both["C_p"])).all()
+    # The spin-up's ground-frame whirl: the leading peak is the synchronous one
+    # (Omega) where the equilibrium is stable, and where the whirl stays small
+    # (margin < 0.2 1/s: decaying, or a limit cycle close to the linear mode) the
+    # spectrum has the rotating-frame mode seen from the ground,
+    # |2 pi Omega - whirl| / 2 pi, to the FFT's resolution 1/window = 0.2 Hz.
+    # (Farther out the limit cycle's frequency moves away from the linear one.)
+    stable = ok[ok["stab_margin"] < -0.02]
+    assert len(stable) >= 3
+    assert np.allclose(stable["resp_freq1"], stable["Omega"], atol=0.2)
+    near_linear = ok[ok["stab_margin"] < 0.2]
+    assert len(near_linear) >= 8
+    f_mode = near_linear["stab_whirl_ground"] / (2 * np.pi)
+    off = np.minimum(abs(near_linear["resp_freq1"] - f_mode), abs(near_linear["resp_freq2"] - f_mode))
+    assert (off <= 0.2).all(), off
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_dask_results_identical_to_serial(small_serial, tmp_path):
+    out, serial = small_serial
+    dask = run(SMALL, out=tmp_path, n_workers=2, plot=False)
+    a = serial.drop(columns=TIMING)
+    b = dask.drop(columns=TIMING)
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+
+
+def _ids_in_parts(folder: Path) -> list[str]:
+    return [i for f in ResultStore(folder).part_files() for i in pd.read_parquet(f)["id"]]
+
+
+def test_killed_sweep_resumes_with_every_point_once(tmp_path):
+    out = tmp_path / "killed"
+    cmd = [sys.executable, "-m", "washer.sweep", str(SMALL), "--out", str(out), "--workers", "2",
+           "--batch-size", "1", "--no-plot", "--no-progress"]
+    proc = subprocess.Popen(cmd, cwd=ROOT, start_new_session=True, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 120
+        while not ResultStore(out).part_files():
+            assert proc.poll() is None, "the sweep ended before writing a part"
+            assert time.monotonic() < deadline, "no part file within 120 s"
+            time.sleep(0.02)
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)      # the sweep and its Dask workers
+        proc.wait()
+    before = {f: f.stat().st_mtime_ns for f in ResultStore(out).part_files()}
+    n_total = len(make_points(load_spec(SMALL)))
+    assert 0 < len(before) < n_total, "the kill came too late to test a resume"
+    assert not (out / "results.parquet").exists()
+
+    df = run(SMALL, serial=True, out=out, plot=False)
+    ids = _ids_in_parts(out)
+    assert len(ids) == len(set(ids)) == n_total                 # each point computed once
+    assert all(f.stat().st_mtime_ns == t for f, t in before.items())   # nothing redone
+    assert list(df["id"]) == [p["id"] for p in make_points(load_spec(SMALL))]
+    # And a third run has nothing left to do.
+    run(SMALL, serial=True, out=out, plot=False)
+    assert len(_ids_in_parts(out)) == n_total
+
+
+def test_failing_point_is_recorded_and_the_rest_complete(tmp_path):
+    spec = parse_spec("""
+[[study]]
+name = "bad"
+kinds = ["stability", "response"]
+[study.vary]
+m_u = [-1.0, 0.5, 1.0]
+K_s = [1800.0, 2400.0]
+[study.response]
+t_end = 2.0
+window = 1.0
+""", "inline.toml")
+    df = run(spec, serial=True, out=tmp_path, plot=False)
+    assert len(df) == 6
+    bad = df[df["m_u"] < 0]
+    assert (bad["status"] == "failed").all()
+    assert bad["error"].str.contains("m_u = -1.0: expected a value >= 0").all()
+    assert bad["stab_margin"].isna().all()
+    good = df[df["m_u"] >= 0]
+    assert (good["status"] == "ok").all() and (good["error"] == "").all()
+    assert good["stab_margin"].notna().all() and good["resp_whirl_radius"].notna().all()
+
+
+# ------------------------------------------------------------------ against the continuation
+
+def test_stability_boundary_matches_continuation_hopf_curve(tmp_path):
+    """Grid over (C_p, m_u) at the reference point: along each m_u row the margin
+    changes sign between two grid C_p values; the continuation's Hopf curve must
+    cross that row inside the same cell (the margin's sign at grid nodes is exact,
+    so the bracket is the grid spacing, 0.02 N m s/rad)."""
+    cps = [round(0.02 * i, 2) for i in range(21)]               # 0 .. 0.4
+    spec = parse_spec(f"""
+[[study]]
+name = "cp_mu"
+kinds = ["stability"]
+[study.vary]
+C_p = {cps}
+m_u = {{from = 0.4, to = 2.0, n = 9}}
+[[study]]
+name = "crit_mu"
+kinds = ["critical"]
+[study.vary]
+m_u = [0.6, 1.0, 1.4, 1.8]
+""", "boundary.toml")
+    df = run(spec, serial=True, out=tmp_path, plot=False)
+    assert (df["status"] == "ok").all(), df.loc[df["status"] != "ok", "error"].tolist()
+    grid = df[df["study"] == "cp_mu"]
+    cells = boundary_crossings(grid, "C_p", "m_u")
+    curve = hopf_curve(spec.base, "C_p", (0.0, 0.4), "m_u", (0.4, 2.0), tmp_path / "hopf")
+    assert len(cells) >= 7                                      # the boundary crosses the map
+    for _, c in cells.iterrows():
+        xs = crossing_on_curve(curve, c["m_u"])
+        assert len(xs) == 1, (c["m_u"], xs)
+        assert c["x_lo"] - 1e-9 <= xs[0] <= c["x_hi"] + 1e-9, (c.to_dict(), xs)
+        assert abs(xs[0] - c["x"]) <= 0.02                       # interpolated: within a cell
+    # The critical kind is the same engine's HB: on the curve up to the curve's
+    # piecewise-linear interpolation (steps of 1/60 of the map; measured <= 2e-4).
+    crit = df[df["study"] == "crit_mu"]
+    for _, r in crit.iterrows():
+        xs = crossing_on_curve(curve, r["m_u"])
+        assert len(xs) == 1 and abs(xs[0] - r["crit_value"]) <= 1e-3, (r["m_u"], xs, r["crit_value"])
