@@ -23,24 +23,39 @@ from pathlib import Path
 
 from washer.auto.constants import (Constants, ConstantsError, copy_examples, parse_override,
                                    read_constants)
-from washer.auto.files import read_b, read_s
-from washer.cont.driver import Run, RunError, RunResult
-from washer.cont.problem import ProblemError, load_python_problem
+from washer.auto.files import AutoFileError, read_b, read_s
+from washer.cont.branch import Branch
+from washer.cont.problem import Problem, ProblemError, load_python_problem
+from washer.cont.runner import RunError, build, execute
+from washer.cont.sinks import FileSink, ScreenSink
+
+#: What `run` returns: the run in memory (labelled points, every row, status),
+#: with `.files` naming the b./s./d. files written.
+RunResult = Branch
 
 
-def resolve_problem(c: Constants, folder: Path):
+def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
+    """The equations named by e: the built-in washer (with `params`, a
+    washer.Params, or the shipped reference set) or NAME.py beside the file."""
     e = c["e"]
     if not e:
         raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py beside the file) "
                        "or e='washer'")
     if e.split(":")[0] == "washer":
         from washer.auto_washer import washer_problem
-        return washer_problem(e, c)
+        return washer_problem(e, params=params, source=c.source)
     return load_python_problem(e, folder, c["NDIM"])
 
 
-def run(constants, verbose: bool = True, **overrides) -> RunResult:
-    """Run a constants file (path) or a Constants object with overrides; returns the result."""
+def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,
+        sinks=None, **overrides) -> RunResult:
+    """Run a constants file (path) or a Constants object with overrides.
+
+    problem: the equations (default: from e=, see resolve_problem); params: the
+    washer's parameters for e='washer' (default: the shipped reference set);
+    sinks: extra sinks (washer.cont.sinks) besides the files and the screen.
+    Returns the run in memory (a washer.cont.branch.Branch: `.specials`,
+    `.rows`, `.status`, `r('HB1')`), with `.files` (the b./s./d. paths)."""
     if isinstance(constants, Constants):
         c, path = constants.copy(), Path(constants.source)
     else:
@@ -57,8 +72,27 @@ def run(constants, verbose: bool = True, **overrides) -> RunResult:
     default_name = path.name[2:] if path.name.startswith("c.") else path.name
     name = c["sv"] or default_name
     restart = folder / f"s.{c['s'] or name}"
-    problem = resolve_problem(c, folder)
-    return Run(c, problem, folder, name, restart, verbose=verbose).execute()
+    if problem is None:
+        problem = resolve_problem(c, folder, params)
+    # The restart data is read whole before any output file is opened: the
+    # default sv is the restart file's own name, and it must survive.
+    records = None
+    if c["IRS"] not in (0, "0"):
+        if not restart.exists():
+            raise RunError(f"{c.source}: IRS={c['IRS']!r} needs the restart file {restart}, "
+                           "which does not exist (set s='NAME' to read s.NAME)")
+        try:
+            records = read_s(restart)
+        except AutoFileError as exc:
+            raise RunError(str(exc)) from None
+    r, br, mode = build(c, problem, records, name=c["e"] or problem.name)
+    files = FileSink(folder, name, protect=(restart,) if records else ())
+    all_sinks = [files] + ([ScreenSink()] if verbose else []) + list(sinks or [])
+    result = execute(r, br, mode, all_sinks)
+    result.files = files.files
+    if verbose:
+        print(f"{c['e'] or problem.name} ... done")
+    return result
 
 
 def load(path):
@@ -95,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         overrides = dict(parse_override(a) for a in argv[1:])
         res = run(argv[0], **overrides)
-    except (ConstantsError, RunError, ProblemError) as exc:
+    except (ConstantsError, AutoFileError, RunError, ProblemError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     print(f"Saved as {res.files.b_path}, {res.files.s_path}, {res.files.d_path}")

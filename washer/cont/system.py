@@ -84,6 +84,7 @@ directions(x, tangent, code) -> list[ndarray]
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
 
@@ -138,10 +139,18 @@ class DenseFactor:
 
     def __init__(self, M: np.ndarray):
         self.M = M
-        self.lu, self.piv = scipy.linalg.lu_factor(M, check_finite=False)
+        with warnings.catch_warnings():
+            # An exactly singular matrix (at a branch point) is handled in solve().
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            self.lu, self.piv = scipy.linalg.lu_factor(M, check_finite=False)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        return scipy.linalg.lu_solve((self.lu, self.piv), rhs, check_finite=False)
+        x = scipy.linalg.lu_solve((self.lu, self.piv), rhs, check_finite=False)
+        if not np.all(np.isfinite(x)):
+            # Exactly at a branch point the Newton matrix is singular but the
+            # system is consistent: take the minimum-norm least-squares step.
+            x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]
+        return x
 
     def sign_logdet(self) -> tuple[float, float]:
         d = np.diag(self.lu)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from washer.cont.codes import Code
+from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
 from washer.cont.systems._algebraic import AlgebraicSystem, null_vectors, orient
 
@@ -153,6 +154,19 @@ class EquilibriumSystem(AlgebraicSystem):
             if per is not None:
                 sol.par[10] = per
         return sol
+
+    def info(self, x, code) -> dict:
+        """At an HB: the frequency and the first Lyapunov coefficient (d-file, API)."""
+        if code != Code.HB or self.settings.IPS != 1:
+            return {}
+        p = self._p(x)
+        A = self.problem.dfdu(x[:-1], p)
+        lam = eigenvalues_sorted(A)
+        cplx = lam[is_complex(lam)]
+        if cplx.size == 0:
+            return {}
+        omega = float(abs(cplx[np.argmin(np.abs(cplx.real))].imag))
+        return {"omega": omega, "l1": first_lyapunov(self.problem, x[:-1], p, omega, A)}
 
 
 __all__ = ["EquilibriumSystem", "eigenvalues_sorted", "hopf_test", "hopf_period", "orient"]

@@ -1,0 +1,385 @@
+"""Pseudo-arclength continuation as an iterator (AUTO's CNRLAE / CNRLBV loop).
+
+    for step in Continuation(system, settings):
+        ...   # step.kind in {"start", "point", "special", "note", "failed"}
+
+One step of the branch reads like the textbook (and like BifurcationKit's
+`iterate`): predictor x + ds * tangent; corrector (Newton on [G; arclength]);
+tangent at the new point (the null vector of G_x oriented by the secant just
+taken, so a sharp fold is turned and not jumped); detection of sign changes of
+the test functions and location of the earliest zero (`washer.cont.events`);
+step control (AUTO's ADPTDS). The iterator writes nothing and decides no
+stops: the consumer (`washer.cont.runner`) numbers, labels, stops and writes.
+
+Arclength conditions (the system's `arclength`):
+* "sphere" (algebraic, SOLVAE): |x - x_old|^2_theta = ds^2, full Newton each
+  iteration; one hidden first step (AUTO's unwritten first STEPAE).
+* "plane" (BVP, SOLVBV): <x - x_old, t_old>_theta = ds, Newton-chord: the
+  matrix is refactorised for the first NWTN iterations only.
+A branch started by switching (`mode="switch"`) takes its first step on the
+plane <x - x_bp - ds d, d> = 0 (AUTO's STBIF) and writes it.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from washer.cont.branch import Point
+from washer.cont.codes import Code
+from washer.cont.events import LocationFailed, linear_fraction, locate, sign_changes
+from washer.cont.problem import ProblemError
+from washer.cont.systems._algebraic import orient
+
+#: A Newton iterate whose correction exceeds this multiple of the first
+#: correction diverges (AUTO's SOLVAE: DELREF = 20 max(...)).
+DIVERGENCE_FACTOR = 20.0
+#: Newton iterations allowed to correct a start point that is not quite a
+#: solution (STPNT rounding, a restart in other parameters).
+START_ITERATIONS = 20
+#: A tangent solve whose result is this large (relative to 1) came from a
+#: numerically singular bordered matrix (exactly at a branch point): the
+#: secant is used instead.
+SINGULAR_TANGENT = 1e12
+
+
+class ConvergenceError(RuntimeError):
+    """A corrector (or start correction) did not converge."""
+
+
+@dataclass
+class Step:
+    """What the iterator reports.
+
+    kind : "start" (the first point), "point" (a regular point), "special"
+        (a located zero of test `code`, base code; UZ tests have code Code.UZ
+        and `key` ("UZ", k) naming the k-th UZR value), "note" (a d-file
+        message: "NOTE:Possible special point", "NOTE:Retrying step"),
+        "failed" (no convergence at DSMIN: the branch ends with MX).
+    point : the point (None for notes). prev : the point before it.
+    """
+    kind: str
+    point: Point | None = None
+    prev: Point | None = None
+    code: int = 0
+    key: object = None
+    text: str = ""
+
+
+class Continuation:
+    """The points of one branch of `system`, lazily.
+
+    settings : washer.cont.settings.Settings (DS, DSMIN, DSMAX, ITNW, NWTN,
+        EPSL, EPSU, EPSS, ITMX, IADS, UZR). x0, tangent : start point and
+        direction (from `system.start()` unless given). mode : "fresh" (hidden
+        first step for algebraic systems), "switch" (x0 is a branch point and
+        tangent the new branch's direction) or "restart" (no hidden step).
+    """
+
+    def __init__(self, system, settings, x0=None, tangent=None, mode: str = "fresh",
+                 ds: float | None = None):
+        self.sys, self.s = system, settings
+        if x0 is None:
+            x0, t_start = system.start()
+            tangent = t_start if tangent is None else tangent
+        self.x0 = np.asarray(x0, dtype=float)
+        self.t0 = None if tangent is None else np.asarray(tangent, dtype=float)
+        self.mode = mode
+        self.ds = settings.DS if ds is None else ds
+        self.uz = list(settings.UZR)
+        self.tests = list(system.active_tests())
+        self.n_steps = 0
+
+    # ------------------------------------------------------------ corrector
+    def correct(self, x_pred, x_ref, t_ref, ds, plane: bool | None = None):
+        """Newton from x_pred on [G(x); arclength(x)] = 0 around x_ref (sphere of
+        radius |ds|, or the plane <x - x_ref, t_ref> = ds). Returns (x, iterations)."""
+        s, sysm = self.s, self.sys
+        plane = (sysm.arclength == "plane") if plane is None else plane
+        x = np.array(x_pred, dtype=float)
+        delref = None
+        factor = None
+        row_plane = sysm.border(t_ref) if plane else None
+        for it in range(1, s.ITNW + 1):
+            try:
+                G = sysm.residual(x)
+                refactor = factor is None or not plane or it <= max(s.NWTN, 1)
+                if refactor:
+                    J = sysm.jacobian(x)
+            except ProblemError as exc:
+                # A trial point outside the equations' domain: a failed step.
+                raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
+            if not np.all(np.isfinite(G)):
+                raise ConvergenceError("non-finite residual at a Newton iterate")
+            if plane:
+                c = row_plane @ (x - x_ref) - ds
+                if refactor:
+                    factor = sysm.factor(J, row_plane)
+            else:
+                d = x - x_ref
+                row = 2 * sysm.border(d) / abs(ds)
+                c = (row @ d) / 2 - abs(ds)
+                factor = sysm.factor(J, row)
+            with np.errstate(all="ignore"):
+                dx = factor.solve(-np.r_[G, c])
+            if not np.all(np.isfinite(dx)):
+                raise ConvergenceError("singular Newton matrix")
+            x = x + dx
+            du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
+            dl = abs(dx[-1]) / (1 + abs(x[-1]))
+            if dl <= s.EPSL and du <= s.EPSU:
+                return x, it
+            size = max(du, dl)
+            if delref is None:
+                delref = DIVERGENCE_FACTOR * max(size, 1e-300)
+            elif size > delref:
+                raise ConvergenceError("Newton iterates diverge")
+        raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
+
+    def correct_start(self, x):
+        """Newton at fixed PAR(ICP(1)) with AUTO's EPSU test: a start point that
+        is not quite a solution (STPNT rounding, a restart in other parameters)
+        is corrected before the branch begins. The matrix is [J; e_last] (the
+        principal parameter held), through the system's own factorisation."""
+        s = self.s
+        x = np.array(x, dtype=float)
+        e = np.zeros(len(x))
+        e[-1] = 1.0
+        for _ in range(START_ITERATIONS):
+            try:
+                G = self.sys.residual(x)
+                J = self.sys.jacobian(x)
+            except ProblemError as exc:
+                raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
+            if not np.all(np.isfinite(G)):
+                raise ConvergenceError("non-finite residual at the start point")
+            if np.max(np.abs(G)) == 0:
+                return x
+            with np.errstate(all="ignore"):
+                dx = self.sys.factor(J, e).solve(np.r_[-G, 0.0])
+            if not np.all(np.isfinite(dx)):
+                raise ConvergenceError("singular Jacobian at the start point")
+            x = x + dx
+            if np.max(np.abs(dx)) / (1 + np.max(np.abs(x[:-1]))) <= s.EPSU:
+                return x
+        raise ConvergenceError("the starting point is not a solution and Newton (at fixed "
+                               f"PAR({self.s.ICP[0]})) did not converge in {START_ITERATIONS} "
+                               "iterations to EPSU")
+
+    # -------------------------------------------------------------- tangent
+    def tangent(self, J, ref):
+        """Unit tangent at a point with Jacobian J, oriented along `ref` (the
+        secant just taken); also the factorisation of [J; border(ref)], whose
+        determinant is AUTO's BP test."""
+        sysm = self.sys
+        factor = sysm.factor(J, sysm.border(ref))
+        e = np.zeros(len(ref))
+        e[-1] = 1.0
+        with np.errstate(all="ignore"):
+            z = factor.solve(e)
+        nz = math.sqrt(abs(sysm.inner(z, z))) if np.all(np.isfinite(z)) else math.inf
+        if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:
+            z, nz = ref, math.sqrt(sysm.inner(ref, ref))
+        return z / nz, factor
+
+    def initial_tangent(self, x, J):
+        """Null vector of J with AUTO's sign rule (STPRAE), unit in the inner product."""
+        Jd = _dense(J)
+        if Jd is not None:
+            _, _, Vt = np.linalg.svd(Jd)
+            t = Vt[-1]
+        else:
+            e = np.zeros(len(x))
+            e[-1] = 1.0
+            t = self.sys.factor(J, e).solve(e)
+        t = t / math.sqrt(self.sys.inner(t, t))
+        return orient(t, len(t) - 1, self.s.EPSL, x[-1])
+
+    # ----------------------------------------------------------- evaluation
+    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
+        """A converged point: tangent, stability and the test values `keys`
+        (all active tests and UZ values when None)."""
+        J = self.sys.jacobian(x)
+        if tangent is None:
+            t, factor = self.tangent(J, ref)
+        else:
+            t = tangent
+            factor = self.sys.factor(J, self.sys.border(t))
+        stab = self.sys.stability(x, J)
+        pt = Point(np.array(x), t, stab, {}, ds, it)
+        pt.tests = self._tests(pt, J, factor, keys)
+        return pt
+
+    def _tests(self, pt, J, factor, keys) -> dict:
+        codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
+        out = dict(self.sys.test_functions(pt.x, pt.tangent, J, pt.stability, factor, codes)) \
+            if codes else {}
+        uz_keys = range(len(self.uz)) if keys is None else \
+            [k[1] for k in keys if isinstance(k, tuple)]
+        if self.uz and uz_keys:
+            par = self.sys.params(pt.x)
+            for k in uz_keys:
+                i, v, _ = self.uz[k]
+                out[("UZ", k)] = float(par[i - 1] - v)
+        return out
+
+    # ----------------------------------------------------------------- step
+    def _step(self, p: Point, ds, keys=None):
+        """The continuation step of arclength ds from p (predictor + corrector)."""
+        x, it = self.correct(p.x + ds * p.tangent, p.x, p.tangent, ds)
+        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it)
+
+    def _retrying_step(self, p: Point, ds):
+        """AUTO's STEPAE: on failure halve the step and retry, until below DSMIN.
+        Yields notes; returns the new point or None (failed)."""
+        while True:
+            try:
+                return self._step(p, ds), ds
+            except (ConvergenceError, ProblemError, np.linalg.LinAlgError) as exc:
+                if self.s.IADS == 0:
+                    self._pending.append(Step("note", text=f"NOTE:No convergence with fixed "
+                                                           f"step size ({exc})"))
+                    return None, ds
+                ds /= 2
+                if abs(ds) < self.s.DSMIN:
+                    self._pending.append(Step("note", text=f"NOTE:No convergence with minimum "
+                                                           f"step size ({exc})"))
+                    return None, ds
+                self._pending.append(Step("note", text=f"NOTE:Retrying step ({exc})"))
+
+    def adapt(self, ds: float, nit: int) -> float:
+        """AUTO's ADPTDS: grow or shrink by the Newton iteration count, cap at DSMAX."""
+        s = self.s
+        if nit <= 1:
+            f = 2.0
+        elif nit == 2:
+            f = 1.5
+        elif 3 <= nit <= s.ITNW // 2:
+            f = 1.1
+        elif nit >= s.ITNW:
+            f = 0.5
+        else:
+            f = 1.0
+        new = ds * f
+        return float(math.copysign(min(abs(new), s.DSMAX), new))
+
+    # ------------------------------------------------------------- location
+    def _first_zero(self, prev: Point, cur: Point, ds: float):
+        """The earliest accepted zero between prev and cur: (point, key) or None.
+        Raises LocationFailed when the earliest one cannot be located."""
+        target, span, found = cur, ds, None
+        for _ in range(len(cur.tests) + 1):
+            keys = [k for k in sign_changes(prev.tests, target.tests)
+                    if (found is None or k != found[1]) and self._accepted(k, prev, target)]
+            if not keys:
+                return found
+            keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
+            key = keys[0]
+            trial = lambda s_: self._trial(prev, s_, key)
+            sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
+            sp.tests = self._tests(sp, self.sys.jacobian(sp.x), self.sys.factor(
+                self.sys.jacobian(sp.x), self.sys.border(sp.tangent)), None)
+            found = (sp, key)
+            target, span = sp, s_sp
+        return found
+
+    def _trial(self, prev: Point, s_, key):
+        pt = self._step(prev, s_, keys=[key])
+        return pt, pt.tests.get(key)
+
+    def _accepted(self, key, prev, cur) -> bool:
+        return True if isinstance(key, tuple) else self.sys.accept(key, prev, cur)
+
+    # ------------------------------------------------------------- iterate
+    def __iter__(self):
+        self._pending: list[Step] = []
+        s, sysm = self.s, self.sys
+        x0 = self.correct_start(self.x0) if self.mode != "switch" else self.x0
+        J0 = sysm.jacobian(x0)
+        t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
+        t0 = t0 / math.sqrt(sysm.inner(t0, t0))
+        ds = self.ds
+        start = self.evaluate(x0, t0, tangent=t0)
+        sysm.update(start.x, start.tangent)
+        yield Step("start", start)
+        current = start
+        if self.mode == "switch":
+            # First step of a switched branch: on the plane orthogonal to the new
+            # direction through x_bp + ds d (AUTO's STBIF); it is written.
+            try:
+                x, it = self.correct(x0 + ds * t0, x0, t0, ds, plane=True)
+            except (ConvergenceError, ProblemError) as exc:
+                yield Step("failed", start, text=f"no convergence on the switched branch ({exc})")
+                return
+            current = self.evaluate(x, (x - x0) / ds, ds=ds, it=it)
+            current.tests = {}                       # no detection on the first interval
+            sysm.update(current.x, current.tangent)
+            yield Step("point", current, prev=start)
+        elif sysm.arclength == "sphere" and self.mode == "fresh":
+            # AUTO's unwritten first step: it only provides a secant direction.
+            pt, ds = self._retrying_step(start, ds)
+            yield from self._flush()
+            if pt is None:
+                yield Step("failed", start, text="No convergence with minimum step size")
+                return
+            pt.tests = {}
+            sysm.update(pt.x, pt.tangent)
+            current = pt
+        # Test functions start at zero (AUTO: TEST(:) = 0): nothing is detected
+        # on the first written interval.
+        first = self.mode != "switch"
+        n_since_adapt = 0
+        while True:
+            nxt, ds = self._retrying_step(current, ds)
+            yield from self._flush()
+            if nxt is None:
+                yield Step("failed", current, text="No convergence with minimum step size")
+                return
+            if first:
+                first = False
+                sysm.update(nxt.x, nxt.tangent)
+                yield Step("point", nxt, prev=current)
+                current = nxt
+                continue
+            try:
+                hit = self._first_zero(current, nxt, ds)
+            except LocationFailed as exc:
+                hit = None
+                yield Step("note", text=f"NOTE:Possible special point ({exc})")
+            except (ConvergenceError, ProblemError) as exc:
+                hit = None
+                yield Step("note", text=f"NOTE:Possible special point ({exc})")
+            if hit is not None:
+                sp, key = hit
+                # Past the located zero the test keeps the sign it has beyond it.
+                sp.tests[key] = math.copysign(1e-300, nxt.tests[key])
+                sysm.update(sp.x, sp.tangent)
+                code = Code.UZ if isinstance(key, tuple) else key
+                yield Step("special", sp, prev=current, code=int(code), key=key)
+                current = sp
+                continue
+            sysm.update(nxt.x, nxt.tangent)
+            yield Step("point", nxt, prev=current)
+            current = nxt
+            n_since_adapt += 1
+            if s.IADS > 0 and n_since_adapt >= s.IADS:
+                ds = self.adapt(ds, nxt.iterations)
+                n_since_adapt = 0
+
+    def _flush(self):
+        while self._pending:
+            yield self._pending.pop(0)
+
+
+def _dense(J):
+    """J as a dense array, or None for a sparse/structured Jacobian."""
+    if isinstance(J, np.ndarray):
+        return J
+    try:
+        import scipy.sparse as sp
+        if sp.issparse(J):
+            return J.toarray() if J.shape[0] <= 400 else None
+    except ImportError:
+        pass
+    return np.asarray(J)

@@ -1,0 +1,119 @@
+"""Where the points of a run go: AUTO's b./s./d. files, the screen, memory.
+
+Sinks are attached to a run (`washer.cont.runner.execute(..., sinks=[...])`),
+never required: a run in memory is a `Branch`, and files are one more sink.
+Each sink receives
+
+    begin(run)                  the run is set up (constants, settings, system)
+    branch_start(br)            a new branch (numbered br) begins
+    point(lab, point)           a written point (washer.cont.branch.Labelled)
+    note(br, pt, text)          a diagnostic line ("NOTE:Retrying step" ...)
+    end(status, elapsed)        the run is over (status "ok" or a reason)
+
+File writing follows AUTO's io.f90 (STHD, WRLINE, WRTSP8, PRINTEIG) through
+`washer.auto.files`, which holds the formats; no numerics here.
+"""
+from __future__ import annotations
+
+import dataclasses
+import sys
+
+import numpy as np
+
+from washer.auto.files import OutputFiles, Record, Row, fmt_e, screen_heading
+from washer.cont.codes import type_name
+
+
+def _row(lab) -> Row:
+    sign = -1 if lab.stable else 1
+    return Row(lab.br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
+
+
+def _record(lab) -> Record:
+    sol = lab.solution
+    kw = dict(br=lab.br, pt=lab.pt, ty=lab.code, lab=lab.lab, nfpr=len(lab.free), isw=lab.isw,
+              ndim_user=sol.ndim_user, ips=lab.ips, U=np.asarray(sol.u), par=np.asarray(sol.par),
+              icp=list(lab.free), rldot=list(sol.rldot), udot=sol.udot)
+    # BVP records also carry the mesh (t, NTST, NCOL) where the Record supports it.
+    names = {f.name for f in dataclasses.fields(Record)}
+    for key, val in (("t", sol.t), ("ntst", sol.ntst), ("ncol", sol.ncol)):
+        if key in names and val is not None:
+            kw[key] = val
+    return Record(**kw)
+
+
+class FileSink:
+    """AUTO's b., s. and d. files of one run, written point by point; an
+    s-record is written before its b-row, so a b-file label always has its
+    record (a restart from it cannot fail after a crash)."""
+
+    def __init__(self, folder, name: str, protect=()):
+        self.files = OutputFiles(folder, name, protect=protect)
+
+    def begin(self, run) -> None:
+        s, c, sysm = run.settings, run.constants, run.system
+        curve = sysm.curve_type
+        self.files.header(c, sysm.n_eq if s.IPS in (0, 1) else s.NDIM, s.NPAR, run.titles, curve,
+                          {2: "LP", 3: "HB"}.get(curve, ""), irs=run.irs_label,
+                          nfpr=len(sysm.free), ds=s.DS, dsmin=s.DSMIN, dsmax=s.DSMAX)
+
+    def branch_start(self, br: int) -> None:
+        self.files.branch_start()
+
+    def point(self, lab, point) -> None:
+        if lab.lab:
+            self.files.record(_record(lab))
+        self.files.row(_row(lab))
+        st = lab.stability
+        if st is not None and st.kind == "eigenvalues":
+            self.files.eigenvalues(lab.br, (lab.pt - 1) % 9999 + 1, st.values)
+        elif st is not None:
+            pt = (lab.pt - 1) % 9999 + 1
+            self.files.diag(f"{lab.br:4d}{pt:6d}         Multipliers:     Stable:{st.n_stable:4d}")
+            for k, m in enumerate(st.values, 1):
+                self.files.diag(f"{lab.br:4d}{pt:6d}         Multiplier{k:3d} {fmt_e(m.real, 14, 5)}"
+                                f"{fmt_e(m.imag, 14, 5)}  Abs. Val.{fmt_e(abs(m), 14, 5)}")
+        if "l1" in lab.info:
+            crit = "supercritical" if lab.info["l1"] < 0 else "subcritical"
+            self.files.diag(f"{lab.br:4d}{lab.pt:6d}         First Lyapunov coefficient:"
+                            f"{fmt_e(lab.info['l1'], 14, 5)} ({crit})")
+
+    def note(self, br: int, pt: int, text: str) -> None:
+        self.files.diag(f"{br:4d}{pt:6d} {text}")
+
+    def end(self, status: str, elapsed: float) -> None:
+        self.files.diag(f"\n{'=' * 47}\n\n Total Time {elapsed:12.3E}")
+
+
+class ScreenSink:
+    """AUTO's table of labelled points on the terminal (format I4,I6,1X,A3,I5,ES14.5)."""
+
+    def __init__(self, stream=None):
+        self.stream = stream or sys.stdout
+
+    def begin(self, run) -> None:
+        self.titles = run.titles
+        print(f"Starting {run.name} ...", file=self.stream)
+        self.headed = False
+
+    def branch_start(self, br: int) -> None:
+        self.headed = False
+
+    def point(self, lab, point) -> None:
+        if not lab.lab:
+            return
+        if not self.headed:
+            print(f"\n{screen_heading(self.titles)}", file=self.stream)
+            self.headed = True
+        vals = "".join(f"{v:14.5E}" for v in lab.values[:8])
+        pt = (lab.pt - 1) % 9999 + 1
+        print(f"{lab.br:4d}{pt:6d} {type_name(lab.code):>3}{lab.lab:5d}{vals}", file=self.stream,
+              flush=True)
+
+    def note(self, br, pt, text) -> None:
+        pass
+
+    def end(self, status: str, elapsed: float) -> None:
+        if status != "ok":
+            print(f"\n{status}", file=sys.stderr)
+        print(f"\n Total Time {elapsed:12.3E}", file=self.stream)
