@@ -92,7 +92,14 @@ def test_ab_matches_auto(ab_runs, name):
             assert o[2] == pytest.approx(r[2], rel=1e-6), (k, o, r)
             assert o[3] == pytest.approx(r[3], rel=1e-6), (k, o, r)
         else:
-            assert o[2] == pytest.approx(exact, rel=1e-8)
+            # Where AUTO-07p's own value is loose (it stops on EPSS), the exact value
+            # judges both: ours within the documented location guarantee and closer
+            # to it than AUTO's (by a factor 40-400 on this machine: a margin that
+            # no floating-point detail of another machine erases); AUTO's within 2e-5.
+            from washer.auto.constants import read_constants
+            c = read_constants(DATA / "ab" / "c.ab")
+            assert abs(o[2] - exact) <= location_tolerance(c)
+            assert abs(o[2] - exact) < abs(r[2] - exact) / 10
             assert r[2] == pytest.approx(exact, rel=2e-5)
 
 
@@ -124,9 +131,25 @@ def test_lorenz_matches_auto(lrz_runs):
             assert o[2] == pytest.approx(r[2], rel=1e-6), (name, o, r)
 
 
+def location_tolerance(c) -> float:
+    """The engine's documented location guarantee (washer.cont.events), as AUTO's:
+    the last arclength correction is below EPSS (1 + sqrt(|DS DSMAX|)); the
+    tangent is unit in the THL/THU norm, so a parameter of weight 1 moves by at
+    most that much along the remaining arclength."""
+    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+
+
 def test_lorenz_closed_forms(lrz_runs):
+    from washer.auto.constants import read_constants
+    c = read_constants(DATA / "lrz" / "c.lrz")
     hb = lrz_runs["eq"]("HB1")
-    assert hb.par[0] == pytest.approx(470 / 19, rel=1e-9)
+    # The run uses JAC = 0: the Hopf test function is evaluated on central-difference
+    # Jacobians, whose rounding noise (~1e-8 relative) makes it non-monotone at that
+    # level, so no location can promise 1e-9 here. Asserted: the documented guarantee,
+    # and AUTO.md's comparison tolerance for located points (1e-6 relative; AUTO-07p's
+    # own value, 24.736843683, is 6.4e-8 off).
+    assert abs(hb.par[0] - 470 / 19) <= location_tolerance(c)
+    assert hb.par[0] == pytest.approx(470 / 19, rel=1e-6)
     assert lrz_runs["eq"]("BP1").par[0] == pytest.approx(1.0, abs=1e-8)
     beta = 8 / 3
     for s in lrz_runs["hb_fwd"].specials + lrz_runs["hb_bwd"].specials:
