@@ -300,14 +300,31 @@ class OutputFiles:
                 self.backups.append(backup)
             with _open_output(p, append=False):
                 pass
+        self._handles: dict = {}
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
         self._d_points = 0
 
     def _append(self, path: Path, text: str) -> None:
-        with _open_output(path, append=True) as fh:
-            fh.write(text)
-            fh.flush()
+        """Append and flush: every point is in the file once written (a run that
+        dies keeps it). Handles stay open for the run (opened without following
+        symlinks); `close` ends them."""
+        fh = self._handles.get(path)
+        if fh is None:
+            fh = self._handles[path] = _open_output(path, append=True)
+        fh.write(text)
+        fh.flush()
+
+    def close(self) -> None:
+        for fh in self._handles.values():
+            fh.close()
+        self._handles.clear()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
 
     def header(self, c, ndim_internal: int, npar: int, column_titles: list[str],
                curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,

@@ -32,6 +32,10 @@ import numpy as np
 #: Relative finite-difference step for Jacobians: AUTO's HMACH = 1e-7, central
 #: differences with h = 1e-7 (1 + |u_i|) (ae.f90:FUNI).
 FD_STEP = 1e-7
+#: Stencils of at least this many points call a plain user func once with
+#: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
+#: overhead exceeds a small func's cost).
+VECTORISE_MIN = 12
 
 
 class ProblemError(RuntimeError):
@@ -52,6 +56,7 @@ class Problem:
         self.ndim, self.name, self.npar = ndim, name, npar
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
+        self._vectorised = None       # does func accept (ndim, k) arrays? (checked once)
         self.parnames = dict(parnames or {})
         self.unames = dict(unames or {})
         self.jac = jac
@@ -68,10 +73,10 @@ class Problem:
 
     # ------------------------------------------------------------------ calls
     def _call(self, fn, what: str, *args) -> np.ndarray:
-        """Call a user function; any failure becomes a ProblemError naming it."""
+        """Call a user function; any failure becomes a ProblemError naming it.
+        (Floating-point warnings of trial points are silenced by the runner.)"""
         try:
-            with np.errstate(over="ignore", invalid="ignore"):
-                return np.asarray(fn(*args), dtype=float)
+            return np.asarray(fn(*args), dtype=float)
         except ProblemError:
             raise
         except Exception as exc:
@@ -96,7 +101,32 @@ class Problem:
                 raise ProblemError(f"{self.name}: func_batch returned shape {out.shape}, "
                                    f"expected ({len(us)}, {self.ndim})")
             return out
+        if self._vectorised is not False and len(us) >= VECTORISE_MIN:
+            out = self._call_vectorised(us, pars)
+            if out is not None:
+                return out
         return np.array([self.func(u, p) for u, p in zip(us, pars)]).reshape(len(us), self.ndim)
+
+    def _call_vectorised(self, us, pars):
+        """f at k points in one call of the user's func with u (ndim, k) and par
+        (npar, k) (numpy broadcasting: `u[0] * par[1]` works on rows). Used only
+        after a first call has been checked, point by point, against separate
+        calls; any failure or mismatch turns it off for good."""
+        try:
+            with np.errstate(all="ignore"):
+                out = np.asarray(self._func(us.T, pars.T), dtype=float)
+            if out.shape != (self.ndim, len(us)):
+                raise ValueError("shape")
+            out = out.T
+        except Exception:
+            self._vectorised = False
+            return None
+        if self._vectorised is None:
+            ref = np.array([self.func(u, p) for u, p in zip(us, pars)])
+            same = np.array_equal(ref, out) or np.allclose(ref, out, rtol=1e-14, atol=0)
+            self._vectorised = bool(same)
+            return ref
+        return out
 
     def dfdu(self, u, par) -> np.ndarray:
         """(ndim, ndim) Jacobian: the user's (JAC != 0) or central differences in one batch."""

@@ -268,6 +268,9 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     ex.label = run._label0
     ex.emit("begin", run)
     status = "ok"
+    # Trial points of Newton and location may overflow (exp of a diverging
+    # iterate): the step is then retried smaller; the warnings are noise.
+    err = np.seterr(over="ignore", invalid="ignore", divide="ignore")
     try:
         ex.branch(br, Continuation(run.system, run.settings, mode=mode), run._first_label)
         next_br = br
@@ -288,6 +291,8 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
         status = "interrupted (Ctrl-C): the points computed so far are written"
     except (ConvergenceError, ProblemError, FloatingPointError, np.linalg.LinAlgError) as exc:
         status = f"stopped: {exc}"
+    finally:
+        np.seterr(**err)
     run.branch.status = status
     run.branch.elapsed = time.perf_counter() - t0
     ex.emit("end", status, run.branch.elapsed)

@@ -83,6 +83,7 @@ class FileSink:
 
     def end(self, status: str, elapsed: float) -> None:
         self.files.diag(f"\n{'=' * 47}\n\n Total Time {elapsed:12.3E}")
+        self.files.close()
 
 
 class ScreenSink:

@@ -135,17 +135,31 @@ class Factor(Protocol):
 
 
 class DenseFactor:
-    """LU of a dense square matrix (AUTO's GEL: Gaussian elimination with pivoting)."""
+    """A dense square system [J; border] (AUTO's GEL: Gaussian elimination with
+    pivoting). Small systems are solved directly by LAPACK's gesv on each call
+    (cheaper than keeping a factorisation through scipy's wrappers at these
+    sizes); larger ones are LU-factorised once for Newton-chord reuse."""
+
+    #: Above this size the LU factors are kept for repeated solves.
+    LU_SIZE = 60
 
     def __init__(self, M: np.ndarray):
         self.M = M
-        with warnings.catch_warnings():
-            # An exactly singular matrix (at a branch point) is handled in solve().
-            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-            self.lu, self.piv = scipy.linalg.lu_factor(M, check_finite=False)
+        self.lu = None
+        if len(M) > self.LU_SIZE:
+            with warnings.catch_warnings():
+                # An exactly singular matrix (at a branch point) is handled in solve().
+                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+                self.lu = scipy.linalg.lu_factor(M, check_finite=False)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        x = scipy.linalg.lu_solve((self.lu, self.piv), rhs, check_finite=False)
+        try:
+            if self.lu is not None:
+                x = scipy.linalg.lu_solve(self.lu, rhs, check_finite=False)
+            else:
+                x = np.linalg.solve(self.M, rhs)
+        except np.linalg.LinAlgError:
+            x = np.full(len(rhs), np.nan)
         if not np.all(np.isfinite(x)):
             # Exactly at a branch point the Newton matrix is singular but the
             # system is consistent: take the minimum-norm least-squares step.
@@ -153,12 +167,8 @@ class DenseFactor:
         return x
 
     def sign_logdet(self) -> tuple[float, float]:
-        d = np.diag(self.lu)
-        if np.any(d == 0):
-            return 0.0, -np.inf
-        swaps = np.sum(self.piv != np.arange(len(self.piv)))
-        sign = (-1.0) ** swaps * np.prod(np.sign(d))
-        return float(sign), float(np.sum(np.log(np.abs(d))))
+        sign, logdet = np.linalg.slogdet(self.M)
+        return float(sign), float(logdet)
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:
