@@ -245,6 +245,7 @@ class PeriodicOrbits:
         t0 = np.r_[udot.ravel(), 0.0, 0.0]
         self._start = (x0, t0 / math.sqrt(self.inner(t0, t0)))
         self.start_kind = "HB"
+        self._keep_hopf_phase = True
 
     def _from_orbit(self, rec) -> None:
         """AUTO's STPNPS / STPNBV1 / ADAPT2 (and PDBLE for ISW = -1 at PD)."""
@@ -489,10 +490,14 @@ class PeriodicOrbits:
         inaccurate' suspension state."""
         U, par = self.unpack(x)
         self.U_old = U.copy()
-        self.up_old = self._T(par) * self.field.f(U, par)
+        if getattr(self, "_keep_hopf_phase", False) and np.array_equal(x, self._start[0]):
+            # At the Hopf point itself u' = 0: AUTO keeps STHOPF's UPOLDP (RSPTBV,
+            # NODIR = -1) for the first step, and so do we.
+            self._keep_hopf_phase = False
+        else:
+            self.up_old = self._T(par) * self.field.f(U, par)
         self.par = par
         self.n_points += 1
-        mu = getattr(self, "_mu_cache", None)
         st = None
         if self.settings.ISP != 0:
             st = self.stability(x)

@@ -1,0 +1,391 @@
+"""Periodic orbits (IPS = 2, washer.cont.systems.periodic) against closed forms and
+AUTO-07p's own periodic solutions.
+
+The closed-form system is a "lambda-omega" oscillator with a non-uniform phase speed:
+
+    r' = r (mu - r^2),   theta' = omega + b r^2 + c r cos(theta)
+
+(in Cartesian x = r cos theta, y = r sin theta). Its orbit is the circle r = sqrt(mu);
+the period is int_0^2pi dtheta / (w + c sqrt(mu) cos theta) = 2 pi / sqrt(w^2 - c^2 mu),
+w = omega + b mu; the monodromy is triangular in (r, theta) with diagonal
+exp(-2 mu T) (radial: d/dr r (mu - r^2) = -2 mu on the orbit) and 1 (the phase), so
+the multipliers are {1, exp(-2 mu T)}. A Hopf point at mu = 0 with frequency omega.
+
+Until the lead's runner lands the branches here are computed by a small driver of
+this file (`_branch`: AUTO's plane pseudo-arclength with Newton-chord and the secant
+direction of CONTBV, mesh adaptation every IAD steps), which uses only the system's
+contract (residual, jacobian, factor, border, inner, update) and `remesh`.
+"""
+import importlib.util
+import math
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from washer.auto.files import Record, read_s
+from washer.cont import collocation as col
+from washer.cont.codes import Code
+from washer.cont.problem import Problem
+from washer.cont.settings import Settings
+from washer.cont.system import StartData
+from washer.cont.systems.periodic import PeriodicOrbits
+
+DATA = Path(__file__).parent / "data"
+RECORDS = DATA / "auto_reference" / "periodic" / "records"
+
+
+# ------------------------------------------------------------------ the closed-form system
+
+def lw(u, par):
+    x, y = u[0], u[1]
+    mu, om, b, c = par[0], par[1], par[2], par[3]
+    r2 = x * x + y * y
+    th = om + b * r2 + c * x
+    return np.array([x * (mu - r2) - y * th, y * (mu - r2) + x * th])
+
+
+LW = Problem(2, lw, name="lw")
+LW_PAR = (1.0, 0.5, 0.8)          # omega, b, c
+
+
+def lw_period(par) -> float:
+    mu, om, b, c = par[:4]
+    return 2 * math.pi / math.sqrt((om + b * mu) ** 2 - c * c * mu)
+
+
+def settings(ndim=2, icp=(1, 11), ntst=20, ncol=4, **kw) -> Settings:
+    return Settings(IPS=2, ICP=icp, NDIM=ndim, NPAR=12, NTST=ntst, NCOL=ncol, THL={11: 0.0}, **kw)
+
+
+def lw_system(mu, ntst, ncol, **kw):
+    """The orbit at mu from a deliberately wrong guess: uniform phase on the exact
+    circle, period 5 % off."""
+    par = np.r_[mu, LW_PAR, np.zeros(8)]
+    par[10] = 1.05 * lw_period(par)
+    mesh = col.Mesh.uniform(ntst, ncol)
+    t = mesh.node_times()
+    U = math.sqrt(mu) * np.c_[np.cos(2 * np.pi * t), np.sin(2 * np.pi * t)]
+    rec = SimpleNamespace(U=U, t=t, ntst=ntst, ncol=ncol, par=par, icp=[1, 11], rldot=[],
+                          udot=None)
+    return PeriodicOrbits(StartData(LW, settings(ntst=ntst, ncol=ncol, **kw), U[0], par, rec))
+
+
+def newton_fixed(sysm, x, slot=-1, tol=1e-10, maxit=25):
+    """Newton on [G(x); x[slot] = fixed] (slot -1: PAR(ICP(1)), -2: the period)."""
+    e = np.zeros(len(x))
+    e[slot] = 1.0
+    fixed = x[slot]
+    for it in range(1, maxit + 1):
+        G = sysm.residual(x)
+        dx = sysm.factor(sysm.jacobian(x), e).solve(-np.r_[G, x[slot] - fixed])
+        x = x + dx
+        if np.max(np.abs(dx)) <= tol * (1 + np.max(np.abs(x))):
+            return x, it
+    raise AssertionError(f"Newton did not converge in {maxit} iterations")
+
+
+def _correct(sysm, xp, xref, tref, ds, nwtn=3, itnw=8, eps=1e-8):
+    row = sysm.border(tref)
+    x, fac = xp.copy(), None
+    for it in range(1, itnw + 1):
+        G = sysm.residual(x)
+        if fac is None or it <= nwtn:
+            fac = sysm.factor(sysm.jacobian(x), row)
+        dx = fac.solve(-np.r_[G, row @ (x - xref) - ds])
+        x = x + dx
+        if (np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1]))) < eps
+                and abs(dx[-1]) / (1 + abs(x[-1])) < eps):
+            return x, it
+    raise AssertionError("no convergence")
+
+
+def _branch(sysm, n, ds, dsmax=0.5, iad=3):
+    """AUTO's BVP loop in miniature (STEPBV, ADAPT, CONTBV): returns the points."""
+    x, t = sysm.start()
+    t = t / math.sqrt(sysm.inner(t, t))
+    sysm.update(x, t)
+    pts = [x]
+    for k in range(1, n + 1):
+        xn, it = _correct(sysm, x + ds * t, x, t, ds)
+        if iad and k % iad == 0:
+            xn, x = sysm.remesh(xn, x)
+        tn = (xn - x) / ds
+        tn /= math.sqrt(sysm.inner(tn, tn))
+        sysm.update(xn, tn)
+        x, t = xn, tn
+        pts.append(x)
+        ds = math.copysign(min(abs(ds) * (2 if it <= 1 else 1.5 if it == 2 else 1.1), dsmax), ds)
+    return pts
+
+
+# ------------------------------------------------------------------ closed form
+
+def test_orbit_period_and_multipliers_of_the_closed_form_system():
+    """mu = 0.25, NTST 20, NCOL 4 from a 5 %-off guess: the period to 1e-8 (the
+    superconvergent error is 2e-9 here), the circle radius at every node to 1e-6 (the
+    nodes inside intervals only converge as h^(NCOL+1)), the nontrivial multiplier
+    exp(-2 mu T) = 0.0504 to 1e-8 and the trivial one to 1e-9."""
+    sysm = lw_system(0.25, 20, 4)
+    x, it = newton_fixed(sysm, sysm.start()[0])
+    U, par = sysm.unpack(x)
+    T = lw_period(par)
+    assert abs(par[10] - T) < 1e-8
+    assert np.max(np.abs(np.hypot(U[:, 0], U[:, 1]) - 0.5)) < 1e-6
+    st = sysm.stability(x)
+    assert st.kind == "multipliers" and not st.notes
+    assert abs(st.values[0] - 1) < 1e-9
+    assert abs(st.values[1] - math.exp(-2 * 0.25 * T)) < 1e-8
+    assert st.n_stable == 2 and st.stable
+
+
+@pytest.mark.parametrize("ncol", [2, 3, 4])
+def test_period_converges_at_the_superconvergent_rate(ncol):
+    """Collocation at Gauss points is superconvergent at the mesh points, O(h^(2 NCOL)),
+    and so is the period. Measured orders (NTST 8 -> 16 -> 32): 3.91/3.98, 5.88/5.97,
+    7.86/7.96 for NCOL 2, 3, 4; asserted: the last ratio within 0.25 of 2 NCOL (the
+    pre-asymptotic drift is 0.1 at NTST = 8)."""
+    errs = []
+    for ntst in (8, 16, 32):
+        sysm = lw_system(0.25, ntst, ncol)
+        x, _ = newton_fixed(sysm, sysm.start()[0], tol=1e-13)
+        errs.append(abs(x[-2] - lw_period(sysm.params(x))))
+    orders = [math.log2(errs[i] / errs[i + 1]) for i in range(2)]
+    assert abs(orders[-1] - 2 * ncol) < 0.25, (errs, orders)
+    assert orders[0] > 2 * ncol - 0.5
+
+
+def test_start_from_a_hopf_point_follows_the_closed_form_family():
+    """STHOPF at mu = 0: the direction is sin(2 pi t) Re phi + cos(2 pi t) Im phi of
+    the eigenvector, with no parameter motion; the branch then has mu = r^2 and the
+    closed-form period at every point (1e-8), with mesh adaptation every 3 steps."""
+    par = np.r_[0.0, LW_PAR, np.zeros(8)]
+    par[10] = 2 * math.pi                     # PAR(11) at the HB: 2 pi / omega
+    sysm = PeriodicOrbits(StartData(LW, settings(), np.zeros(2), par, None, "HB"))
+    x0, t0 = sysm.start()
+    assert t0[-1] == 0 and t0[-2] == 0 and abs(sysm.inner(t0, t0) - 1) < 1e-12
+    tt = sysm.mesh.node_times()
+    V = sysm.coll.profile(t0)
+    # a rotation in the plane: |V(t)| constant and V(t + 1/4) = J V(t) (J = rot 90)
+    assert np.ptp(np.hypot(V[:, 0], V[:, 1])) < 1e-12
+    pts = _branch(sysm, 10, 0.05)
+    mus = []
+    for x in pts[1:]:
+        U, p = sysm.unpack(x) if len(x) == sysm.coll.n_x else (None, None)
+        U = x[:-2].reshape(-1, 2)
+        p = sysm.params(x)
+        r2 = np.mean(U[:, 0] ** 2 + U[:, 1] ** 2)
+        assert abs(r2 - p[0]) < 1e-6 * max(p[0], 1e-3)
+        assert abs(p[10] - lw_period(p)) < 1e-8
+        mus.append(p[0])
+    assert mus[0] > 0 and np.all(np.diff(mus) > 0) and mus[-1] > 0.2
+
+
+# ------------------------------------------------------------------ AUTO-07p's solutions
+
+def _load(name, ndim):
+    path = DATA / name / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"eq_{name}", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return Problem(ndim, mod.func, name=name)
+
+
+def chu(u, par):
+    """AUTO demo chu (chu.f90): Chua's circuit with the smooth nonlinearity."""
+    alpha, beta, rk, a0, a1 = par[:5]
+    ab = lambda x: 2 * x * np.arctan(rk * x) / np.pi
+    h = lambda x: a1 * x + 0.5 * (a0 - a1) * (ab(x + 1) - ab(x - 1))
+    x, y, z = u[0], u[1], u[2]
+    return np.array([alpha * (y - h(x)), x - y + z, -beta * y])
+
+
+def plp(u, par):
+    """AUTO demo plp (plp.f90)."""
+    s, a = u[0], u[1]
+    s0, a0, al, rh, rk = par[:5]
+    r = s * a / (1 + s + rk * s ** 2)
+    return np.array([(s0 - s) - rh * r, al * (a0 - a) - rh * r])
+
+
+def _problem(name):
+    if name == "chu":
+        return Problem(3, chu, name="chu")
+    if name == "plp":
+        return Problem(2, plp, name="plp")
+    return _load(name, {"lrz": 3, "ab": 2}[name])
+
+
+#: (demo, label, ICP, fixed slot): the principal parameter is fixed (-1) except where
+#: the orbit is a fold in it (plp's LP) or the period is ill-conditioned in it
+#: (lrz label 20: period 34 near the homoclinic orbit, where rho is flat to 1e-5):
+#: there the period is fixed (-2) and PAR(ICP(1)) compared instead.
+AUTO_ORBITS = [("lrz", 8, (1, 11), -1), ("lrz", 14, (1, 11), -1), ("lrz", 20, (1, 11), -2),
+               ("ab", 18, (1, 11), -1), ("ab", 19, (1, 11), -1), ("chu", 8, (1, 11), -1),
+               ("chu", 9, (1, 11), -1), ("plp", 5, (4, 11), -2), ("plp", 6, (4, 11), -1)]
+
+
+def _auto_system(demo, lab, icp, **kw):
+    rec = next(r for r in read_s(RECORDS / f"s.{demo}") if r.lab == lab and r.U.ndim == 2)
+    s = settings(ndim=rec.U.shape[1], icp=icp, ntst=kw.pop("ntst", rec.ntst),
+                 ncol=kw.pop("ncol", rec.ncol), **kw)
+    return PeriodicOrbits(StartData(_problem(demo), s, rec.U[0], rec.par, rec)), rec
+
+
+@pytest.mark.parametrize("demo,lab,icp,slot", AUTO_ORBITS)
+def test_restart_from_autos_periodic_records(demo, lab, icp, slot):
+    """AUTO-07p's s-records read (t column, NTST, NCOL) and Newton-converged with
+    AUTO's own NTST/NCOL: the same orbit. The free quantity (period, or PAR(ICP(1))
+    where the period is fixed) agrees to 1e-6 relative, the profile to 1e-5 of the
+    orbit's amplitude (AUTO writes 11 digits and converges to EPSU = 1e-7)."""
+    sysm, rec = _auto_system(demo, lab, icp)
+    x0 = sysm.start()[0]
+    np.testing.assert_allclose(sysm.mesh.node_times(), rec.t, rtol=0, atol=1e-10)  # 11 digits
+    assert np.max(np.abs(sysm.residual(x0))) < 1e-6          # AUTO's solution solves ours
+    x, _ = newton_fixed(sysm, x0, slot=slot)
+    U = sysm.coll.profile(x)
+    amp = np.max(np.ptp(rec.U, axis=0))
+    assert np.max(np.abs(U - rec.U)) < 1e-5 * amp
+    free = icp[0] if slot == -2 else 11
+    other = x[-1] if slot == -2 else x[-2]
+    assert abs(other - rec.par[free - 1]) < 1e-6 * abs(rec.par[free - 1])
+
+
+@pytest.mark.parametrize("demo,lab,expect", [
+    # AUTO's d-files: lrz PT 2 (label 8) and PT 14 (label 14), chu PT 30 (PD, label 8)
+    ("lrz", 8, [1.0, 1.00042, 1.32699e-4]),
+    ("lrz", 14, [1.0, 1.30200, 8.49175e-6]),
+    ("chu", 8, [1.0, -1.0, -1.33946e-2]),
+])
+def test_multipliers_agree_with_autos_d_file(demo, lab, expect):
+    """Floquet multipliers at AUTO's solutions against those AUTO printed (6 digits).
+    Multipliers near the unit circle agree to the printed precision (6e-6 relative);
+    the strongly contracting ones to 5 %: AUTO takes P0, P1 from the chord Jacobian of
+    its last full-Newton iteration, and e.g. chu's -1.33946e-2 differs in the 5th digit
+    from the mesh-converged -1.33941e-2 (ours at NTST 25, 50 and 100)."""
+    sysm, rec = _auto_system(demo, lab, (1, 11))
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+    mu = sysm.stability(x).values
+    for m_auto in expect:
+        k = np.argmin(np.abs(mu - m_auto))
+        tol = 0.05 * abs(m_auto) if abs(m_auto) < 0.1 else 6e-6 * abs(m_auto)
+        assert abs(mu[k] - m_auto) < tol, (mu, expect)
+
+
+def test_pd_test_function_changes_sign_across_chu_period_doubling():
+    """chu's orbit on both sides of AUTO's PD (label 8, PAR(1) = 8.1959951): the PD test
+    |mu_2| - 1 changes sign, TPSPBV classifies the multiplier as PD (real, < -0.5), the
+    stable count changes (AUTO's acceptance rule); the test value at AUTO's point is
+    AUTO's printed 'SPB Function -3.40228E-07' to 1 %, and the zero (bisection on the
+    parameter, NTST 25 as AUTO) is AUTO's PAR(1) to 1e-6 (measured 2e-7)."""
+    from scipy.optimize import brentq
+    sysm, rec = _auto_system("chu", 8, (1, 11), ISP=2)
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+
+    def at(p):
+        y = x.copy()
+        y[-1] = p
+        y, _ = newton_fixed(sysm, y)
+        st = sysm.stability(y)
+        return sysm.test_functions(y, None, None, st, None, [Code.PD])[Code.PD], st
+
+    (q0, s0), (q1, s1) = at(rec.par[0] - 0.02), at(rec.par[0] + 0.02)
+    assert q0 is not None and q1 is not None and q0 * q1 < 0
+    assert sysm.accept(Code.PD, SimpleNamespace(stability=s0), SimpleNamespace(stability=s1))
+    q_auto, _ = at(rec.par[0])
+    assert abs(q_auto - (-3.40228e-07)) < 0.01 * 3.40228e-07
+    p_pd = brentq(lambda p: at(p)[0], rec.par[0] - 0.02, rec.par[0] + 0.02, xtol=1e-10)
+    assert abs(p_pd - rec.par[0]) < 1e-6
+
+
+def test_pd_tr_never_reported_for_planar_systems():
+    sysm = lw_system(0.25, 10, 4, ISP=2)
+    assert Code.PD not in sysm.active_tests() and Code.TR not in sysm.active_tests()
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+    st = sysm.stability(x)
+    assert not sysm.accept(Code.PD, SimpleNamespace(stability=st), SimpleNamespace(stability=st))
+
+
+def test_period_doubling_switch_starts_the_doubled_branch():
+    """ISW = -1 at chu's PD (AUTO's PDBLE + STDRBV): the period doubles, the direction
+    is a null vector of the doubled system orthogonal to the old direction, and the
+    first steps leave the twice-traversed orbit (u(t) != u(t + 1/2)) with the period
+    near twice AUTO's 2.28355."""
+    rec = next(r for r in read_s(RECORDS / "s.chu") if r.lab == 8)
+    s = settings(ndim=3, ntst=50, ncol=4, ISW=-1)
+    sysm = PeriodicOrbits(StartData(_problem("chu"), s, rec.U[0], rec.par, rec, "PD"))
+    x0, t0 = sysm.start()
+    assert abs(x0[-2] - 2 * rec.par[10]) < 1e-12
+    assert abs(sysm.inner(t0, sysm.start()[1]) - 1) < 1e-12
+    assert np.max(np.abs(sysm.residual(x0))) < 1e-5
+    pts = _branch(sysm, 4, 0.01, iad=0)
+    U = sysm.coll.profile(pts[-1])
+    half = col.evaluate(sysm.mesh, U, (sysm.mesh.node_times() + 0.5) % 1.0)
+    amp = np.max(np.ptp(U, axis=0))
+    assert np.max(np.abs(U - half)) > 1e-3 * amp
+    assert abs(pts[-1][-2] / (2 * rec.par[10]) - 1) < 0.05
+
+
+# ------------------------------------------------------------------ files
+
+def test_autos_periodic_record_round_trips_byte_for_byte():
+    """An AUTO-07p periodic record (lrz label 8: NTPL 141, direction stored) read and
+    written again by Record.text() is the same text."""
+    lines = (RECORDS / "s.lrz").read_text().splitlines(keepends=True)
+    i = 0
+    while True:
+        h = lines[i].split()
+        if int(h[3]) == 8:
+            original = "".join(lines[i:i + 1 + int(h[8])])
+            break
+        i += 1 + int(h[8])
+    rec = next(r for r in read_s(RECORDS / "s.lrz") if r.lab == 8)
+    assert rec.U.shape == (141, 3) and rec.ntst == 35 and rec.ncol == 4
+    assert rec.t[0] == 0 and rec.t[-1] == 1 and len(rec.t) == 141
+    assert rec.text() == original
+
+
+def test_our_solution_written_and_read_back(tmp_path):
+    sysm = lw_system(0.25, 10, 3)
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+    t = np.zeros(len(x))
+    t[-1] = 1.0
+    sol = sysm.solution(x, t)
+    assert sol.u.shape == (31, 2) and sol.ntst == 10 and sol.ncol == 3
+    assert abs(sol.par[10] - lw_period(sol.par)) < 5e-5        # O(h^6): 2e-5 at NTST 10
+    assert abs(sol.columns[0] - 0.5) < 5e-5                     # L2 norm of a circle: r
+    assert abs(sol.columns[1] - 0.5) < 1e-3 and abs(sol.columns[2] - 0.5) < 1e-3
+    assert sysm.column_titles() == ["L2-NORM", "MAX U(1)", "MAX U(2)"]
+    rec = Record(1, 5, -4, 3, 2, 1, 2, 2, sol.u, sol.par, [1, 11], sol.rldot, sol.udot,
+                 t=sol.t, ntst=sol.ntst, ncol=sol.ncol)
+    path = tmp_path / "s.lw"
+    path.write_text(rec.text())
+    back = read_s(path)[0]
+    np.testing.assert_allclose(back.U, sol.u, rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(back.t, sol.t, rtol=1e-10, atol=1e-14)
+    assert (back.ntst, back.ncol, back.icp, back.lab) == (10, 3, [1, 11], 3)
+    restarted = PeriodicOrbits(StartData(LW, settings(ntst=10, ncol=3), back.U[0], back.par,
+                                         back))
+    assert np.max(np.abs(restarted.residual(restarted.start()[0]))) < 1e-9
+
+
+def test_restart_on_another_mesh_interpolates_the_orbit():
+    """AUTO's ADAPT2: a record of NTST 35 restarted with NTST 50, NCOL 5 (NEWMSH +
+    INTERP), then Newton: the period agrees with AUTO's to 1e-8 relative."""
+    sysm, rec = _auto_system("lrz", 14, (1, 11), ntst=50, ncol=5)
+    assert sysm.mesh.ntst == 50 and sysm.mesh.ncol == 5
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+    assert abs(x[-2] / rec.par[10] - 1) < 1e-8
+
+
+def test_mesh_adaptation_keeps_the_orbit_and_concentrates_points():
+    """ab's UZ orbit (label 19): adapting the mesh then re-converging changes the
+    period by less than 1e-7 (both meshes resolve it), and the new mesh's smallest
+    interval is well below the uniform 1/70."""
+    sysm, rec = _auto_system("ab", 19, (1, 11))
+    x, _ = newton_fixed(sysm, sysm.start()[0])
+    (y,) = sysm.remesh(x)
+    y, _ = newton_fixed(sysm, y)
+    assert abs(y[-2] - x[-2]) < 1e-7 * x[-2]
+    assert np.min(sysm.mesh.dtm) < 0.5 / 70
