@@ -181,7 +181,10 @@ def claims(m: dict, resp: dict) -> list[tuple[str, str, str, str, str]]:
     ratio = o11.r_max / o10.r_max
     rows.append(("Fig. 11: the vibration amplitude is very large at C_p = 0", "large",
                  f"max radius {1e3 * o11.r_max:.1f} mm over t ∈ [{o11.t_from:g}, 50] s, "
-                 f"{ratio:.1f}× Fig. 10's", "— (ground frame)",
+                 f"{ratio:.1f}× Fig. 10's; after the whirl has grown (the long run of Fig. 11(b)'s "
+                 f"row) {1e3 * resp['fig11_long']['rise'].radius[-1]:.0f} mm, "
+                 f"{resp['fig11_long']['rise'].radius[-1] / o10.r_max:.0f}× Fig. 10's",
+                 "— (ground frame)",
                  "**reproduced**" if ratio > 3 else
                  f"**qualitatively**: larger than at C_p = 0.15 (×{ratio:.1f}; max radius of the "
                  f"window's second half {o11.r_growth:.2f}× its first)" if ratio > 1 else
@@ -214,7 +217,8 @@ def fig11b_row(resp: dict) -> tuple[str, str, str, str, str]:
         v = (f"**qualitatively**: O_b rises by {1e3 * (rise.z_end - rise.z[k50]):.0f} mm after the "
              f"paper's window while the whirl grows, then levels off from t = {rise.t_level:g} s "
              f"(last window {1e3 * rise.dz_last:+.2f} mm): a limit cycle of radius "
-             f"{1e3 * rise.radius[-1]:.0f} mm, higher but not higher and higher")
+             f"{1e3 * rise.radius[-1]:.0f} mm (the model has no cabinet: only the rods limit the "
+             "swing), higher but not higher and higher")
         if o11.z_trend < 0:
             v += ("; within the paper's 50 s the mean height falls: what is high there is the "
                   "spin-up's lift decaying (section below)")
