@@ -241,3 +241,14 @@ def plp_hopf_p4(p1_value: float, guess) -> float:
     par = {s0: p1_value, a0: 500, al: sp.Rational(1, 5), rk: sp.Rational(1, 10)}
     eqs = [e.subs(par) for e in list(F) + [F.jacobian([s, a]).trace()]]
     return float(sp.nsolve(eqs, [s, a, rh], list(guess), prec=30)[2])
+
+
+def ab_lp_p1(p2_value: float, p3_value: float = 3.0) -> list:
+    """PAR(1) of the folds of ab's equilibria at (p2, p3), increasing u1: on the branch
+    u2 = p2 u1 / (1 + p3) and p1 = u1 e^-u2 / (1 - u1) (f = 0); folds where
+    d p1 / d u1 = 0."""
+    u1 = sp.Symbol("u1", real=True)
+    p2, p3 = sp.nsimplify(p2_value), sp.nsimplify(p3_value)
+    p1 = u1 * sp.exp(-p2 * u1 / (1 + p3)) / (1 - u1)
+    roots = sp.solve(sp.diff(p1, u1), u1)
+    return [float(p1.subs(u1, r)) for r in sorted(roots, key=float) if 0 < r < 1]
