@@ -32,10 +32,11 @@ from washer import kernel, layout
 #: quadratically in 2-4 iterations; needing more means the step is too long.
 NEWTON_ITER = 8
 #: Largest accepted distance between a substep's predictor and its solution
-#: (max-norm over [x, y, z] in m and angles in rad). The other equilibria met in
-#: Table 1's ranges lie >= 0.3 away (the half-turned tub: pi in yaw; the tipped
-#: branch beyond the static fold: >= 0.3 rad in beta); a halved step brings a
-#: legitimate correction (O(h^2) from the secant predictor) under this bound.
+#: (max-norm over [x, y, z] in m and angles in rad). Away from folds the other
+#: equilibria met in Table 1's ranges lie >= 0.3 away (the half-turned tub: pi in
+#: yaw; the tipped static branch: beta of the other sign), while a halved step
+#: brings a legitimate correction (O(h^2) from the secant predictor) under this
+#: bound. Near a fold the other branch comes close; the det-sign test catches it.
 MAX_CORRECTION = 0.05
 #: Smallest continuation step in s (the fraction of the parameter change).
 H_MIN = 1e-7
