@@ -63,6 +63,10 @@ NEWTON_MAX_ITER = 12
 #: A multiplier is complex when |Im mu| > COMPLEX_TOL (it is ~1e-9 accurate).
 COMPLEX_TOL = 1e-7
 
+#: A located zero of the TR function is a torus bifurcation when the leading complex pair
+#: lies on the unit circle to this (the multipliers' accuracy is ~1e-9).
+TR_ACCEPT = 1e-6
+
 #: Parameters the forced response can be continued in (anything with a kernel derivative).
 PARAMETERS = layout.DIFF_PARAMS
 
@@ -231,15 +235,18 @@ def periodic_response(params: Params, u0=None, *, tol: float = NEWTON_TOL,
 # ------------------------------------------------------------------ test functions
 
 def bifurcation_functions(mu) -> dict[str, float]:
-    """Test functions of the special points, zero at them, smooth in the multipliers mu:
+    """Test functions of the special points, zero at them, continuous in the multipliers mu
+    (n,) (through collisions of real multipliers into complex pairs too):
 
-    TR (Neimark-Sacker): prod over complex pairs (Im mu > 0) of (|mu|^2 - 1);
+    TR (Neimark-Sacker): prod over i < j of (mu_i mu_j - 1), zero when a complex pair has
+    |mu| = 1 (also at a 'neutral saddle', two real mu with product 1: a sign change there
+    is rejected after location, as AUTO does);
     PD (period doubling): det(Phi + I) = prod (mu + 1);
     LP (fold of the forced response): det(Phi - I) = prod (mu - 1).
     Each changes sign when one multiplier (pair) crosses the unit circle its way."""
     mu = np.asarray(mu, dtype=complex)
-    cpx = mu[mu.imag > COMPLEX_TOL]
-    return {"TR": float(np.prod(np.abs(cpx) ** 2 - 1.0)),
+    i, j = np.triu_indices(mu.size, 1)
+    return {"TR": float(np.prod(mu[i] * mu[j] - 1.0).real),
             "PD": float(np.prod(mu + 1.0).real),
             "LP": float(np.prod(mu - 1.0).real)}
 
@@ -402,8 +409,10 @@ def _locate_on_chord(c: _Continuer, Xa, Xb, typ: str, name: str, xtol: float = 1
     except (ValueError, ShootingError, kernel.KernelError, np.linalg.LinAlgError):
         return None
     X, mu = cache[sigma]
+    if typ == "TR" and not abs(abs(critical_pair(mu)) - 1.0) < TR_ACCEPT:
+        return None             # a neutral saddle (real mu_i mu_j = 1), not a torus bifurcation
     G = c.G(X)[0]
-    return SpecialPoint(typ, name, X[c.n] * c.ps, X[:c.n], mu, float(np.abs(G).max()))
+    return SpecialPoint(typ, name, float(X[c.n] * c.ps), X[:c.n], mu, float(np.abs(G).max()))
 
 
 def washer_flow(params: Params, name: str):
