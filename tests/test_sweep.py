@@ -63,6 +63,21 @@ def test_spec_errors_name_file_line_and_cause(text, where, what):
     assert what in msg
 
 
+def test_critical_refuses_base_parameters_the_engine_cannot_take(tmp_path):
+    """e='washer' builds every non-PAR parameter from the reference set: a base file
+    that differs there (tub inertia) must be refused, not silently replaced."""
+    from washer.params import default_params_path
+    ref = default_params_path().read_text()
+    assert "J = [0.9, 0.9, 0.9]" in ref
+    (tmp_path / "heavy.toml").write_text(ref.replace("J = [0.9, 0.9, 0.9]", "J = [1.2, 1.2, 0.9]"))
+    text = "params = 'heavy.toml'\n[[study]]\nkinds = ['{k}']\n[study.vary]\nm_u = [1.0, 2.0]\n"
+    (tmp_path / "s.toml").write_text(text.format(k="critical"))
+    with pytest.raises(SpecError, match="J_tx.*cannot take them"):
+        load_spec(tmp_path / "s.toml")
+    (tmp_path / "s.toml").write_text(text.format(k="stability"))
+    assert load_spec(tmp_path / "s.toml").base["J_tx"] == 1.2     # the kernel kinds can
+
+
 def test_random_and_lhs_samples_are_seeded_and_in_range():
     text = ("[[study]]\nkinds = ['stability']\nsample = '{s}'\nn = 40\nseed = 3\n[study.vary]\n"
             "Omega = {{from = 5.0, to = 15.0}}\nK_s = {{from = 500.0, to = 4500.0, log = true}}\n")

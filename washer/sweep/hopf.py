@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.params import Params
-from washer.sweep.tasks import critical_constants
+from washer.sweep.tasks import critical_constants, engine_mismatch
 
 #: The ranges are widened by this fraction of their span so that a boundary
 #: lying on the map's edge is still drawn.
@@ -66,6 +66,9 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     for name in (x, y):
         if name not in PAR_NAMES.values():
             raise HopfCurveError(f"{name!r} is not a PAR of e='washer': no continuation")
+    why = engine_mismatch(params)
+    if why:
+        raise HopfCurveError(why)
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     (x0, x1), (y0, y1) = _widen(xr), _widen(yr)

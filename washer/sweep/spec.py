@@ -353,16 +353,13 @@ def _check_critical(opt: dict, axes, base: Params, fixed: dict, at) -> None:
         opt["to"] = CRITICAL_DEFAULT_TO[par]
     if not opt["from"] < opt["to"]:
         raise SpecError(f"{at('to')}: critical: expected from < to, got {opt['from']}, {opt['to']}")
-    # The continuation problem takes the PAR entries only; every other parameter
-    # comes from the shipped reference set (see tasks.critical).
-    ref = load_params()
-    names = set(PAR_NAMES.values()) | {"tau_s", "tau0"}  # tau_s, tau0: no effect on e='washer'
+    # The continuation problem takes the PAR entries only (tasks.engine_mismatch).
+    from washer.sweep.tasks import NO_EFFECT_ON_AVERAGED, engine_mismatch
+    names = set(PAR_NAMES.values()) | NO_EFFECT_ON_AVERAGED
     for name in list(fixed) + [a.name for a in axes]:
         if name not in names:
             raise SpecError(f"{at()}: critical: parameter {name!r} cannot be passed to the "
                             "continuation engine (not a PAR of e='washer')")
-    for name, v in base.values.items():
-        if name not in names and v != ref.values[name]:
-            raise SpecError(f"{at()}: critical: the base parameters differ from the reference "
-                            f"set in {name!r}, which the continuation engine cannot take yet "
-                            "(only PAR entries can be overridden)")
+    why = engine_mismatch(base)
+    if why:
+        raise SpecError(f"{at()}: critical: base parameters: {why}")

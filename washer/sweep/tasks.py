@@ -134,6 +134,30 @@ def critical_constants(params: Params, name: str, lo: float, hi: float) -> str:
         par=repr(par), hi=float(hi))
 
 
+#: Parameters without effect on the averaged rotating-frame problem e='washer'.
+NO_EFFECT_ON_AVERAGED = {"tau_s", "tau0"}
+
+
+def engine_mismatch(params: Params) -> str:
+    """Why `params` cannot be handed to the continuation engine ('' if it can).
+
+    washer.run's problem e='washer' takes the PAR entries (C_p, Omega, m_u, ...)
+    and builds everything else from the shipped reference set, with C_ox, C_oz
+    tied to C_p; until it accepts a Params (washer_problem(e, params=...)),
+    parameter sets that differ elsewhere cannot be continued."""
+    from washer.auto_washer import PAR_NAMES
+    from washer.params import load_params
+    if not params.tied:
+        return "e='washer' ties C_ox and C_oz to C_p; untied dampings cannot be passed yet"
+    ref = load_params()
+    skip = set(PAR_NAMES.values()) | NO_EFFECT_ON_AVERAGED
+    diff = [n for n, v in params.values.items() if n not in skip and v != ref.values[n]]
+    if diff:
+        return (f"{', '.join(diff[:4])} differ from the reference set and are not PAR entries "
+                "of e='washer': the continuation engine cannot take them yet")
+    return ""
+
+
 def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float = 3.0,
              engine: str = "continuation") -> dict:
     """Critical value of `parameter`: its first Hopf point from lo to hi.
@@ -147,9 +171,9 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
                          "periodic forced response and its Floquet multipliers)")
     if engine != "continuation":
         raise PointError(f"critical: unknown engine {engine!r}")
-    if not params.tied:
-        raise PointError("critical: e='washer' ties C_ox and C_oz to C_p; untied dampings "
-                         "cannot be passed to the continuation engine yet")
+    why = engine_mismatch(params)
+    if why:
+        raise PointError(f"critical: {why}")
     from washer.auto_washer import PAR_NAMES
     from washer.run import run
     idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
