@@ -108,7 +108,14 @@ def _branch(sysm, n, ds, dsmax=0.5, iad=3):
     sysm.update(x, t)
     pts = [x]
     for k in range(1, n + 1):
-        xn, it = _correct(sysm, x + ds * t, x, t, ds)
+        while True:
+            try:
+                xn, it = _correct(sysm, x + ds * t, x, t, ds)
+                break
+            except AssertionError:
+                ds /= 2                                   # STEPBV: retry with half the step
+                if abs(ds) < 1e-6:
+                    raise
         if iad and k % iad == 0:
             xn, x = sysm.remesh(xn, x)
         tn = (xn - x) / ds
@@ -116,7 +123,8 @@ def _branch(sysm, n, ds, dsmax=0.5, iad=3):
         sysm.update(xn, tn)
         x, t = xn, tn
         pts.append(x)
-        ds = math.copysign(min(abs(ds) * (2 if it <= 1 else 1.5 if it == 2 else 1.1), dsmax), ds)
+        grow = 2 if it <= 1 else 1.5 if it == 2 else 1.1 if it <= 4 else 1.0   # ADPTDS, ITNW 8
+        ds = math.copysign(min(abs(ds) * grow, dsmax), ds)
     return pts
 
 

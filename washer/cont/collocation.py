@@ -206,6 +206,16 @@ class Collocation:
         self._indptr = np.r_[0, np.cumsum(counts)].astype(np.int32)
         self._bc_vals = np.r_[np.ones(n), -np.ones(n)]
         self._n_blk = len(rows_blk)
+        # The bordered matrix [J; border]: each column gains one entry, the border row
+        # (the last row index, so it ends the column in CSC order).
+        col_of = np.repeat(np.arange(self.n_x), counts)
+        self._pos_J = np.arange(self.nnz) + col_of
+        self._indptr_b = (self._indptr + np.arange(self.n_x + 1)).astype(np.int32)
+        self._pos_border = self._indptr_b[1:] - 1
+        ind_b = np.empty(self.nnz + self.n_x, np.int32)
+        ind_b[self._pos_J] = self._indices
+        ind_b[self._pos_border] = self.n_eq
+        self._indices_b = ind_b
 
     # -- helpers
     def profile(self, x: np.ndarray) -> np.ndarray:
@@ -248,8 +258,17 @@ class Collocation:
                              shape=(self.n_eq, self.n_x))
 
     def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
-        """[J; border] as a CSC matrix (N + 1, N + 1)."""
-        return sp.vstack([J, sp.csr_matrix(border[None, :])], format="csc")
+        """[J; border] as a CSC matrix (N + 1, N + 1). A J built by `jacobian` (this
+        pattern) is bordered by filling a precomputed structure; any other by vstack."""
+        border = np.asarray(border, float)
+        if (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
+                and J.indices is not None and np.array_equal(J.indptr, self._indptr)):
+            data = np.empty(self.nnz + self.n_x)
+            data[self._pos_J] = J.data
+            data[self._pos_border] = border
+            return sp.csc_matrix((data, self._indices_b, self._indptr_b),
+                                 shape=(self.n_x, self.n_x))
+        return sp.vstack([sp.csc_matrix(J), sp.csr_matrix(border[None, :])], format="csc")
 
 
 # --------------------------------------------------------------------------- Floquet
