@@ -468,11 +468,13 @@ def locate_tr(params: Params, name: str, bracket: tuple[float, float], u0=None,
     return r, SpecialPoint("TR", name, v, r.u0, r.multipliers, r.residual)
 
 
-def averaged_hopf(params: Params, frame: str = "averaged", bracket=(0.0, 0.5),
-                  xtol: float = 1e-12) -> tuple[float, np.ndarray]:
-    """C_p of the Hopf point of the averaged (or frozen) rotating-frame system (eq 59) at
-    the other parameters of `params`: the zero of max Re(lambda) at the equilibrium,
-    by Brent on C_p in `bracket`. Returns (C_p, eigenvalues (12,) there, 1/s)."""
+def averaged_hopf(params: Params, frame: str = "averaged", c_max: float = 2.0,
+                  n_scan: int = 81, xtol: float = 1e-12) -> tuple[float, np.ndarray]:
+    """C_p of the first Hopf point of the averaged (or frozen) rotating-frame system
+    (eq 59) at the other parameters of `params`, scanning C_p from 0 up to c_max in n_scan
+    values for the first sign change of max Re(lambda) at the equilibrium (Hopf curves can
+    turn back at large C_p), then Brent. Returns (C_p, eigenvalues (12,) there, 1/s);
+    ValueError if there is none."""
     state = {"eps": None}
 
     def g(cp):
@@ -481,15 +483,24 @@ def averaged_hopf(params: Params, frame: str = "averaged", bracket=(0.0, 0.5),
         state["lam"] = m.eigenvalues(state["eps"], frame=frame)
         return float(state["lam"].real.max())
 
-    cp = brentq(g, *bracket, xtol=xtol)
-    g(cp)
-    return cp, state["lam"]
+    grid = np.linspace(0.0, c_max, n_scan)
+    g_prev = g(grid[0])
+    if g_prev == 0.0:           # no damping at all (C_a = 0 too): neutral at C_p = 0
+        return 0.0, state["lam"]
+    for a, b in zip(grid[:-1], grid[1:]):
+        g_b = g(b)
+        if np.sign(g_b) != np.sign(g_prev):
+            cp = brentq(g, a, b, xtol=xtol)
+            g(cp)
+            return cp, state["lam"]
+        g_prev = g_b
+    raise ValueError(f"averaged_hopf ({frame}): no Hopf point for C_p in [0, {c_max}]")
 
 
 def _hopf_or_nan(params: Params, frame: str):
     try:
         return averaged_hopf(params, frame)
-    except ValueError:          # no sign change of max Re(lambda) in (0, 0.5): no Hopf
+    except ValueError:          # no sign change of max Re(lambda) in the bracket: no Hopf
         return float("nan"), np.full(12, np.nan, dtype=complex)
 
 
@@ -500,7 +511,7 @@ def critical_cp(params: Params, rel_bracket: float = 0.05, abs_bracket: float = 
     The TR point is bracketed within +-(rel_bracket |C_p,avg| + abs_bracket) of the averaged
     Hopf value (clipped at C_p = 0): averaging is accurate to far better (MODEL.md section 4;
     here 1e-5 absolute). Returns a dict: C_p_exact/averaged/frozen (nan where the frozen
-    system has no Hopf in (0, 0.5)), the multipliers at the exact point (12,), the critical
+    system has no Hopf in (0, 2)), the multipliers at the exact point (12,), the critical
     multiplier and its Floquet exponent log(mu)/T (1/s, imaginary part modulo 2 pi Omega:
     the ground-frame whirl), the averaged eigenvalues at the averaged Hopf point (1/s),
     and the ForcedResponse there."""
@@ -545,13 +556,14 @@ def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 
     TR-curve continuation), with the averaged and frozen Hopf values at the same Omega.
 
     omegas: Omega values (Hz); default n values from the exact lower end (`lower_end`,
-    where C_p,crit = 0; ~4 Hz at the reference values) to omega_max. Returns a dict of
+    where C_p,crit = 0; ~4 Hz at the reference values) to omega_max, quadratically
+    spaced (denser at the steep lower end). Returns a dict of
     arrays (len(omegas),): Omega, C_p_exact, C_p_averaged, C_p_frozen (nan where the frozen
-    system has no Hopf in (0, 0.5)), error = exact - averaged, mu_angle (rad) of the
+    system has no Hopf in (0, 2)), error = exact - averaged, mu_angle (rad) of the
     critical multiplier; and 'Omega_low' = {exact, averaged} lower ends (Hz)."""
     low = {"exact": lower_end(params, "exact"), "averaged": lower_end(params, "averaged")}
-    if omegas is None:
-        omegas = np.linspace(low["exact"], omega_max, n)
+    if omegas is None:          # denser near the lower end, where the curve is steep
+        omegas = low["exact"] + (omega_max - low["exact"]) * np.linspace(0.0, 1.0, n) ** 2
     rows = []
     for om in omegas:
         q = params.replace(Omega=float(om))
@@ -571,3 +583,36 @@ def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 
             "error": cp_ex - cp_av,
             "mu_angle": np.array([np.angle(r["critical_multiplier"]) for r in rows]),
             "Omega_low": low}
+
+
+#: Ends of Table 1's ranges of the parameters of Figs 5-7 (auto_constants/c.washer.hopf.*).
+TABLE1_ENDS = (("m_u", 0.01), ("m_u", 2.5), ("R_u", 0.001), ("R_u", 0.25), ("C_a", 0.0),
+               ("C_a", 5000.0), ("K_s", 500.0), ("K_s", 4500.0))
+
+
+def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
+    """Exact minus averaged critical C_p at parameter points [(name, value), ...] (default:
+    the ends of Table 1's ranges of Figs 5-7). Each row: name, value, C_p_exact,
+    C_p_averaged, C_p_frozen, error; C_p values nan (and 'note' says why) where there is no
+    Hopf/TR point to compare (e.g. stable down to C_p = 0)."""
+    rows = []
+    for name, value in points:
+        row = {"name": name, "value": float(value)}
+        try:
+            c = critical_cp(params.replace(**{name: value}))
+            row.update(C_p_exact=c["C_p_exact"], C_p_averaged=c["C_p_averaged"],
+                       C_p_frozen=c["C_p_frozen"], error=c["C_p_exact"] - c["C_p_averaged"],
+                       note="undamped at C_p = 0: neutral, not a Hopf" if
+                       c["C_p_averaged"] == 0.0 else "")
+        except (ValueError, ShootingError, kernel.KernelError) as exc:
+            q = params.replace(**{name: value})
+            note = f"no TR point near the averaged Hopf ({type(exc).__name__})"
+            try:
+                if periodic_response(q.replace(C_p=0.0)).stable:
+                    note = "stable down to C_p = 0: no TR point"
+            except (ShootingError, kernel.KernelError):
+                pass
+            row.update(C_p_exact=np.nan, C_p_averaged=_hopf_or_nan(q, "averaged")[0],
+                       C_p_frozen=np.nan, error=np.nan, note=note)
+        rows.append(row)
+    return rows
