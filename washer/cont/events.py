@@ -77,12 +77,21 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
 
     trial(s) -> (point, q): the continuation step of arclength s from the
     previous point and the test's value there (raises on failure).
-    Returns (point, s) or raises LocationFailed."""
+    Returns (point, s) or raises LocationFailed.
+
+    AUTO stops as soon as a correction of s is below the tolerance; a
+    one-sided iteration can then stop with the zero still far inside its
+    bracket. Here the sign bracket is kept and iterations go on (within ITMX)
+    until it is below 10 tolerances too; if ITMX runs out first, AUTO's own
+    rule decides.
+    """
     tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
     lo, qlo, hi, qhi = 0.0, q_prev, s_cur, q_cur          # the bracket (as s values)
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
+    best = None
+    side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
         try:
             pt, q = trial(s_new)
@@ -90,20 +99,35 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
             raise LocationFailed(f"trial step failed ({exc})") from exc
         if q is None or not np.isfinite(q):
             raise LocationFailed("test function undefined at a trial point")
-        if q == 0 or abs(s_new - s_last) < tol:
-            if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
-                raise LocationFailed("sign change through a pole, not a zero")
-            return pt, s_new
+        if q == 0:
+            best = (pt, s_new, q)
+            break
         if (q < 0) == (qlo < 0):
             lo, qlo = s_new, q
+            if side == -1:
+                qhi /= 2
+            side = -1
         else:
             hi, qhi = s_new, q
+            if side == 1:
+                qlo /= 2
+            side = 1
+        converged = abs(s_new - s_last) < tol
+        if converged:
+            best = (pt, s_new, q)
+            if abs(hi - lo) < 10 * tol:
+                break
         ss.append(s_new)
         qs.append(q)
         s_last = s_new
         cand = _muller(ss, qs)
         a, b = min(lo, hi), max(lo, hi)
         if cand is None or not (a < cand < b):
-            cand = hi - qhi * (hi - lo) / (qhi - qlo)     # regula falsi on the bracket
+            cand = hi - qhi * (hi - lo) / (qhi - qlo)     # Illinois regula falsi
         s_new = cand
-    raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations")
+    if best is None:
+        raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations")
+    pt, s_best, q = best
+    if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
+        raise LocationFailed("sign change through a pole, not a zero")
+    return pt, s_best

@@ -42,6 +42,11 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
+#: A zero estimated within this fraction of a step from the previous point
+#: lies on it: the previous point is a located special point where a second
+#: test vanishes too (a transcritical BP is also a zero eigenvalue). AUTO takes
+#: simultaneous zeros first come, first served: it is not located again.
+SIMULTANEOUS = 1e-6
 
 
 class ConvergenceError(RuntimeError):
@@ -271,15 +276,22 @@ class Continuation:
         target, span, found = cur, ds, None
         for _ in range(len(cur.tests) + 1):
             keys = [k for k in sign_changes(prev.tests, target.tests)
-                    if (found is None or k != found[1]) and self._accepted(k, prev, target)]
+                    if (found is None or k != found[1]) and self._accepted(k, prev, target)
+                    and linear_fraction(prev.tests[k], target.tests[k]) > SIMULTANEOUS]
             if not keys:
                 return found
             keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
             key = keys[0]
             trial = lambda s_: self._trial(prev, s_, key)
             sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
-            sp.tests = self._tests(sp, self.sys.jacobian(sp.x), self.sys.factor(
-                self.sys.jacobian(sp.x), self.sys.border(sp.tangent)), None)
+            J = self.sys.jacobian(sp.x)
+            if key == Code.BP:
+                # At a branch point G_x has a two-dimensional null space: the
+                # bordered tangent solve is singular there. The branch's direction
+                # is the secant from the previous point (AUTO stores it too).
+                sec = sp.x - prev.x
+                sp.tangent = sec / math.sqrt(self.sys.inner(sec, sec))
+            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
             found = (sp, key)
             target, span = sp, s_sp
         return found

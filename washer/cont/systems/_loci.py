@@ -7,13 +7,15 @@ import numpy as np
 from washer.cont.system import StartData
 from washer.cont.systems._algebraic import AlgebraicSystem
 
-#: Forward-difference step (relative) for the derivatives of A = f_x. With an
-#: analytic A (JAC != 0) its rounding is ~eps, so h ~ sqrt(eps) balances
-#: truncation; with a finite-difference A (JAC = 0) the entries carry rounding
-#: ~eps / 1e-7 ~ 1e-9, so h ~ sqrt(1e-9) ~ 3e-5 balances it (a 1e-7 step would
-#: leave 1e-2 relative noise in the second derivatives).
-DA_STEP_ANALYTIC = 1e-7
-DA_STEP_FD = 3e-5
+#: Central-difference steps (relative) for the derivatives of A = f_x, which
+#: the Jacobians of the loci need (second derivatives of f). Central errors
+#: are h^2 |f_xxxx| / 6 + noise(A) / h, smallest at h ~ (3 noise)^(1/3): with
+#: an analytic A (JAC != 0, noise ~ machine eps) h ~ 7e-6; with a
+#: finite-difference A (JAC = 0, rounding ~1e-9 relative from its 1e-7 steps)
+#: h ~ 1.4e-3. A forward difference would leave an O(h) error in the curve's
+#: tangent, which moves located folds of the curve (seen: 4.5e-5 in p2).
+DA_STEP_ANALYTIC = 7e-6
+DA_STEP_FD = 1.4e-3
 
 
 class LocusSystem(AlgebraicSystem):
@@ -51,7 +53,7 @@ class LocusSystem(AlgebraicSystem):
     def f_blocks(self, x):
         """A = f_x (n, n), f_p = [f_{p1}, f_{p2}] (n, 2) and dA (n + 2, n, n): the
         derivatives of A along e_j (j < n), then PAR(ICP(1)), then PAR(ICP(2)),
-        forward differences of A at the n + 2 perturbed points in one batch."""
+        central differences of A at the 2 (n + 2) perturbed points in one batch."""
         n = self.ndim
         u = x[:n]
         p = self._p(x)
@@ -59,12 +61,18 @@ class LocusSystem(AlgebraicSystem):
         A = self.problem.dfdu(u, p)
         fp = self.problem.dfdp(u, p, self.free)
         steps = self.da_step * (1 + np.abs(np.r_[u, p[i1], p[i2]]))
-        us = np.repeat(u[None, :], n + 2, axis=0)
-        ps = np.repeat(p[None, :], n + 2, axis=0)
-        us[np.arange(n), np.arange(n)] += steps[:n]
+        m = n + 2
+        us = np.repeat(u[None, :], 2 * m, axis=0)
+        ps = np.repeat(p[None, :], 2 * m, axis=0)
+        idx = np.arange(n)
+        us[idx, idx] += steps[:n]
+        us[m + idx, idx] -= steps[:n]
         ps[n, i1] += steps[n]
+        ps[m + n, i1] -= steps[n]
         ps[n + 1, i2] += steps[n + 1]
-        dA = (self.problem.dfdu_many(us, ps) - A) / steps[:, None, None]
+        ps[m + n + 1, i2] -= steps[n + 1]
+        As = self.problem.dfdu_many(us, ps)
+        dA = (As[:m] - As[m:]) / (2 * steps[:, None, None])
         return A, fp, dA
 
     def stability(self, x, J):
