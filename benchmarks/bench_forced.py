@@ -1,0 +1,77 @@
+"""Speed of the exact stability analysis (issue 11, route b: shooting with the kernel).
+
+    python benchmarks/bench_forced.py
+
+Prints, at nominal values (reference set, Omega = 10 Hz):
+  (1) one period of the flow with the monodromy matrix (one kernel call), and the same
+      augmented system through scipy's solve_ivp (DOP853) with the kernel's rhs and
+      Jacobian called from Python, both at rtol 1e-10;
+  (2) one periodic response with its Floquet multipliers (Newton shooting from the
+      averaged rotating-frame equilibrium, including finding that equilibrium);
+  (3) the located TR point in C_p (Brent on C_p within +-5% of the averaged Hopf value,
+      a converged periodic response per evaluation), and the same via pseudo-arclength
+      continuation from C_p = 0.08 to 0.13 with detection and location;
+  (4) the exact critical C_p with the averaged and frozen Hopf values (`critical_cp`).
+Best of 3 wall times; 2 shared cores, so other load inflates them.
+Route (a) (engine, IPS = 2) is to be added here when it exists.
+"""
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+import washer
+from washer import forced, kernel
+
+
+def best_of(fn, repeat=3):
+    best, out = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def main():
+    params = washer.load_params()
+    P = params.vector()
+    r = forced.periodic_response(params)
+    T, u0 = r.T, r.u0
+
+    t_k, (_, _, _, st) = best_of(lambda: kernel.flow_variational(0.0, T, u0, P), 5)
+
+    def aug(t, y):
+        J, _ = kernel.jac_fixed(t, y[:12], P, "constant")
+        return np.r_[kernel.rhs_fixed(t, y[:12], P, "constant"),
+                     (J @ y[12:].reshape(12, 12)).ravel()]
+
+    t_s, sol = best_of(lambda: solve_ivp(aug, (0, T), np.r_[u0, np.eye(12).ravel()],
+                                         method="DOP853", rtol=1e-10, atol=1e-12))
+    print("one period (T = 0.1 s) with the monodromy matrix, rtol 1e-10")
+    print(f"  kernel (washer_flow_variational) : {t_k * 1e3:8.2f} ms, {st['nfev']} evaluations")
+    print(f"  solve_ivp DOP853, kernel rhs/jac : {t_s * 1e3:8.2f} ms, {sol.nfev} evaluations")
+
+    t_r, r = best_of(lambda: forced.periodic_response(params))
+    print("\nperiodic response with Floquet multipliers (from the averaged equilibrium)")
+    print(f"  {t_r * 1e3:8.1f} ms, {r.iterations} Newton iterations, residual {r.residual:.1e}, "
+          f"max|mu| = {np.abs(r.multipliers).max():.9f}")
+
+    cp_avg, _ = forced.averaged_hopf(params)
+    start = forced.averaged_start(params.replace(C_p=cp_avg))
+    t_tr, (_, sp) = best_of(lambda: forced.locate_tr(
+        params, "C_p", (0.95 * cp_avg, 1.05 * cp_avg), start))
+    print("\nTR point in C_p")
+    print(f"  Brent on C_p                     : {t_tr:8.3f} s, C_p = {sp.value:.12f}")
+    t_c, b = best_of(lambda: forced.continue_response(params.replace(C_p=0.08), "C_p", 0.13,
+                                                      ds=0.1, ds_max=0.3))
+    tr = [s for s in b.special if s.type == "TR"]
+    print(f"  continuation 0.08 -> 0.13 + locate: {t_c:8.3f} s, {len(b.values)} points, "
+          f"C_p = {tr[0].value:.12f}")
+    t_cc, c = best_of(lambda: forced.critical_cp(params))
+    print(f"  critical_cp (exact, averaged, frozen): {t_cc:8.3f} s: "
+          f"{c['C_p_exact']:.10f}, {c['C_p_averaged']:.10f}, {c['C_p_frozen']:.10f}")
+
+
+if __name__ == "__main__":
+    main()
