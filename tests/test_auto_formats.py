@@ -188,3 +188,21 @@ def test_a_run_without_points_leaves_no_header_only_b_file(tmp_path):
     out.branch_start()
     assert (tmp_path / "b.x").read_text() == ""        # parseB reads an empty file as no data
     check_parseB_rules("")
+
+
+def test_d_file_lines_are_autos(tmp_path):
+    """Point, eigenvalue and multiplier lines as AUTO-07p writes them (ab2p/d.eq, and
+    ab_po_raw/d.raw3 quoted in AUTO.md 2.3)."""
+    ref = (REF / "ab2p" / "d.eq.head").read_text().splitlines()
+    out = OutputFiles(tmp_path, "x")
+    out.column_titles = TITLES
+    out.row(Row(1, -2, 0, 0, [4.40397e-03, 1.95091e-02, 4.46835e-03, 1.89905e-02]))
+    out.eigenvalues(1, 1, [-1.0, -4.0])
+    out.multipliers(7, 2, [1.0, 1.00168], 1)
+    ours = (tmp_path / "d.x").read_text().splitlines()
+    assert ours[1] in ref and ours[2] in ref                   # heading and point line
+    assert ours[4:7] == ref[2:5]                               # the eigenvalue block
+    assert ours[7:] == [
+        "   7     2         Multipliers:     Stable:   1",
+        "   7     2         Multiplier  1    1.00000E+00   0.00000E+00  Abs. Val.   1.00000E+00",
+        "   7     2         Multiplier  2    1.00168E+00   0.00000E+00  Abs. Val.   1.00168E+00"]

@@ -447,8 +447,24 @@ class OutputFiles:
                   f"{fmt_es(e.imag, 14, 5)}" for k, e in enumerate(eig, 1)]
         self.diag("\n".join(lines))
 
+    def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
+        """AUTO's Floquet block in the d-file (PVSPBV): 'Multipliers:     Stable:' and one
+        'Multiplier  k ' line per multiplier with real, imaginary part and modulus (ES14.5)."""
+        mults = np.asarray(mults, dtype=complex)
+        lines = [f"{br:4d}{pt:6d}         Multipliers:     Stable:{n_stable:4d}"]
+        lines += [f"{br:4d}{pt:6d}         Multiplier{k:3d} {fmt_es(m.real, 14, 5)}"
+                  f"{fmt_es(m.imag, 14, 5)}  Abs. Val.{fmt_es(abs(m), 14, 5)}"
+                  for k, m in enumerate(mults, 1)]
+        self.diag("\n".join(lines))
+
     def record(self, rec: Record) -> None:
         self._append(self.s_path, rec.text())
+
+    def close(self) -> None:
+        """End of the run. Every write is already on disk (each is appended and flushed
+        on its own); a header still pending had no point to go with, and is dropped so
+        that the b-file never holds a header without data."""
+        self._pending_b = ""
 
     def diag(self, text: str) -> None:
         self._append(self.d_path, text if text.endswith("\n") else text + "\n")
