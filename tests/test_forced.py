@@ -343,3 +343,19 @@ def test_continuation_in_cp_detects_the_same_tr_point(params, critical):
     # with the pseudo-arclength corrector) of the same zero: 1e-9 (measured 5e-13).
     assert abs(b.special[0].value - critical["C_p_exact"]) < 1e-9
     assert not b.stable[0] and b.stable[-1]
+
+
+@pytest.mark.parametrize("name", ["m_u", "R_u", "C_a", "K_s", "Omega"])
+def test_tr_in_any_parameter_lies_on_the_critical_cp_surface(params, name):
+    """Two-parameter consistency: the TR point found by continuing the nominal response
+    (C_p = 0.101, just below the exact critical 0.1010126) in parameter `name` must be a
+    point where the exact critical C_p, located independently in C_p, is 0.101. Both
+    locations are converged to ~1e-12 in their parameter; the multipliers' smooth
+    integration error moves them together (5e-12 between rtol 1e-10 and 1e-12 at
+    nominal values), so 1e-9 is a safe bound."""
+    b = forced.continue_response(params, name, 0.98 * params[name], ds=0.005, ds_max=0.01)
+    tr = [s for s in b.special if s.type == "TR"]
+    assert len(tr) == 1 and b.stable[-1] and not b.stable[0]
+    q = params.replace(**{name: tr[0].value})
+    r, sp = forced.locate_tr(q, "C_p", (0.1, 0.102), tr[0].u0)
+    assert abs(sp.value - params["C_p"]) < 1e-9
