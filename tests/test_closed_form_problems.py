@@ -128,7 +128,9 @@ def pfchain(tmp_path_factory):
     with time_limit(120, "pfchain"):
         both = do_run(d / "c.pfchain", "both")
         one = do_run(d / "c.pfchain", "one", MXBF=-2)
-    return dict(dir=d, both=both, one=one)
+        # ISW = -1 restart at the second BP of "one" (label 5, on branch 2: x1^2 = a)
+        isw = do_run(d / "c.pfchain", "isw", s="one", IRS="BP2", ISW=-1)
+    return dict(dir=d, both=both, one=one, isw=isw)
 
 
 def test_pfchain_switches_recursively_both_directions(pfchain):
@@ -155,6 +157,24 @@ def test_pfchain_negative_mxbf_counts_switches(pfchain):
     assert pfchain["one"].status == "ok"
     assert summary(pfchain["one"].rows) == [(1, ["EP", "BP", "EP"]), (2, ["LP", "BP", "EP"]),
                                        (3, ["HB", "BP", "EP"])]
+
+
+def test_pfchain_isw_minus1_restart_at_bp(pfchain):
+    """A restart at a BP label with ISW = -1 switches branches (CNRLAE: STPRAE with the
+    direction perpendicular to the stored one, then the switching step): one direction,
+    branch number = the largest in the restart file + 1 = 4 (AUTO.md 1.4), carrying the
+    level-2 points; MXBF = 10 then switches at its BP (both directions, branch 5)."""
+    assert pfchain["isw"].status == "ok"
+    assert summary(pfchain["isw"].rows) == [(4, ["HB", "BP", "EP"]), (5, ["EP"]), (5, ["EP"])]
+    ex = exact.pfchain_points()
+    cfile = pfchain["dir"] / "c.pfchain"
+    first = pfchain["isw"].rows[0]
+    assert first.lab == 0 and first.ty == 0                        # restart row: TY 0, no label
+    assert first.values[0] == pytest.approx(ex["B"]["mu"], abs=located_tol(cfile, ex["B"]["mu"]))
+    hb, bp = labelled(segments(pfchain["isw"].rows)[0])[:2]
+    for r, key in ((hb, "HB"), (bp, "C")):
+        assert r.values[0] == pytest.approx(ex[key]["mu"], abs=located_tol(cfile, ex[key]["mu"]))
+        assert abs(r.values[3]) == pytest.approx(ex[key]["x"][1], abs=located_tol(cfile, 1.0))
 
 
 # Which exact point a labelled type is, by level: branch 1 (trivial), 2 (x1 != 0),
@@ -226,6 +246,7 @@ def hopfcross(tmp_path_factory):
         out = dict(dir=d, eq=do_run(d / "c.hopfcross", "eq"))
         out["fwd"] = do_run(d / "c.hopfcross", "fwd", DS=0.02, **HB_CURVE)
         out["bwd"] = do_run(d / "c.hopfcross", "bwd", DS=-0.02, **HB_CURVE)
+        out["npr"] = do_run(d / "c.hopfcross", "npr", DS=-0.02, NPR=20, **HB_CURVE)
     return out
 
 
@@ -251,6 +272,24 @@ def test_hopfcross_codes_order_and_branches(hopfcross):
     assert hopfcross["fwd"].status == "ok" and hopfcross["bwd"].status == "ok"
     assert codes(hopfcross["fwd"]) == [(2, [31, -34]), (3, [-32, -34]), (3, [32, -34])]
     assert codes(hopfcross["bwd"]) == [(2, [32, -34])]
+    # Regular points of a codim-1 curve are written with TY 0 (STPLAE sets ITP = 0 for
+    # them; only labelled types carry the curve's ten's digit).
+    for name in ("fwd", "bwd"):
+        assert all(r.ty == 0 for r in hopfcross[name].rows if not r.lab)
+
+
+def test_hopf_curve_npr_points_carry_the_curve_code(hopfcross):
+    """NPR = 20 on the Hopf curve: every 20th point (PT = NTOT, so independent of the step
+    sizes) is labelled with code 4 + 10 x 3 = 34 (STPLAE: ITP = 4 + 10 ITPST), the other
+    special points are unchanged."""
+    rows = hopfcross["npr"].rows
+    for r in rows:
+        if abs(r.pt) % 20 == 0 and r.ty in (0, 34):       # not displaced by another type
+            assert r.ty == 34 and r.lab, r
+        if r.ty == 34:
+            assert abs(r.pt) % 20 == 0, r
+    assert sum(r.ty == 34 for r in rows) >= 4
+    assert [r.ty for r in rows if r.lab and r.ty != 34] == [32, -34]
 
 
 def test_hopfcross_values(hopfcross):
