@@ -271,6 +271,22 @@ def test_rotating_frame_coordinates_have_half_the_forcing_period(nominal):
     assert np.abs(xi[:, ang] - quarter[:, ang]).max() > 1e-5
     # And the orbit is not constant in the rotating frame (the 2 Omega harmonic is real).
     assert np.ptp(xi[:, 5]) > 1e-5
+    # The cause is the coordinates, not the motion: the tub's orientation matrix seen from
+    # the rotating frame, Rz(-tau) A(alpha, beta, gamma) Rz(tau) (eq 2), is T/4-periodic.
+    t = np.arange(n) * nominal.T / n
+    q = np.array([forced.ground_from_rotating(x, nominal.params["Omega"], ti)[:6]
+                  for x, ti in zip(xi, t)])
+    tau = 2 * np.pi * nominal.params["Omega"] * t
+    B = np.array([_rot("z", -a) @ _rot("x", qi[3]) @ _rot("y", qi[4]) @ _rot("z", qi[5])
+                  @ _rot("z", a) for a, qi in zip(tau, q)])
+    assert np.abs(B - np.roll(B, -n // 4, axis=0)).max() < 1e-8
+
+
+def _rot(axis, a):
+    c, s = np.cos(a), np.sin(a)
+    return {"x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]),
+            "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+            "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
 
 
 def _matched_errors(params):
@@ -359,3 +375,19 @@ def test_tr_in_any_parameter_lies_on_the_critical_cp_surface(params, name):
     q = params.replace(**{name: tr[0].value})
     r, sp = forced.locate_tr(q, "C_p", (0.1, 0.102), tr[0].u0)
     assert abs(sp.value - params["C_p"]) < 1e-9
+
+
+def test_flow_variational_refuses_bad_input(params, nominal):
+    P = params.vector()
+    with pytest.raises(kernel.KernelError):
+        kernel.flow_variational(0.1, 0.0, nominal.u0, P)          # t1 < t0
+    with pytest.raises(kernel.KernelError):
+        kernel.flow_variational(0.0, 0.1, np.full(12, np.nan), P)
+    with pytest.raises(ValueError):
+        kernel.flow_variational(0.0, 0.1, nominal.u0, P, direction=np.ones(3))
+    # No direction: no parameter sensitivity, the flow and Phi unchanged.
+    u1, Phi, s, _ = kernel.flow_variational(0.0, nominal.T, nominal.u0, P)
+    u1d, Phid, sd, _ = kernel.flow_variational(0.0, nominal.T, nominal.u0, P, "constant",
+                                               forced._direction(params, "K_s"))
+    assert not s.any() and np.abs(sd).max() > 0
+    assert np.abs(u1 - u1d).max() < 1e-9 and np.abs(Phi - Phid).max() < 1e-8

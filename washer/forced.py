@@ -31,7 +31,10 @@ exactly (the factors are in the other order), while a half turn takes them to
 orbit are periodic with period T/2 = 1/(2 Omega), all six; the positions eps1..3 (a true
 vector) even with T/4, but the angles eps4..6 not with T/4. This is the 2 Omega harmonic
 of MODEL.md section 4 (Cardan angles do not rotate like a vector); the 4 Omega rod harmonic
-respects T/4.
+respects T/4. At the reference point the tub's orientation matrix seen from the rotating
+frame, Rz(-tau) A Rz(tau), is T/4-periodic and varies by only ~1e-7 over the orbit, while
+eps6 (gamma) swings by 4e-4 rad: the steady response is almost a rigid whirl, and the
+2 Omega harmonic of the eps coordinates is nearly all coordinate effect.
 
 Route (a) of the issue (the engine with IPS = 2 and an appended oscillator, AUTO's `frc`
 demo) is not here; the functions below take plain parameter sets so that its results can
