@@ -101,8 +101,9 @@ def _correct(sysm, xp, xref, tref, ds, nwtn=3, itnw=8, eps=1e-8):
     raise AssertionError("no convergence")
 
 
-def _branch(sysm, n, ds, dsmax=0.5, iad=3):
-    """AUTO's BVP loop in miniature (STEPBV, ADAPT, CONTBV): returns the points."""
+def _branch(sysm, n, ds, dsmax=0.5):
+    """AUTO's BVP loop in miniature (STEPBV, CONTBV; ADAPT happens inside `update`
+    every IAD points): returns the points (copies: later remeshes do not change them)."""
     x, t = sysm.start()
     t = t / math.sqrt(sysm.inner(t, t))
     sysm.update(x, t)
@@ -116,13 +117,11 @@ def _branch(sysm, n, ds, dsmax=0.5, iad=3):
                 ds /= 2                                   # STEPBV: retry with half the step
                 if abs(ds) < 1e-6:
                     raise
-        if iad and k % iad == 0:
-            xn, x = sysm.remesh(xn, x)
         tn = (xn - x) / ds
         tn /= math.sqrt(sysm.inner(tn, tn))
         sysm.update(xn, tn)
         x, t = xn, tn
-        pts.append(x)
+        pts.append(x.copy())
         grow = 2 if it <= 1 else 1.5 if it == 2 else 1.1 if it <= 4 else 1.0   # ADPTDS, ITNW 8
         ds = math.copysign(min(abs(ds) * grow, dsmax), ds)
     return pts
@@ -321,13 +320,13 @@ def test_period_doubling_switch_starts_the_doubled_branch():
     first steps leave the twice-traversed orbit (u(t) != u(t + 1/2)) with the period
     near twice AUTO's 2.28355."""
     rec = next(r for r in read_s(RECORDS / "s.chu") if r.lab == 8)
-    s = settings(ndim=3, ntst=50, ncol=4, ISW=-1)
+    s = settings(ndim=3, ntst=50, ncol=4, ISW=-1, IAD=0)
     sysm = PeriodicOrbits(StartData(_problem("chu"), s, rec.U[0], rec.par, rec, "PD"))
     x0, t0 = sysm.start()
     assert abs(x0[-2] - 2 * rec.par[10]) < 1e-12
     assert abs(sysm.inner(t0, sysm.start()[1]) - 1) < 1e-12
     assert np.max(np.abs(sysm.residual(x0))) < 1e-5
-    pts = _branch(sysm, 4, 0.01, iad=0)
+    pts = _branch(sysm, 4, 0.01)
     U = sysm.coll.profile(pts[-1])
     half = col.evaluate(sysm.mesh, U, (sysm.mesh.node_times() + 0.5) % 1.0)
     amp = np.max(np.ptp(U, axis=0))

@@ -154,6 +154,7 @@ class PeriodicOrbits:
     """
     curve_type = 0
     arclength = "plane"
+    remesh_in_update = True
 
     def __init__(self, data):
         s = data.settings
@@ -170,6 +171,7 @@ class PeriodicOrbits:
         p = np.asarray(data.par, float)
         self.par[:len(p)] = p[:len(self.par)]
         self.kind = (data.kind or "").upper()
+        self.unames = dict(getattr(data, "unames", {}) or {})
         self.isw = s.ISW
         self._suspended = False
         self.n_points = 0
@@ -419,15 +421,19 @@ class PeriodicOrbits:
         if Code.LPC in codes:
             out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
         if Code.BPC in codes:
-            if tangent is None:
+            inaccurate = stability is not None and "Multiplier inaccurate" in stability.notes
+            if tangent is None or inaccurate:
+                # While the trivial multiplier is inaccurate (long orbits near a homoclinic
+                # one) the reduced determinant is roundoff: lrz's grows to 1e46 and flips
+                # sign at T ~ 300 and 850. AUTO keeps testing there (and its value, of the
+                # same size, happens not to flip); we do not report BP of cycles then.
                 out[int(Code.BPC)] = None
             else:
                 Jx = J if J is not None else self.jacobian(x)
                 try:
-                    Sc = self._schur(Jx, self.weights * tangent)[0]
-                    out[int(Code.BPC)] = float(np.linalg.det(Sc))
+                    out[int(Code.BPC)] = self.bp_function(Jx, tangent)
                 except RuntimeError:
-                    out[int(Code.BPC)] = 0.0
+                    out[int(Code.BPC)] = None
         if Code.PD in codes or Code.TR in codes:
             pd = tr = None
             if (self.ndim > 2 and stability is not None
@@ -467,7 +473,12 @@ class PeriodicOrbits:
     def update(self, x: np.ndarray, tangent: np.ndarray) -> None:
         """CONTBV's STUPBV: the accepted profile becomes the phase condition's
         reference, u'_old = T f(u_old) at the nodes. Also moves the 'multiplier
-        inaccurate' suspension state."""
+        inaccurate' suspension state, and, every IAD accepted points (AUTO's ADAPT
+        after point NTOT with NTOT % IAD == 0, the start counting as NTOT = 1), adapts
+        the mesh: x and tangent are then interpolated onto the new mesh *in place*
+        (the caller's arrays change), so any iterator that calls `update` once per
+        accepted point gets AUTO's mesh adaptation. Set `remesh_in_update = False`
+        when the iterator calls `remesh` itself."""
         U, par = self.unpack(x)
         self.U_old = U.copy()
         if getattr(self, "_keep_hopf_phase", False) and np.array_equal(x, self._start[0]):
@@ -483,6 +494,16 @@ class PeriodicOrbits:
             st = self.stability(x)
         if st is not None:
             self._suspended = "Multiplier inaccurate" in st.notes
+        if self.remesh_in_update and self.wants_remesh(self.n_points):
+            if tangent is None:
+                (xn,) = self.remesh(x)
+            else:
+                xn, tn = self.remesh(x, tangent)
+                tangent[:] = tn
+            x[:] = xn
+            U = self.coll.profile(x)
+            self.U_old = U.copy()
+            self.up_old = self._T(par) * self.field.f(U, par)
 
     def wants_remesh(self, n_points: int) -> bool:
         """AUTO adapts the mesh after point NTOT when IAD > 0 and NTOT % IAD == 0."""
@@ -505,6 +526,7 @@ class PeriodicOrbits:
         self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
         self._set_mesh(col.Mesh(tm, old.ncol))
         self._last_blocks = None
+        self._stab_cache = None
         return tuple(out)
 
     # -- output
@@ -544,7 +566,9 @@ class PeriodicOrbits:
             first = f"L2-NORM U({iplt - 2 * n})"
         else:
             first = "L2-NORM"
-        return [first] + [f"MAX U({i})" for i in range(1, self.n2() + 1)]
+        un = self.unames
+        return [first] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
+                          for i in range(1, self.n2() + 1)]
 
     def solution(self, x: np.ndarray, tangent: np.ndarray | None) -> Solution:
         U = self.coll.profile(x)
@@ -579,6 +603,19 @@ class PeriodicOrbits:
         M_R = M[rows_R]
         Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X
         return Sc, lu, M_IS, cols_S, cols_I, X
+
+    def bp_function(self, J, tangent: np.ndarray) -> float:
+        """The BP test of cycles: det of the bordered Jacobian reduced onto (u(0),
+        parameters) (`_schur`), divided by the product of the reduced rows' norms
+        (Hadamard), so that it lies in [-1, 1] and is independent of the scaling of the
+        equations; it vanishes exactly where the bordered Jacobian is singular, like
+        AUTO's FNBPBV (the reduced determinant over det P1)."""
+        Sc = self._schur(J, self.weights * tangent)[0]
+        norms = np.linalg.norm(Sc, axis=1)
+        if not np.all(np.isfinite(Sc)) or np.any(norms == 0):
+            return 0.0
+        sign, logdet = np.linalg.slogdet(Sc / norms[:, None])
+        return float(sign * math.exp(logdet))
 
     def null_vector(self, J, border: np.ndarray) -> np.ndarray:
         """A null vector of the (singular or nearly singular) bordered matrix
