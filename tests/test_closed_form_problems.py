@@ -405,6 +405,21 @@ def test_failed_location_is_not_labelled_and_run_goes_on(locfail):
     assert "NOTE:Possible special point" in d_text
 
 
+def test_failed_uz_location_on_a_jumping_pvls_value(tmp_path_factory):
+    """The same with a user zero: UZR on PAR(2), which the user's pvls sets to 0 or 1 by
+    a jump at x = mu = 1/2. No UZ label there, a note in the d-file, and the run goes on
+    to the UZSTOP at mu = 1; PAR(2) is 1 at that end point (pvls ran there)."""
+    d = scratch(tmp_path_factory, "pvlsjump")
+    with time_limit(60, "pvlsjump"):
+        out = do_run(d / "c.pvlsjump", "pvlsjump")
+    assert out.status == "ok"
+    assert [s.ty for s in out.specials] == ["EP", "UZ"]
+    uz = out("UZ1")
+    assert uz.par[0] == pytest.approx(1.0, abs=located_tol(d / "c.pvlsjump", 1.0))
+    assert uz.par[1] == 1.0
+    assert "NOTE:Possible special point" in (d / "d.pvlsjump").read_text()
+
+
 # ---------------------------------------------------------------------------
 # 5. PVLS: PAR(9) = U(1) set by the user's pvls, and UZSTOP on it by name
 
