@@ -252,6 +252,16 @@ def test_orbit_is_periodic_and_newton_converges_quadratically(nominal):
     assert xi.shape == (8, 12)
 
 
+def test_long_simulation_start_reaches_the_same_orbit(params):
+    """Two starts (the averaged equilibrium; 300 periods of simulation from rest) give one
+    orbit where it is stable (C_p = 0.2): 1e-9, a few Newton tolerances."""
+    q = params.replace(C_p=0.2)
+    a = forced.periodic_response(q)
+    b = forced.periodic_response(q, forced.simulated_start(q))
+    assert np.abs(a.u0 - b.u0).max() < 1e-9
+    assert np.abs(a.multipliers - b.multipliers).max() < 1e-9
+
+
 def test_rotating_frame_coordinates_have_half_the_forcing_period(nominal):
     """Four identical rods: a quarter turn with theta -> theta + pi/2 is a symmetry of
     eq 48. The orbit's positions (eps1..3, a true vector) are T/4-periodic in the rotating

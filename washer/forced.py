@@ -185,6 +185,7 @@ class ForcedResponse:
 
 
 def sort_multipliers(mu) -> np.ndarray:
+    """Multipliers (n,) complex by decreasing modulus, each pair's Im > 0 member first."""
     mu = np.asarray(mu, dtype=complex)
     return mu[np.lexsort((-mu.imag, -np.abs(mu)))]
 
@@ -194,6 +195,20 @@ def averaged_start(params: Params, frame: str = "averaged", guess=None) -> np.nd
     (or frozen) system mapped to the ground frame at t = 0 (an O(averaging error) guess)."""
     eps = Model(params).rotating_equilibrium(frame=frame, guess=guess)
     return ground_from_rotating(np.r_[eps, np.zeros(6)], params["Omega"], 0.0)
+
+
+def simulated_start(params: Params, periods: int = 300, u_start=None) -> np.ndarray:
+    """Starting guess u0 (12,) from a long simulation: the ground-frame state after
+    `periods` forcing periods at constant speed (theta = 2 pi x periods, so the phase of
+    t = 0), from u_start (default: the static equilibrium at rest). Converges to the
+    response only where it is stable (transients decay like max|mu|^periods); use it
+    where the averaged equilibrium is not a good guess (e.g. asymmetric machines)."""
+    if u_start is None:
+        u_start = np.r_[Model(params).static_equilibrium(), np.zeros(6)]
+    T = 1.0 / params["Omega"]
+    Y, _, _ = kernel.integrate("fixed", "constant", 0.0, u_start, params.vector(),
+                               [periods * T], RTOL, ATOL)
+    return Y[-1]
 
 
 def newton_periodic(flow, u0, tol: float = NEWTON_TOL, max_iter: int = NEWTON_MAX_ITER):
