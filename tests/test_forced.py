@@ -401,3 +401,17 @@ def test_flow_variational_refuses_bad_input(params, nominal):
                                                forced._direction(params, "K_s"))
     assert not s.any() and np.abs(sd).max() > 0
     assert np.abs(u1 - u1d).max() < 1e-9 and np.abs(Phi - Phid).max() < 1e-8
+
+
+def test_report_section_states_the_computed_numbers(params, tmp_path):
+    from washer import forced_report
+    import json
+    res = forced_report.compute(params, n_curve=3, ends=False, progress=lambda *_: None)
+    md = forced_report.markdown(res)
+    assert f"{res['nominal']['C_p_exact']:.10f}" in md
+    assert f"{res['nominal']['C_p_averaged']:.10f}" in md
+    f4 = res["fig4"]
+    assert f4["C_p_exact"][0] == 0.0 and abs(f4["Omega"][-1] - 15.0) < 1e-12
+    assert np.all(np.diff(f4["C_p_exact"]) > 0)          # the curve rises with speed
+    assert md.count("\n| ") >= 3 + 3
+    json.loads(json.dumps(forced_report._jsonable(res)))
