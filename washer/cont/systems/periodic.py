@@ -178,6 +178,8 @@ class PeriodicOrbits:
         rec = data.record
         if rec is not None and np.ndim(rec.U) == 2 and len(rec.U) > 1:
             self._from_orbit(rec)
+        elif rec is None and self.kind != "HB":
+            self._from_stpnt(np.asarray(data.u, float)[:self.ndim])
         else:
             self._from_hopf(np.asarray(data.u, float)[:self.ndim])
 
@@ -222,6 +224,29 @@ class PeriodicOrbits:
         self._start = (x0, t0 / math.sqrt(self.inner(t0, t0)))
         self.start_kind = "HB"
         self._keep_hopf_phase = True
+
+    def _from_stpnt(self, u0: np.ndarray) -> None:
+        """IRS = 0 (AUTO's STPNUB): the user's stpnt(u, par, t) at every node of a uniform
+        mesh, t = j / (NTST NCOL); the parameters are the run's (stpnt's, with the
+        constants' PAR overrides already applied). A stpnt without the time argument
+        gives the constant profile u0. No direction: the iterator computes one."""
+        s = self.settings
+        self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
+        t = self.mesh.node_times()
+        fn = getattr(self.problem, "_stpnt", None)
+        U = np.tile(u0, (len(t), 1))
+        if fn is not None:
+            try:
+                for j, tj in enumerate(t):
+                    u, scratch = np.zeros(self.ndim), np.zeros(len(self.par))
+                    fn(u, scratch, float(tj))
+                    U[j] = u
+            except TypeError:                       # stpnt(u, par) without t
+                U = np.tile(u0, (len(t), 1))
+        self.U_old = U.copy()
+        self.up_old = self._T(self.par) * self.field.f(U, self.par)       # STUPBV
+        self._start = (self._x(U, self.par), None)
+        self.start_kind = ""
 
     def _from_orbit(self, rec) -> None:
         """AUTO's STPNPS / STPNBV1 / ADAPT2 (and PDBLE for ISW = -1 at PD)."""
