@@ -300,12 +300,14 @@ def test_hopfcross_values(hopfcross):
     p2 with p1 from the locus formula (Newton tolerance plus located_tol)."""
     ex = exact.hopfcross_points()
     cfile = hopfcross["dir"] / "c.hopfcross"
-    want = {("fwd", 0): [ex["BP"], dict(zip(("x0", "p1"), exact.hopfcross_on_locus(1.5, 0)), p2=1.5)],
-            ("fwd", 1): [ex["GH"], dict(zip(("x0", "p1"), exact.hopfcross_on_locus(1.5, 1)), p2=1.5)],
-            ("fwd", 2): [ex["LP_E2"], dict(zip(("x0", "p1"), exact.hopfcross_on_locus(-2.5, 1)), p2=-2.5)],
-            ("bwd", 0): [ex["LP_E1"], dict(zip(("x0", "p1"), exact.hopfcross_on_locus(-2.5, 0)), p2=-2.5)]}
+    def stop(p2, locus):
+        x0, p1 = exact.hopfcross_on_locus(p2, locus)
+        return dict(x0=x0, p1=p1, p2=p2)
+    want = {("fwd", 0): [ex["BP"], stop(1.5, 0)], ("fwd", 1): [ex["GH"], stop(1.5, 1)],
+            ("fwd", 2): [ex["LP_E2"], stop(-2.5, 1)], ("bwd", 0): [ex["LP_E1"], stop(-2.5, 0)]}
     for (name, k), points in want.items():
         seg = segments(hopfcross[name].rows)[k]
+        assert len(labelled(seg)) == len(points), (name, k)
         for r, e in zip(labelled(seg), points):
             p1, x0, p2 = r.values[0], r.values[2], r.values[5]
             for got, key in ((p1, "p1"), (p2, "p2"), (x0, "x0")):
@@ -463,7 +465,8 @@ def test_ds_zero_is_replaced_by_0_1(wall):
     with time_limit(60, "DS=0"):
         res = do_run(wall / "c.wall", "ds0", DS=0, RL1=0.9)
     assert res.status == "ok"
-    assert res.rows[1].values[0] - res.rows[0].values[0] == pytest.approx(0.2 / math.sqrt(2), rel=1e-6)
+    first_two = res.rows[1].values[0] - res.rows[0].values[0]
+    assert first_two == pytest.approx(0.2 / math.sqrt(2), rel=1e-6)
     assert type_name(res.rows[-1].ty) == "EP" and res.rows[-1].values[0] > 0.9
 
 
