@@ -396,3 +396,56 @@ def test_mesh_adaptation_keeps_the_orbit_and_concentrates_points():
     y, _ = newton_fixed(sysm, y)
     assert abs(y[-2] - x[-2]) < 1e-7 * x[-2]
     assert np.min(sysm.mesh.dtm) < 0.5 / 70
+
+
+# ------------------------------------------------------------------ BP of cycles
+
+def pf(u, par):
+    """A pitchfork of cycles in closed form: the planar oscillator r' = r (mu - r^2),
+    theta' = omega with a transverse z' = z (r^2 - a) - z^3. On the orbit r = sqrt(mu),
+    z = 0 the z-multiplier is exp((mu - a) T): a BP of cycles at mu = a, where the
+    orbits z^2 = mu - a (period 2 pi / omega) branch off."""
+    x, y, z = u[0], u[1], u[2]
+    mu, om, a = par[0], par[1], par[2]
+    r2 = x * x + y * y
+    return np.array([x * (mu - r2) - om * y, y * (mu - r2) + om * x, z * (r2 - a) - z ** 3])
+
+
+def test_bp_of_cycles_located_and_switched():
+    """The iterator (washer.cont.iterator) locates the BP test's zero at mu = a = 0.7
+    (1e-6: EPSS-based location), `directions` gives the transverse direction (pure z,
+    no parameter motion) and the switched branch has z^2 = mu - a (discretisation
+    error 3e-8 at NTST 10) and the period 2 pi."""
+    from washer.cont.iterator import Continuation
+    P = Problem(3, pf, name="pf")
+    par = np.r_[0.5, 1.0, 0.7, np.zeros(9)]
+    par[10] = 2 * math.pi
+    mesh = col.Mesh.uniform(10, 4)
+    t = mesh.node_times()
+    U = np.c_[math.sqrt(0.5) * np.cos(2 * np.pi * t), math.sqrt(0.5) * np.sin(2 * np.pi * t),
+              0 * t]
+    rec = SimpleNamespace(U=U, t=t, ntst=10, ncol=4, par=par, icp=[1, 11], rldot=[], udot=None)
+    s = settings(ndim=3, ntst=10, ncol=4, ISP=2, DS=0.05, DSMAX=0.1)
+    sysm = PeriodicOrbits(StartData(P, s, U[0], par, rec))
+    bp = None
+    for k, step in enumerate(Continuation(sysm, s, mode="restart")):
+        if step.kind == "special":
+            bp = step
+            break
+        assert k < 20, "no BP of cycles found"
+    assert bp.code == Code.BPC
+    assert abs(bp.point.x[-1] - 0.7) < 1e-6
+    (d,) = sysm.directions(bp.point.x, bp.point.tangent, Code.BPC)
+    D = sysm.coll.profile(d)
+    assert np.max(np.abs(D[:, :2])) < 1e-10 and np.max(np.abs(d[-2:])) < 1e-10
+    new = []
+    for step in Continuation(sysm, s, x0=bp.point.x.copy(), tangent=d, mode="switch"):
+        if step.point is not None:
+            new.append(step.point.x.copy())
+        if len(new) == 6:
+            break
+    for x in new[1:]:
+        U2, p2 = sysm.coll.profile(x), sysm.params(x)
+        assert p2[0] > 0.7
+        assert np.max(np.abs(U2[:, 2] ** 2 - (p2[0] - 0.7))) < 1e-7
+        assert abs(p2[10] - 2 * math.pi) < 1e-7

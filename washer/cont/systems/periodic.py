@@ -631,15 +631,16 @@ class PeriodicOrbits:
 
     def bp_function(self, J, tangent: np.ndarray) -> float:
         """The BP test of cycles: det of the bordered Jacobian reduced onto (u(0),
-        parameters) (`_schur`), divided by the product of the reduced rows' norms
-        (Hadamard), so that it lies in [-1, 1] and is independent of the scaling of the
-        equations; it vanishes exactly where the bordered Jacobian is singular, like
-        AUTO's FNBPBV (the reduced determinant over det P1)."""
+        parameters) (`_schur`, an (NDIM + 2) square matrix S), as det(S / |S|_F): bounded
+        by 1, independent of the overall scale, and zero exactly where the bordered
+        Jacobian is singular, like AUTO's FNBPBV (the reduced determinant over det P1).
+        (Normalising each row instead would divide out the very row that vanishes at a
+        decoupled BP, e.g. 1 - exp((mu - a) T) of a symmetry-breaking direction.)"""
         Sc = self._schur(J, self.weights * tangent)[0]
-        norms = np.linalg.norm(Sc, axis=1)
-        if not np.all(np.isfinite(Sc)) or np.any(norms == 0):
+        scale = np.linalg.norm(Sc)
+        if not np.isfinite(scale) or scale == 0:
             return 0.0
-        sign, logdet = np.linalg.slogdet(Sc / norms[:, None])
+        sign, logdet = np.linalg.slogdet(Sc / scale)
         return float(sign * math.exp(logdet))
 
     def null_vector(self, J, border: np.ndarray) -> np.ndarray:
