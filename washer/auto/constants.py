@@ -57,8 +57,7 @@ FINITE_KEYS = ("DS", "DSMIN", "DSMAX", "EPSL", "EPSU", "EPSS")
 #: Lower bounds of reals and integers: (bound, strict).
 LOWER_BOUNDS = {"DSMIN": (0.0, False), "DSMAX": (0.0, True), "EPSL": (0.0, False),
                 "EPSU": (0.0, False), "EPSS": (0.0, False), "NDIM": (1, False),
-                "NPAR": (1, False), "NMX": (0, False), "NPR": (0, False), "ITMX": (1, False),
-                "ITNW": (1, False)}
+                "NPAR": (1, False), "NMX": (0, False), "NPR": (0, False)}
 
 
 class ConstantsError(ValueError):
