@@ -206,3 +206,25 @@ def test_d_file_lines_are_autos(tmp_path):
         "   7     2         Multipliers:     Stable:   1",
         "   7     2         Multiplier  1    1.00000E+00   0.00000E+00  Abs. Val.   1.00000E+00",
         "   7     2         Multiplier  2    1.00168E+00   0.00000E+00  Abs. Val.   1.00168E+00"]
+
+
+def test_our_s_records_are_what_parseS_counts(tmp_path):
+    """parseS takes a record as a header of 12 or 16 integers and NROWPR lines whose
+    numbers it counts; our records read back to the same values."""
+    import numpy as np
+    from washer.auto.files import Record, read_s
+    rec = Record(2, 140, -32, 7, 2, 2, 2, 1, np.array([0.57, 1.59, 0.7, 0.7, 3.1, 11.0]),
+                 np.linspace(0.1, 1.1, 11), [1, 2], [0.039, -0.48], np.arange(6) / 7)
+    out = OutputFiles(tmp_path, "x")
+    out.record(rec)
+    out.record(rec)
+    lines = (tmp_path / "s.x").read_text().splitlines()
+    h = [int(x) for x in lines[0].split()]
+    assert len(h) == 16 and len(lines) == 2 * (1 + h[8])            # NROWPR lines each
+    ntpl, nar, nfpr, npar = h[6], h[7], h[4], h[11]
+    body = " ".join(lines[1:1 + h[8]]).split()
+    assert len(body) == ntpl * nar + nfpr + nfpr + ntpl * (nar - 1) + npar
+    back = read_s(tmp_path / "s.x")[1]
+    np.testing.assert_allclose(back.U, rec.U, rtol=1e-10)
+    np.testing.assert_allclose(back.udot, rec.udot, atol=1e-11)
+    assert back.icp == [1, 2] and back.ty == -32 and back.lab == 7

@@ -246,10 +246,11 @@ def check_name(key: str, value: str, where: str) -> None:
     bad = [c for c in ("/", "\\", "\0") if c in value]
     if bad or ".." in value:
         what = "a path separator" if bad and bad[0] != "\0" else "a NUL byte" if bad else "'..'"
+        role = ("e='NAME' loads NAME.py beside the constants file" if key == "e" else
+                "AUTO writes and reads b.NAME, s.NAME, d.NAME in the constants file's folder")
         raise ConstantsError(
-            f"{where}: {key}={value!r} contains {what}: {key} is a name (AUTO writes and reads "
-            f"b.NAME, s.NAME, d.NAME in the constants file's folder), not a path; run from "
-            f"the folder you want the files in, or copy the files there")
+            f"{where}: {key}={value!r} contains {what}: {key} is a name ({role}), not a path; "
+            "run from the folder you want the files in, or copy the files there")
 
 
 class Constants(dict):
@@ -360,7 +361,7 @@ def decode_text(data: bytes, source: str, what: str, error=ValueError) -> str:
         line = data.count(b"\n", 0, nul) + 1
         raise error(f"{source}:{line}: a NUL byte: this is a binary file, not {what}")
     try:
-        return data.decode("utf-8")
+        return data.decode("utf-8-sig")          # an editor's BOM is not content
     except UnicodeDecodeError as exc:
         line = data.count(b"\n", 0, exc.start) + 1
         raise error(f"{source}:{line}: byte 0x{data[exc.start]:02x} is not UTF-8 text: "
