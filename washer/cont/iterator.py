@@ -42,10 +42,10 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
-#: A zero estimated within this fraction of a step from the previous point
-#: lies on it: the previous point is a located special point where a second
-#: test vanishes too (a transcritical BP is also a zero eigenvalue). AUTO takes
-#: simultaneous zeros first come, first served: it is not located again.
+#: A zero estimated within this fraction of a step from a located special
+#: point lies on it: a second test vanishes there too (a transcritical BP is
+#: also a zero eigenvalue). AUTO takes simultaneous zeros first come, first
+#: served: the second is not located again.
 SIMULTANEOUS = 1e-6
 
 
@@ -277,7 +277,8 @@ class Continuation:
         for _ in range(len(cur.tests) + 1):
             keys = [k for k in sign_changes(prev.tests, target.tests)
                     if (found is None or k != found[1]) and self._accepted(k, prev, target)
-                    and linear_fraction(prev.tests[k], target.tests[k]) > SIMULTANEOUS]
+                    and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
+                    < (1 - SIMULTANEOUS if found is not None else 2)]
             if not keys:
                 return found
             keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))

@@ -66,13 +66,13 @@ class FoldSystem(LocusSystem):
         the f-rows, forward differences of A for d(A phi)."""
         n = self.ndim
         phi = x[n:2 * n]
-        A, fp, dA = self.f_blocks(x)
+        A, fp, T = self.f_blocks(x, phi[None, :])
         J = np.zeros((2 * n + 1, 2 * n + 2))
         cols_s = np.r_[np.arange(n), 2 * n + 1, 2 * n]     # u, p1, p2
         J[:n, :n] = A
         J[:n, 2 * n + 1] = fp[:, 0]
         J[:n, 2 * n] = fp[:, 1]
-        J[n:2 * n, cols_s] = np.einsum("sij,j->is", dA, phi)
+        J[n:2 * n, cols_s] = T[:, 0].T                 # d(A phi)/ds = f_zz[e_s, phi]
         J[n:2 * n, n:2 * n] = A
         J[2 * n, n:2 * n] = 2 * phi
         return J

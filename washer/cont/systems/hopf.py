@@ -76,12 +76,17 @@ class HopfSystem(LocusSystem):
         derivatives of f, which problems do not supply) are forward differences."""
         n = self.ndim
         v, kappa = x[n:2 * n], x[2 * n]
-        A, fp, dA = self.f_blocks(x)
-        Av, vo = A @ v, self.v_old
+        u, p = x[:n], self._p(x)
+        A = self.problem.dfdu(u, p)
+        vo = self.v_old
+        Av = A @ v
+        A_, fp, T = self.f_blocks(x, np.array([Av, v, vo]))
+        FAv, Fv, Fvo = T[:, 0], T[:, 1], T[:, 2]                 # (n + 2, n) each
         w = A.T @ vo - A @ vo
-        # d/ds (A^2 v) = A_s (A v) + A (A_s v) for each perturbation direction s.
-        d_g = np.einsum("sij,j->is", dA, Av) + A @ np.einsum("sij,j->is", dA, v)
-        d_phase = np.einsum("sji,j,i->s", dA, vo, v) - np.einsum("sij,j,i->s", dA, vo, v)
+        # d/ds (A^2 v) = A_s (A v) + A (A_s v), A_s w = f_zz[e_s, w].
+        d_g = FAv.T + A @ Fv.T
+        # d/ds <A^T v_old - A v_old, v> = <v_old, A_s v> - <v, A_s v_old>.
+        d_phase = Fv @ vo - Fvo @ v
         J = np.zeros((2 * n + 2, 2 * n + 3))
         # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2).
         cols_s = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
