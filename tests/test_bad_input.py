@@ -151,6 +151,12 @@ def test_outputs_replace_symlinks_never_their_targets(tmp_path):
     assert not (tmp_path / "missing-target").exists()
 
 
+def test_unwritable_output_is_a_clear_error_before_the_run(tmp_path):
+    (tmp_path / "s.x").mkdir()                      # a folder where the s-file should go
+    with pytest.raises(AutoFileError, match=r"s\.x: cannot write this output file"):
+        OutputFiles(tmp_path, "x")
+
+
 def test_restart_file_is_kept_not_truncated(tmp_path):
     """sv equal to the restart file's name: the old records move to s.x~ first."""
     shutil.copy(S_EQ, tmp_path / "s.x")

@@ -295,11 +295,15 @@ class OutputFiles:
         self.b_path, self.s_path, self.d_path = (folder / f"{k}.{name}" for k in "bsd")
         self.backups: list[Path] = []
         for p in (self.b_path, self.s_path, self.d_path):
-            backup = prepare_output(p, protect)
-            if backup is not None:
-                self.backups.append(backup)
-            with _open_output(p, append=False):
-                pass
+            try:
+                backup = prepare_output(p, protect)
+                if backup is not None:
+                    self.backups.append(backup)
+                with _open_output(p, append=False):
+                    pass
+            except OSError as exc:      # found before any computation, not after it
+                raise AutoFileError(f"{p}: cannot write this output file "
+                                    f"({exc.strerror or exc})") from None
         self._handles: dict = {}
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
