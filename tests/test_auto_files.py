@@ -89,7 +89,7 @@ def test_cli_errors_name_file_and_line(tmp_path, capsys):
     assert "no equations file" in capsys.readouterr().err
     p = _c(tmp_path, "e = 'washer'\nNDIM = 12\nIPS = 2\n")
     assert main([str(p)]) == 2
-    assert "IPS=2 is not implemented" in capsys.readouterr().err
+    assert "IPS=2 with IRS=0 needs stpnt(u, par, t)" in capsys.readouterr().err
 
 
 def test_plot_cli_draws_a_diagram(tmp_path):

@@ -243,6 +243,10 @@ class PeriodicOrbits:
                     U[j] = u
             except TypeError:                       # stpnt(u, par) without t
                 U = np.tile(u0, (len(t), 1))
+        if np.max(np.ptp(U, axis=0)) == 0:
+            raise ValueError("IPS=2 with IRS=0 needs stpnt(u, par, t) giving a periodic orbit at "
+                             "the mesh times t in [0, 1] (AUTO's STPNT with T); this stpnt gives "
+                             "a constant: restart from an HB label instead (IRS='HB1')")
         self.U_old = U.copy()
         self.up_old = self._T(self.par) * self.field.f(U, self.par)       # STUPBV
         self._start = (self._x(U, self.par), None)
