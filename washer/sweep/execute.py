@@ -158,7 +158,7 @@ class _local_client:
     def __enter__(self):
         from distributed import Client, LocalCluster
         self.cluster = LocalCluster(n_workers=self.n, threads_per_worker=1, processes=True,
-                                    dashboard_address=None, silence_logs=logging.ERROR)
+                                    dashboard_address=":0", silence_logs=logging.ERROR)
         self.client = Client(self.cluster)
         return self.client
 

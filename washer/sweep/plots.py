@@ -27,6 +27,9 @@ from washer.sweep.spec import Spec, Study, parse_spec
 
 log = logging.getLogger(__name__)
 
+#: Decades of whirl radius shown below the largest one on response maps.
+RADIUS_DECADES = 3
+
 LABELS = {"stab_margin": "stability margin max Re(λ) (1/s)",
           "crit_value": "critical {p}",
           "resp_whirl_radius": "steady whirl radius (m)"}
@@ -143,15 +146,22 @@ def _colour_map(fig, ax, st, ok, x, y, col, kind, label, spec) -> None:
     if not len(v):
         return
     grid = st.sample == "grid"
+    line_col = col              # the column whose contour at `levels` is the boundary
     if kind == "stability":
         lim = float(np.nanmax(np.abs(v))) or 1.0
         norm, cmap = colors.TwoSlopeNorm(0.0, -lim, lim), "RdBu_r"
         levels = [0.0]
     elif kind == "response":
+        # Log scale over at most RADIUS_DECADES below the largest radius (without
+        # an imbalance the radius is round-off, ~1e-16 m, and would take the scale).
         pos = v[v > 0]
-        norm = colors.LogNorm(pos.min(), pos.max()) if len(pos) and pos.max() > 10 * pos.min() \
-            else None
+        norm = None
+        if len(pos) and pos.max() > 10 * pos.min():
+            norm = colors.LogNorm(max(pos.min(), pos.max() * 10.0 ** -RADIUS_DECADES),
+                                  pos.max(), clip=True)
         cmap, levels = "viridis", None
+        if "stab_margin" in ok and ok["stab_margin"].notna().all():
+            line_col, levels = "stab_margin", [0.0]
     else:
         norm, cmap = None, "viridis"
         par = st.options["critical"]["parameter"]
@@ -162,17 +172,19 @@ def _colour_map(fig, ax, st, ok, x, y, col, kind, label, spec) -> None:
         X, Y = np.meshgrid(piv.columns.to_numpy(float), piv.index.to_numpy(float))
         m = ax.pcolormesh(X, Y, piv.to_numpy(float), shading="nearest", norm=norm, cmap=cmap)
         if levels and piv.shape[0] > 1 and piv.shape[1] > 1:
-            cs = ax.contour(X, Y, piv.to_numpy(float), levels=levels, colors="k", linewidths=1.4)
-            ax.plot([], [], "k-", label="sweep boundary")
-            del cs
+            lines = ok.pivot_table(index=y, columns=x, values=line_col).to_numpy(float)
+            ax.contour(X, Y, lines, levels=levels, colors="k", linewidths=1.4)
+            ax.plot([], [], "k-", label="sweep boundary" + (" (margin = 0)" if kind == "response"
+                                                            else ""))
         if kind == "critical" and piv.shape[0] > 1 and piv.shape[1] > 1:
             ax.contour(X, Y, piv.to_numpy(float), levels=8, colors="w", linewidths=0.5,
                        alpha=0.6)
     else:
-        m = ax.scatter(ok[x], ok[y], c=v, s=18, norm=norm, cmap=cmap)
+        m = ax.scatter(ok[x], ok[y], c=ok[col].to_numpy(float), s=18, norm=norm, cmap=cmap)
         if levels and len(ok) >= 4:
             try:
-                ax.tricontour(ok[x], ok[y], v, levels=levels, colors="k", linewidths=1.4)
+                ax.tricontour(ok[x], ok[y], ok[line_col].to_numpy(float), levels=levels,
+                              colors="k", linewidths=1.4)
                 ax.plot([], [], "k-", label="sweep boundary")
             except Exception:  # noqa: BLE001 - degenerate triangulations: no line
                 pass

@@ -104,6 +104,11 @@ def stability(params: Params, frame: str = "averaged") -> dict:
 #: DSMAX = range / CRIT_STEPS keeps two Hopf points of one range from falling
 #: into one step; NMX allows for step reductions and a fold or two.
 CRIT_STEPS = 40
+#: Margins within this of zero count as neutral, not unstable, in the fallback
+#: (1/s): without an imbalance (m_u = 0) at C_p = 0 the whirl pair is undamped
+#: and its real part is round-off, |margin| ~ 1e-15; the smallest true margins
+#: seen near there are ~1e-7.
+NEUTRAL_MARGIN = 1e-9
 #: Tolerance of the fallback root search, as a fraction of the range (the
 #: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
 CRIT_XTOL = 1e-9
@@ -205,7 +210,7 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
     except Exception as exc:  # noqa: BLE001 - only explains the failure
         raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]; "
                          f"equilibrium not found at the ends ({exc})") from None
-    if m_lo > 0 > m_hi and status == "ok":
+    if m_lo > NEUTRAL_MARGIN and m_hi < -NEUTRAL_MARGIN and status == "ok":
         from scipy.optimize import brentq
         v = brentq(margin, lo, hi, xtol=CRIT_XTOL * (hi - lo), rtol=1e-12)
         s = stability(params.replace(**{parameter: v}))
