@@ -449,3 +449,23 @@ def test_bp_of_cycles_located_and_switched():
         assert p2[0] > 0.7
         assert np.max(np.abs(U2[:, 2] ** 2 - (p2[0] - 0.7))) < 1e-7
         assert abs(p2[10] - 2 * math.pi) < 1e-7
+
+
+# ------------------------------------------------------------------ plots
+
+def test_plot_cli_draws_periodic_branches_and_an_orbit(tmp_path):
+    """python -m washer.plot on AUTO's b.lrz (equilibria and both periodic families) with
+    a periodic b-file beside it, and on an s-file label (time profile + phase
+    portrait); wrong uses exit with 2."""
+    import shutil
+    from washer.plot import main as plot_main
+    ref = DATA / "auto_reference" / "periodic" / "lrz" / "b.lrz"
+    shutil.copy(ref, tmp_path / "b.lrz")
+    shutil.copy(RECORDS / "s.lrz", tmp_path / "s.lrz")
+    assert plot_main([str(tmp_path / "b.lrz"), "--y", "1"]) == 0
+    assert (tmp_path / "b_lrz_diagram.png").stat().st_size > 10000
+    assert plot_main([str(tmp_path / "s.lrz"), "--label", "14", "--phase", "1", "3"]) == 0
+    assert (tmp_path / "s_lrz_orbit14.png").stat().st_size > 10000
+    assert plot_main([str(tmp_path / "s.lrz"), "--label", "4"]) == 2      # an HB: NTPL = 1
+    assert plot_main([str(tmp_path / "s.lrz"), "--label", "99"]) == 2
+    assert plot_main([str(tmp_path / "s.lrz")]) == 2                      # no --label

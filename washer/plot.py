@@ -1,8 +1,16 @@
-"""Bifurcation diagram of a b-file: `python -m washer.plot b.NAME [--x 0] [--y 1] [--out STEM]`.
+"""Bifurcation diagrams and periodic orbits from AUTO files.
 
-Columns are those of the b-file rows: 0 = PAR(ICP(1)), 1 = L2-norm, 2.. = U(i), then the
-other ICP parameters (-1 = the last one, e.g. the second parameter of a Hopf curve).
-Writes STEM.png and STEM.pdf (default: b.NAME_diagram).
+    python -m washer.plot b.NAME [b.OTHER ...] [--x 0] [--y 1] [--out STEM]
+    python -m washer.plot s.NAME --label 8 [--components 1 2 3] [--phase 1 2] [--out STEM]
+
+b-files: columns are those of the b-file rows: 0 = PAR(ICP(1)), 1 = L2-norm (or the IPLT
+measure), 2.. = U(i) (equilibria) or MAX U(i) (periodic orbits), then the other ICP
+parameters (-1 = the last one, e.g. the second parameter of a Hopf curve, or PERIOD).
+Several b-files go on one axes (equilibria blue, periodic orbits orange; stable solid,
+unstable dashed; HB, LP, BP, PD, TR, UZ marked). Writes STEM.png and STEM.pdf (default:
+b.NAME_diagram).
+s-files: the periodic solution with label --label: its components against time and a
+phase portrait (default: s.NAME_orbitLABEL).
 """
 from __future__ import annotations
 
@@ -12,19 +20,42 @@ from pathlib import Path
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m washer.plot", description=__doc__.split("\n")[0])
-    ap.add_argument("bfile", type=Path)
+    ap = argparse.ArgumentParser(prog="python -m washer.plot",
+                                 description="Bifurcation diagrams (b-files) and periodic "
+                                             "orbits (s-files, --label)")
+    ap.add_argument("files", type=Path, nargs="+", metavar="FILE")
     ap.add_argument("--x", type=int, default=0, help="column on the x axis (default 0)")
     ap.add_argument("--y", type=int, default=1, help="column on the y axis (default 1)")
+    ap.add_argument("--label", type=int, default=None,
+                    help="s-file: the label of the periodic solution to draw")
+    ap.add_argument("--components", type=int, nargs="+", default=None,
+                    help="s-file: components U(i) against time (default: the first 6)")
+    ap.add_argument("--phase", type=int, nargs=2, default=(1, 2),
+                    help="s-file: components of the phase portrait (default 1 2)")
     ap.add_argument("--out", type=Path, default=None)
     args = ap.parse_args(argv)
-    if not args.bfile.exists():
-        print(f"error: {args.bfile}: no such file", file=sys.stderr)
-        return 2
+    for f in args.files:
+        if not f.exists():
+            print(f"error: {f}: no such file", file=sys.stderr)
+            return 2
     import matplotlib
     matplotlib.use("Agg")
-    from washer.plots.diagrams import save_diagram
-    for p in save_diagram(args.bfile, args.out, args.x, args.y):
+    if args.label is not None or args.files[0].name.startswith("s."):
+        if args.label is None or len(args.files) != 1:
+            print("error: an s-file takes one file and --label N (the periodic solution)",
+                  file=sys.stderr)
+            return 2
+        from washer.plots.orbits import save_orbit
+        try:
+            written = save_orbit(args.files[0], args.label, args.out, args.components,
+                                 tuple(args.phase))
+        except (KeyError, ValueError, IndexError) as exc:
+            print(f"error: {args.files[0]}: {exc}", file=sys.stderr)
+            return 2
+    else:
+        from washer.plots.diagrams import save_diagram
+        written = save_diagram(args.files, args.out, args.x, args.y)
+    for p in written:
         print(f"wrote {p}")
     return 0
 
