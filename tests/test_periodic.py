@@ -469,3 +469,29 @@ def test_plot_cli_draws_periodic_branches_and_an_orbit(tmp_path):
     assert plot_main([str(tmp_path / "s.lrz"), "--label", "4"]) == 2      # an HB: NTPL = 1
     assert plot_main([str(tmp_path / "s.lrz"), "--label", "99"]) == 2
     assert plot_main([str(tmp_path / "s.lrz")]) == 2                      # no --label
+
+
+def test_isw_minus_one_restart_at_a_stored_bp_of_cycles():
+    """The BP of the closed-form pitchfork written as an s-record (with its direction),
+    restarted with ISW = -1 (AUTO's STDRBV, IPERP = 1): the start direction is the
+    transverse one (pure z), and Newton on the plane leaves along z^2 = mu - a."""
+    from washer.cont.iterator import Continuation
+    P = Problem(3, pf, name="pf")
+    par = np.r_[0.7, 1.0, 0.7, np.zeros(9)]
+    par[10] = 2 * math.pi
+    mesh = col.Mesh.uniform(10, 4)
+    t = mesh.node_times()
+    r = math.sqrt(0.7)
+    U = np.c_[r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t), 0 * t]
+    # the old branch's direction at the BP: d/dmu of (r cos, r sin, 0), normalised later
+    ud = np.c_[np.cos(2 * np.pi * t), np.sin(2 * np.pi * t), 0 * t] / (2 * r)
+    rec = Record(1, 5, 6, 2, 2, 1, 3, 2, U, par, [1, 11], [1.0, 0.0], ud, t=t, ntst=10, ncol=4)
+    s = settings(ndim=3, ntst=10, ncol=4, ISW=-1, ISP=2, DS=0.02, DSMAX=0.05)
+    sysm = PeriodicOrbits(StartData(P, s, U[0], par, rec, "BP"))
+    x0, t0 = sysm.start()
+    D = sysm.coll.profile(t0)
+    assert np.max(np.abs(D[:, :2])) < 1e-8 and np.max(np.abs(D[:, 2])) > 0.5
+    pts = [step.point.x.copy() for step, _ in
+           zip(Continuation(sysm, s, x0=x0, tangent=t0, mode="switch"), range(4))]
+    U3, p3 = sysm.coll.profile(pts[-1]), sysm.params(pts[-1])
+    assert p3[0] > 0.7 and np.max(np.abs(U3[:, 2] ** 2 - (p3[0] - 0.7))) < 1e-7

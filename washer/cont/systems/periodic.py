@@ -257,72 +257,56 @@ class PeriodicOrbits:
         s = self.settings
         U_r = np.asarray(rec.U, float)[:, :self.ndim]
         ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
-        t_r = getattr(rec, "t", None)
         if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
             raise ValueError(f"periodic restart: record with {len(U_r)} points but NTST = "
                              f"{ntst_r}, NCOL = {ncol_r} in its header")
+        t_r = getattr(rec, "t", None)
         t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
         mesh_r = col.Mesh(t_r[::ncol_r].copy(), ncol_r)
-        udot_r = None
-        same_free = list(getattr(rec, "icp", [])[:2]) == self.free
-        if rec.udot is not None and same_free and self.isw != -1:
-            udot_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :self.ndim]
         rldot = list(getattr(rec, "rldot", []) or [])
+        ud_r = None
+        if rec.udot is not None:
+            ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :self.ndim]
         if self.isw == -1 and self.kind == "PD":
             # PDBLE: the orbit traversed twice, period doubled, mesh halved and repeated
             self.par[10] *= 2
             tm = mesh_r.tm
             mesh_r = col.Mesh(np.r_[0.5 * tm[:-1], 0.5 + 0.5 * tm], ncol_r)
             U_r = np.r_[U_r[:-1], U_r]
+            ud_r = None if ud_r is None else np.r_[ud_r[:-1], ud_r]
             ntst_r *= 2
-            self._old_dir = None
-            if rec.udot is not None:
-                ud = np.asarray(rec.udot, float).reshape(len(U_r) // 2 + 1, -1)[:, :self.ndim]
-                self._old_dir = (np.r_[ud[:-1], ud], rldot)
         if ntst_r == s.NTST and ncol_r == s.NCOL:
-            mesh = mesh_r
-            U = U_r.copy()
-            ud = udot_r
+            mesh, U, ud = mesh_r, U_r.copy(), ud_r
         else:
             mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST, periodic=True), s.NCOL)
             U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
-            ud = None if udot_r is None else col.interpolate(mesh_r, udot_r, mesh.tm, s.NCOL)
-            if self.isw == -1 and self.kind == "PD" and self._old_dir[0] is not None:
-                self._old_dir = (col.interpolate(mesh_r, self._old_dir[0], mesh.tm, s.NCOL),
-                                 rldot)
+            ud = None if ud_r is None else col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
         self._set_mesh(mesh)
         self.U_old = U.copy()
         self.up_old = self._T(self.par) * self.field.f(U, self.par)        # STUPBV
         x0 = self._x(U, self.par)
-        t0 = None
+        old = None
         if ud is not None and len(rldot) >= 2:
-            t0 = np.r_[ud.ravel(), rldot[1], rldot[0]]
-            nrm = math.sqrt(self.inner(t0, t0))
-            t0 = t0 / nrm if nrm > 0 else None
+            old = np.r_[ud.ravel(), rldot[1], rldot[0]]
+        t0 = None
         if self.isw == -1:
-            t0 = self._switch_direction(x0, rec, rldot, U)
+            t0 = self._switch_direction(x0, old)
+        elif old is not None and list(getattr(rec, "icp", [])[:2]) == self.free:
+            nrm = math.sqrt(self.inner(old, old))          # STPNBV1: same free parameters
+            t0 = old / nrm if nrm > 0 else None
         self._start = (x0, t0)
         self.start_kind = self.kind
 
-    def _switch_direction(self, x0, rec, rldot, U):
+    def _switch_direction(self, x0, old):
         """ISW = -1 (STDRBV with IPERP = 1): the null vector of the Jacobian bordered by
-        the old branch's direction (doubled at a PD)."""
-        if self.kind == "PD":
-            ud, rl = getattr(self, "_old_dir", (None, rldot))
-        else:
-            ud = None if rec.udot is None else col.interpolate(
-                col.Mesh(np.asarray(rec.t, float)[::rec.ncol], rec.ncol),
-                np.asarray(rec.udot, float).reshape(len(rec.U), -1)[:, :self.ndim],
-                self.mesh.tm, self.mesh.ncol) if (rec.ntst, rec.ncol) != (
-                self.mesh.ntst, self.mesh.ncol) else np.asarray(rec.udot, float).reshape(
-                len(rec.U), -1)[:, :self.ndim]
-            rl = rldot
-        if ud is None or len(rl) < 2:
-            raise ValueError(f"ISW = -1 at {self.kind}: the record stores no direction "
-                             "(written with IIS = 0?), so the other branch cannot be found")
-        old = np.r_[ud.ravel(), rl[1], rl[0]]
-        J = self.jacobian(x0)
-        z = self.null_vector(J, self.weights * old)
+        the old branch's direction `old` (doubled at a PD): at a BP of cycles, or on the
+        doubled orbit at a PD, the Jacobian has a two-dimensional null space, and this is
+        its direction orthogonal (in `inner`) to the old branch."""
+        if old is None:
+            raise ValueError(f"ISW = -1 at {self.kind or 'this point'}: the record stores no "
+                             "direction (written with IIS = 0?), so the other branch cannot "
+                             "be found")
+        z = self.null_vector(self.jacobian(x0), self.weights * old)
         return z / math.sqrt(self.inner(z, z))
 
     # ------------------------------------------------------------------ helpers
