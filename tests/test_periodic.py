@@ -495,3 +495,16 @@ def test_isw_minus_one_restart_at_a_stored_bp_of_cycles():
            zip(Continuation(sysm, s, x0=x0, tangent=t0, mode="switch"), range(4))]
     U3, p3 = sysm.coll.profile(pts[-1]), sysm.params(pts[-1])
     assert p3[0] > 0.7 and np.max(np.abs(U3[:, 2] ** 2 - (p3[0] - 0.7))) < 1e-7
+
+
+@pytest.mark.parametrize("lab,row", [
+    # b.lrz rows of PT 2 (label 8) and PT 14 (label 14): L2-NORM, MAX x, MAX y, MAX z
+    (8, [2.6254973901e+01, 8.2407803772e+00, 8.3540232495e+00, 2.4232463333e+01]),
+    (14, [2.1019335168e+01, 1.1940944736e+01, 1.4073817927e+01, 2.7637967017e+01]),
+])
+def test_b_file_columns_of_autos_orbits(lab, row):
+    """Our b-file columns (RNRMSQ's L2 norm with the WINT weights, RMXUPS's maxima over
+    the nodes) of AUTO's stored orbits are AUTO's own, to the 11 digits it writes."""
+    sysm, rec = _auto_system("lrz", lab, (1, 11))
+    sol = sysm.solution(sysm.start()[0], None)
+    np.testing.assert_allclose(sol.columns, row, rtol=1e-10)
