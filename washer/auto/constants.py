@@ -376,8 +376,8 @@ def read_constants(path: str | Path) -> Constants:
     except FileNotFoundError:
         hint = ""
         if path.name in shipped_constants():
-            hint = (f"; washer ships a constants file of that name: copy the examples with "
-                    f"`python -m washer.run --copy-examples DIR`")
+            hint = ("; washer ships a constants file of that name: copy the examples with "
+                    "`python -m washer.run --copy-examples DIR`")
         raise ConstantsError(f"{path}: no such constants file{hint}") from None
     except OSError as exc:
         raise ConstantsError(f"{path}: cannot read constants file ({exc.strerror})") from None

@@ -320,6 +320,10 @@ class OutputFiles:
         fh.flush()
 
     def close(self) -> None:
+        """End of the run. Every write is already on disk (each is appended and flushed
+        on its own); a header still pending had no point to go with, and is dropped so
+        that the b-file never holds a header without data. The handles are closed."""
+        self._pending_b = ""
         for fh in self._handles.values():
             fh.close()
         self._handles.clear()
@@ -463,12 +467,6 @@ class OutputFiles:
 
     def record(self, rec: Record) -> None:
         self._append(self.s_path, rec.text())
-
-    def close(self) -> None:
-        """End of the run. Every write is already on disk (each is appended and flushed
-        on its own); a header still pending had no point to go with, and is dropped so
-        that the b-file never holds a header without data."""
-        self._pending_b = ""
 
     def diag(self, text: str) -> None:
         self._append(self.d_path, text if text.endswith("\n") else text + "\n")

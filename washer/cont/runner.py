@@ -11,7 +11,6 @@ sinks; the result is an in-memory `Branch`.
 """
 from __future__ import annotations
 
-import math
 import time
 from collections import deque
 from dataclasses import dataclass, field

@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 
-from washer.auto.files import OutputFiles, Record, Row, fmt_e, screen_heading
+from washer.auto.files import OutputFiles, Record, Row, fmt_es, screen_heading
 from washer.cont.codes import type_name
 
 
@@ -68,15 +68,13 @@ class FileSink:
         if st is not None and st.kind == "eigenvalues":
             self.files.eigenvalues(lab.br, (lab.pt - 1) % 9999 + 1, st.values)
         elif st is not None:
-            pt = (lab.pt - 1) % 9999 + 1
-            self.files.diag(f"{lab.br:4d}{pt:6d}         Multipliers:     Stable:{st.n_stable:4d}")
-            for k, m in enumerate(st.values, 1):
-                self.files.diag(f"{lab.br:4d}{pt:6d}         Multiplier{k:3d} {fmt_e(m.real, 14, 5)}"
-                                f"{fmt_e(m.imag, 14, 5)}  Abs. Val.{fmt_e(abs(m), 14, 5)}")
+            self.files.multipliers(lab.br, (lab.pt - 1) % 9999 + 1, st.values, st.n_stable)
+            for note in st.notes:
+                self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d} NOTE:{note}")
         if "l1" in lab.info:
             crit = "supercritical" if lab.info["l1"] < 0 else "subcritical"
-            self.files.diag(f"{lab.br:4d}{lab.pt:6d}         First Lyapunov coefficient:"
-                            f"{fmt_e(lab.info['l1'], 14, 5)} ({crit})")
+            self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d}         First Lyapunov "
+                            f"coefficient:{fmt_es(lab.info['l1'], 14, 5)} ({crit})")
 
     def note(self, br: int, pt: int, text: str) -> None:
         self.files.diag(f"{br:4d}{pt:6d} {text}")
