@@ -235,7 +235,7 @@ class Collocation:
         coll = np.einsum("kc,jkn->jcn", self.WP, loc) - (self.mesh.dtm[:, None, None] * T) * fg
         bc = U[0] - U[-1]
         phase = self.w_node @ np.sum((U - U_old) * up_old, axis=1)
-        return np.r_[coll.ravel(), bc, phase]
+        return np.concatenate([coll.ravel(), bc, [phase]])
 
     def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
         """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,
@@ -252,8 +252,8 @@ class Collocation:
         """The sparse (N, N + 1) Jacobian. blocks: from `local_blocks`; dpar: the
         derivatives of the collocation equations with respect to the two free
         parameters, (2, NTST, NCOL, NDIM); up_old: (n_nodes, NDIM)."""
-        vals = np.r_[blocks.ravel(), dpar.ravel(), self._bc_vals,
-                     (self.w_node[:, None] * up_old).ravel()]
+        vals = np.concatenate([blocks.ravel(), dpar.ravel(), self._bc_vals,
+                               (self.w_node[:, None] * up_old).ravel()])
         return sp.csc_matrix((vals[self._order], self._indices, self._indptr),
                              shape=(self.n_eq, self.n_x))
 
