@@ -251,12 +251,27 @@ def main(argv: list[str] | None = None) -> int:
     for fig in ("fig8", "fig9"):
         for frame, r in resp[fig]["responses"].items():
             r.save(d / "data" / f"{fig}_{frame}")
+    # The exact question behind Figs 3-4 (issue 11): Floquet stability of the forced
+    # periodic response of eq 48 at constant speed, beside the averaged/frozen Hopf.
+    print("Exact stability of the forced response (Floquet multipliers, shooting):")
+    from washer import forced_report
+    t2 = time.perf_counter()
+    exact = forced_report.compute(params, forced_report.N_CURVE_QUICK if args.quick
+                                  else forced_report.N_CURVE, ends=not args.quick,
+                                  progress=lambda m: print(m, flush=True))
+    exact_files = forced_report.write(d, exact)
+    t_exact = time.perf_counter() - t2
     wall = time.perf_counter() - t0
     write_summary(d / "measurements.json", meas, resp)
     path = report.write(d, params, meas, resp, figs, log, mode=mode,
                         timing=dict(auto=t_auto, sim=t_sim, total=wall))
+    with open(path, "a", encoding="utf-8") as fh:
+        fh.write("\n" + forced_report.markdown(exact)
+                 + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
+                 f"(computed in {t_exact:.1f} s: `python -m washer.forced_report` reruns it)\n")
     for k, paths in figs.items():
         print(f"  {k}: " + ", ".join(p.name for p in paths))
+    print("  forced: " + ", ".join(p.name for p in exact_files))
     print(f"Report: {path}")
     print(f"Wall time ({mode} mode): {time.perf_counter() - t0:.1f} s "
           f"(AUTO runs {t_auto:.1f} s, time responses {t_sim:.1f} s)")

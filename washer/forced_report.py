@@ -143,6 +143,26 @@ def _jsonable(x):
     return x
 
 
+def write(out: Path, res: dict) -> list[Path]:
+    """OUT/forced.json, OUT/forced.md and OUT/fig4_exact.png/.pdf from `compute`'s results."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "forced.json").write_text(json.dumps(_jsonable(res), indent=1))
+    (out / "forced.md").write_text(markdown(res))
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5, 3.5))
+    plot_fig4(ax, res)
+    fig.tight_layout()
+    paths = []
+    for ext in ("png", "pdf"):
+        paths.append(out / f"fig4_exact.{ext}")
+        fig.savefig(paths[-1], dpi=150)
+    plt.close(fig)
+    return [out / "forced.json", out / "forced.md"] + paths
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m washer.forced_report",
                                  description=__doc__.split("\n")[0])
@@ -152,17 +172,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     res = compute(load_params(), N_CURVE_QUICK if args.quick else N_CURVE,
                   ends=not args.quick)
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "forced.json").write_text(json.dumps(_jsonable(res), indent=1))
-    (args.out / "forced.md").write_text(markdown(res))
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(5, 3.5))
-    plot_fig4(ax, res)
-    fig.tight_layout()
-    for ext in ("png", "pdf"):
-        fig.savefig(args.out / f"fig4_exact.{ext}", dpi=150)
+    write(args.out, res)
     print(f"wrote {args.out}/forced.json, forced.md, fig4_exact.png/.pdf", file=sys.stderr)
     return 0
 
