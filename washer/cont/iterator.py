@@ -190,7 +190,7 @@ class Continuation:
 
     def initial_tangent(self, x, J):
         """Null vector of J with AUTO's sign rule (STPRAE), unit in the inner product."""
-        Jd = _dense(J)
+        Jd = J if isinstance(J, np.ndarray) else None
         if Jd is not None:
             _, _, Vt = np.linalg.svd(Jd)
             t = Vt[-1]
@@ -308,7 +308,10 @@ class Continuation:
     def __iter__(self):
         self._pending: list[Step] = []
         s, sysm = self.s, self.sys
-        x0 = self.correct_start(self.x0) if self.mode != "switch" else self.x0
+        # AUTO corrects algebraic start data only; BVP start data are used as given
+        # (RSPTBV): at a Hopf start the collocation system is singular in the period.
+        correct = self.mode != "switch" and sysm.arclength == "sphere"
+        x0 = self.correct_start(self.x0) if correct else self.x0
         J0 = sysm.jacobian(x0)
         t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
         t0 = t0 / math.sqrt(sysm.inner(t0, t0))
@@ -343,6 +346,7 @@ class Continuation:
         # on the first written interval.
         first = self.mode != "switch"
         n_since_adapt = 0
+        n_points = 1 if self.mode != "switch" else 2     # points written (AUTO's NTOT)
         while True:
             nxt, ds = self._retrying_step(current, ds)
             yield from self._flush()
@@ -354,6 +358,8 @@ class Continuation:
                 sysm.update(nxt.x, nxt.tangent)
                 yield Step("point", nxt, prev=current)
                 current = nxt
+                n_points += 1
+                self._adapt_mesh(current, n_points)
                 continue
             try:
                 hit = self._first_zero(current, nxt, ds)
@@ -375,24 +381,20 @@ class Continuation:
             sysm.update(nxt.x, nxt.tangent)
             yield Step("point", nxt, prev=current)
             current = nxt
+            n_points += 1
+            self._adapt_mesh(current, n_points)
             n_since_adapt += 1
             if s.IADS > 0 and n_since_adapt >= s.IADS:
                 ds = self.adapt(ds, nxt.iterations)
                 n_since_adapt = 0
 
+    def _adapt_mesh(self, p: Point, n_points: int) -> None:
+        """Mesh adaptation of BVP systems (AUTO's ADAPT every IAD points): the
+        system moves the accepted point and its tangent to its new mesh."""
+        wants = getattr(self.sys, "wants_remesh", None)
+        if wants is not None and wants(n_points):
+            p.x, p.tangent = self.sys.remesh(p.x, p.tangent)
+
     def _flush(self):
         while self._pending:
             yield self._pending.pop(0)
-
-
-def _dense(J):
-    """J as a dense array, or None for a sparse/structured Jacobian."""
-    if isinstance(J, np.ndarray):
-        return J
-    try:
-        import scipy.sparse as sp
-        if sp.issparse(J):
-            return J.toarray() if J.shape[0] <= 400 else None
-    except ImportError:
-        pass
-    return np.asarray(J)
