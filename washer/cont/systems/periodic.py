@@ -19,22 +19,30 @@ Unknowns x = (U flattened node-major (NTST*NCOL + 1, NDIM), PAR(ICP(2)), PAR(ICP
 periodicity, the integral phase condition against the previous point (ICPS, with
 u'_old = T_old f(u_old) at the nodes: STUPBV).
 
-Notes to the lead (what the iterator/contract do not cover yet; checked against
-iterator.py of 12:45):
-* Mesh adaptation (AUTO's ADAPT every IAD steps) changes the meaning of the unknowns.
-  This class offers `wants_remesh(n_points) -> bool` (IAD > 0 and n_points % IAD == 0,
-  n_points counting the points written on the branch, as NTOT in CNRLBV) and
-  `remesh(x, *vectors) -> (x_new, *vectors_new)`: call it on the accepted point with
-  its tangent (and anything else kept in the unknown layout) after `update`; the
-  system switches to the new mesh and moves its phase reference. Without it the
-  long-period orbits go wrong: lrz from HB1 leaves rho = 13.9266 near T = 20 and
-  wanders to rho = 3.6 (with it: rho = 13.92656 up to T = 427, as AUTO).
+Mesh adaptation (AUTO's ADAPT every IAD steps) happens inside `update`: every IAD
+accepted points the mesh is re-equidistributed and x and its tangent are interpolated
+onto it *in place*, so the iterator needs no hook (`remesh_in_update = False` and
+`remesh(x, *vectors)` for an iterator that prefers to call it itself).
+
+Linear algebra: the bordered collocation matrix is factorised by SuperLU (splu); the
+condensation of parameters (AUTO's CONPAR + REDUCE) is used only for the Floquet
+multipliers. Measured on lrz (N = 425): splu 0.7 ms against 1.05 ms for the
+vectorised condensation of the collocation blocks alone (no parameter columns, no
+back substitution); at NTST = 150 (N = 1805) 3.9 against 1.7 ms, so a condensing
+solver would only pay for NTST in the hundreds.
+
+Notes to the lead (what the iterator/runner/sinks do not do yet; iterator of 12:45):
 * Start correction: AUTO never corrects BVP start data (RSPTBV). At a Hopf start the
-  collocation Jacobian is singular (constant solutions exist for every period: the
-  period column T f(u_HB) vanishes), so `correct_start`'s least-squares step moves
-  the period arbitrarily (it set PAR(11) = 1e-6 on lrz). Please skip it for
-  arclength == "plane" (or when `start()` returns a tangent). Also `_dense` returns an
-  object array for a sparse J with more than 400 rows.
+  collocation residual is exactly T times the period column (-dtm T f(u_HB) in both),
+  so `correct_start`'s least-squares step sets the period to 0 (PAR(11) = 1e-6 on
+  lrz). Please skip it for arclength == "plane" (or when `start()` returns a
+  tangent). Also `_dense` returns an object array for a sparse J over 400 rows.
+* b-file rows of periodic branches have BR < 0 (STPLBV: IBRS = -IBR for IPS = 2, 12);
+  sinks._row writes lab.br as it is.
+* AUTO's BVP continuation uses the secant as the direction (CONTBV: (X - X_old)/DSOLD,
+  SCALEB), not the tangent at the new point; regular points then follow AUTO's more
+  closely (lrz PT 3: AUTO rho 24.6903, ours with the exact tangent 24.6947; located
+  points agree either way).
 * `border(t)` is `weights * t` (weights: the inner product's diagonal).
 * Floquet multipliers are computed from the Jacobian at x itself (not from a chord
   Jacobian of the last iteration as AUTO does), so they are slightly more accurate
