@@ -25,8 +25,11 @@ from washer.cont.codes import type_name
 
 
 def _row(lab) -> Row:
+    """The b-file line: PT negative for stable points; BR negative for periodic
+    solutions (IPS = 2), as AUTO writes them (the s-file keeps BR > 0)."""
     sign = -1 if lab.stable else 1
-    return Row(lab.br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
+    br = -lab.br if lab.ips in (2, 12) else lab.br
+    return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
 
 
 def _record(lab) -> Record:
