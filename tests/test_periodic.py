@@ -102,8 +102,9 @@ def _correct(sysm, xp, xref, tref, ds, nwtn=3, itnw=8, eps=1e-8):
 
 
 def _branch(sysm, n, ds, dsmax=0.5):
-    """AUTO's BVP loop in miniature (STEPBV, CONTBV; ADAPT happens inside `update`
-    every IAD points): returns the points (copies: later remeshes do not change them)."""
+    """AUTO's BVP loop in miniature (STEPBV, CONTBV, and ADAPT every IAD written points
+    through the system's wants_remesh/remesh, as washer.cont.iterator does): returns
+    the points."""
     x, t = sysm.start()
     t = t / math.sqrt(sysm.inner(t, t))
     sysm.update(x, t)
@@ -122,6 +123,8 @@ def _branch(sysm, n, ds, dsmax=0.5):
         sysm.update(xn, tn)
         x, t = xn, tn
         pts.append(x.copy())
+        if sysm.wants_remesh(k + 1):                  # the start is point 1 (NTOT)
+            x, t = sysm.remesh(x, t)
         grow = 2 if it <= 1 else 1.5 if it == 2 else 1.1 if it <= 4 else 1.0   # ADPTDS, ITNW 8
         ds = math.copysign(min(abs(ds) * grow, dsmax), ds)
     return pts

@@ -19,10 +19,10 @@ Unknowns x = (U flattened node-major (NTST*NCOL + 1, NDIM), PAR(ICP(2)), PAR(ICP
 periodicity, the integral phase condition against the previous point (ICPS, with
 u'_old = T_old f(u_old) at the nodes: STUPBV).
 
-Mesh adaptation (AUTO's ADAPT every IAD steps) happens inside `update`: every IAD
-accepted points the mesh is re-equidistributed and x and its tangent are interpolated
-onto it *in place*, so the iterator needs no hook (`remesh_in_update = False` and
-`remesh(x, *vectors)` for an iterator that prefers to call it itself).
+Mesh adaptation (AUTO's ADAPT every IAD steps): the iterator asks `wants_remesh(n)`
+after each written point and calls `remesh(x, tangent)`, which re-equidistributes the
+mesh and returns x and the tangent on it (the phase reference moves too). For an
+iterator without that hook, `remesh_in_update = True` makes `update` do it in place.
 
 Linear algebra: the bordered collocation matrix is factorised by SuperLU (splu); the
 condensation of parameters (AUTO's CONPAR + REDUCE) is used only for the Floquet
@@ -31,14 +31,7 @@ vectorised condensation of the collocation blocks alone (no parameter columns, n
 back substitution); at NTST = 150 (N = 1805) 3.9 against 1.7 ms, so a condensing
 solver would only pay for NTST in the hundreds.
 
-Notes to the lead (what the iterator/runner/sinks do not do yet; iterator of 12:45):
-* Start correction: AUTO never corrects BVP start data (RSPTBV). At a Hopf start the
-  collocation residual is exactly T times the period column (-dtm T f(u_HB) in both),
-  so `correct_start`'s least-squares step sets the period to 0 (PAR(11) = 1e-6 on
-  lrz). Please skip it for arclength == "plane" (or when `start()` returns a
-  tangent). Also `_dense` returns an object array for a sparse J over 400 rows.
-* b-file rows of periodic branches have BR < 0 (STPLBV: IBRS = -IBR for IPS = 2, 12);
-  sinks._row writes lab.br as it is.
+Notes to the lead:
 * AUTO's BVP continuation uses the secant as the direction (CONTBV: (X - X_old)/DSOLD,
   SCALEB), not the tangent at the new point; regular points then follow AUTO's more
   closely (lrz PT 3: AUTO rho 24.6903, ours with the exact tangent 24.6947; located
@@ -162,7 +155,7 @@ class PeriodicOrbits:
     """
     curve_type = 0
     arclength = "plane"
-    remesh_in_update = True
+    remesh_in_update = False           # True: update() adapts the mesh in place
 
     def __init__(self, data):
         s = data.settings
@@ -494,12 +487,10 @@ class PeriodicOrbits:
     def update(self, x: np.ndarray, tangent: np.ndarray) -> None:
         """CONTBV's STUPBV: the accepted profile becomes the phase condition's
         reference, u'_old = T f(u_old) at the nodes. Also moves the 'multiplier
-        inaccurate' suspension state, and, every IAD accepted points (AUTO's ADAPT
-        after point NTOT with NTOT % IAD == 0, the start counting as NTOT = 1), adapts
-        the mesh: x and tangent are then interpolated onto the new mesh *in place*
-        (the caller's arrays change), so any iterator that calls `update` once per
-        accepted point gets AUTO's mesh adaptation. Set `remesh_in_update = False`
-        when the iterator calls `remesh` itself."""
+        inaccurate' suspension state. With `remesh_in_update` (for iterators without
+        the wants_remesh/remesh hook) it also adapts the mesh every IAD accepted points
+        (AUTO's ADAPT after NTOT % IAD == 0, the start counting as NTOT = 1),
+        interpolating x and tangent onto the new mesh *in place*."""
         U, par = self.unpack(x)
         self.U_old = U.copy()
         if getattr(self, "_keep_hopf_phase", False) and np.array_equal(x, self._start[0]):
