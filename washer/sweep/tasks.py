@@ -216,9 +216,15 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
         s = stability(params.replace(**{parameter: v}))
         return {"crit_value": float(v), "crit_whirl": s["stab_whirl"], "crit_n_hopf": 0.0,
                 "crit_source": "margin"}
+    def state(m):
+        return "neutral" if abs(m) <= NEUTRAL_MARGIN else "stable" if m < 0 else "unstable"
+
+    ends = f"margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g}"
     why = f"continuation ended with status {status!r}; " if status != "ok" else ""
-    why += (f"stable throughout (margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g})"
-            if max(m_lo, m_hi) < 0 else f"margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g}")
+    if state(m_lo) == state(m_hi) == "stable":
+        why += f"stable throughout ({ends})"
+    else:
+        why += f"{state(m_lo)} at {lo:g}, {state(m_hi)} at {hi:g} ({ends})"
     raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: {why}")
 
 
