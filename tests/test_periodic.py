@@ -26,7 +26,7 @@ import pytest
 
 from washer.auto.files import Record, read_s
 from washer.cont import collocation as col
-from washer.cont.codes import Code
+from washer.auto.codes import Code
 from washer.cont.problem import Problem
 from washer.cont.settings import Settings
 from washer.cont.system import StartData
@@ -511,3 +511,28 @@ def test_b_file_columns_of_autos_orbits(lab, row):
     sysm, rec = _auto_system("lrz", lab, (1, 11))
     sol = sysm.solution(sysm.start()[0], None)
     np.testing.assert_allclose(sol.columns, row, rtol=1e-10)
+
+
+def test_period_doubling_switch_through_the_runner(tmp_path):
+    """chu's c.chu.3 unchanged (ISW = -1, NTST 80) restarted at AUTO's own PD record:
+    the doubled branch starts at twice AUTO's period, and locates the next period
+    doubling of the cascade; NTST 160 puts it at the same PAR(1) to 1e-5 (the
+    collocation error is below that, so the location is the discrete problem's)."""
+    import shutil
+    from washer.run import run
+    ref = DATA / "auto_reference" / "periodic" / "chu"
+    shutil.copy(ref / "c.chu.3", tmp_path)
+    shutil.copy(DATA / "chu" / "chu.py", tmp_path)
+    shutil.copy(RECORDS / "s.chu", tmp_path / "s.ref")
+    found = []
+    for ntst in (80, 160):
+        res = run(tmp_path / "c.chu.3", verbose=False, e="chu", s="ref", sv=f"pd{ntst}",
+                  NMX=25, NTST=ntst)
+        assert res.status == "ok"
+        first = res.rows[0]
+        assert abs(first.par[10] / (2 * 2.2835526) - 1) < 1e-6
+        pds = [r for r in res.rows if r.ty == "PD"]
+        assert len(pds) == 1
+        found.append(pds[0].par[0])
+    assert 8.40 < found[0] < 8.43
+    assert abs(found[0] - found[1]) < 1e-5 * found[0]

@@ -23,9 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-#: Two-letter names of AUTO's type codes (support.f90:LBTYPE), by |code| % 10.
-TYPE_NAMES = {1: "BP", 2: "LP", 3: "HB", 4: "", -4: "UZ", 5: "LP", 6: "BP", 7: "PD", 8: "TR",
-              9: "EP", -9: "MX", -1: "BT", -2: "CP", -3: "ZH", 0: ""}
+from washer.auto.codes import parse_label, type_name  # noqa: F401 (re-exported)
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47
@@ -34,14 +32,6 @@ D_BAR = "=" * 47
 class AutoFileError(ValueError):
     """An AUTO file that cannot be read: the message names the file, the line and what
     was expected there."""
-
-
-def type_name(code: int) -> str:
-    """'HB', 'UZ', 'GH', ... for an ITP code, including curve codes like -34 or 39."""
-    if code in (-32,):
-        return "GH"
-    base = code % 10 if code >= 0 else -((-code) % 10)
-    return TYPE_NAMES.get(base, "")
 
 
 def _fortran_special(x: float, width: int) -> str | None:
@@ -592,21 +582,24 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
 
 
 def find_record(records: list[Record], irs) -> Record:
-    """AUTO's FINDLB: a label number, -n for the n-th record, or 'HB2' by type and count."""
-    if isinstance(irs, str) and not irs.lstrip("-").isdigit():
-        name = irs.rstrip("0123456789")
-        count = int(irs[len(name):] or 1)
-        hits = [r for r in records if type_name(r.ty) == name.upper()]
+    """AUTO's FINDLB: a label number, -n for the n-th record, or 'HB2' by type and
+    count (codes.parse_label). Raises LookupError naming what the file holds."""
+    try:
+        key = parse_label(irs)
+    except ValueError as exc:
+        raise LookupError(str(exc)) from None
+    if isinstance(key, tuple):
+        name, count = key
+        hits = [r for r in records if type_name(r.ty) == name]
         if len(hits) < count:
             raise LookupError(f"IRS='{irs}': the restart file has {len(hits)} {name} point(s)")
         return hits[count - 1]
-    irs = int(irs)
-    if irs < 0:
-        if -irs > len(records):
+    if key < 0:
+        if -key > len(records):
             raise LookupError(f"IRS={irs}: the restart file has only {len(records)} records")
-        return records[-irs - 1]
+        return records[-key - 1]
     for r in records:
-        if r.lab == irs:
+        if r.lab == key:
             return r
-    raise LookupError(f"IRS={irs}: no label {irs} in the restart file "
+    raise LookupError(f"IRS={irs}: no label {key} in the restart file "
                       f"(labels: {[r.lab for r in records]})")

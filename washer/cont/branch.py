@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.cont.codes import type_name
+from washer.auto.codes import type_name
 from washer.cont.system import Solution, Stability
 
 
@@ -97,7 +97,7 @@ class Branch:
 
     def __call__(self, key):
         """r('HB1'), r('LP'), r(3): a labelled point by type (and count) or label."""
-        from washer.cont.codes import parse_label
+        from washer.auto.codes import parse_label
         k = parse_label(key)
         if isinstance(k, int):
             for s in self.specials:

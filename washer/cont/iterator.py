@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from washer.cont.branch import Point
-from washer.cont.codes import Code
+from washer.auto.codes import Code
 from washer.cont.events import LocationFailed, linear_fraction, locate, sign_changes
 from washer.cont.problem import ProblemError
 from washer.cont.systems._algebraic import orient

@@ -19,7 +19,8 @@ import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.cont.branch import Branch, Labelled, Point
-from washer.cont.codes import Code, curve_code, parse_label, split_code, type_name
+from washer.auto.codes import Code, curve_code, split_code, type_name
+from washer.auto.files import find_record as files_find_record
 from washer.cont.iterator import Continuation, ConvergenceError
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError
@@ -43,26 +44,11 @@ class Run:
 
 
 def find_record(records, irs):
-    """AUTO's FINDLB: a label number, -n for the n-th record, or 'HB2' by type and count."""
+    """AUTO's FINDLB (washer.auto.files.find_record) with a RunError."""
     try:
-        key = parse_label(irs)
-    except ValueError as exc:
+        return files_find_record(records, irs)
+    except LookupError as exc:
         raise RunError(str(exc)) from None
-    if isinstance(key, int):
-        if key < 0:
-            if -key > len(records):
-                raise RunError(f"IRS={irs}: the restart file has only {len(records)} records")
-            return records[-key - 1]
-        for r in records:
-            if r.lab == key:
-                return r
-        raise RunError(f"IRS={irs}: no label {key} in the restart file (labels: "
-                       f"{[r.lab for r in records]})")
-    name, count = key
-    hits = [r for r in records if type_name(r.ty) == name]
-    if len(hits) < count:
-        raise RunError(f"IRS='{irs}': the restart file has {len(hits)} {name} point(s)")
-    return hits[count - 1]
 
 
 def start_kind(rec, ndim: int) -> str:

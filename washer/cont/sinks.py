@@ -21,7 +21,7 @@ import sys
 import numpy as np
 
 from washer.auto.files import OutputFiles, Record, Row, fmt_es, screen_heading
-from washer.cont.codes import type_name
+from washer.auto.codes import type_name
 
 
 def _row(lab) -> Row:

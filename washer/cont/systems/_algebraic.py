@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont.codes import Code
+from washer.auto.codes import Code
 from washer.cont.system import Solution, dense_factor
 
 

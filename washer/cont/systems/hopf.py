@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont.codes import Code
+from washer.auto.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import StartData, register
 from washer.cont.systems._algebraic import null_vectors

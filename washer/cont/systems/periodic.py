@@ -52,7 +52,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from washer.cont import collocation as col
-from washer.cont.codes import Code
+from washer.auto.codes import Code
 from washer.cont.problem import FD_STEP
 from washer.cont.system import Solution, Stability, register
 
