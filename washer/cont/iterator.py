@@ -72,6 +72,18 @@ class Step:
     text: str = ""
 
 
+@dataclass
+class State:
+    """Where a branch stands: the last accepted point, the next step size, how
+    many points were written (AUTO's NTOT, for IAD), steps since the last
+    adaptation (IADS), and whether sign changes are detected yet."""
+    point: Point
+    ds: float
+    n_points: int = 1
+    n_since_adapt: int = 0
+    detect: bool = False
+
+
 class Continuation:
     """The points of one branch of `system`, lazily.
 
@@ -94,7 +106,7 @@ class Continuation:
         self.ds = settings.DS if ds is None else ds
         self.uz = list(settings.UZR)
         self.tests = list(system.active_tests())
-        self.n_steps = 0
+        self.state: State | None = None
 
     # ------------------------------------------------------------ corrector
     def correct(self, x_pred, x_ref, t_ref, ds, plane: bool | None = None):
@@ -306,8 +318,16 @@ class Continuation:
 
     # ------------------------------------------------------------- iterate
     def __iter__(self):
+        """Start, then step until the consumer stops asking or the branch fails."""
         self._pending: list[Step] = []
-        s, sysm = self.s, self.sys
+        yield from self._begin()
+        while self.state is not None:
+            yield from self.step()
+
+    def _begin(self):
+        """The start point (corrected for algebraic systems), its tangent, and the
+        first step: AUTO's hidden one, or the written plane step of a switch."""
+        sysm = self.sys
         # AUTO corrects algebraic start data only; BVP start data are used as given
         # (RSPTBV): at a Hopf start the collocation system is singular in the period.
         correct = self.mode != "switch" and sysm.arclength == "sphere"
@@ -315,78 +335,85 @@ class Continuation:
         J0 = sysm.jacobian(x0)
         t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
         t0 = t0 / math.sqrt(sysm.inner(t0, t0))
-        ds = self.ds
         start = self.evaluate(x0, t0, tangent=t0)
         sysm.update(start.x, start.tangent)
+        self.state = State(start, self.ds)
         yield Step("start", start)
-        current = start
+        st = self.state
         if self.mode == "switch":
             # First step of a switched branch: on the plane orthogonal to the new
             # direction through x_bp + ds d (AUTO's STBIF); it is written.
+            ds = st.ds
             try:
                 x, it = self.correct(x0 + ds * t0, x0, t0, ds, plane=True)
             except (ConvergenceError, ProblemError) as exc:
+                self.state = None
                 yield Step("failed", start, text=f"no convergence on the switched branch ({exc})")
                 return
-            current = self.evaluate(x, (x - x0) / ds, ds=ds, it=it)
-            current.tests = {}                       # no detection on the first interval
-            sysm.update(current.x, current.tangent)
-            yield Step("point", current, prev=start)
+            pt = self.evaluate(x, (x - x0) / ds, ds=ds, it=it)
+            pt.tests = {}                            # no detection on the first interval
+            sysm.update(pt.x, pt.tangent)
+            st.point, st.n_points, st.detect = pt, 2, True
+            yield Step("point", pt, prev=start)
         elif sysm.arclength == "sphere" and self.mode == "fresh":
             # AUTO's unwritten first step: it only provides a secant direction.
-            pt, ds = self._retrying_step(start, ds)
+            pt, st.ds = self._retrying_step(start, st.ds)
             yield from self._flush()
             if pt is None:
+                self.state = None
                 yield Step("failed", start, text="No convergence with minimum step size")
                 return
             pt.tests = {}
             sysm.update(pt.x, pt.tangent)
-            current = pt
-        # Test functions start at zero (AUTO: TEST(:) = 0): nothing is detected
-        # on the first written interval.
-        first = self.mode != "switch"
-        n_since_adapt = 0
-        n_points = 1 if self.mode != "switch" else 2     # points written (AUTO's NTOT)
-        while True:
-            nxt, ds = self._retrying_step(current, ds)
-            yield from self._flush()
-            if nxt is None:
-                yield Step("failed", current, text="No convergence with minimum step size")
-                return
-            if first:
-                first = False
-                sysm.update(nxt.x, nxt.tangent)
-                yield Step("point", nxt, prev=current)
-                current = nxt
-                n_points += 1
-                self._adapt_mesh(current, n_points)
-                continue
-            try:
-                hit = self._first_zero(current, nxt, ds)
-            except LocationFailed as exc:
-                hit = None
-                yield Step("note", text=f"NOTE:Possible special point ({exc})")
-            except (ConvergenceError, ProblemError) as exc:
-                hit = None
-                yield Step("note", text=f"NOTE:Possible special point ({exc})")
-            if hit is not None:
-                sp, key = hit
-                # Past the located zero the test keeps the sign it has beyond it.
-                sp.tests[key] = math.copysign(1e-300, nxt.tests[key])
-                sysm.update(sp.x, sp.tangent)
-                code = Code.UZ if isinstance(key, tuple) else key
-                yield Step("special", sp, prev=current, code=int(code), key=key)
-                current = sp
-                continue
-            sysm.update(nxt.x, nxt.tangent)
-            yield Step("point", nxt, prev=current)
-            current = nxt
-            n_points += 1
-            self._adapt_mesh(current, n_points)
-            n_since_adapt += 1
-            if s.IADS > 0 and n_since_adapt >= s.IADS:
-                ds = self.adapt(ds, nxt.iterations)
-                n_since_adapt = 0
+            st.point = pt
+
+    def step(self):
+        """One step of the branch from self.state: predictor + corrector (with
+        retries), then detection and location, then step control. Yields the
+        notes, and the new regular or special point (or the failure)."""
+        st, sysm = self.state, self.sys
+        current = st.point
+        nxt, st.ds = self._retrying_step(current, st.ds)
+        yield from self._flush()
+        if nxt is None:
+            self.state = None
+            yield Step("failed", current, text="No convergence with minimum step size")
+            return
+        if not st.detect:
+            # Test functions start at zero (AUTO: TEST(:) = 0): nothing is detected
+            # on the first written interval.
+            st.detect = True
+            yield from self._accept(nxt, current)
+            return
+        try:
+            hit = self._first_zero(current, nxt, st.ds)
+        except (LocationFailed, ConvergenceError, ProblemError) as exc:
+            hit = None
+            yield Step("note", text=f"NOTE:Possible special point ({exc})")
+        if hit is not None:
+            sp, key = hit
+            # Past the located zero the test keeps the sign it has beyond it.
+            sp.tests[key] = math.copysign(1e-300, nxt.tests[key])
+            sysm.update(sp.x, sp.tangent)
+            st.point = sp
+            st.n_points += 1
+            code = Code.UZ if isinstance(key, tuple) else key
+            yield Step("special", sp, prev=current, code=int(code), key=key)
+            return
+        yield from self._accept(nxt, current)
+        st.n_since_adapt += 1
+        if self.s.IADS > 0 and st.n_since_adapt >= self.s.IADS:
+            st.ds = self.adapt(st.ds, nxt.iterations)
+            st.n_since_adapt = 0
+
+    def _accept(self, pt: Point, prev: Point):
+        """A regular point becomes the state's point (then the mesh may adapt)."""
+        st = self.state
+        self.sys.update(pt.x, pt.tangent)
+        st.point = pt
+        st.n_points += 1
+        yield Step("point", pt, prev=prev)
+        self._adapt_mesh(pt, st.n_points)
 
     def _adapt_mesh(self, p: Point, n_points: int) -> None:
         """Mesh adaptation of BVP systems (AUTO's ADAPT every IAD points): the
