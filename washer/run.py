@@ -42,7 +42,9 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
         raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py beside the file) "
                        "or e='washer'")
     if e.split(":")[0] == "washer":
-        from washer.auto_washer import washer_problem
+        from washer.auto_washer import forced_start_params, washer_problem
+        if e == "washer:forced" and c["IRS"] in (0, "0"):
+            params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
         return washer_problem(e, params=params, source=c.source)
     return load_python_problem(e, folder, c["NDIM"])
 
