@@ -63,19 +63,36 @@ def test_spec_errors_name_file_line_and_cause(text, where, what):
     assert what in msg
 
 
-def test_critical_refuses_base_parameters_the_engine_cannot_take(tmp_path):
-    """e='washer' builds every non-PAR parameter from the reference set: a base file
-    that differs there (tub inertia) must be refused, not silently replaced."""
+def test_critical_uses_the_spec_base_parameters(tmp_path):
+    """The continuation gets the point's whole parameter set (run(..., params=)), not
+    the reference set: with a heavier tub inertia (not a PAR entry) and untied joint
+    dampings, the critical C_p must equal the root of the stability margin of that
+    set (Brent on Model.eigenvalues, an independent route; both locate the same
+    crossing, the engine to ~1e-8 relative: tolerance 1e-6) and differ from the
+    reference set's."""
+    from scipy.optimize import brentq
+
+    import washer
     from washer.params import default_params_path
+    from washer.sweep.tasks import stability
     ref = default_params_path().read_text()
-    assert "J = [0.9, 0.9, 0.9]" in ref
-    (tmp_path / "heavy.toml").write_text(ref.replace("J = [0.9, 0.9, 0.9]", "J = [1.2, 1.2, 0.9]"))
-    text = "params = 'heavy.toml'\n[[study]]\nkinds = ['{k}']\n[study.vary]\nm_u = [1.0, 2.0]\n"
-    (tmp_path / "s.toml").write_text(text.format(k="critical"))
-    with pytest.raises(SpecError, match="J_tx.*cannot take them"):
-        load_spec(tmp_path / "s.toml")
-    (tmp_path / "s.toml").write_text(text.format(k="stability"))
-    assert load_spec(tmp_path / "s.toml").base["J_tx"] == 1.2     # the kernel kinds can
+    assert "J = [0.9, 0.9, 0.9]" in ref and "\nC_p = 0.101" in ref
+    (tmp_path / "heavy.toml").write_text(
+        ref.replace("J = [0.9, 0.9, 0.9]", "J = [1.3, 1.3, 0.9]")
+           .replace("\nC_p = 0.101", "\nC_p = 0.101\nC_ox = 0.05\nC_oz = 0.2"))
+    (tmp_path / "s.toml").write_text("params = 'heavy.toml'\n[[study]]\nkinds = ['critical']\n"
+                                     "[study.vary]\nm_u = [1.5, 2.0]\n")
+    spec = load_spec(tmp_path / "s.toml")
+    assert not spec.base.tied and spec.base["J_tx"] == 1.3
+    df = run(spec, serial=True, out=tmp_path / "out", plot=False)
+    assert (df["status"] == "ok").all() and (df["crit_source"] == "HB").all()
+    for _, r in df.iterrows():
+        p = spec.base.replace(m_u=r["m_u"])
+        root = brentq(lambda c: stability(p.replace(C_p=c))["stab_margin"], 0.0, 3.0, xtol=1e-12)
+        assert r["crit_value"] == pytest.approx(root, rel=1e-6)
+        p_ref = washer.load_params().replace(m_u=r["m_u"])
+        root_ref = brentq(lambda c: stability(p_ref.replace(C_p=c))["stab_margin"], 0.0, 3.0)
+        assert abs(root - root_ref) > 1e-3 * root_ref
 
 
 def test_random_and_lhs_samples_are_seeded_and_in_range():

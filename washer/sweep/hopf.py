@@ -14,8 +14,8 @@ as a list of branches, arrays (k, 2) of (x, y). The b-files stay in `folder`
 (b.hopf_fwd, b.hopf_bwd), so `python -m washer.plot` can draw them too.
 
 Both parameters must be PAR entries of e='washer'; every other parameter is
-taken from `params` through PAR (the engine starts from the shipped reference
-set, see tasks.critical).
+`params`' (injected into the problem: run(..., params=...)). The curve lies at
+the value of the map's other parameters the start run found HB1 at.
 """
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.params import Params
-from washer.sweep.tasks import critical_constants, engine_mismatch
+from washer.sweep.tasks import critical_constants
 
 #: The ranges are widened by this fraction of their span so that a boundary
 #: lying on the map's edge is still drawn.
@@ -66,9 +66,6 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     for name in (x, y):
         if name not in PAR_NAMES.values():
             raise HopfCurveError(f"{name!r} is not a PAR of e='washer': no continuation")
-    why = engine_mismatch(params)
-    if why:
-        raise HopfCurveError(why)
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     (x0, x1), (y0, y1) = _widen(xr), _widen(yr)
@@ -77,8 +74,8 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     for cont, (c0, c1), other, (o0, o1) in ((x, (x0, x1), y, (y0, y1)), (y, (y0, y1), x, (x0, x1))):
         for ov in (0.5 * (o0 + o1), o0, o1):
             p = params.replace(**{other: max(ov, 0.0)})
-            start.write_text(critical_constants(p, cont, max(c0, 0.0), c1))
-            res = run(start, verbose=False, sv="start")
+            start.write_text(critical_constants(cont, max(c0, 0.0), c1))
+            res = run(start, verbose=False, params=p, sv="start")
             tried.append(f"{cont} in [{max(c0, 0):g}, {c1:g}] at {other} = {ov:g}")
             if any(s.ty == "HB" for s in res.specials):
                 break
@@ -95,7 +92,7 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
         x0=x0, x1=x1, y0=y0, y1=y1))
     branches = []
     for sign, sv in ((1, "hopf_fwd"), (-1, "hopf_bwd")):
-        res = run(c, verbose=False, sv=sv, DS=sign * 0.2 / HOPF_STEPS)
+        res = run(c, verbose=False, params=p, sv=sv, DS=sign * 0.2 / HOPF_STEPS)
         for rows in read_b(folder / f"b.{sv}"):
             # b-file columns: PAR(ICP(1)), L2-norm, U(1..), PAR(ICP(2)) last.
             pts = np.array([[r.values[0], r.values[-1]] for r in rows])

@@ -256,8 +256,7 @@ def _study(st, i: int, base: Params, spec_fixed: dict, where) -> Study:
             continue
         options[kind] = _options(kind, table, lambda k=None, t=kind: where(f"study.{t}", k, i))
     if "critical" in options:
-        _check_critical(options["critical"], axes, base, fixed, lambda k=None: where(
-            "study.critical", k, i))
+        _check_critical(options["critical"], axes, lambda k=None: where("study.critical", k, i))
     if "response" in options:
         r = options["response"]
         if not 0 < r["window"] <= r["t_end"]:
@@ -335,7 +334,7 @@ def _options(kind: str, table, at) -> dict:
     return out
 
 
-def _check_critical(opt: dict, axes, base: Params, fixed: dict, at) -> None:
+def _check_critical(opt: dict, axes, at) -> None:
     from washer.auto_washer import PAR_NAMES
     par = opt["parameter"]
     if par not in PAR_NAMES.values():
@@ -353,13 +352,3 @@ def _check_critical(opt: dict, axes, base: Params, fixed: dict, at) -> None:
         opt["to"] = CRITICAL_DEFAULT_TO[par]
     if not opt["from"] < opt["to"]:
         raise SpecError(f"{at('to')}: critical: expected from < to, got {opt['from']}, {opt['to']}")
-    # The continuation problem takes the PAR entries only (tasks.engine_mismatch).
-    from washer.sweep.tasks import NO_EFFECT_ON_AVERAGED, engine_mismatch
-    names = set(PAR_NAMES.values()) | NO_EFFECT_ON_AVERAGED
-    for name in list(fixed) + [a.name for a in axes]:
-        if name not in names:
-            raise SpecError(f"{at()}: critical: parameter {name!r} cannot be passed to the "
-                            "continuation engine (not a PAR of e='washer')")
-    why = engine_mismatch(base)
-    if why:
-        raise SpecError(f"{at()}: critical: base parameters: {why}")

@@ -22,7 +22,8 @@ stability  averaged (or frozen) rotating-frame equilibrium eps* (eqs 60-65) and
                          periodic response the equilibrium stands for
 critical   the critical value of one parameter at this point: the first Hopf
            point (HB) of a one-parameter continuation of the averaged equilibrium
-           from `from` to `to` (the engine of washer.run, e='washer'):
+           from `from` to `to` (the engine of washer.run, e='washer', with the
+           point's parameter set injected: run(..., params=...)):
     crit_value           the parameter at the HB (its units)
     crit_whirl           the crossing frequency 2 pi / PAR(11), rad/s, rotating frame
     crit_n_hopf          HB points found in [from, to]
@@ -127,40 +128,16 @@ UZSTOP = {{'{name}': {hi!r}}}
 """
 
 
-def critical_constants(params: Params, name: str, lo: float, hi: float) -> str:
-    """Text of a constants file continuing the averaged equilibrium in `name` from lo to hi."""
+def critical_constants(name: str, lo: float, hi: float) -> str:
+    """Text of a constants file continuing the averaged equilibrium in `name` from lo
+    to hi; the other parameters come with the problem (run(..., params=...))."""
     from washer.auto_washer import PAR_NAMES
-    par = {n: float(params[n]) for n in PAR_NAMES.values()}
-    par[name] = float(lo)
+    par = {name: float(lo)}
     span = hi - lo
     return CRIT_CONSTANTS.format(
         parnames=repr(dict(PAR_NAMES)), name=name, nmx=10 * CRIT_STEPS,
         ds=span / (5 * CRIT_STEPS), dsmin=span * 1e-6, dsmax=span / CRIT_STEPS,
         par=repr(par), hi=float(hi))
-
-
-#: Parameters without effect on the averaged rotating-frame problem e='washer'.
-NO_EFFECT_ON_AVERAGED = {"tau_s", "tau0"}
-
-
-def engine_mismatch(params: Params) -> str:
-    """Why `params` cannot be handed to the continuation engine ('' if it can).
-
-    washer.run's problem e='washer' takes the PAR entries (C_p, Omega, m_u, ...)
-    and builds everything else from the shipped reference set, with C_ox, C_oz
-    tied to C_p; until it accepts a Params (washer_problem(e, params=...)),
-    parameter sets that differ elsewhere cannot be continued."""
-    from washer.auto_washer import PAR_NAMES
-    from washer.params import load_params
-    if not params.tied:
-        return "e='washer' ties C_ox and C_oz to C_p; untied dampings cannot be passed yet"
-    ref = load_params()
-    skip = set(PAR_NAMES.values()) | NO_EFFECT_ON_AVERAGED
-    diff = [n for n, v in params.values.items() if n not in skip and v != ref.values[n]]
-    if diff:
-        return (f"{', '.join(diff[:4])} differ from the reference set and are not PAR entries "
-                "of e='washer': the continuation engine cannot take them yet")
-    return ""
 
 
 def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float = 3.0,
@@ -176,16 +153,13 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
                          "periodic forced response and its Floquet multipliers)")
     if engine != "continuation":
         raise PointError(f"critical: unknown engine {engine!r}")
-    why = engine_mismatch(params)
-    if why:
-        raise PointError(f"critical: {why}")
     from washer.auto_washer import PAR_NAMES
     from washer.run import run
     idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
     with tempfile.TemporaryDirectory(prefix="washer-critical-") as d:
         path = Path(d) / "c.critical"
-        path.write_text(critical_constants(params, parameter, lo, hi))
-        res = run(path, verbose=False)
+        path.write_text(critical_constants(parameter, lo, hi))
+        res = run(path, verbose=False, params=params)
     hbs = [s for s in res.specials if s.ty == "HB"]
     if hbs:
         period = float(hbs[0].par[10])
