@@ -156,25 +156,27 @@ class Mesh:
 # --------------------------------------------------------------------------- collocation
 
 class Collocation:
-    """The discretised periodic BVP on a fixed mesh, for NDIM components and two free
-    parameters (AUTO's NFPR = 2 for IPS = 2).
+    """The discretised periodic BVP on a fixed mesh: NDIM components, NINT integral
+    conditions and NINT + 1 free parameters (AUTO's NFPR = NBC + NINT - NDIM + 1 with
+    NBC = NDIM: 2 for periodic orbits, 4 for the loci of cycle folds).
 
     Unknown layout of the (N + 1,) vector x: the profile U (NTST*NCOL + 1, NDIM)
-    flattened row by row (node-major), then the two free parameters in the order
-    the caller chooses (periodic.py puts PAR(ICP(2)) then PAR(ICP(1))).
+    flattened row by row (node-major), then the free parameters in the order the
+    caller chooses (periodic.py puts PAR(ICP(2)) then PAR(ICP(1))).
     Equation layout of the (N,) residual: the collocation equations ordered by
     (interval, Gauss point, component), then the NDIM periodicity conditions
-    u(0) - u(1), then the phase condition.
+    u(0) - u(1), then the NINT integral conditions (the phase condition first).
     """
 
-    def __init__(self, mesh: Mesh, ndim: int):
-        self.mesh, self.ndim = mesh, ndim
+    def __init__(self, mesh: Mesh, ndim: int, nint: int = 1):
+        self.mesh, self.ndim, self.nint = mesh, ndim, nint
+        self.npar = nint + 1
         m, n, N = mesh.ncol, ndim, mesh.ntst
         self.WT, self.WP = lagrange_weights(m)
         self.n_u = mesh.n_nodes * n
         self.n_coll = N * m * n
-        self.n_eq = self.n_coll + n + 1
-        self.n_x = self.n_u + 2
+        self.n_eq = self.n_coll + n + nint
+        self.n_x = self.n_u + self.npar
         #: local node indices of interval j: j*m + k, shape (N, m + 1)
         self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
         self.w_node = mesh.node_weights()
@@ -182,29 +184,29 @@ class Collocation:
 
     # -- sparsity pattern, built once per mesh
     def _pattern(self) -> None:
-        m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
+        m, n, N, npar, nint = self.mesh.ncol, self.ndim, self.mesh.ntst, self.npar, self.nint
         j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
                                     np.arange(n), indexing="ij")
         rows_blk = ((j * m + c) * n + i).ravel()
         cols_blk = ((j * m + k) * n + l).ravel()
         jj, cc, ii = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), indexing="ij")
-        rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), 2)
-        cols_par = np.r_[np.full(N * m * n, self.n_u), np.full(N * m * n, self.n_u + 1)]
+        rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), npar)
+        cols_par = np.repeat(self.n_u + np.arange(npar), N * m * n)
         pr = self.n_coll + np.arange(n)
-        rows_bc = np.r_[pr, pr]
-        cols_bc = np.r_[np.arange(n), (self.mesh.n_nodes - 1) * n + np.arange(n)]
-        rows_ph = np.full(self.n_u, self.n_coll + n)
-        cols_ph = np.arange(self.n_u)
-        rows = np.r_[rows_blk, rows_par, rows_bc, rows_ph]
-        cols = np.r_[cols_blk, cols_par, cols_bc, cols_ph]
+        rows_bc = np.concatenate([pr, pr])
+        cols_bc = np.concatenate([np.arange(n), (self.mesh.n_nodes - 1) * n + np.arange(n)])
+        rows_int = np.repeat(self.n_coll + n + np.arange(nint), self.n_x)
+        cols_int = np.tile(np.arange(self.n_x), nint)
+        rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
+        cols = np.concatenate([cols_blk, cols_par, cols_bc, cols_int])
         self.nnz = len(rows)
         # CSC order of the entries; entries with the same (row, col) never occur
         order = np.lexsort((rows, cols))
         self._order = order
         self._indices = rows[order].astype(np.int32)
         counts = np.bincount(cols, minlength=self.n_x)
-        self._indptr = np.r_[0, np.cumsum(counts)].astype(np.int32)
-        self._bc_vals = np.r_[np.ones(n), -np.ones(n)]
+        self._indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+        self._bc_vals = np.concatenate([np.ones(n), -np.ones(n)])
         self._n_blk = len(rows_blk)
         # The bordered matrix [J; border]: each column gains one entry, the border row
         # (the last row index, so it ends the column in CSC order).
@@ -226,20 +228,30 @@ class Collocation:
         """u at the Gauss points, shape (NTST, NCOL, NDIM)."""
         return np.einsum("kc,jkn->jcn", self.WT, U[self.local])
 
+    def integral(self, g: np.ndarray) -> float:
+        """int_0^1 of the piecewise polynomial with node values g (n_nodes,)."""
+        return float(self.w_node @ g)
+
+    def residual_general(self, U: np.ndarray, F: np.ndarray, integrals) -> np.ndarray:
+        """The (N,) residual of U' = F on the mesh: F the right-hand side at the Gauss
+        points (NTST, NCOL, NDIM), already scaled (T f for periodic orbits);
+        `integrals` the NINT integral conditions' values."""
+        loc = U[self.local]                                  # (N, m+1, n)
+        coll = np.einsum("kc,jkn->jcn", self.WP, loc) - self.mesh.dtm[:, None, None] * F
+        return np.concatenate([coll.ravel(), U[0] - U[-1], np.atleast_1d(integrals)])
+
     def residual(self, U: np.ndarray, T: float, fg: np.ndarray, U_old: np.ndarray,
                  up_old: np.ndarray) -> np.ndarray:
-        """The (N,) residual. U: profile; T: the period; fg: f at the Gauss points
-        (NTST, NCOL, NDIM); U_old, up_old: the reference profile and its time
-        derivative T_old f(U_old) at the nodes (AUTO's UOLDPS, UPOLDP)."""
-        loc = U[self.local]                                  # (N, m+1, n)
-        coll = np.einsum("kc,jkn->jcn", self.WP, loc) - (self.mesh.dtm[:, None, None] * T) * fg
-        bc = U[0] - U[-1]
+        """The periodic orbit's (N,) residual (NINT = 1). U: profile; T: the period; fg: f
+        at the Gauss points (NTST, NCOL, NDIM); U_old, up_old: the reference profile and
+        its time derivative T_old f(U_old) at the nodes (AUTO's UOLDPS, UPOLDP)."""
         phase = self.w_node @ np.sum((U - U_old) * up_old, axis=1)
-        return np.concatenate([coll.ravel(), bc, [phase]])
+        return self.residual_general(U, T * fg, [phase])
 
     def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
         """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,
-        (NCOL+1)*NDIM), from A = f_u at the Gauss points (NTST, NCOL, NDIM, NDIM)."""
+        (NCOL+1)*NDIM), from A = f_u at the Gauss points (NTST, NCOL, NDIM, NDIM)
+        scaled by T (T = 1 for an already scaled right-hand side)."""
         m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
         eye = np.eye(n)
         blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
@@ -247,15 +259,28 @@ class Collocation:
                * self.WT.T[None, :, None, :, None] * A[:, :, :, None, :])
         return blk.reshape(N, m * n, (m + 1) * n)
 
-    def jacobian(self, T: float, blocks: np.ndarray, dpar: np.ndarray,
-                 up_old: np.ndarray) -> sp.csc_matrix:
-        """The sparse (N, N + 1) Jacobian. blocks: from `local_blocks`; dpar: the
-        derivatives of the collocation equations with respect to the two free
-        parameters, (2, NTST, NCOL, NDIM); up_old: (n_nodes, NDIM)."""
-        vals = np.concatenate([blocks.ravel(), dpar.ravel(), self._bc_vals,
-                               (self.w_node[:, None] * up_old).ravel()])
+    def jacobian_general(self, blocks: np.ndarray, dF_par: np.ndarray, int_u: np.ndarray,
+                         int_par: np.ndarray) -> sp.csc_matrix:
+        """The sparse (N, N + 1) Jacobian. blocks: from `local_blocks`; dF_par: the
+        derivatives of the (scaled) right-hand side at the Gauss points with respect to
+        the free parameters, (NPAR, NTST, NCOL, NDIM); int_u: the derivatives of the
+        integrands with respect to u at the nodes, (NINT, n_nodes, NDIM) (weighted here
+        by the quadrature); int_par: the integral conditions' parameter derivatives,
+        (NINT, NPAR)."""
+        dpar = -self.mesh.dtm[None, :, None, None] * dF_par
+        rows_int = np.concatenate([(self.w_node[None, :, None] * int_u).reshape(self.nint, -1),
+                                   np.asarray(int_par, float).reshape(self.nint, -1)], axis=1)
+        vals = np.concatenate([blocks.ravel(), dpar.ravel(), self._bc_vals, rows_int.ravel()])
         return sp.csc_matrix((vals[self._order], self._indices, self._indptr),
                              shape=(self.n_eq, self.n_x))
+
+    def jacobian(self, T: float, blocks: np.ndarray, dpar: np.ndarray,
+                 up_old: np.ndarray) -> sp.csc_matrix:
+        """The periodic orbit's Jacobian (NINT = 1). blocks: from `local_blocks`; dpar:
+        the derivatives of the collocation equations (WP U - dtm T f) with respect to
+        the two free parameters, (2, NTST, NCOL, NDIM); up_old: (n_nodes, NDIM)."""
+        dF = -dpar / self.mesh.dtm[None, :, None, None]
+        return self.jacobian_general(blocks, dF, up_old[None], np.zeros((1, 2)))
 
     def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
         """[J; border] as a CSC matrix (N + 1, N + 1). A J built by `jacobian` (this

@@ -335,15 +335,14 @@ class PeriodicOrbits:
         ug = self.coll.at_gauss(U).reshape(-1, n)
         A = self.field.fu(ug, par).reshape(N, m, n, n)
         blocks = self.coll.local_blocks(T, A)
-        dt = self.mesh.dtm[:, None, None]
-        dpar = np.empty((2, N, m, n))
+        dF = np.empty((2, N, m, n))              # d(T f)/d(PAR(ICP(2)), PAR(ICP(1)))
         for slot, index in ((0, self.free[1]), (1, self.free[0])):
             if index == 11:
-                dpar[slot] = -dt * self.field.f(ug, par).reshape(N, m, n)
+                dF[slot] = self.field.f(ug, par).reshape(N, m, n)
             else:
-                dpar[slot] = -dt * T * self.field.fp(ug, par, index).reshape(N, m, n)
+                dF[slot] = T * self.field.fp(ug, par, index).reshape(N, m, n)
         self._last_blocks = (x.copy(), blocks)
-        return self.coll.jacobian(T, blocks, dpar, self.up_old)
+        return self.coll.jacobian_general(blocks, dF, self.up_old[None], np.zeros((1, 2)))
 
     def factor(self, J, border: np.ndarray) -> SparseFactor:
         return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
