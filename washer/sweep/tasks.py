@@ -36,7 +36,8 @@ response   a time response (kernel DOPRI5) summarised over the last `window` s:
     resp_whirl_radius_min, resp_whirl_radius_max    over the window, m
     resp_lift_max        max of z - z_static over the whole response, m
     resp_tilt_max        max tilt of the tub axis arccos(cos alpha cos beta) over
-                         the whole response, rad (Cardan x-y-z, eq 2)
+                         the whole response, rad (Cardan x-y-z, eq 2; in the rotating
+                         frame from eps4, eps5: the same tilt to first order)
     resp_freq1, resp_freq2     the two largest peaks of the spectrum of
                          x + i y (mean removed, Hann window) over the window, Hz,
                          signed (> 0: counter-clockwise), in the simulated frame
