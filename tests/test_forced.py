@@ -4,9 +4,15 @@ Route (b), shooting, is checked against closed forms (forced linear oscillator),
 independent spectral method (Hill's determinant for the damped Mathieu equation's
 period doubling), harmonic balance (Duffing fold), finite differences of the flow and
 scipy's solve_ivp; the washer orbit against its symmetry and the averaged system.
-Route (a) (the engine, IPS = 2, appended oscillator) plugs into ROUTES when it exists.
+Route (a), the engine (IPS = 2) on the system made autonomous by an appended oscillator
+(AUTO's frc), is in ROUTES beside it, and on the washer (e='washer:forced',
+auto_constants/c.washer.forced) checked against route (b)'s TR point and multipliers.
 """
+import math
+import shutil
+import tempfile
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,9 +20,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, linear_sum_assignment
 
 from washer import Model, forced, kernel
+from washer.cont.problem import Problem
+from washer.run import run
 
 #: Tolerances of the scipy reference integrations (DOP853): far tighter than the checks.
 RTOL_REF, ATOL_REF = 1e-12, 1e-14
+DATA = Path(__file__).parent / "data"
 
 
 # ------------------------------------------------------------------ generic forced systems
@@ -56,10 +65,59 @@ def shooting_route(system: ForcedSystem, u0, p):
     return u, forced.sort_multipliers(np.linalg.eigvals(Phi))
 
 
-#: Routes computing a forced periodic orbit and its multipliers. Route (a), the engine
-#: with IPS = 2 and the forcing from an appended oscillator (AUTO's frc demo), is added
-#: here when the periodic-orbit engine exists.
-ROUTES = {"shooting": shooting_route}
+#: Collocation intervals of route (a) on the small test systems: the nodes' error is
+#: ~1e-11 at 40 (Gauss collocation is superconvergent there), ~4e-9 at 20.
+ENGINE_NTST = 40
+
+
+def engine_route(system: ForcedSystem, u0, p):
+    """Route (a): the engine (IPS = 2, AUTO's frc way). The system is made autonomous by
+    the oscillator x' = x + nu y - x (x^2 + y^2), y' = -nu x + y - y (x^2 + y^2), whose
+    cycle is (sin nu t, cos nu t), with t = atan2(x, y) / nu, and continued in p from
+    p = 0, where the orbit is u = 0 (the systems here have f(t, 0, 0) = 0), to UZ at p.
+    u0 is not needed (a homotopy, like frc's). Returns the orbit at t = 0 (the node at
+    s = 0 moved to theta = 0 by DOP853, over the ~1e-10 rad the phase condition lets it
+    drift) and the multipliers without the oscillator's (1 and exp(-2 T))."""
+    n, nu = len(u0), system.nu
+
+    def func(u, par):
+        x, y = u[n], u[n + 1]
+        r2 = x * x + y * y
+        return np.r_[system.f(np.arctan2(x, y) / nu, u[:n], par[0]),
+                     x + nu * y - x * r2, -nu * x + y - y * r2]
+
+    def stpnt(u, par, t=0.0):
+        par[0], par[10] = 0.0, system.T
+        u[:n] = 0.0
+        u[n:] = np.sin(2 * np.pi * t), np.cos(2 * np.pi * t)
+
+    with tempfile.TemporaryDirectory() as d:
+        c = Path(d) / "c.forced"
+        c.write_text(f"NDIM = {n + 2}, IPS = 2, IRS = 0, ICP = [1, 11], ISP = 2\n"
+                     f"NTST = {ENGINE_NTST}, NCOL = 4, NMX = 100, EPSL = 1e-10, EPSU = 1e-10\n"
+                     f"DS = {0.2 * p}, DSMAX = {p}, UZSTOP = {{1: {p}}}\n")
+        res = run(c, verbose=False, problem=Problem(n + 2, func, stpnt, name="forced"))
+    uz = res("UZ1")
+    U = np.asarray(uz.solution.u)
+    t0 = math.atan2(U[0, n], U[0, n + 1]) / nu
+    u = solve_ivp(lambda t, v: system.f(t, v, p), (t0, 0.0), U[0, :n], method="DOP853",
+                  rtol=RTOL_REF, atol=ATOL_REF).y[:, -1] if t0 else U[0, :n]
+    return u, _without_oscillator(uz.stability.values, uz.solution.par[10])
+
+
+def _without_oscillator(mu, T):
+    """Multipliers of route (a) less the oscillator's trivial 1 and radial exp(-2 T),
+    sorted as route (b)'s. (QZ gives conjugate pairs whose moduli differ by rounding,
+    which would decide sort_multipliers' order: rounded to 1e-12 first.)"""
+    mu = np.asarray(mu, dtype=complex)
+    mu = np.delete(mu, np.argmin(np.abs(mu - 1)))
+    mu = np.delete(mu, np.argmin(np.abs(mu - np.exp(-2 * T))))
+    return forced.sort_multipliers(np.round(mu, 12))
+
+
+#: Routes computing a forced periodic orbit and its multipliers: (b) Newton shooting and
+#: (a) the engine with IPS = 2 and the forcing from an appended oscillator (AUTO's frc).
+ROUTES = {"shooting": shooting_route, "engine": engine_route}
 
 
 def linear_oscillator(zeta=0.05, w0=3.0, F0=0.7, nu=2.3):
@@ -71,21 +129,53 @@ def linear_oscillator(zeta=0.05, w0=3.0, F0=0.7, nu=2.3):
         dfdp=lambda t, u, p: np.array([0.0, np.cos(nu * t)]), nu=nu)
 
 
+def linear_oscillator_exact(zeta, w0, F0, nu):
+    """Closed form of `linear_oscillator`: x = A cos(nu t) + B sin(nu t) with
+    (w0^2 - nu^2) A + 2 zeta w0 nu B = F0 and (w0^2 - nu^2) B - 2 zeta w0 nu A = 0, and
+    the multipliers exp(lambda T) of the free oscillation. Returns (A, B, multipliers)."""
+    D = (w0 ** 2 - nu ** 2) ** 2 + (2 * zeta * w0 * nu) ** 2
+    A, B = F0 * (w0 ** 2 - nu ** 2) / D, F0 * 2 * zeta * w0 * nu / D
+    lam = -zeta * w0 + 1j * w0 * np.sqrt(1 - zeta ** 2)
+    T = 2 * np.pi / nu
+    return A, B, forced.sort_multipliers(np.exp(np.array([lam, lam.conjugate()]) * T))
+
+
 @pytest.mark.parametrize("route", sorted(ROUTES))
 def test_forced_linear_oscillator_matches_closed_form(route):
     zeta, w0, F0, nu = 0.05, 3.0, 0.7, 2.3
     sys_ = linear_oscillator(zeta, w0, F0, nu)
-    # x = A cos(nu t) + B sin(nu t): (w0^2 - nu^2) A + 2 zeta w0 nu B = F0, and
-    # (w0^2 - nu^2) B - 2 zeta w0 nu A = 0.
-    D = (w0 ** 2 - nu ** 2) ** 2 + (2 * zeta * w0 * nu) ** 2
-    A, B = F0 * (w0 ** 2 - nu ** 2) / D, F0 * 2 * zeta * w0 * nu / D
-    lam = -zeta * w0 + 1j * w0 * np.sqrt(1 - zeta ** 2)
-    mu_exact = forced.sort_multipliers(np.exp(np.array([lam, lam.conjugate()]) * sys_.T))
+    A, B, mu_exact = linear_oscillator_exact(zeta, w0, F0, nu)
     u, mu = ROUTES[route](sys_, np.zeros(2), F0)
     # The orbit is ~0.2 in size; DOP853 at 1e-12 leaves ~1e-12, Newton stops at 1e-10
     # relative: 1e-9 is what the two allow with margin.
     assert np.allclose(u, [A, B * nu], rtol=0, atol=1e-9)
     assert np.allclose(mu, mu_exact, rtol=0, atol=1e-9)
+
+
+def test_forced_linear_oscillator_from_a_user_file_matches_closed_form(tmp_path):
+    """Route (a) as an AUTO user runs it: tests/data/forced_linear/flin.py (the oscillator
+    appended by hand, the forcing F0 cos(nu t) = F0 y) and c.flin, a homotopy in F0 from
+    frc-style exact start data at F0 = 0 to UZ at F0 = 0.7. The whole orbit at every mesh
+    node, at its own time t = atan2(x, y) / nu, and the multipliers against the closed
+    form; the period stays 2 pi / nu. Collocation at NTST = 40 leaves ~1e-10 at the nodes
+    (measured 7e-11 in w, 1e-11 in the multipliers): 1e-9."""
+    for f in (DATA / "forced_linear").iterdir():
+        shutil.copy(f, tmp_path)
+    res = run(tmp_path / "c.flin", verbose=False)
+    uz = res("UZ1")
+    par = uz.solution.par
+    F0, zeta, w0, nu = par[:4]
+    assert F0 == pytest.approx(0.7, abs=1e-12)
+    A, B, mu_exact = linear_oscillator_exact(zeta, w0, F0, nu)
+    U = np.asarray(uz.solution.u)
+    t = np.arctan2(U[:, 2], U[:, 3]) / nu
+    v = A * np.cos(nu * t) + B * np.sin(nu * t)
+    w = nu * (B * np.cos(nu * t) - A * np.sin(nu * t))
+    assert np.abs(U[:, 0] - v).max() < 1e-9 and np.abs(U[:, 1] - w).max() < 1e-9
+    assert np.abs(U[:, 2] ** 2 + U[:, 3] ** 2 - 1).max() < 1e-9
+    assert abs(par[10] - 2 * np.pi / nu) < 1e-9
+    assert np.allclose(_without_oscillator(uz.stability.values, par[10]), mu_exact,
+                       rtol=0, atol=1e-9)
 
 
 def test_continuation_of_linear_oscillator_is_linear_in_the_forcing():
@@ -385,6 +475,88 @@ def test_tr_in_any_parameter_lies_on_the_critical_cp_surface(params, name):
     q = params.replace(**{name: tr[0].value})
     r, sp = forced.locate_tr(q, "C_p", (0.1, 0.102), tr[0].u0)
     assert abs(sp.value - params["C_p"]) < 1e-9
+
+
+# ------------------------------------------------------------------ route (a) on the washer
+
+CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants"
+
+
+@pytest.fixture(scope="module")
+def engine_run(tmp_path_factory):
+    """auto_constants/c.washer.forced as shipped: C_p from 0 to 0.5, TR located."""
+    d = tmp_path_factory.mktemp("forced")
+    shutil.copy(CONSTANTS / "c.washer.forced", d)
+    return run(d / "c.washer.forced", verbose=False)
+
+
+def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critical):
+    """The issue's check of route (a) against route (b): the TR point in C_p and the
+    multipliers there agree to 1e-6. Measured 5e-12 in C_p and 7e-12 in the multipliers:
+    Gauss collocation (NTST = 20, NCOL = 4) is superconvergent at the mesh nodes (error
+    h^8: 1.4e-9 at NTST = 10), route (b)'s flow is at rtol 1e-10, and Muller's last step
+    is far below EPSS = 1e-7; 1e-9 bounds all three with margin. The 14 multipliers are
+    route (b)'s 12 plus the oscillator's: the trivial 1 (first, AUTO's order) and its
+    radial exp(-2 T) (the monodromy matrix is block triangular)."""
+    assert engine_run.status == "ok"
+    assert [r.ty for r in engine_run.specials if r.ty] == ["EP", "TR", "UZ"]
+    tr = engine_run("TR1")
+    assert abs(tr.solution.par[0] - critical["C_p_exact"]) < 1e-9
+    mu_a, T = np.asarray(tr.stability.values), tr.solution.par[10]
+    assert abs(mu_a[0] - 1) < 1e-9 and np.abs(mu_a - np.exp(-2 * T)).min() < 1e-9
+    mu = _without_oscillator(mu_a, T)
+    D = np.abs(mu[:, None] - critical["multipliers"][None, :])
+    i, j = linear_sum_assignment(D)
+    assert D[i, j].max() < 1e-9
+    assert abs(abs(forced.critical_pair(mu)) - 1) < 1e-9
+
+
+def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, engine_run,
+                                                                      critical):
+    """The start is route (b)'s orbit at the file's PAR (C_p = 0, not the reference
+    0.101: stpnt is not corrected, so it must be computed there), the response is unstable
+    below the TR point and stable above it up to C_p = 0.5, and the period stays 1/Omega
+    on every point (the oscillator fixes it; Newton's EPSU = 1e-8 bounds its drift)."""
+    rows = engine_run.rows
+    cp = np.array([r.solution.par[0] for r in rows])
+    assert cp[0] == 0.0 and cp[-1] == pytest.approx(0.5, abs=1e-9)
+    start = forced.periodic_response(params.replace(C_p=0.0))
+    assert np.abs(np.asarray(rows[0].solution.u)[0, :12] - start.u0).max() < 1e-9
+    stable = np.array([bool(r.stable) for r in rows])
+    below, above = cp < critical["C_p_exact"] - 1e-6, cp > critical["C_p_exact"] + 1e-6
+    assert below.sum() >= 3 and above.sum() >= 3
+    assert not stable[below].any() and stable[above].all()
+    assert max(abs(r.solution.par[10] - 1 / params["Omega"]) for r in rows) < 1e-9
+
+
+def test_forced_problem_is_the_kernel_rhs_at_the_oscillator_angle(params):
+    """e='washer:forced': the washer rows are the kernel's rhs_fixed at the time
+    theta / (2 pi Omega), theta = atan2(x, y), on the oscillator's cycle and off it
+    (radius 0.7); the oscillator rows are frc's; the Jacobian (JAC = 1: kernel jac_fixed
+    plus a central difference in theta) equals the engine's central differences of the
+    whole right-hand side (JAC = 0) to their accuracy, ~1e-8 relative. stpnt's state at
+    t = 0 is route (b)'s orbit, periodic in t."""
+    from washer.auto_washer import washer_problem
+    pr = washer_problem("washer:forced", params=params)
+    u0, par = pr.start(16)
+    r = forced.periodic_response(params)
+    assert np.array_equal(u0[:12], r.u0) and np.array_equal(u0[12:], [0.0, 1.0])
+    assert par[0] == params["C_p"] and par[10] == pytest.approx(0.1, rel=1e-15)
+    P, w = params.vector(), 2 * np.pi * params["Omega"]
+    rng = np.random.default_rng(11)
+    for theta, rad in zip(rng.uniform(-np.pi, np.pi, 4), (1.0, 1.0, 0.7, 0.7)):
+        x, y = rad * np.sin(theta), rad * np.cos(theta)
+        u = np.r_[u0[:12] + 1e-3 * rng.standard_normal(12), x, y]
+        f = pr.func(u, par)
+        ref = kernel.rhs_fixed(theta / w, u[:12], P, "constant")
+        assert np.abs(f[:12] - ref).max() <= 1e-12 * np.abs(ref).max()
+        assert np.allclose(f[12:], [x + w * y - x * rad ** 2, -w * x + y - y * rad ** 2],
+                           rtol=1e-15, atol=1e-12)
+        J, J_fd = pr.with_jac(1).dfdu(u, par), pr.with_jac(0).dfdu(u, par)
+        assert np.abs(J - J_fd).max() <= 1e-8 * np.abs(J).max()
+    u1, scratch = np.zeros(14), np.zeros(16)
+    pr._stpnt(u1, scratch, 1.0)
+    assert np.array_equal(u1[:12], u0[:12])
 
 
 def test_flow_variational_refuses_bad_input(params, nominal):
