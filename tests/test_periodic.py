@@ -537,3 +537,42 @@ def test_period_doubling_switch_through_the_runner(tmp_path):
         found.append(pds[0].par[0])
     assert 8.40 < found[0] < 8.43
     assert abs(found[0] - found[1]) < 1e-5 * found[0]
+
+
+# ------------------------------------------------------------------ fold of cycles locus
+
+@pytest.mark.parametrize("direction,expect", [
+    # AUTO's b.loci, cycle-fold branch: UZ rows (PAR(4), PAR(1), PERIOD)
+    (1, [(2.9862945702, 111.0, 9.3909938218), (4.7221259912, 111.0, 6.0871698212),
+         (5.2433220475, 109.0, 5.3531517159)]),
+    (-1, [(2.5826424510, 109.0, 10.539411298)]),
+])
+def test_cycle_fold_locus_reproduces_autos_plp_loci(direction, expect):
+    """ISW = 2 from plp's LP of cycles (label 5; AUTO's FNPL/BCPL/ICPL extended BVP,
+    started from the stored direction instead of AUTO's 5-step generation run) with
+    c.plp.plp's settings (ICP = [4, 1, 11], UZR PAR(1) = 111, UZSTOP 109): the UZ points
+    of AUTO's b.loci, PAR(4) and PERIOD to 1e-7 relative (measured 3e-8; AUTO locates
+    UZ to EPSS = 1e-6)."""
+    from washer.cont.iterator import Continuation
+    from washer.cont.systems.cycle_fold import CycleFoldLocus
+    spec = importlib.util.spec_from_file_location("plp_eq", DATA / "plp" / "plp.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    P = Problem(2, mod.func, dfdu=mod.dfdu, dfdp=mod.dfdp, name="plp", jac=1)
+    rec = next(r for r in read_s(RECORDS / "s.plp") if r.lab == 5)
+    s = Settings(IPS=2, ISW=2, ICP=(4, 1, 11), NDIM=2, NPAR=12, NTST=20, NCOL=4, IAD=3, ILP=1,
+                 ISP=1, DS=direction * 0.1 * (1 + 1e-7), DSMIN=1e-4, DSMAX=3.0, ITNW=7,
+                 NWTN=3, EPSL=1e-7, EPSU=1e-7, EPSS=1e-6, JAC=1,
+                 UZR=((1, 111.0, False), (1, 109.0, True)))
+    sysm = CycleFoldLocus(StartData(P, s, rec.U[0], rec.par, rec, "LP"))
+    found = []
+    for k, step in enumerate(Continuation(sysm, s, mode="restart")):
+        assert step.kind != "failed" and k < 200
+        if step.kind == "special":
+            p = sysm.params(step.point.x)
+            found.append((p[3], p[0], p[10]))
+            if step.key == ("UZ", 1):                    # UZSTOP
+                break
+    assert len(found) == len(expect)
+    for (p4, p1, T), (a4, a1, aT) in zip(found, expect):
+        assert abs(p4 / a4 - 1) < 1e-7 and abs(p1 - a1) < 1e-9 and abs(T / aT - 1) < 1e-7

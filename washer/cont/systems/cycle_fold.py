@@ -1,0 +1,269 @@
+"""The locus of folds of periodic orbits in two parameters (IPS = 2, ISW = 2 from an LP
+of cycles): AUTO's FNPL / BCPL / ICPL (periodic.f90) on the collocation mesh.
+
+Extended BVP on [0, 1], unknown profile W = (u, v) of 2 NDIM components:
+
+    u' = T f(u, p)
+    v' = T f_u(u, p) v + (beta / T) f(u, p)        (FFPL with ICP(2) = 11)
+    W(0) = W(1)
+    int <u - u_old, u'_old> dt = 0                   (phase, ICPS)
+    int <v, u'_old> dt = 0                           (v is not the phase shift)
+    int <v, v> dt + beta^2 - c = 0                   (normalisation, c fixed)
+
+with u'_old = T_old f(u_old) at the nodes. Four free parameters (NFPR = 4): PAR(ICP(1)),
+the period PAR(11), the second parameter (the first ICP entry after ICP(1) that is not
+11) and beta (AUTO's PAR(NPAR-1), internal). Unknowns x = (W flattened node-major,
+PAR(11), PAR(p2), beta, PAR(ICP(1))); b-file columns and the L2 norm are those of u.
+
+Start (differs from AUTO, which first runs an ISW = -2 generation of 5 steps from
+v = 0 and restarts from its EP): directly from the LP record's stored direction
+(udot, T-dot, PAR(ICP(1))-dot ~ 0): at a fold of cycles (udot, T-dot) is the null
+vector of the periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T T-dot
+with s setting int <v, v> + beta^2 = c = 1, and Newton (the iterator's corrector)
+refines it. The second derivatives (f_uu v, f_up v) are mixed central differences of
+f in one batched call (steps ~ eps^(1/4), error ~ 1e-8).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from washer.cont import collocation as col
+from washer.auto.codes import Code
+from washer.cont.system import Solution, register
+from washer.cont.systems.periodic import SparseFactor, VectorField
+
+#: Relative step of the mixed second differences (eps^(1/4)).
+H2 = 1e-4
+#: The normalisation constant c of int <v, v> + beta^2 = c.
+NORM = 1.0
+
+
+@register(2, 2, "LP")
+class CycleFoldLocus:
+    curve_type = 5
+    arclength = "plane"
+
+    def __init__(self, data):
+        s = data.settings
+        self.settings, self.problem = s, data.problem
+        self.n = s.NDIM
+        icp = list(s.ICP)
+        others = [i for i in icp[1:] if i != 11]
+        if not others:
+            raise ValueError("ISW = 2 at an LP of cycles continues the fold in two parameters: "
+                             f"ICP = {icp} names only one (give e.g. ICP = [{icp[0]}, 2, 11])")
+        self.p1, self.p2 = icp[0], others[0]
+        self.free = [self.p1, 11, self.p2]
+        self.field = VectorField(self.problem, self.n)
+        self.unames = dict(getattr(data, "unames", {}) or {})
+        self.par = np.zeros(max(s.NPAR, 12, max(icp)))
+        p = np.asarray(data.par, float)
+        self.par[:min(len(p), len(self.par))] = p[:len(self.par)]
+        rec = data.record
+        if rec is None or np.ndim(rec.U) != 2 or rec.udot is None or len(rec.rldot) < 2:
+            raise ValueError("the fold of cycles is continued from an LP record of a periodic "
+                             "branch with its direction (IIS > 0)")
+        self._from_lp(rec)
+
+    # ------------------------------------------------------------------ set-up
+    def _set_mesh(self, mesh: col.Mesh) -> None:
+        self.mesh = mesh
+        self.coll = col.Collocation(mesh, 2 * self.n, nint=3)
+        self.n_eq = self.coll.n_eq
+        thu = self.settings.theta_u(self.n)
+        th = np.r_[thu, np.ones(self.n)]
+        s = self.settings
+        self.weights = np.r_[np.kron(self.coll.w_node, th), s.theta_par(11),
+                             s.theta_par(self.p2), 1.0, s.theta_par(self.p1)]
+
+    def _from_lp(self, rec) -> None:
+        s, n = self.settings, self.n
+        U_r = np.asarray(rec.U, float)[:, :n]
+        ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n]
+        mesh_r = col.Mesh(np.asarray(rec.t, float)[::rec.ncol].copy(), rec.ncol)
+        if (rec.ntst, rec.ncol) == (s.NTST, s.NCOL):
+            mesh, U, V = mesh_r, U_r.copy(), ud_r.copy()
+        else:
+            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST), s.NCOL)
+            U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
+            V = col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
+        self._set_mesh(mesh)
+        T = self.par[10]
+        rl = dict(zip(list(rec.icp)[:2], rec.rldot[:2]))
+        beta = T * rl.get(11, 0.0)
+        scale = math.sqrt(NORM / (self.coll.integral(np.sum(V * V, axis=1)) + beta ** 2))
+        V, beta = V * scale, beta * scale
+        self.U_old = U.copy()
+        self.up_old = T * self.field.f(U, self.par)
+        W = np.c_[U, V]
+        self._start = (np.r_[W.ravel(), T, self.par[self.p2 - 1], beta, self.par[self.p1 - 1]],
+                       None)
+
+    # ------------------------------------------------------------------ helpers
+    def unpack(self, x):
+        """(u (n_nodes, NDIM), v (n_nodes, NDIM), PAR, beta)."""
+        W = self.coll.profile(x)
+        par = self.par.copy()
+        par[10], par[self.p2 - 1], par[self.p1 - 1] = x[-4], x[-3], x[-1]
+        return W[:, :self.n], W[:, self.n:], par, float(x[-2])
+
+    def _second(self, ug, vg, par, index=None):
+        """Mixed second differences at the Gauss points: f_uu v (k, n, n) when index is
+        None, else f_up v (k, n) for p = PAR(index); one batched call of f."""
+        k, n = ug.shape
+        vmax = np.maximum(np.max(np.abs(vg), axis=1, keepdims=True), 1e-300)
+        hk = H2 * (1 + np.max(np.abs(ug), axis=1, keepdims=True)) / vmax     # k v small
+        if index is None:
+            h = H2 * (1 + np.abs(ug))                                      # (k, n)
+            E = np.eye(n)[None] * h[:, :, None]                            # (k, n, n)
+            kv = (hk * vg)[:, None, :]
+            pts = np.concatenate([ug[:, None] + E + kv, ug[:, None] + E - kv,
+                                  ug[:, None] - E + kv, ug[:, None] - E - kv], axis=1)
+            F = self.field.f(pts.reshape(-1, n), par).reshape(k, 4, n, n)
+            d = (F[:, 0] - F[:, 1] - F[:, 2] + F[:, 3]) / (4 * h[:, :, None] * hk[:, :, None])
+            return np.transpose(d, (0, 2, 1))                              # [:, row, col i]
+        hp = H2 * (1 + abs(par[index - 1]))
+        out = []
+        for sp_ in (1, -1):
+            pp = par.copy()
+            pp[index - 1] += sp_ * hp
+            out.append(self.field.f(ug + hk * vg, pp) - self.field.f(ug - hk * vg, pp))
+        return (out[0] - out[1]) / (4 * hp * hk)
+
+    # ------------------------------------------------------------------ contract
+    def residual(self, x):
+        u, v, par, beta = self.unpack(x)
+        W = self.coll.profile(x)
+        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
+        T = par[10]
+        Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
+        ug, vg = Wg[:, :n], Wg[:, n:]
+        fg = self.field.f(ug, par)
+        A = self.field.fu(ug, par)
+        Fu = T * fg
+        Fv = T * np.einsum("kij,kj->ki", A, vg) + (beta / T) * fg
+        F = np.concatenate([Fu, Fv], axis=1).reshape(N, m, 2 * n)
+        w = self.coll.w_node
+        ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1),
+                w @ np.sum(v * self.up_old, axis=1),
+                w @ np.sum(v * v, axis=1) + beta ** 2 - NORM]
+        return self.coll.residual_general(W, F, ints)
+
+    def jacobian(self, x):
+        u, v, par, beta = self.unpack(x)
+        W = self.coll.profile(x)
+        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
+        T = par[10]
+        Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
+        ug, vg = Wg[:, :n], Wg[:, n:]
+        fg = self.field.f(ug, par)
+        A = self.field.fu(ug, par)
+        Buv = self._second(ug, vg, par)                                    # f_uu v
+        k = len(ug)
+        D = np.zeros((k, 2 * n, 2 * n))
+        D[:, :n, :n] = T * A
+        D[:, n:, :n] = T * Buv + (beta / T) * A
+        D[:, n:, n:] = T * A
+        blocks = self.coll.local_blocks(1.0, D.reshape(N, m, 2 * n, 2 * n))
+        Av = np.einsum("kij,kj->ki", A, vg)
+        dF = np.zeros((4, k, 2 * n))
+        dF[0] = np.c_[fg, Av - (beta / T ** 2) * fg]                      # d/dT
+        for slot, idx in ((1, self.p2), (3, self.p1)):
+            fp = self.field.fp(ug, par, idx)
+            dF[slot] = np.c_[T * fp, T * self._second(ug, vg, par, idx) + (beta / T) * fp]
+        dF[2] = np.c_[np.zeros_like(fg), fg / T]                          # d/dbeta
+        nn = len(u)
+        int_u = np.zeros((3, nn, 2 * n))
+        int_u[0, :, :n] = self.up_old
+        int_u[1, :, n:] = self.up_old
+        int_u[2, :, n:] = 2 * v
+        int_par = np.zeros((3, 4))
+        int_par[2, 2] = 2 * beta
+        return self.coll.jacobian_general(blocks, dF.reshape(4, N, m, 2 * n), int_u, int_par)
+
+    def factor(self, J, border):
+        return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
+
+    def inner(self, a, b) -> float:
+        return float(np.dot(a, self.weights * b))
+
+    def border(self, t):
+        return self.weights * np.asarray(t, float)
+
+    def params(self, x):
+        u, v, par, beta = self.unpack(x)
+        return par
+
+    def start(self):
+        return self._start
+
+    def stability(self, x, J=None):
+        return None
+
+    def active_tests(self) -> list:
+        s = self.settings
+        return [int(Code.LP)] if (s.ILP != 0 and "LP" not in s.SP_OFF) else []
+
+    def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
+        codes = self.active_tests() if codes is None else codes
+        out = {}
+        if Code.LP in codes:
+            out[int(Code.LP)] = None if tangent is None else float(tangent[-1])
+        return out
+
+    def accept(self, code, prev, cur) -> bool:
+        return True
+
+    def update(self, x, tangent) -> None:
+        u, v, par, beta = self.unpack(x)
+        self.U_old = u.copy()
+        self.up_old = par[10] * self.field.f(u, par)
+        self.par = par
+
+    def wants_remesh(self, n_points: int) -> bool:
+        iad = self.settings.IAD
+        return iad > 0 and n_points % iad == 0
+
+    def remesh(self, x, *vectors):
+        """ADAPT on the extended profile (same NTST, NCOL)."""
+        W = self.coll.profile(x)
+        old = self.mesh
+        tm = col.new_mesh(old, W[:, :self.n], old.ntst, periodic=True)
+
+        def move(vec):
+            vec = np.asarray(vec, float)
+            Wv = vec[:self.coll.n_u].reshape(-1, 2 * self.n)
+            return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), vec[-4:]]
+        out = [move(x)] + [move(v) for v in vectors]
+        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
+        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
+        self._set_mesh(col.Mesh(tm, old.ncol))
+        return tuple(out)
+
+    def column_titles(self) -> list:
+        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
+        un = self.unames
+        return ["L2-NORM"] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
+                              for i in range(1, n2 + 1)]
+
+    def solution(self, x, tangent) -> Solution:
+        u, v, par, beta = self.unpack(x)
+        W = self.coll.profile(x)
+        w = self.coll.w_node
+        thu = self.settings.theta_u(self.n)
+        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
+        cols = [math.sqrt(w @ (u ** 2 @ thu))] + [float(np.max(u[:, i])) for i in range(n2)]
+        full = np.r_[par, beta, NORM]                      # NPARI = 2: beta, c (AUTO)
+        udot = rldot = None
+        if tangent is not None:
+            udot = self.coll.profile(tangent).copy()
+            rldot = [float(tangent[-1]), float(tangent[-4]), float(tangent[-3]),
+                     float(tangent[-2])]
+        return Solution(par=full, columns=cols, u=W.copy(), t=self.mesh.node_times(),
+                        udot=udot, rldot=rldot or [], ntst=self.mesh.ntst, ncol=self.mesh.ncol,
+                        ndim_user=self.n)
+
+    def directions(self, x, tangent, code) -> list:
+        return []
