@@ -172,13 +172,22 @@ def test_plp_cycle_fold_locus(plp):
     there, so compared as sets of (PAR(4), PAR(1)) at 1e-5)."""
     run_periodic(plp / "c.plp.ps", "ps1", e="plp", s="ss", IRS="HB1")
     gen = run_periodic(plp / "c.plp.plp", "lpstart", e="plp", s="ps1", IRS="LP1")
-    ep = [s for s in gen.specials if s.ty == "EP"][-1]
+    eps = [s for s in gen.specials if s.ty == "EP"]
     pts = []
-    for ds, sv in ((None, "lpf"), ("-", "lpb")):
-        extra = {} if ds is None else {"DS": ds}
-        run_periodic(plp / "c.plp.plp", sv, e="plp", s="lpstart", IRS=ep.lab, **extra)
-        pts += [(r.values[0], r.values[-2]) for r in rows(plp / f"b.{sv}") if r.lab
-                and type_name(r.ty) == "UZ"]
+    if eps and not any(s.ty == "UZ" for s in gen.specials):
+        # AUTO's two stages: a generation run ending at an EP, restarted both ways
+        for ds, sv in ((None, "lpf"), ("-", "lpb")):
+            extra = {} if ds is None else {"DS": ds}
+            run_periodic(plp / "c.plp.plp", sv, e="plp", s="lpstart", IRS=eps[-1].lab, **extra)
+            pts += [(r.values[0], r.values[-2]) for r in rows(plp / f"b.{sv}") if r.lab
+                    and type_name(r.ty) == "UZ"]
+    else:
+        # washer starts the locus at the LP itself (systems/cycle_fold.py): the run from
+        # LP1 is the forward branch; DS='-' from LP1 the backward one
+        run_periodic(plp / "c.plp.plp", "lpb", e="plp", s="ps1", IRS="LP1", DS="-")
+        for sv in ("lpstart", "lpb"):
+            pts += [(r.values[0], r.values[-2]) for r in rows(plp / f"b.{sv}") if r.lab
+                    and type_name(r.ty) == "UZ"]
     ref = rows(REF / "plp" / "b.loci")                 # periodic rows: the cycle-fold locus
     want = [(r.values[0], r.values[-2]) for r in ref if r.lab and type_name(r.ty) == "UZ"]
     assert len(pts) == len(want) == 4
