@@ -11,17 +11,29 @@ Prints, at nominal values (reference set, Omega = 10 Hz):
   (3) the located TR point in C_p (Brent on C_p within +-5% of the averaged Hopf value,
       a converged periodic response per evaluation), and the same via pseudo-arclength
       continuation from C_p = 0.08 to 0.13 with detection and location;
-  (4) the exact critical C_p with the averaged and frozen Hopf values (`critical_cp`).
+  (4) the exact critical C_p with the averaged and frozen Hopf values (`critical_cp`);
+  (5) route (a), the engine (IPS = 2, e='washer:forced', NTST = 20, NCOL = 4, NDIM = 14):
+      the start (stpnt: route (b)'s orbit sampled at the 81 mesh nodes), one periodic
+      response with its 14 multipliers (a continuation step: Newton on the collocation
+      system, then the multipliers; mean over 10 steps in C_p = 0.2 -> 0.3, no special
+      point), the TR point located (C_p 0.09 -> 0.11), and the shipped
+      auto_constants/c.washer.forced (C_p 0 -> 0.5, 31 points).
 Best of 3 wall times; 2 shared cores, so other load inflates them.
-Route (a) (engine, IPS = 2) is to be added here when it exists.
 """
+import shutil
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 import washer
 from washer import forced, kernel
+from washer.auto_washer import washer_problem
+from washer.run import run
+
+CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants" / "c.washer.forced"
 
 
 def best_of(fn, repeat=3):
@@ -71,6 +83,42 @@ def main():
     t_cc, c = best_of(lambda: forced.critical_cp(params))
     print(f"  critical_cp (exact, averaged, frozen): {t_cc:8.3f} s: "
           f"{c['C_p_exact']:.10f}, {c['C_p_averaged']:.10f}, {c['C_p_frozen']:.10f}")
+    route_a(params, c)
+
+
+def route_a(params, crit):
+    """Route (a): the engine on e='washer:forced' (outputs in a temporary folder)."""
+    print("\nroute (a): the engine, IPS = 2, e='washer:forced', NTST 20 x NCOL 4")
+
+    def start():
+        pr = washer_problem("washer:forced", params=params)
+        u, scratch = np.zeros(14), np.zeros(16)
+        for t in np.arange(81) / 80:
+            pr._stpnt(u, scratch, t)
+
+    t_s, _ = best_of(start)
+    print(f"  start (stpnt: route (b)'s orbit at 81 nodes): {t_s * 1e3:8.1f} ms")
+    with tempfile.TemporaryDirectory() as d:
+        cfile = Path(d) / "c.washer.forced"
+        shutil.copy(CONSTANTS, cfile)
+
+        def go(**kw):
+            return lambda: run(cfile, verbose=False, sv="bench", **kw)
+
+        window = dict(PAR={"C_p": 0.2}, UZSTOP={"C_p": [0.0, 0.3]}, DSMAX=0.01)
+        t1, _ = best_of(go(NMX=2, **window))          # the start and one step
+        t11, r = best_of(go(NMX=12, **window))        # the start and 11 steps
+        assert [x.ty for x in r.specials if x.ty in ("TR", "PD", "LP", "BP")] == []
+        print(f"  one periodic response + 14 multipliers: {(t11 - t1) / 10 * 1e3:8.1f} ms "
+              f"(a continuation step; mean of 10)")
+        t_tr, r = best_of(go(PAR={"C_p": 0.09}, UZSTOP={"C_p": [0.0, 0.11]}))
+        tr = r("TR1")
+        mu = np.asarray(tr.stability.values)
+        print(f"  TR located, C_p 0.09 -> 0.11          : {t_tr:8.3f} s, {len(r.rows)} points, "
+              f"C_p = {tr.solution.par[0]:.12f} (route b {crit['C_p_exact']:.12f}), "
+              f"critical mu = {forced.critical_pair(mu):.9f}")
+        t_all, r = best_of(go())
+        print(f"  c.washer.forced, C_p 0 -> 0.5         : {t_all:8.3f} s, {len(r.rows)} points")
 
 
 if __name__ == "__main__":
