@@ -37,8 +37,9 @@ eps6 (gamma) swings by 4e-4 rad: the steady response is almost a rigid whirl, an
 2 Omega harmonic of the eps coordinates is nearly all coordinate effect.
 
 Route (a) of the issue (the engine with IPS = 2 and an appended oscillator, AUTO's `frc`
-demo) is not here; the functions below take plain parameter sets so that its results can
-be compared with these point by point.
+demo) is e='washer:forced' (washer.auto_washer.forced_problem, whose stpnt is this module's
+orbit; auto_constants/c.washer.forced); tests/test_forced.py compares the two routes'
+TR point and multipliers (agreement ~5e-12).
 """
 from __future__ import annotations
 
