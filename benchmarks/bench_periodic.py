@@ -84,7 +84,7 @@ def _shares(fn) -> tuple[float, float, float]:
     pr.disable()
     wall = time.perf_counter() - t0
     lin = rhs = 0.0
-    for (path, _, name), (_, _, tt, ct, _) in pstats.Stats(pr).stats.items():
+    for (path, _, name), (_, _, tt, _ct, _) in pstats.Stats(pr).stats.items():
         if any(k in name for k in LINEAR):
             lin += tt
         elif (name == "func" and path.endswith(RHS_FILES)) or any(k in name for k in RHS_NAMES):

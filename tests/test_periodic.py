@@ -175,14 +175,15 @@ def test_start_from_a_hopf_point_follows_the_closed_form_family():
     sysm = PeriodicOrbits(StartData(LW, settings(), np.zeros(2), par, None, "HB"))
     x0, t0 = sysm.start()
     assert t0[-1] == 0 and t0[-2] == 0 and abs(sysm.inner(t0, t0) - 1) < 1e-12
-    tt = sysm.mesh.node_times()
     V = sysm.coll.profile(t0)
-    # a rotation in the plane: |V(t)| constant and V(t + 1/4) = J V(t) (J = rot 90)
+    # the eigenvector of [[0, -1], [1, 0]] turns the direction into a rotation: |V(t)|
+    # is constant, and V(t) . V(t + 1/4) = 0
     assert np.ptp(np.hypot(V[:, 0], V[:, 1])) < 1e-12
+    quarter = col.evaluate(sysm.mesh, V, (sysm.mesh.node_times() + 0.25) % 1.0)
+    assert np.max(np.abs(np.sum(V * quarter, axis=1))) < 1e-3 * np.max(V ** 2)
     pts = _branch(sysm, 10, 0.05)
     mus = []
     for x in pts[1:]:
-        U, p = sysm.unpack(x) if len(x) == sysm.coll.n_x else (None, None)
         U = x[:-2].reshape(-1, 2)
         p = sysm.params(x)
         r2 = np.mean(U[:, 0] ** 2 + U[:, 1] ** 2)
@@ -495,7 +496,7 @@ def test_isw_minus_one_restart_at_a_stored_bp_of_cycles():
     D = sysm.coll.profile(t0)
     assert np.max(np.abs(D[:, :2])) < 1e-8 and np.max(np.abs(D[:, 2])) > 0.5
     pts = [step.point.x.copy() for step, _ in
-           zip(Continuation(sysm, s, x0=x0, tangent=t0, mode="switch"), range(4))]
+           zip(Continuation(sysm, s, x0=x0, tangent=t0, mode="switch"), range(4), strict=False)]
     U3, p3 = sysm.coll.profile(pts[-1]), sysm.params(pts[-1])
     assert p3[0] > 0.7 and np.max(np.abs(U3[:, 2] ** 2 - (p3[0] - 0.7))) < 1e-7
 
@@ -574,7 +575,7 @@ def test_cycle_fold_locus_reproduces_autos_plp_loci(direction, expect):
             if step.key == ("UZ", 1):                    # UZSTOP
                 break
     assert len(found) == len(expect)
-    for (p4, p1, T), (a4, a1, aT) in zip(found, expect):
+    for (p4, p1, T), (a4, a1, aT) in zip(found, expect, strict=True):
         assert abs(p4 / a4 - 1) < 1e-7 and abs(p1 - a1) < 1e-9 and abs(T / aT - 1) < 1e-7
 
 

@@ -91,7 +91,7 @@ class CycleFoldLocus:
             V = col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
         self._set_mesh(mesh)
         T = self.par[10]
-        rl = dict(zip(list(rec.icp)[:2], rec.rldot[:2]))
+        rl = dict(zip(list(rec.icp)[:2], rec.rldot[:2], strict=False))
         beta = T * rl.get(11, 0.0)
         scale = math.sqrt(NORM / (self.coll.integral(np.sum(V * V, axis=1)) + beta ** 2))
         V, beta = V * scale, beta * scale
