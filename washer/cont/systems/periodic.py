@@ -371,8 +371,11 @@ class PeriodicOrbits:
 
         n_stable counts the trivial multiplier plus the others with |mu| <= 1 + 1e-5.
         While the trivial multiplier is inaccurate (|mu_1 - 1| > 0.05, until it is
-        back below 0.01) AUTO sets NINS = 0 and suspends PD/TR detection: so do we,
-        with the note 'Multiplier inaccurate'."""
+        back below 0.01) PD/TR detection is suspended and NINS = 0, with the note
+        'Multiplier inaccurate'. AUTO enters that state only when the multiplier
+        nearest the circle is also of PD/TR type (otherwise it goes on counting the
+        inaccurate multipliers: lrz's PT 28 is 'Stable: 3' in its d-file); we enter
+        it whenever mu_1 is off, so such points are reported unstable, not stable."""
         if self.settings.ISP == 0:
             return None
         cached = getattr(self, "_stab_cache", None)
