@@ -34,7 +34,10 @@ def curves(quick):
 def test_report_and_figures_are_written(quick):
     report = (quick / "report.md").read_text()
     images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", report)
-    assert len(images) == 11          # Figs 3-11, the spin-up's yaw, Fig 11 run long
+    # Figs 3-11, the spin-up's yaw, Fig 11 run long, the exact (Floquet) Fig 4 curve
+    assert len(images) == 12
+    assert "fig4_exact.png" in images
+    assert "Exact stability: Floquet multipliers of the forced response" in report
     for img in images:
         assert (quick / img).stat().st_size > 10_000
         assert (quick / img).with_suffix(".pdf").exists()
