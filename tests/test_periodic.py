@@ -616,3 +616,48 @@ def test_washer_whirl_at_cp0_is_the_simulated_limit_cycle(tmp_path):
     for a, b in ((orbit_r.min(), sim_r.min()), (orbit_r.max(), sim_r.max()),
                  (orbit_z.min(), sim_z.min()), (orbit_z.max(), sim_z.max())):
         assert abs(a - b) < 1e-3 * abs(b), (a, b)
+
+
+# ------------------------------------------------------------------ torus bifurcation
+
+def tr(u, par):
+    """A torus bifurcation of cycles in closed form: the oscillator r' = r (mu - r^2),
+    theta' = 1 (period 2 pi) and a decoupled linear focus (z, w) with rate mu - c and
+    frequency omega2. On the orbit the multipliers are 1, exp(-2 mu T) and the pair
+    exp((mu - c +- i omega2) T): it leaves the unit circle at mu = c with the angle
+    omega2 T (mod 2 pi)."""
+    x, y, z, w = u[0], u[1], u[2], u[3]
+    mu, c, om2 = par[0], par[1], par[2]
+    r2 = x * x + y * y
+    return np.array([x * (mu - r2) - y, y * (mu - r2) + x,
+                     (mu - c) * z - om2 * w, om2 * z + (mu - c) * w])
+
+
+def test_torus_bifurcation_of_cycles_located():
+    """The iterator locates the TR test's zero at mu = c = 0.6 (1e-6), AUTO's acceptance
+    (the stable count drops by 2) holds, and the written PAR(12) is the angle
+    omega2 T = 0.3 * 2 pi of the critical pair (1e-6)."""
+    from washer.cont.iterator import Continuation
+    P = Problem(4, tr, name="tr")
+    par = np.r_[0.5, 0.6, 0.3, np.zeros(9)]
+    par[10] = 2 * math.pi
+    mesh = col.Mesh.uniform(10, 4)
+    t = mesh.node_times()
+    r = math.sqrt(0.5)
+    U = np.c_[r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t), 0 * t, 0 * t]
+    rec = SimpleNamespace(U=U, t=t, ntst=10, ncol=4, par=par, icp=[1, 11], rldot=[], udot=None)
+    s = settings(ndim=4, ntst=10, ncol=4, ISP=2, DS=0.02, DSMAX=0.05)
+    sysm = PeriodicOrbits(StartData(P, s, U[0], par, rec))
+    hit = after = None
+    for k, step in enumerate(Continuation(sysm, s, mode="restart")):
+        if hit is not None and step.point is not None:
+            after = step
+            break
+        if step.kind == "special":
+            hit = step
+            sol = sysm.solution(hit.point.x, hit.point.tangent)
+        assert k < 30, "no TR found"
+    assert hit.code == Code.TR
+    assert abs(hit.point.x[-1] - 0.6) < 1e-6
+    assert hit.prev.stability.n_stable == 4 and after.point.stability.n_stable == 2
+    assert abs(sol.par[11] - 0.3 * 2 * math.pi) < 1e-6

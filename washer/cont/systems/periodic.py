@@ -584,8 +584,17 @@ class PeriodicOrbits:
                           for i in range(1, self.n2() + 1)]
 
     def solution(self, x: np.ndarray, tangent: np.ndarray | None) -> Solution:
+        """b-row columns and s-record of x. PAR(12) holds the torus angle |arg mu_2|
+        where the nontrivial multiplier nearest the unit circle is complex (FNSPBV sets
+        it wherever TPSPBV classifies the point as TR), as AUTO writes it."""
         U = self.coll.profile(x)
         par = self.params(x)
+        if self.ndim > 2 and self.settings.ISP != 0 and len(par) >= 12 \
+                and self.free[1] != 12 and self.free[0] != 12:
+            mu = self.stability(x).values
+            kind, _ = spb_type(mu, self.settings.EPSS)
+            if kind == Code.TR:
+                par[11] = abs(math.atan2(mu[1].imag, mu[1].real))
         cols = [self.measure(U)] + [float(np.max(U[:, i])) for i in range(self.n2())]
         udot = rldot = None
         if tangent is not None:
