@@ -53,7 +53,7 @@ def test_shipped_specs_parse_and_are_big_enough():
     ("[[study]]\nkinds = ['stability']\nsample = 'lhs'\nn = 5\n[study.vary]\nm_u = [1.0]\n", ":6",
      "explicit values"),
     ("[[study]]\nkinds = ['critical']\n[study.vary]\nm_u = [1.0]\n[study.critical]\n"
-     "engine = 'floquet'\n", ":6", "not available yet"),
+     "engine = 'exact'\n", ":6", "engine"),
 ])
 def test_spec_errors_name_file_line_and_cause(text, where, what):
     with pytest.raises(SpecError) as err:
@@ -275,3 +275,18 @@ m_u = [0.6, 1.0, 1.4, 1.8]
     for _, r in crit.iterrows():
         xs = crossing_on_curve(curve, r["m_u"])
         assert len(xs) == 1 and abs(xs[0] - r["crit_value"]) <= 1e-3, (r["m_u"], xs, r["crit_value"])
+
+
+def test_critical_floquet_engine_is_the_forced_response_tr_point(params):
+    """engine = 'floquet': the exact critical C_p (TR point of the forced response) equals
+    washer.forced.critical_cp's (the same Brent location on |mu_c| - 1, bracketed
+    differently: both stop at xtol 1e-12, tolerance 1e-9), and differs from the averaged
+    value by the averaging error (1.2e-5 at nominal values: asserted below 1e-3 relative)."""
+    from washer import forced
+    from washer.sweep.tasks import critical
+    got = critical(params, "C_p", 0.0, 3.0, "floquet")
+    ref = forced.critical_cp(params)
+    assert got["crit_source"] == "floquet"
+    assert got["crit_value"] == pytest.approx(ref["C_p_exact"], abs=1e-9)
+    assert got["crit_averaged"] == pytest.approx(ref["C_p_averaged"], rel=1e-6)
+    assert 0 < abs(got["crit_value"] - got["crit_averaged"]) < 1e-3 * got["crit_value"]

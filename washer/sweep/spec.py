@@ -343,9 +343,6 @@ def _check_critical(opt: dict, axes, at) -> None:
     if par in [a.name for a in axes]:
         raise SpecError(f"{at('parameter')}: critical parameter {par!r} is also swept; "
                         "sweep other parameters")
-    if opt["engine"] == "floquet":
-        raise SpecError(f"{at('engine')}: engine = 'floquet' (exact Floquet multipliers of the "
-                        "periodic response) is not available yet; use 'continuation'")
     if opt["to"] is None:
         if par not in CRITICAL_DEFAULT_TO:
             raise SpecError(f"{at()}: critical: give to = upper end of the search for {par!r}")

@@ -145,13 +145,14 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
              engine: str = "continuation") -> dict:
     """Critical value of `parameter`: its first Hopf point from lo to hi.
 
-    engine: "continuation" (the averaged system's Hopf point, washer.run);
-    "floquet" is the hook for the exact result (the Neimark-Sacker point of the
-    periodic response at constant speed, MODEL.md section 4) once the
-    forced-response solver exists: it raises until then."""
+    engine: "continuation" (the averaged system's Hopf point, washer.run) or
+    "floquet": the exact result, the Neimark-Sacker (TR) point of the periodic
+    response at constant speed (MODEL.md section 4; washer.forced, shooting with
+    the kernel's variational flow), bracketed around the averaged value (averaging
+    is accurate to ~1e-4 relative: FLOQUET_BRACKET leaves a wide margin).
+    Adds crit_averaged (the averaged value) and crit_multiplier_angle (rad)."""
     if engine == "floquet":
-        raise PointError("critical: engine 'floquet' is not available yet (needs the "
-                         "periodic forced response and its Floquet multipliers)")
+        return _critical_floquet(params, parameter, lo, hi)
     if engine != "continuation":
         raise PointError(f"critical: unknown engine {engine!r}")
     from washer.auto_washer import PAR_NAMES
@@ -168,6 +169,33 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
                 "crit_whirl": 2 * math.pi / period if period > 0 else math.nan,
                 "crit_n_hopf": float(len(hbs)), "crit_source": "HB"}
     return _critical_fallback(params, parameter, lo, hi, res.status)
+
+
+#: Half-width of the exact (Floquet) bracket around the averaged critical value:
+#: this fraction of the value plus FLOQUET_ABS of the search range.
+FLOQUET_BRACKET = 0.05
+FLOQUET_ABS = 1e-3
+
+
+def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> dict:
+    """The exact critical value: the averaged one (continuation), then the TR point of
+    the forced response within a bracket around it (Brent on |mu_c| - 1)."""
+    from washer import forced
+    avg = critical(params, parameter, lo, hi, "continuation")
+    v = avg["crit_value"]
+    half = FLOQUET_BRACKET * abs(v) + FLOQUET_ABS * (hi - lo)
+    bracket = (max(v - half, lo), min(v + half, hi))
+    try:
+        start = forced.averaged_start(params.replace(**{parameter: v}))
+        r, sp = forced.locate_tr(params, parameter, bracket, start)
+    except Exception as exc:  # noqa: BLE001 - recorded per point
+        raise PointError(f"critical (floquet): no TR point of the forced response in "
+                         f"[{bracket[0]:.6g}, {bracket[1]:.6g}] around the averaged "
+                         f"{v:.6g}: {exc}") from None
+    mu = forced.critical_pair(r.multipliers)
+    return {"crit_value": float(sp.value), "crit_whirl": avg["crit_whirl"],
+            "crit_n_hopf": avg["crit_n_hopf"], "crit_source": "floquet",
+            "crit_averaged": float(v), "crit_multiplier_angle": float(abs(np.angle(mu)))}
 
 
 def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
