@@ -661,3 +661,51 @@ def test_torus_bifurcation_of_cycles_located():
     assert abs(hit.point.x[-1] - 0.6) < 1e-6
     assert hit.prev.stability.n_stable == 4 and after.point.stability.n_stable == 2
     assert abs(sol.par[11] - 0.3 * 2 * math.pi) < 1e-6
+
+
+# ------------------------------------------------------------------ profiles against AUTO's
+
+def _aligned_difference(rec_a, rec_b) -> float:
+    """max_t |u_a(t + tau) - u_b(t)| over the best phase shift tau (both orbits as the
+    piecewise polynomials of their s-records), relative to u_b's amplitude."""
+    from scipy.optimize import minimize_scalar
+    ma = col.Mesh(np.asarray(rec_a.t)[::rec_a.ncol].copy(), rec_a.ncol)
+    mb = col.Mesh(np.asarray(rec_b.t)[::rec_b.ncol].copy(), rec_b.ncol)
+    t = np.linspace(0, 1, 4001)[:-1]
+    Ub = col.evaluate(mb, np.asarray(rec_b.U), t)
+    amp = np.max(np.ptp(Ub, axis=0))
+    err = lambda tau: np.max(np.abs(col.evaluate(ma, np.asarray(rec_a.U), (t + tau) % 1.0) - Ub))
+    grid = np.linspace(0, 1, 401)[:-1]
+    tau0 = grid[np.argmin([err(g) for g in grid])]
+    best = minimize_scalar(err, bounds=(tau0 - 0.0025, tau0 + 0.0025), method="bounded",
+                           options={"xatol": 1e-10})
+    return float(best.fun / amp)
+
+
+@pytest.mark.parametrize("demo,script", [
+    ("chu", "PD"),     # chu: run(r1("HB1"), IPS=2, ICP=[1, 11]): the PD, label 8
+    ("plp", "LP"),     # plp: run(hb, c='plp.ps') from HB1: the LP of cycles, label 5
+])
+def test_located_orbits_agree_with_autos_profiles(tmp_path, demo, script):
+    """Our orbit at a located special point of a demo run against AUTO's s-record of the
+    same point, after phase alignment: max difference below 1e-5 of the amplitude (the
+    issue's criterion). Measured: chu's PD 1.5e-6 (PAR(1) 8.1959946 against AUTO's
+    8.1959951), plp's LP 6.5e-6 (at a fold the orbit moves like the square root of the
+    parameter distance; PAR(4) differs by 1.8e-7 relative)."""
+    import shutil
+    from washer.run import run
+    ref = DATA / "auto_reference" / "periodic" / demo
+    for f in ref.glob("c.*"):
+        shutil.copy(f, tmp_path)
+    shutil.copy(DATA / demo / f"{demo}.py", tmp_path)
+    if demo == "chu":
+        run(tmp_path / "c.chu", verbose=False, e="chu", sv="eq")
+        run(tmp_path / "c.chu", verbose=False, e="chu", s="eq", sv="po", IRS="HB1", IPS=2,
+            ICP=[1, 11])
+    else:
+        run(tmp_path / "c.plp.ss", verbose=False, e="plp", sv="eq")
+        run(tmp_path / "c.plp.ps", verbose=False, e="plp", s="eq", sv="po", IRS="HB1")
+    ours = next(r for r in read_s(tmp_path / "s.po") if r.ty in (5, 7) and
+                {5: "LP", 7: "PD"}[r.ty] == script)
+    auto = next(r for r in read_s(RECORDS / f"s.{demo}") if r.ty in (5, 7))
+    assert _aligned_difference(ours, auto) < 1e-5
