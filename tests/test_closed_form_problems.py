@@ -504,3 +504,22 @@ def test_dsmin_zero_is_replaced_and_does_not_hang(wall):
     last = res.rows[-1]
     assert last.ty == -9
     assert 0.0 <= 1.0 - last.values[0] < 1e-5
+
+
+def test_crossing_type_does_not_depend_on_which_test_is_located_first(tmp_path_factory):
+    """hopfcross2 (found in review): the loci of hopfcross with a p2-dependent frequency
+    w exp(+-p2). At the crossing both the BP and the ZH tests vanish; their linear zero
+    estimates now put ZH first (0.590 against 0.593 of the step). One special point must
+    be reported, as BP (31: AUTO's test order, a bifurcation first), and MXBF must still
+    switch onto the second locus and find its GH (x0 = p2 = 1/2, where l1 = (x0 - 1/2) /
+    omega-type factor changes sign) and its fold."""
+    d = scratch(tmp_path_factory, "hopfcross2")
+    with time_limit(120, "hopfcross2"):
+        do_run(d / "c.hopfcross2", "eq")
+        res = do_run(d / "c.hopfcross2", "fwd", DS=0.02, **HB_CURVE)
+    assert res.status == "ok"
+    got = [(seg[0].br, [r.ty for r in labelled(seg)]) for seg in segments(res.rows)]
+    assert got == [(2, [31, -34]), (3, [-32, -34]), (3, [32, -34])]
+    gh = res("GH1")
+    cfile = d / "c.hopfcross2"
+    assert gh.par[1] == pytest.approx(0.5, abs=located_tol(cfile, 0.5, DS=0.02))

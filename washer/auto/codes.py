@@ -30,6 +30,7 @@ class Code(IntEnum):
     MX = -9         # abnormal end (no convergence)
     BT = -1         # Bogdanov-Takens (codim 2)
     CP = -2         # cusp on fold curves; generalized Hopf (GH) on Hopf curves
+    GH = -2         # alias of CP: the same base code, named GH on Hopf curves
     ZH = -3         # zero-Hopf
     R1 = -5
     R2 = -6
@@ -89,3 +90,36 @@ def parse_label(key) -> tuple[str, int] | int:
         raise ValueError(f"bad label {key!r}: expected a number or a type name such as 'HB2' "
                          f"(types: {', '.join(sorted(BASE_OF_NAME))})")
     return name, count
+
+
+def has_type(code: int, name: str) -> bool:
+    """Whether a written code is of type `name` ('HB', 'GH', 'RG' for NPR points, ...)."""
+    if name == "RG":
+        return split_code(code)[0] == 4
+    return type_name(code) == name
+
+
+def find(items, key, code=lambda r: r.ty, lab=lambda r: r.lab):
+    """AUTO's FINDLB over labelled items (s-records, points of a run in memory): an
+    integer label, -n for the n-th item, or 'HB2' (the 2nd HB; 'RG1' the first NPR
+    point). `code`/`lab` read an item's written type code and label. Raises
+    LookupError naming what there is."""
+    items = list(items)
+    try:
+        k = parse_label(key)
+    except ValueError as exc:
+        raise LookupError(str(exc)) from None
+    if isinstance(k, tuple):
+        name, count = k
+        hits = [r for r in items if has_type(code(r), name)]
+        if len(hits) < count:
+            raise LookupError(f"'{key}': there are {len(hits)} {name} point(s)")
+        return hits[count - 1]
+    if k < 0:
+        if -k > len(items):
+            raise LookupError(f"{key}: there are only {len(items)} labelled points")
+        return items[-k - 1]
+    for r in items:
+        if lab(r) == k:
+            return r
+    raise LookupError(f"no label {k} (labels: {[lab(r) for r in items]})")

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.codes import parse_label, type_name  # noqa: F401 (re-exported)
+from washer.auto.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47
@@ -582,24 +582,9 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
 
 
 def find_record(records: list[Record], irs) -> Record:
-    """AUTO's FINDLB: a label number, -n for the n-th record, or 'HB2' by type and
-    count (codes.parse_label). Raises LookupError naming what the file holds."""
+    """AUTO's FINDLB on s-file records: a label number, -n for the n-th record, or
+    'HB2' by type and count (codes.find). Raises LookupError naming what the file holds."""
     try:
-        key = parse_label(irs)
-    except ValueError as exc:
-        raise LookupError(str(exc)) from None
-    if isinstance(key, tuple):
-        name, count = key
-        hits = [r for r in records if type_name(r.ty) == name]
-        if len(hits) < count:
-            raise LookupError(f"IRS='{irs}': the restart file has {len(hits)} {name} point(s)")
-        return hits[count - 1]
-    if key < 0:
-        if -key > len(records):
-            raise LookupError(f"IRS={irs}: the restart file has only {len(records)} records")
-        return records[-key - 1]
-    for r in records:
-        if r.lab == key:
-            return r
-    raise LookupError(f"IRS={irs}: no label {key} in the restart file "
-                      f"(labels: {[r.lab for r in records]})")
+        return find(records, irs)
+    except LookupError as exc:
+        raise LookupError(f"IRS={irs!r}: {exc} in the restart file") from None

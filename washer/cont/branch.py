@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.auto.codes import type_name
+from washer.auto.codes import find, type_name
 from washer.cont.system import Solution, Stability
 
 
@@ -96,16 +96,9 @@ class Branch:
         return [r for r in self.rows if r.lab]
 
     def __call__(self, key):
-        """r('HB1'), r('LP'), r(3): a labelled point by type (and count) or label."""
-        from washer.auto.codes import parse_label
-        k = parse_label(key)
-        if isinstance(k, int):
-            for s in self.specials:
-                if s.lab == k:
-                    return s
-            raise KeyError(f"no label {k} (labels: {[s.lab for s in self.specials]})")
-        name, count = k
-        hits = [s for s in self.specials if s.ty == name]
-        if len(hits) < count:
-            raise KeyError(f"{name}{count}: the run has {len(hits)} {name} point(s)")
-        return hits[count - 1]
+        """r('HB1'), r('LP'), r(3), r(-1): a labelled point by type (and count), label
+        or position, as AUTO's FINDLB (washer.auto.codes.find)."""
+        try:
+            return find(self.specials, key, code=lambda r: r.code)
+        except LookupError as exc:
+            raise KeyError(str(exc)) from None

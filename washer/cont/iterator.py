@@ -49,6 +49,19 @@ SINGULAR_TANGENT = 1e12
 SIMULTANEOUS = 1e-6
 
 
+#: AUTO's order among tests that vanish at the same point (LCSPAE: first come,
+#: first served in its test order, a bifurcation overriding UZ, CP overriding LP).
+PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.BPC, Code.LPC,
+            Code.PD, Code.TR)
+
+
+def _priority(key) -> int:
+    """Rank of a test key in PRIORITY (UZ keys, tuples, come last)."""
+    if isinstance(key, tuple):
+        return len(PRIORITY) + 1
+    return PRIORITY.index(key) if key in PRIORITY else len(PRIORITY)
+
+
 class ConvergenceError(RuntimeError):
     """A corrector (or start correction) did not converge."""
 
@@ -107,6 +120,7 @@ class Continuation:
         self.uz = list(settings.UZR)
         self.tests = list(system.active_tests())
         self.state: State | None = None
+        self.failure = "No convergence with minimum step size"
 
     # ------------------------------------------------------------ corrector
     def correct(self, x_pred, x_ref, t_ref, ds, plane: bool | None = None):
@@ -255,13 +269,13 @@ class Continuation:
                 return self._step(p, ds), ds
             except (ConvergenceError, ProblemError, np.linalg.LinAlgError) as exc:
                 if self.s.IADS == 0:
-                    self._pending.append(Step("note", text=f"NOTE:No convergence with fixed "
-                                                           f"step size ({exc})"))
+                    self.failure = f"No convergence with fixed step size ({exc})"
+                    self._pending.append(Step("note", text=f"NOTE:{self.failure}"))
                     return None, ds
                 ds /= 2
                 if abs(ds) < self.s.DSMIN:
-                    self._pending.append(Step("note", text=f"NOTE:No convergence with minimum "
-                                                           f"step size ({exc})"))
+                    self.failure = f"No convergence with minimum step size ({exc})"
+                    self._pending.append(Step("note", text=f"NOTE:{self.failure}"))
                     return None, ds
                 self._pending.append(Step("note", text=f"NOTE:Retrying step ({exc})"))
 
@@ -283,8 +297,13 @@ class Continuation:
 
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
-        """The earliest accepted zero between prev and cur: (point, key) or None.
-        Raises LocationFailed when the earliest one cannot be located."""
+        """The earliest accepted zero between prev and cur: (point, key, keys of
+        other tests vanishing at the same point) or None. Raises LocationFailed
+        when the earliest one cannot be located.
+
+        Zeros of several tests at one point (a transcritical BP is also a zero
+        eigenvalue; two Hopf loci crossing) are one special point: its type is
+        the first in AUTO's order (PRIORITY), whichever zero was located."""
         target, span, found = cur, ds, None
         for _ in range(len(cur.tests) + 1):
             keys = [k for k in sign_changes(prev.tests, target.tests)
@@ -292,22 +311,42 @@ class Continuation:
                     and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
                     < (1 - SIMULTANEOUS if found is not None else 2)]
             if not keys:
-                return found
+                break
             keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
             key = keys[0]
             trial = lambda s_: self._trial(prev, s_, key)
             sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
-            J = self.sys.jacobian(sp.x)
-            if key == Code.BP:
-                # At a branch point G_x has a two-dimensional null space: the
-                # bordered tangent solve is singular there. The branch's direction
-                # is the secant from the previous point (AUTO stores it too).
-                sec = sp.x - prev.x
-                sp.tangent = sec / math.sqrt(self.sys.inner(sec, sec))
-            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
+            sp.tests = self._tests(sp, self.sys.jacobian(sp.x), self.sys.factor(
+                self.sys.jacobian(sp.x), self.sys.border(sp.tangent)), None)
             found = (sp, key)
             target, span = sp, s_sp
-        return found
+        if found is None:
+            return None
+        sp, key = found
+        # Other tests that change sign over the step and vanish at sp, to within the
+        # location tolerance (their linear zero estimate from sp's value).
+        tol = 10 * self.s.EPSS * (1 + math.sqrt(abs(self.s.DS * self.s.DSMAX)))
+        same = []
+        for k in sign_changes(prev.tests, cur.tests):
+            # User values (UZ) are never merged: two UZR values are two points.
+            if k == key or isinstance(k, tuple) or isinstance(key, tuple) \
+                    or k not in sp.tests or sp.tests[k] is None:
+                continue
+            slope = abs(cur.tests[k] - prev.tests[k]) / abs(ds)
+            if slope > 0 and abs(sp.tests[k]) / slope < tol and self._accepted(k, prev, cur):
+                same.append(k)
+        best = min([key] + same, key=_priority)
+        if best != key:
+            same = [k for k in same if k != best] + [key]
+        if best == Code.BP:
+            # At a branch point G_x has a two-dimensional null space: the bordered
+            # tangent solve is singular there. The branch's direction is the secant
+            # from the previous point (AUTO stores it too).
+            sec = sp.x - prev.x
+            sp.tangent = sec / math.sqrt(self.sys.inner(sec, sec))
+            J = self.sys.jacobian(sp.x)
+            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
+        return sp, best, same
 
     def _trial(self, prev: Point, s_, key):
         pt = self._step(prev, s_, keys=[key])
@@ -361,7 +400,7 @@ class Continuation:
             yield from self._flush()
             if pt is None:
                 self.state = None
-                yield Step("failed", start, text="No convergence with minimum step size")
+                yield Step("failed", start, text=self.failure)
                 return
             pt.tests = {}
             sysm.update(pt.x, pt.tangent)
@@ -377,7 +416,7 @@ class Continuation:
         yield from self._flush()
         if nxt is None:
             self.state = None
-            yield Step("failed", current, text="No convergence with minimum step size")
+            yield Step("failed", current, text=self.failure)
             return
         if not st.detect:
             # Test functions start at zero (AUTO: TEST(:) = 0): nothing is detected
@@ -391,9 +430,10 @@ class Continuation:
             hit = None
             yield Step("note", text=f"NOTE:Possible special point ({exc})")
         if hit is not None:
-            sp, key = hit
-            # Past the located zero the test keeps the sign it has beyond it.
-            sp.tests[key] = math.copysign(1e-300, nxt.tests[key])
+            sp, key, same = hit
+            # Past the located zero the tests keep the sign they have beyond it.
+            for k in [key] + same:
+                sp.tests[k] = math.copysign(1e-300, nxt.tests[k])
             sysm.update(sp.x, sp.tangent)
             st.point = sp
             st.n_points += 1

@@ -40,6 +40,8 @@ class Run:
     name: str
     titles: list
     irs_label: int
+    first_label: bool = True         # the start point is labelled EP (IRS = 0 only)
+    label0: int = 0                  # labels continue from here (LAB, or the restart file's)
     branch: Branch = field(default_factory=Branch)
 
 
@@ -65,7 +67,7 @@ def start_kind(rec, ndim: int) -> str:
             curve = 2
     if curve in (2, 3) and stored.ndim == 1:
         return {2: "LP-curve", 3: "HB-curve"}[curve]
-    return type_name(base) if base not in (0, 4, 9, -4) else type_name(base) or ""
+    return type_name(base)
 
 
 class _Executor:
@@ -121,7 +123,6 @@ class _Executor:
                 self.emit("note", br, pt, step.text)
                 continue
             if step.kind == "failed":
-                self.emit("note", br, pt, f"NOTE:{step.text}")
                 pt += 1
                 self.labelled(br, pt, step.point, Code.MX, _stable(step.point), True)
                 self.run.branch.status = f"stopped: {step.text}"
@@ -144,7 +145,7 @@ class _Executor:
                         and self.n_bp < abs(self.s.MXBF):
                     self.n_bp += 1
                     self.bp_queue.append((p.x.copy(), p.tangent.copy()))
-                if self._stops(base, name, step.key):
+                if self._stops(base, name, step.key) or (s.NMX > 0 and pt >= s.NMX):
                     return
                 continue
             # A regular point: end point (window, NMX), NPR label, or plain.
@@ -188,6 +189,12 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
     if s.NDIM != problem.ndim:
         raise RunError(f"{c.source}: NDIM={s.NDIM} but the equations '{problem.name}' have "
                        f"{problem.ndim} unknowns")
+    if s.ISW not in (1, -1, 2):
+        raise RunError(f"{c.source}: ISW={s.ISW} is not implemented (1, -1 and 2 are: ISW = 3 "
+                       "loci of branch points in generic systems are not)")
+    for key in ("LAB", "IBR"):
+        if c[key] < 0:
+            raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 (0 = automatic)")
     problem = problem.with_jac(s.JAC)
     irs = c["IRS"]
     mlab = mbr = 0
@@ -196,6 +203,9 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
         if not records:
             raise RunError(f"{c.source}: IRS={irs!r} needs a restart file (s=NAME) with records")
         rec = find_record(records, irs)
+        if rec.ndim_user != problem.ndim:
+            raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
+                           f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
         mlab = max(r.lab for r in records)
         mbr = max(abs(r.br) for r in records)
         u = np.array(rec.U, dtype=float)
@@ -206,11 +216,26 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
     if len(par) < s.NPAR:
         par = np.r_[par, np.zeros(s.NPAR - len(par))]
     for k, v in c["PAR"].items():
-        par[c.par_index(k) - 1] = float(v)
+        i = c.par_index(k)
+        if not 1 <= i <= len(par):
+            raise RunError(f"{c.source}: PAR={{{k!r}: ...}}: PAR({i}) is outside 1..NPAR="
+                           f"{len(par)}")
+        par[i - 1] = float(v)
     for k, v in c["U"].items():
+        i = c.u_index(k)
+        if not 1 <= i <= problem.ndim:
+            raise RunError(f"{c.source}: U={{{k!r}: ...}}: U({i}) is outside 1..NDIM="
+                           f"{problem.ndim}")
         if u.ndim == 1:
-            u[c.u_index(k) - 1] = float(v)
+            u[i - 1] = float(v)
     kind = start_kind(rec, problem.ndim)
+    if s.ISW == -1 and kind not in ("BP", "PD"):
+        raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
+                       f"{kind or 'a regular point'} (IRS={irs!r})")
+    if s.IPS == 2 and rec is not None and np.asarray(rec.U).ndim == 1 and kind != "HB":
+        raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
+                       f"solution, got {kind or 'a regular point'} of an algebraic branch "
+                       f"(IRS={irs!r})")
     if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
         raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart at "
                        f"an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
@@ -239,9 +264,8 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
     pn = {int(k): v for k, v in c["parnames"].items()}
     titles = [pn.get(s.ICP[0], f"PAR({s.ICP[0]})")] + list(system.column_titles()) + \
         [("PERIOD" if i == 11 and 11 not in pn else pn.get(i, f"PAR({i})")) for i in s.ICP[1:]]
-    run = Run(c, s, system, name or problem.name, titles, rec.lab if rec is not None else 0)
-    run._first_label = rec is None            # EP label at PT 1 only for IRS = 0
-    run._label0 = c["LAB"] or mlab
+    run = Run(c, s, system, name or problem.name, titles, rec.lab if rec is not None else 0,
+              first_label=rec is None, label0=c["LAB"] or mlab)
     mode = "switch" if (s.ISW == -1 and kind == "BP" and system.arclength == "sphere") else "fresh"
     return run, br, mode
 
@@ -249,19 +273,23 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
 def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     """Run the branches of `run` (the first one, then MXBF switches) through sinks."""
     t0 = time.perf_counter()
+    run.branch = Branch()            # a fresh result for every execution
     ex = _Executor(run, sinks, run.constants)
-    ex.label = run._label0
+    ex.label = run.label0
     ex.emit("begin", run)
     status = "ok"
     # Trial points of Newton and location may overflow (exp of a diverging
     # iterate): the step is then retried smaller; the warnings are noise.
     err = np.seterr(over="ignore", invalid="ignore", divide="ignore")
     try:
-        ex.branch(br, Continuation(run.system, run.settings, mode=mode), run._first_label)
+        ex.branch(br, Continuation(run.system, run.settings, mode=mode), run.first_label)
         next_br = br
         directions = (1, -1) if run.settings.MXBF > 0 else (1,)
         while ex.bp_queue:
             x_bp, t_bp = ex.bp_queue.popleft()
+            # The system's reference data (the Hopf eigenvector of the phase condition)
+            # must be the BP's own, not the last point's of the branch just ended.
+            run.system.update(x_bp, t_bp)
             dirs = run.system.directions(x_bp, t_bp, Code.BP)
             if not dirs:
                 ex.emit("note", next_br, 0, "NOTE:No branch direction at BP (not switched)")

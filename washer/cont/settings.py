@@ -127,6 +127,10 @@ class Settings:
         thu = {c.u_index(k): float(v) for k, v in c["THU"].items()}
         uz = [(abs(i), v, i < 0) for i, v in c.par_values("UZR")]
         uz += [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
+        for i, _, _ in uz:
+            if not 1 <= i <= npar:
+                raise SettingsError(f"{src}: UZR/UZSTOP on PAR({i}): expected an index in "
+                                    f"1..NPAR={npar}")
         stop, off, on = {}, set(), set()
         for entry in list(c["STOP"]):
             name = entry.rstrip("0123456789").upper()
