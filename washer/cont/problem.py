@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import copy
 import importlib.util
+import inspect
 from pathlib import Path
 
 import numpy as np
@@ -89,6 +90,9 @@ class Problem:
         f = self._call(self._func, "func", u, par)
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
+        if not np.all(np.isfinite(f)):
+            raise ProblemError(f"{self.name}: func(u, par) returned non-finite values at "
+                               f"u = {np.array2string(np.asarray(u), precision=6)}")
         return f
 
     def func_many(self, us, pars) -> np.ndarray:
@@ -137,6 +141,8 @@ class Problem:
             if J.shape != (self.ndim, self.ndim):
                 raise ProblemError(f"{self.name}: dfdu returned shape {J.shape}, expected "
                                    f"({self.ndim}, {self.ndim})")
+            if not np.all(np.isfinite(J)):
+                raise ProblemError(f"{self.name}: dfdu(u, par) returned non-finite values")
             return J
         u = np.asarray(u, dtype=float)
         h = FD_STEP * (1 + np.abs(u))
@@ -230,18 +236,35 @@ class Problem:
                                    f"{exc}") from exc
         return par
 
-    def start(self, npar: int) -> tuple[np.ndarray, np.ndarray]:
-        """AUTO's STPNT: the starting state (ndim,) and parameters (npar,)."""
+    @property
+    def stpnt_has_time(self) -> bool:
+        """Whether stpnt takes AUTO's time argument: stpnt(u, par, t), t in [0, 1]
+        (a periodic orbit's start for IPS = 2)."""
+        if self._stpnt is None:
+            return False
+        try:
+            params = inspect.signature(self._stpnt).parameters.values()
+        except (TypeError, ValueError):
+            return False
+        positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY,
+                                                      p.POSITIONAL_OR_KEYWORD)]
+        return len(positional) >= 3 or any(p.kind == p.VAR_POSITIONAL for p in params)
+
+    def start(self, npar: int, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """AUTO's STPNT: the starting state (ndim,) and parameters (npar,); a stpnt
+        with the time argument is called at `t` (in [0, 1])."""
         if self._stpnt is None:
             raise ProblemError(f"{self.name}: no stpnt(u, par) to start from (IRS = 0)")
         u, par = np.zeros(self.ndim), np.zeros(npar)
+        args = (u, par, float(t)) if self.stpnt_has_time else (u, par)
+        what = "stpnt(u, par, t)" if self.stpnt_has_time else "stpnt(u, par)"
         try:
-            self._stpnt(u, par)
+            self._stpnt(*args)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: stpnt(u, par) failed: {type(exc).__name__}: "
+            raise ProblemError(f"{self.name}: {what} failed: {type(exc).__name__}: "
                                f"{exc}") from exc
         if not (np.all(np.isfinite(u)) and np.all(np.isfinite(par))):
-            raise ProblemError(f"{self.name}: stpnt(u, par) left non-finite values in u or par")
+            raise ProblemError(f"{self.name}: {what} left non-finite values in u or par")
         return u, par
 
 

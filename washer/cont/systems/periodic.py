@@ -233,16 +233,11 @@ class PeriodicOrbits:
         s = self.settings
         self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
         t = self.mesh.node_times()
-        fn = getattr(self.problem, "_stpnt", None)
         U = np.tile(u0, (len(t), 1))
-        if fn is not None:
-            try:
-                for j, tj in enumerate(t):
-                    u, scratch = np.zeros(self.ndim), np.zeros(len(self.par))
-                    fn(u, scratch, float(tj))
-                    U[j] = u
-            except TypeError:                       # stpnt(u, par) without t
-                U = np.tile(u0, (len(t), 1))
+        if self.problem.stpnt_has_time:
+            # stpnt(u, par, t) at each node; errors are the Problem's (ProblemError,
+            # naming the function), never raw tracebacks.
+            U = np.array([self.problem.start(len(self.par), tj)[0] for tj in t])
         if np.max(np.ptp(U, axis=0)) == 0:
             raise ValueError("IPS=2 with IRS=0 needs stpnt(u, par, t) giving a periodic orbit at "
                              "the mesh times t in [0, 1] (AUTO's STPNT with T); this stpnt gives "
