@@ -1,7 +1,7 @@
 """The periodic-orbit runs (IPS = 2) of AUTO-07p's demo scripts ab, lrz, chu, plp and
 frc against AUTO-07p's own output, ready for the periodic-orbit engine.
 
-Every test skips (with the engine's own message) while the engine refuses IPS = 2.
+A test skips (with the engine's own message) where the engine refuses a case.
 Constants files are used unchanged (tests/data/auto_reference/periodic/<demo>/c.*),
 with only the overrides each .auto script passes; restarts read our own equilibrium
 runs, as the scripts read theirs. Compared with AUTO's b-files: the labelled rows'
@@ -33,10 +33,8 @@ EQUATIONS = {"ab": DATA / "ab_demo" / "ab.py", "lrz": DATA / "lrz" / "lrz.py",
              "frc": DATA / "frc" / "frc.py"}
 LOCATED = ("UZ", "LP", "PD", "BP", "TR")
 
-# The periodic-orbit engine is being written: these are its acceptance checks. They
-# skip while the engine refuses IPS = 2 and are expected to fail until it works
-# (strict=False: a pass is reported as XPASS; run with --runxfail to see the failures).
-pytestmark = pytest.mark.xfail(reason="IPS=2 not yet implemented", strict=False)
+# The periodic-orbit engine's acceptance checks against AUTO-07p's own output. A test
+# skips (with the engine's message) only where the engine says it does not do a case.
 REFUSAL = re.compile(r"IPS\s*=\s*2.*(not (yet )?implemented|no continued system)|"
                      r"(not (yet )?implemented|no continued system).*IPS\s*=\s*2", re.I | re.S)
 

@@ -178,7 +178,7 @@ def write_summary(path: Path, m: dict, resp: dict) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m washer.figures", description=__doc__.split("\n")[1])
+    ap = argparse.ArgumentParser(prog="python -m washer.figures", description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="coarser steps, shorter Figs 8-9")
     ap.add_argument("--out", type=Path, default=Path("out/paper"), help="output folder")
     args = ap.parse_args(argv)

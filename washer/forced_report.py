@@ -165,7 +165,8 @@ def write(out: Path, res: dict) -> list[Path]:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m washer.forced_report",
-                                 description=__doc__.split("\n")[0])
+                                 description="The exact stability numbers of issue 11 (Floquet "
+                                 "multipliers of the forced response): JSON, Markdown, Fig 4.")
     ap.add_argument("--out", type=Path, default=Path("out/forced"))
     ap.add_argument("--quick", action="store_true",
                     help=f"{N_CURVE_QUICK} points on the Fig 4 curve, no Table 1 ends")

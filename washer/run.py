@@ -10,19 +10,21 @@ defaults to NAME) beside the constants file, printing AUTO's table of labelled
 points. Constants given on the command line override the file (ICP=[1,2],
 IRS=HB1, DS=-0.01, sv=hb).
 
-From Python, runs chain like an AUTO script:
+From Python, runs chain like an AUTO script (c.ab and ab.py: AUTO's `ab` demo, as in
+the repository's tests/data/ab/):
     from washer.run import run, load
-    eq = run("auto_constants/c.ab", sv="eq")
-    hb = run("auto_constants/c.ab", IRS="HB1", ICP=[1, 2], ISW=2, s="eq", sv="hb")
-    eq("HB1").par, load("auto_constants/b.hb")
+    eq = run("c.ab", sv="eq")
+    hb = run("c.ab", IRS="HB1", ICP=[1, 2], ISW=2, s="eq", sv="hb")
+    eq("HB1").par, load("b.hb")
 """
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
-from washer.auto.constants import (Constants, ConstantsError, copy_examples, parse_override,
-                                   read_constants)
+from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
+                                   parse_override, read_constants)
 from washer.auto.files import AutoFileError, read_b, read_s
 from washer.cont.branch import Branch
 from washer.cont.problem import Problem, ProblemError, load_python_problem
@@ -70,10 +72,17 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
         # parnames in the constants file (names the file gives win).
         from washer.auto_washer import PAR_NAMES
         c = c.with_default_names(PAR_NAMES)
+    if verbose:
+        # Constants without effect here are said so, never silently ignored.
+        for key, why in IGNORED.items():
+            if key in c.given and c[key] != DEFAULTS[key]:
+                print(f"note: {c.given[key]}: {key} has no effect here ({why})", file=sys.stderr)
     folder = path.parent if path.name else Path(".")
     default_name = path.name[2:] if path.name.startswith("c.") else path.name
     name = c["sv"] or default_name
-    restart = folder / f"s.{c['s'] or name}"
+    # Restarts read s.<s>, else s.NAME of the constants file (AUTO's load('NAME')):
+    # sv names only what is written.
+    restart = folder / f"s.{c['s'] or default_name}"
     if problem is None:
         problem = resolve_problem(c, folder, params)
     # The restart data is read whole before any output file is opened: the
@@ -133,6 +142,16 @@ def main(argv: list[str] | None = None) -> int:
         res = run(argv[0], **overrides)
     except (ConstantsError, AutoFileError, RunError, ProblemError) as exc:
         print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:        # noqa: BLE001 - a defect: say so, without a traceback
+        print(f"error: {argv[0]}: the run failed unexpectedly: {type(exc).__name__}: {exc} "
+              "(please report this with the constants file; set WASHER_TRACEBACK=1 for the "
+              "traceback)", file=sys.stderr)
+        if os.environ.get("WASHER_TRACEBACK"):
+            raise
         return 2
     print(f"Saved as {res.files.b_path}, {res.files.s_path}, {res.files.d_path}")
     return 0 if res.status == "ok" else 1

@@ -34,16 +34,12 @@ REAL_KEYS = {"EPSL", "EPSU", "EPSS", "DS", "DSMIN", "DSMAX", "RL0", "RL1", "A0",
 STR_KEYS = {"e", "s", "dat", "sv", "TY"}
 #: Constants accepted but without effect in this engine, with the reason.
 IGNORED = {
-    "NTST": "mesh intervals: only algebraic problems (IPS = 0, 1) are implemented",
-    "NCOL": "collocation points: only algebraic problems are implemented",
-    "IAD": "mesh adaption: only algebraic problems are implemented",
-    "NBC": "boundary conditions: only algebraic problems are implemented",
-    "NINT": "integral conditions: only algebraic problems are implemented",
-    "NWTN": "algebraic problems always use full Newton (as AUTO)",
-    "IPLT": "the second b-file column is always the L2 norm",
+    "NBC": "boundary conditions: general BVPs (IPS = 4) are not implemented; IPS = 2 sets its own",
+    "NINT": "integral conditions: general BVPs are not implemented; IPS = 2 sets its own",
     "IID": "the d-file is always written at AUTO's level 2",
     "IIS": "the direction is always stored in the s-file (AUTO's IIS = 3)",
-    "dat": "starting from data files needs periodic orbits (IPS = 2)",
+    "dat": "starting from data files is not implemented (stpnt(u, par, t) gives an orbit)",
+    "TY": "overriding the restart point's type is not implemented",
     "NUNSTAB": "HomCont", "NSTAB": "HomCont", "IEQUIB": "HomCont", "ITWIST": "HomCont",
     "ISTART": "HomCont", "IREV": "HomCont", "IFIXED": "HomCont", "IPSI": "HomCont",
 }

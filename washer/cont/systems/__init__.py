@@ -4,7 +4,8 @@ registry `washer.cont.system.SYSTEMS` (each module registers its classes).
 equilibrium  f(u, par) = 0 in one parameter (IPS = 0, 1; AUTO's FUNI)
 fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
 hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
-periodic     periodic orbits by collocation (IPS = 2; FNPS), when present
+periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
+cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
 """
 import importlib
 import pkgutil

@@ -63,7 +63,8 @@ class FoldSystem(LocusSystem):
 
     def jacobian(self, x):
         """dG/dx, shape (2n + 1, 2n + 2): exact in phi, the problem's Jacobians in
-        the f-rows, forward differences of A for d(A phi)."""
+        the f-rows, d(A phi) = f_zz[e_s, phi] from one batched stencil of f
+        (Problem.second_derivatives)."""
         n = self.ndim
         phi = x[n:2 * n]
         A, fp, T = self.f_blocks(x, phi[None, :])

@@ -73,7 +73,8 @@ class HopfSystem(LocusSystem):
     def jacobian(self, x):
         """dG/dx, shape (2n + 2, 2n + 3). Blocks in v and kappa are exact; the
         f-rows use the problem's Jacobians; the derivatives of A (second
-        derivatives of f, which problems do not supply) are forward differences."""
+        derivatives of f, which problems do not supply) are central mixed
+        differences of f in one batched call (Problem.second_derivatives)."""
         n = self.ndim
         v, kappa = x[n:2 * n], x[2 * n]
         u, p = x[:n], self._p(x)
