@@ -35,8 +35,11 @@ def test_report_and_figures_are_written(quick):
     report = (quick / "report.md").read_text()
     images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", report)
     # Figs 3-11, the spin-up's yaw, Fig 11 run long, the exact (Floquet) Fig 4 curve
-    assert len(images) == 12
-    assert "fig4_exact.png" in images
+    assert len(images) == 13
+    assert "fig4_exact.png" in images and "whirl_orbits.png" in images
+    # The whirl section: the orbit at C_p = 0 against the long Fig 9 run, judged.
+    row = next(l for l in report.splitlines() if l.startswith("| orbit at C_p = 0"))
+    assert re.search(r"\*\*(reproduced|qualitatively|not reproduced)\*\*", row)
     assert "Exact stability: Floquet multipliers of the forced response" in report
     for img in images:
         assert (quick / img).stat().st_size > 10_000

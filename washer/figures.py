@@ -261,17 +261,30 @@ def main(argv: list[str] | None = None) -> int:
                                   progress=lambda m: print(m, flush=True))
     exact_files = forced_report.write(d, exact)
     t_exact = time.perf_counter() - t2
+    # The whirl past the Hopf point (issue 10): the periodic orbits down to C_p = 0
+    # against the long-time envelope of the Fig 9 simulation.
+    print("The self-excited whirl (periodic orbits, IPS = 2):")
+    from washer.paper import whirl
+    fam = whirl.whirl_family(d / "auto", progress=lambda m: print(m, flush=True))
+    if fam.status != "ok":
+        print(f"error: run washer.po failed: {fam.status}", file=sys.stderr)
+        return 1
+    env = whirl.simulated_envelope(params, whirl.T_LONG_QUICK if args.quick else whirl.T_LONG)
+    whirl_cmp = whirl.compare(fam, env)
+    whirl_files = whirl.plot(fam, whirl_cmp, d / "whirl_orbits")
     wall = time.perf_counter() - t0
     write_summary(d / "measurements.json", meas, resp)
     path = report.write(d, params, meas, resp, figs, log, mode=mode,
                         timing=dict(auto=t_auto, sim=t_sim, total=wall))
     with open(path, "a", encoding="utf-8") as fh:
+        fh.write("\n" + whirl.markdown(fam, whirl_cmp, "whirl_orbits.png") + "\n")
         fh.write("\n" + forced_report.markdown(exact)
                  + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
                  f"(computed in {t_exact:.1f} s: `python -m washer.forced_report` reruns it)\n")
     for k, paths in figs.items():
         print(f"  {k}: " + ", ".join(p.name for p in paths))
     print("  forced: " + ", ".join(p.name for p in exact_files))
+    print("  whirl: " + ", ".join(p.name for p in whirl_files))
     print(f"Report: {path}")
     print(f"Wall time ({mode} mode): {time.perf_counter() - t0:.1f} s "
           f"(AUTO runs {t_auto:.1f} s, time responses {t_sim:.1f} s)")
