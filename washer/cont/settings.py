@@ -80,6 +80,29 @@ class Settings:
                 th[i - 1] = v
         return th
 
+    def detects(self, name: str) -> bool:
+        """Whether tests of type `name` are on (AUTO's CHECKSP, support.f90, in one
+        place): LP by ILP; BP by ISP (IPS < 2, 5, 11: ISP != 0; else |ISP| >= 2 and
+        != 4); HB and the codim-2 tests (BT, CP, GH, ZH) for IPS in {-1, 1, 11} and
+        ISP not in {0, 3}; PD and TR of cycles for |ISP| in {2, 4} and IPS in {2, 7,
+        12}. An SP entry ('LP0' off, 'HB' on) overrides."""
+        if name in self.SP_OFF:
+            return False
+        if name in self.SP_ON:
+            return True
+        isp = abs(self.ISP)
+        if name == "LP":
+            return self.ILP != 0
+        if name == "BP":
+            if self.IPS < 2 or self.IPS in (5, 11):
+                return isp != 0
+            return isp >= 2 and isp != 4
+        if name in ("HB", "BT", "CP", "GH", "ZH"):
+            return self.IPS in (-1, 1, 11) and isp not in (0, 3)
+        if name in ("PD", "TR"):
+            return isp in (2, 4) and self.IPS in (2, 7, 12)
+        return False
+
     def with_(self, **kw) -> "Settings":
         return replace(self, **kw)
 

@@ -65,11 +65,13 @@ class AlgebraicSystem:
         J = np.asarray(self.jacobian(x))
         V = null_vectors(J, 2)
         n1, n2 = V[:, 0], V[:, 1]
-        d = n1 * (n2 @ tangent) - n2 * (n1 @ tangent)
+        # The null direction orthogonal to the branch's tangent in the run's own
+        # (THL/THU-weighted) inner product.
+        d = n1 * self.inner(n2, tangent) - n2 * self.inner(n1, tangent)
         nd = np.sqrt(self.inner(d, d))
         if not np.isfinite(nd) or nd < 1e-12:
             return []
-        return [orient(d / nd, len(d) - 1, 1e-7, x[-1])]
+        return [orient(d / nd, len(d) - 1, self.settings.EPSL, x[-1])]
 
     # ------------------------------------------------------------- output
     def solution(self, x, tangent) -> Solution:

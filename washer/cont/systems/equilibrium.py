@@ -118,16 +118,8 @@ class EquilibriumSystem(AlgebraicSystem):
         return spectrum(lam)
 
     def active_tests(self) -> list:
-        s = self.settings
-        out = []
-        if (s.ILP != 0 or "LP" in s.SP_ON) and "LP" not in s.SP_OFF:
-            out.append(Code.LP)
-        if (s.ISP != 0 or "BP" in s.SP_ON) and "BP" not in s.SP_OFF:
-            out.append(Code.BP)
-        if s.IPS in (1, -1, 11) and ((s.ISP not in (0, 3)) or "HB" in s.SP_ON) \
-                and "HB" not in s.SP_OFF:
-            out.append(Code.HB)
-        return out
+        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
+                if self.settings.detects(name)]
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         out = self._lp_bp(tangent, factor, codes)

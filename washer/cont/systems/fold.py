@@ -87,16 +87,9 @@ class FoldSystem(LocusSystem):
         self.w_ref = self._w(self.problem.dfdu(x[:n], self._p(x)))
 
     def active_tests(self) -> list:
-        s = self.settings
-        on = lambda name, default: (default or name in s.SP_ON) and name not in s.SP_OFF
-        out = []
-        if on("BP", s.ISP != 0):
-            out.append(Code.BP)
-        codim2 = s.IPS in (1, -1, 11) and s.ISP not in (0, 3)
-        for name, code in (("CP", Code.CP), ("BT", Code.BT), ("ZH", Code.ZH)):
-            if on(name, codim2 or (name == "CP" and s.ISP != 0)):
-                out.append(code)
-        return out
+        return [code for name, code in (("BP", Code.BP), ("CP", Code.CP), ("BT", Code.BT),
+                                        ("ZH", Code.ZH))
+                if self.settings.detects(name)]
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         n = self.ndim

@@ -108,18 +108,9 @@ class HopfSystem(LocusSystem):
 
     # ---------------------------------------------------------------- tests
     def active_tests(self) -> list:
-        s = self.settings
-        on = lambda name, default: (default or name in s.SP_ON) and name not in s.SP_OFF
-        out = []
-        if on("LP", s.ILP != 0):
-            out.append(Code.LP)
-        if on("BP", s.ISP != 0):
-            out.append(Code.BP)
-        codim2 = s.ISP not in (0, 3)
-        for name, code in (("BT", Code.BT), ("GH", Code.CP), ("ZH", Code.ZH)):
-            if on(name, codim2):
-                out.append(code)
-        return out
+        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("BT", Code.BT),
+                                        ("GH", Code.GH), ("ZH", Code.ZH))
+                if self.settings.detects(name)]
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         n = self.ndim

@@ -392,22 +392,13 @@ class PeriodicOrbits:
         return out
 
     def _sp_active(self, name: str) -> bool:
-        s = self.settings
-        if name in s.SP_OFF:
-            return False
-        if name in s.SP_ON:
-            return True
-        isp = abs(s.ISP)
-        if name == "BP":
-            return isp >= 2 and isp != 4
-        return isp in (2, 4)                     # PD, TR on cycles
+        return self.settings.detects(name)
 
     def active_tests(self) -> list:
         """LP of cycles (ILP), BP of cycles (|ISP| >= 2, != 4), PD and TR (ISP in {2, 4},
         NDIM > 2), as support.f90:CHECKSP, SP overriding."""
-        s = self.settings
         out = []
-        if (s.ILP != 0 or "LP" in s.SP_ON) and "LP" not in s.SP_OFF:
+        if self._sp_active("LP"):
             out.append(int(Code.LPC))
         if self._sp_active("BP"):
             out.append(int(Code.BPC))
