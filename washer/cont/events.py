@@ -95,7 +95,9 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     for _ in range(max(settings.ITMX, 1)):
         try:
             pt, q = trial(s_new)
-        except Exception as exc:               # a trial step that does not converge
+        except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+            # A trial step that does not converge (ConvergenceError, ProblemError are
+            # RuntimeErrors); programming errors are not turned into notes.
             raise LocationFailed(f"trial step failed ({exc})") from exc
         if q is None or not np.isfinite(q):
             raise LocationFailed("test function undefined at a trial point")

@@ -26,6 +26,18 @@ class LocusSystem(AlgebraicSystem):
         # NDIM): U(2n+1) = kappa on Hopf curves may be down-weighted.
         self.theta = np.r_[s.theta_u(n + n_extra), s.theta_par(s.ICP[1]), s.theta_par(s.ICP[0])]
 
+    def stored_direction(self, start: StartData, kind: str):
+        """The direction stored with a point of the same curve and the same free
+        parameters (reused on a restart, as AUTO does), else None."""
+        rec = start.record
+        if start.kind != kind or rec is None or rec.udot is None \
+                or list(rec.icp[:2]) != self.free or len(rec.udot) != self.n_eq:
+            return None
+        return np.r_[rec.udot, rec.rldot[0]]
+
+    def start(self):
+        return self._x0.copy(), self._t0
+
     def _p(self, x) -> np.ndarray:
         p = self.par.copy()
         p[self.free[0] - 1] = x[-1]

@@ -46,14 +46,8 @@ class FoldSystem(LocusSystem):
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
         A = self.problem.dfdu(self._x0[:n], self._p(self._x0))
         self.w_ref = null_vectors(A.T, 1)[:, 0]
-        self._t0 = None
-        rec = start.record
-        if start.kind == "LP-curve" and rec is not None and rec.udot is not None \
-                and list(rec.icp[:2]) == self.free and len(rec.udot) == 2 * n + 1:
-            self._t0 = np.r_[rec.udot, rec.rldot[0]]
+        self._t0 = self.stored_direction(start, "LP-curve")
 
-    def start(self):
-        return self._x0.copy(), self._t0
 
     def residual(self, x):
         n = self.ndim

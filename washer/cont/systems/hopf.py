@@ -52,14 +52,8 @@ class HopfSystem(LocusSystem):
             ext = np.r_[u, v / np.linalg.norm(v), kappa, p2]
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
         self.v_old = self._x0[n:2 * n] / np.linalg.norm(self._x0[n:2 * n])
-        self._t0 = None
-        rec = start.record
-        if start.kind == "HB-curve" and rec is not None and rec.udot is not None \
-                and list(rec.icp[:2]) == self.free and len(rec.udot) == 2 * n + 2:
-            self._t0 = np.r_[rec.udot, rec.rldot[0]]
+        self._t0 = self.stored_direction(start, "HB-curve")
 
-    def start(self):
-        return self._x0.copy(), self._t0
 
     # ------------------------------------------------------------ equations
     def residual(self, x):
