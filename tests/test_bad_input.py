@@ -15,8 +15,8 @@ DATA = Path(__file__).parent / "data"
 S_EQ = DATA / "auto_reference" / "ab2p" / "s.eq"
 #: The built-in washer's parameter names (auto_washer.PAR_NAMES), typed from the README.
 WASHER_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
-                8: "C_ox", 9: "C_oz", 10: "l0", 12: "J_bz", 13: "J_bt", 14: "m_b", 15: "h_b",
-                16: "m_t"}
+                8: "C_ox", 9: "C_oz", 10: "l0", 13: "J_bz", 14: "J_bt", 15: "m_b", 16: "h_b",
+                17: "m_t"}
 
 
 def _c(tmp_path, text, name="c.x"):
@@ -181,7 +181,7 @@ def test_default_names_complete_but_never_override_the_users():
     mine = Constants({"parnames": {5: "Omega", 3: "mass"}, "ICP": ["Omega", "mass", "K_s"]})
     named = mine.with_default_names(WASHER_NAMES)
     assert named.icp() == [5, 3, 7]
-    assert 2 not in named["parnames"] and named["parnames"][16] == "m_t"
+    assert 2 not in named["parnames"] and named["parnames"][17] == "m_t"
     assert mine["parnames"] == {5: "Omega", 3: "mass"}               # a copy, not an edit
     assert "parnames" not in c.with_default_names(WASHER_NAMES).given  # defaults, not the user's
 

@@ -538,7 +538,7 @@ def test_forced_problem_is_the_kernel_rhs_at_the_oscillator_angle(params):
     t = 0 is route (b)'s orbit, periodic in t."""
     from washer.auto_washer import washer_problem
     pr = washer_problem("washer:forced", params=params)
-    u0, par = pr.start(16)
+    u0, par = pr.start(pr.npar)
     r = forced.periodic_response(params)
     assert np.array_equal(u0[:12], r.u0) and np.array_equal(u0[12:], [0.0, 1.0])
     assert par[0] == params["C_p"] and par[10] == pytest.approx(0.1, rel=1e-15)

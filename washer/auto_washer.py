@@ -18,12 +18,14 @@ from washer.machine import Model
 from washer.params import load_params
 
 #: PAR(i) -> kernel parameter name. C_p moves C_ox and C_oz with it when the
-#: parameter file ties them (the paper's C_ox = C_oy = C_oz = C_p).
+#: parameter file ties them (the paper's C_ox = C_oy = C_oz = C_p). PAR(11) and
+#: PAR(12) are AUTO's: the period, and the torus angle written at TR points of
+#: periodic orbits (a model parameter there would be overwritten in the s-file).
 PAR_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
-             8: "C_ox", 9: "C_oz", 10: "l0", 12: "J_bz", 13: "J_bt", 14: "m_b", 15: "h_b",
-             16: "m_t"}
+             8: "C_ox", 9: "C_oz", 10: "l0", 13: "J_bz", 14: "J_bt", 15: "m_b", 16: "h_b",
+             17: "m_t"}
 __doc__ += "\n".join(f"    PAR({i}) = {n} ({layout.UNITS[n]})" for i, n in PAR_NAMES.items())
-NPAR = 16
+NPAR = 17
 
 
 def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> Problem:

@@ -48,13 +48,14 @@ class ProblemError(RuntimeError):
 class Problem:
     """The user's equations with checks and batched finite-difference fallbacks.
 
-    `jac` is AUTO's JAC: 0 finite differences, 1 dfdu and dfdp supplied,
+    `npar` is the length of PAR the equations need (0: no requirement; the run's
+    NPAR is raised to it). `jac` is AUTO's JAC: 0 finite differences, 1 dfdu and dfdp supplied,
     -1 dfdu only. Use `with_jac` for a configured copy (problems are never
     changed behind their owner's back).
     """
 
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
-                 npar: int = 36, dfdu_batch=None, func_batch=None, pvls=None,
+                 npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0):
         self.ndim, self.name, self.npar = ndim, name, npar
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp

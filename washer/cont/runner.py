@@ -196,6 +196,8 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
         if c[key] < 0:
             raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 (0 = automatic)")
     problem = problem.with_jac(s.JAC)
+    if problem.npar > s.NPAR:
+        s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
     irs = c["IRS"]
     mlab = mbr = 0
     rec = None

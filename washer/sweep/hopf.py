@@ -53,7 +53,7 @@ EPSL = 1e-07, EPSU = 1e-07, EPSS = 1e-05
 THL = {{'{x}': {thx!r}, '{y}': {thy!r}}}
 THU = {{25: {kappa!r}}}
 DS = {ds!r}, DSMIN = {dsmin!r}, DSMAX = {dsmax!r}, IADS = 1
-NPAR = 16
+NPAR = 17
 UZSTOP = {{'{x}': [{x0!r}, {x1!r}], '{y}': [{y0!r}, {y1!r}]}}
 """
 

@@ -123,7 +123,7 @@ ISP = 2, ISW = 1, MXBF = 0
 NMX = {nmx}, NPR = 0, ITMX = 8, ITNW = 7, JAC = 1
 EPSL = 1e-07, EPSU = 1e-07, EPSS = 1e-05
 DS = {ds!r}, DSMIN = {dsmin!r}, DSMAX = {dsmax!r}, IADS = 1
-NPAR = 16
+NPAR = 17
 PAR = {par}
 UZSTOP = {{'{name}': {hi!r}}}
 """
