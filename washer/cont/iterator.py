@@ -137,7 +137,14 @@ class Continuation:
                 G = sysm.residual(x)
                 refactor = factor is None or not plane or it <= max(s.NWTN, 1)
                 if refactor:
-                    J = sysm.jacobian(x)
+                    # Loci whose Jacobians hold second derivatives of f keep those
+                    # blocks as evaluated at the last converged point through the
+                    # corrector (they move by O(ds)): an inexact Newton matrix, the
+                    # residual and the first-derivative blocks exact, so the point
+                    # converged to is the same; the blocks are refreshed at every
+                    # converged point (evaluate), where tangent and tests need them.
+                    J = sysm.jacobian(x, frozen_second=True) if \
+                        getattr(sysm, "freezes_second_derivatives", False) else sysm.jacobian(x)
             except ProblemError as exc:
                 # A trial point outside the equations' domain: a failed step.
                 raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc

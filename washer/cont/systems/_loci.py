@@ -11,6 +11,10 @@ class LocusSystem(AlgebraicSystem):
     """Unknowns x = (u, extra..., PAR(ICP(2)), PAR(ICP(1))): the second free
     parameter is the last of the state unknowns, the principal one last."""
 
+    #: The corrector may call jacobian(x, frozen_second=True): the second-derivative
+    #: blocks of the last full evaluation (the last converged point) are reused.
+    freezes_second_derivatives = True
+
     def _setup(self, start: StartData, n_extra: int):
         s = start.settings
         if len(s.ICP) < 2:
@@ -25,6 +29,9 @@ class LocusSystem(AlgebraicSystem):
         # THU covers the extended unknowns too (AUTO's THU runs over the extended
         # NDIM): U(2n+1) = kappa on Hopf curves may be down-weighted.
         self.theta = np.r_[s.theta_u(n + n_extra), s.theta_par(s.ICP[1]), s.theta_par(s.ICP[0])]
+        # The last second-derivative blocks of the Jacobian (see jacobian's
+        # frozen_second): the corrector reuses them within a step.
+        self._second = None
 
     def stored_direction(self, start: StartData, kind: str):
         """The direction stored with a point of the same curve and the same free
@@ -50,18 +57,12 @@ class LocusSystem(AlgebraicSystem):
             p = self.problem.pvls(x[:self.ndim], p)
         return p
 
-    def f_blocks(self, x, ws):
-        """A = f_x (n, n), f_p = [f_{p1}, f_{p2}] (n, 2) and the second
-        derivatives T[s, k] = f_zz[e_s, w_k] (n + 2, len(ws), n) along e_j
-        (j < n), then PAR(ICP(1)), then PAR(ICP(2)): one batched call of f
+    def second(self, x, ws) -> np.ndarray:
+        """T[s, k] = f_zz[e_s, w_k], shape (n + 2, len(ws), n): the second
+        derivatives of f along e_j (j < n), then PAR(ICP(1)), then PAR(ICP(2)),
+        and the state vectors ws, from one batched call of f
         (Problem.second_derivatives), whatever JAC is."""
-        n = self.ndim
-        u = x[:n]
-        p = self._p(x)
-        A = self.problem.dfdu(u, p)
-        fp = self.problem.dfdp(u, p, self.free)
-        T = self.problem.second_derivatives(u, p, ws, self.free)
-        return A, fp, T
+        return self.problem.second_derivatives(x[:self.ndim], self._p(x), ws, self.free)
 
     def stability(self, x, J):
         """No stability on ISW = 2 curves (AUTO writes PT > 0 there)."""

@@ -55,13 +55,19 @@ class FoldSystem(LocusSystem):
         p = self._p(x)
         return np.r_[self.problem.func(u, p), self.problem.dfdu(u, p) @ phi, phi @ phi - 1.0]
 
-    def jacobian(self, x):
+    def jacobian(self, x, frozen_second: bool = False):
         """dG/dx, shape (2n + 1, 2n + 2): exact in phi, the problem's Jacobians in
         the f-rows, d(A phi) = f_zz[e_s, phi] from one batched stencil of f
-        (Problem.second_derivatives)."""
+        (Problem.second_derivatives); frozen_second reuses the last one."""
         n = self.ndim
         phi = x[n:2 * n]
-        A, fp, T = self.f_blocks(x, phi[None, :])
+        u, p = x[:n], self._p(x)
+        A = self.problem.dfdu(u, p)
+        fp = self.problem.dfdp(u, p, self.free)
+        if frozen_second and self._second is not None:
+            T = self._second
+        else:
+            T = self._second = self.second(x, phi[None, :])
         J = np.zeros((2 * n + 1, 2 * n + 2))
         cols_s = np.r_[np.arange(n), 2 * n + 1, 2 * n]     # u, p1, p2
         J[:n, :n] = A

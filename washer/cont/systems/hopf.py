@@ -64,24 +64,30 @@ class HopfSystem(LocusSystem):
         return np.r_[self.problem.func(u, p), A @ (A @ v) + kappa * v, v @ v - 1.0,
                      (A.T @ self.v_old - A @ self.v_old) @ v]
 
-    def jacobian(self, x):
+    def jacobian(self, x, frozen_second: bool = False):
         """dG/dx, shape (2n + 2, 2n + 3). Blocks in v and kappa are exact; the
         f-rows use the problem's Jacobians; the derivatives of A (second
         derivatives of f, which problems do not supply) are central mixed
-        differences of f in one batched call (Problem.second_derivatives)."""
+        differences of f in one batched call (Problem.second_derivatives).
+        frozen_second: reuse those second-derivative blocks from the last full
+        evaluation (the corrector's later iterations within a step)."""
         n = self.ndim
         v, kappa = x[n:2 * n], x[2 * n]
         u, p = x[:n], self._p(x)
         A = self.problem.dfdu(u, p)
+        fp = self.problem.dfdp(u, p, self.free)
         vo = self.v_old
-        Av = A @ v
-        A_, fp, T = self.f_blocks(x, np.array([Av, v, vo]))
-        FAv, Fv, Fvo = T[:, 0], T[:, 1], T[:, 2]                 # (n + 2, n) each
         w = A.T @ vo - A @ vo
-        # d/ds (A^2 v) = A_s (A v) + A (A_s v), A_s w = f_zz[e_s, w].
-        d_g = FAv.T + A @ Fv.T
-        # d/ds <A^T v_old - A v_old, v> = <v_old, A_s v> - <v, A_s v_old>.
-        d_phase = Fv @ vo - Fvo @ v
+        if frozen_second and self._second is not None:
+            d_g, d_phase = self._second
+        else:
+            T = self.second(x, np.array([A @ v, v, vo]))
+            FAv, Fv, Fvo = T[:, 0], T[:, 1], T[:, 2]             # (n + 2, n) each
+            # d/ds (A^2 v) = A_s (A v) + A (A_s v), A_s w = f_zz[e_s, w].
+            d_g = FAv.T + A @ Fv.T
+            # d/ds <A^T v_old - A v_old, v> = <v_old, A_s v> - <v, A_s v_old>.
+            d_phase = Fv @ vo - Fvo @ v
+            self._second = (d_g, d_phase)
         J = np.zeros((2 * n + 2, 2 * n + 3))
         # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2).
         cols_s = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
