@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from washer.cont.branch import Point
-from washer.auto.codes import Code
+from washer.auto.codes import Code, curve_code, type_name
 from washer.cont.events import LocationFailed, linear_fraction, locate, sign_changes
 from washer.cont.problem import ProblemError
 from washer.cont.systems._algebraic import orient
@@ -53,6 +53,13 @@ SIMULTANEOUS = 1e-6
 #: first served in its test order, a bifurcation overriding UZ, CP overriding LP).
 PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.BPC, Code.LPC,
             Code.PD, Code.TR)
+
+
+def _key_name(key, curve_type: int = 0) -> str:
+    """'HB', 'GH', 'UZ2', ... for a test key (notes)."""
+    if isinstance(key, tuple):
+        return f"UZ{key[1] + 1}"
+    return type_name(curve_code(key, curve_type))
 
 
 def _priority(key) -> int:
@@ -305,16 +312,18 @@ class Continuation:
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
         """The earliest accepted zero between prev and cur: (point, key, keys of
-        other tests vanishing at the same point) or None. Raises LocationFailed
-        when the earliest one cannot be located.
+        other tests vanishing at the same point) or None. A zero that cannot be
+        located is left (a note says so) and the next one is tried.
 
         Zeros of several tests at one point (a transcritical BP is also a zero
         eigenvalue; two Hopf loci crossing) are one special point: its type is
         the first in AUTO's order (PRIORITY), whichever zero was located."""
         target, span, found = cur, ds, None
-        for _ in range(len(cur.tests) + 1):
+        failed: set = set()
+        for _ in range(2 * len(cur.tests) + 1):
             keys = [k for k in sign_changes(prev.tests, target.tests)
-                    if (found is None or k != found[1]) and self._accepted(k, prev, target)
+                    if (found is None or k != found[1]) and k not in failed
+                    and self._accepted(k, prev, target)
                     and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
                     < (1 - SIMULTANEOUS if found is not None else 2)]
             if not keys:
@@ -322,7 +331,16 @@ class Continuation:
             keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
             key = keys[0]
             trial = lambda s_: self._trial(prev, s_, key)
-            sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
+            try:
+                sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
+            except (LocationFailed, ConvergenceError, ProblemError) as exc:
+                # That zero stays unlocated (AUTO: "Possible special point"); the
+                # other tests of the interval are still looked at (a UZSTOP next to
+                # a noisy GH test must still stop the run).
+                failed.add(key)
+                self._pending.append(Step("note", text=f"NOTE:Possible special point "
+                                                       f"({_key_name(key, self.sys.curve_type)}: {exc})"))
+                continue
             sp.tests = self._tests(sp, self.sys.jacobian(sp.x), self.sys.factor(
                 self.sys.jacobian(sp.x), self.sys.border(sp.tangent)), None)
             found = (sp, key)
@@ -431,11 +449,8 @@ class Continuation:
             st.detect = True
             yield from self._accept(nxt, current)
             return
-        try:
-            hit = self._first_zero(current, nxt, st.ds)
-        except (LocationFailed, ConvergenceError, ProblemError) as exc:
-            hit = None
-            yield Step("note", text=f"NOTE:Possible special point ({exc})")
+        hit = self._first_zero(current, nxt, st.ds)
+        yield from self._flush()
         if hit is not None:
             sp, key, same = hit
             # Past the located zero the tests keep the sign they have beyond it.
