@@ -167,7 +167,7 @@ class Continuation:
                 c = (row @ d) / 2 - abs(ds)
                 factor = sysm.factor(J, row)
             with np.errstate(all="ignore"):
-                dx = factor.solve(-np.r_[G, c])
+                dx = factor.solve(-np.append(G, c))
             if not np.all(np.isfinite(dx)):
                 raise ConvergenceError("singular Newton matrix")
             x = x + dx

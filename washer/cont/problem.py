@@ -112,7 +112,20 @@ class Problem:
             out = self._call_vectorised(us, pars)
             if out is not None:
                 return out
-        return np.array([self.func(u, p) for u, p in zip(us, pars)]).reshape(len(us), self.ndim)
+        # Point by point: the user's func directly (one wrapper and one check for
+        # the whole stencil, not per point: small problems are dominated by that).
+        fn = self._func
+        try:
+            out = np.array([fn(u, p) for u, p in zip(us, pars)], dtype=float)
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: "
+                               f"{exc}") from exc
+        if out.shape != (len(us), self.ndim):
+            raise ProblemError(f"{self.name}: func returned shape {out.shape[1:]}, expected "
+                               f"({self.ndim},)")
+        if not np.isfinite(out).all():
+            raise ProblemError(f"{self.name}: func(u, par) returned non-finite values")
+        return out
 
     def _call_vectorised(self, us, pars):
         """f at k points in one call of the user's func with u (ndim, k) and par
@@ -151,6 +164,32 @@ class Problem:
         F = self.func_many(np.vstack([u + E, u - E]), par)
         n = self.ndim
         return ((F[:n] - F[n:]) / (2 * h[:, None])).T
+
+    def jacobian(self, u, par, indices) -> np.ndarray:
+        """[f_u, f_PAR(indices)], shape (ndim, ndim + len(indices)): the user's
+        Jacobians where JAC allows, else central differences over u and the
+        parameters together, one stencil of 2 (ndim + m) points (AUTO's FUNI)."""
+        analytic_u = self._dfdu is not None and self.jac != 0
+        analytic_p = self._dfdp is not None and self.jac == 1
+        if analytic_u or analytic_p:
+            return np.hstack([self.dfdu(u, par), self.dfdp(u, par, indices)])
+        u = np.asarray(u, dtype=float)
+        par = np.asarray(par, dtype=float)
+        n, m = self.ndim, len(indices)
+        k = n + m
+        pidx = [i - 1 for i in indices]
+        z = np.concatenate((u, par[pidx]))
+        h = FD_STEP * (1 + np.abs(z))
+        us = np.repeat(u[None, :], 2 * k, axis=0)
+        ps = np.repeat(par[None, :], 2 * k, axis=0)
+        idx = np.arange(n)
+        us[idx, idx] += h[:n]
+        us[k + idx, idx] -= h[:n]
+        for j, i in enumerate(pidx):
+            ps[n + j, i] += h[n + j]
+            ps[k + n + j, i] -= h[n + j]
+        F = self.func_many(us, ps)
+        return ((F[:k] - F[k:]) / (2 * h[:, None])).T
 
     def dfdu_many(self, us, pars) -> np.ndarray:
         """Jacobians at k points at once: us (k, ndim), pars (k, npar) -> (k, ndim, ndim)."""

@@ -96,8 +96,7 @@ class EquilibriumSystem(AlgebraicSystem):
 
     def jacobian(self, x) -> np.ndarray:
         """[f_u, f_lambda], shape (N, N + 1)."""
-        p = self._p(x)
-        return np.hstack([self.problem.dfdu(x[:-1], p), self.problem.dfdp(x[:-1], p, self.free)])
+        return self.problem.jacobian(x[:-1], self._p(x), self.free)
 
     def start(self):
         if self._switch:
