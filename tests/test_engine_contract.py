@@ -1,0 +1,76 @@
+"""The engine's shape (issue 8): every registered system honours the contract, runs live
+in memory without any sink, a run's result pickles and re-executes identically, and the
+test switches follow AUTO's CHECKSP table (AUTO.md section 1.3)."""
+import pickle
+import shutil
+from pathlib import Path
+
+import pytest
+
+import washer.cont.systems  # noqa: F401  (fills the registry)
+from washer.auto.constants import Constants, read_constants
+from washer.cont.problem import load_python_problem
+from washer.cont.runner import build, execute
+from washer.cont.settings import Settings
+from washer.cont.system import SYSTEMS, ContinuedSystem
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+
+@pytest.mark.parametrize("key", sorted(SYSTEMS, key=str))
+def test_every_registered_system_has_the_whole_contract(key):
+    cls = SYSTEMS[key]
+    methods = [m for m in ContinuedSystem.__dict__ if callable(getattr(ContinuedSystem, m))
+               and not m.startswith("_")]
+    assert methods, "the Protocol lists its methods"
+    for m in methods:
+        assert callable(getattr(cls, m, None)), f"{cls.__name__} lacks {m}()"
+    for attr in ("curve_type", "arclength"):
+        assert hasattr(cls, attr), f"{cls.__name__} lacks {attr}"
+    assert cls.arclength in ("sphere", "plane")
+
+
+def test_a_run_in_memory_needs_no_sink_pickles_and_repeats(tmp_path):
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    on_disk = run(tmp_path / "c.ab", verbose=False, sv="eq")
+    c = read_constants(tmp_path / "c.ab")
+    problem = load_python_problem("ab", tmp_path, 2)
+    r, br, mode = build(c, problem)
+    first = execute(r, br, mode, sinks=[])
+    types = lambda b: [(s.ty, s.br, round(float(s.par[0]), 9)) for s in b.specials]
+    assert types(first) == types(on_disk)
+    again = pickle.loads(pickle.dumps(first))
+    assert types(again) == types(first) and again("HB2").lab == first("HB2").lab
+    # A second execution starts a fresh result (the system's state is re-initialised by
+    # its start): the same labelled points, not twice as many rows.
+    second = execute(r, br, mode, sinks=[])
+    assert types(second) == types(first) and len(second.rows) == len(first.rows)
+    assert sorted(set(p.name for p in tmp_path.iterdir())) == sorted(
+        ["ab.py", "c.ab", "b.eq", "s.eq", "d.eq"] + [p.name for p in tmp_path.glob("__pycache__")])
+
+
+@pytest.mark.parametrize("ips, isp, ilp, on", [
+    # AUTO.md 1.3: HB (and BT, GH, ZH, CP) iff IPS in {-1, 1, 11} and ISP not in {0, 3};
+    # BP for IPS < 2: iff ISP != 0, else |ISP| >= 2 and != 4; PD/TR iff ISP in {2, 4} and
+    # IPS in {2, 7, 12}; LP by ILP.
+    (1, 2, 1, {"LP", "BP", "HB", "GH", "ZH", "BT"}),
+    (1, 3, 0, {"BP"}),
+    (0, 2, 1, {"LP", "BP"}),
+    (1, 0, 1, {"LP"}),
+    (2, 2, 1, {"LP", "BP", "PD", "TR"}),
+    (2, 4, 0, {"PD", "TR"}),
+    (2, 1, 1, {"LP"}),
+    (2, -3, 0, {"BP"}),
+])
+def test_test_switches_follow_autos_checksp(ips, isp, ilp, on):
+    c = Constants({"IPS": ips, "ISP": isp, "ILP": ilp, "NDIM": 3})
+    s = Settings.from_constants(c)
+    got = {n for n in ("LP", "BP", "HB", "GH", "ZH", "BT", "PD", "TR") if s.detects(n)}
+    assert got == on
+
+
+def test_sp_overrides_the_switches():
+    c = Constants({"IPS": 1, "ISP": 2, "SP": ["LP0", "TR"], "NDIM": 3})
+    s = Settings.from_constants(c)
+    assert not s.detects("LP") and s.detects("TR") and s.detects("HB")
