@@ -96,7 +96,8 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             records = read_s(restart)
         except AutoFileError as exc:
             raise RunError(str(exc)) from None
-    r, br, mode = build(c, problem, records, name=c["e"] or problem.name)
+    r, br, mode = build(c, problem, records, name=c["e"] or problem.name,
+                        records_source=str(restart))
     files = FileSink(folder, name, protect=(restart,) if records else ())
     all_sinks = [files] + ([ScreenSink()] if verbose else []) + list(sinks or [])
     result = execute(r, br, mode, all_sinks)

@@ -179,9 +179,11 @@ def _stable(p: Point) -> bool | None:
     return None if p is None or p.stability is None else bool(p.stability.stable)
 
 
-def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
+def build(c, problem, records=None, name: str = "", records_source: str = "the restart file"
+          ) -> tuple[Run, int, str]:
     """Resolve constants + problem + restart records into a Run (system and
-    settings), the branch number and the start mode. Raises RunError."""
+    settings), the branch number and the start mode. records_source names the
+    s-file in messages. Raises RunError."""
     try:
         s = Settings.from_constants(c)
     except SettingsError as exc:
@@ -204,7 +206,10 @@ def build(c, problem, records=None, name: str = "") -> tuple[Run, int, str]:
     if irs not in (0, "0"):
         if not records:
             raise RunError(f"{c.source}: IRS={irs!r} needs a restart file (s=NAME) with records")
-        rec = find_record(records, irs)
+        try:
+            rec = find_record(records, irs)
+        except RunError as exc:
+            raise RunError(f"{records_source}: {exc}") from None
         if rec.ndim_user != problem.ndim:
             raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
                            f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
