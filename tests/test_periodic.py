@@ -11,10 +11,11 @@ w = omega + b mu; the monodromy is triangular in (r, theta) with diagonal
 exp(-2 mu T) (radial: d/dr r (mu - r^2) = -2 mu on the orbit) and 1 (the phase), so
 the multipliers are {1, exp(-2 mu T)}. A Hopf point at mu = 0 with frequency omega.
 
-Until the lead's runner lands the branches here are computed by a small driver of
-this file (`_branch`: AUTO's plane pseudo-arclength with Newton-chord and the secant
-direction of CONTBV, mesh adaptation every IAD steps), which uses only the system's
-contract (residual, jacobian, factor, border, inner, update) and `remesh`.
+Some branches here are computed by a small driver of this file (`_branch`: AUTO's plane
+pseudo-arclength with Newton-chord and the secant direction of CONTBV, mesh adaptation
+every IAD steps) that uses only the system's contract (residual, jacobian, factor,
+border, inner, update) and `remesh`: an independent check of the system against the
+engine's iterator, which the other tests use through washer.run.
 """
 import importlib.util
 import math

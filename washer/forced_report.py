@@ -1,5 +1,5 @@
-"""The exact stability numbers of issue 11 for `python -m washer.figures`, as a separate
-report section (the lead wires it into the figures/report):
+"""The exact stability numbers of issue 11, as a report section of `python -m
+washer.figures` (which calls compute, write and markdown) or on its own:
 
     python -m washer.forced_report [--quick] [--out out/forced]
 

@@ -31,7 +31,7 @@ vectorised condensation of the collocation blocks alone (no parameter columns, n
 back substitution); at NTST = 150 (N = 1805) 3.9 against 1.7 ms, so a condensing
 solver would only pay for NTST in the hundreds.
 
-Notes to the lead:
+Differences from AUTO worth knowing:
 * AUTO's BVP continuation uses the secant as the direction (CONTBV: (X - X_old)/DSOLD,
   SCALEB), not the tangent at the new point; regular points then follow AUTO's more
   closely (lrz PT 3: AUTO rho 24.6903, ours with the exact tangent 24.6947; located
