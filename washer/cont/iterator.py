@@ -408,12 +408,19 @@ class Continuation:
             # First step of a switched branch: on the plane orthogonal to the new
             # direction through x_bp + ds d (AUTO's STBIF); it is written.
             ds = st.ds
-            try:
-                x, it = self.correct(x0 + ds * t0, x0, t0, ds, plane=True)
-            except (ConvergenceError, ProblemError) as exc:
-                self.state = None
-                yield Step("failed", start, text=f"no convergence on the switched branch ({exc})")
-                return
+            while True:                              # halved on failure, as STEPAE
+                try:
+                    x, it = self.correct(x0 + ds * t0, x0, t0, ds, plane=True)
+                    break
+                except (ConvergenceError, ProblemError, np.linalg.LinAlgError) as exc:
+                    ds /= 2
+                    if abs(ds) < self.s.DSMIN:
+                        self.state = None
+                        yield Step("failed", start, text=f"no convergence on the switched "
+                                                         f"branch with minimum step size ({exc})")
+                        return
+                    yield Step("note", text=f"NOTE:Retrying step ({exc})")
+            st.ds = ds
             pt = self.evaluate(x, (x - x0) / ds, ds=ds, it=it)
             pt.tests = {}                            # no detection on the first interval
             sysm.update(pt.x, pt.tangent)
