@@ -19,7 +19,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 #: What a source distribution is built from (MANIFEST.in picks the files inside).
-SOURCES = ("setup.py", "pyproject.toml", "build_kernel.py", "MANIFEST.in", "README.md",
+SOURCES = ("setup.py", "pyproject.toml", "build.py", "MANIFEST.in", "README.md",
            "washer", "csrc", "auto_constants", "tests")
 #: The stripped kernel is ~0.5 MB; unstripped it was ~30 MB.
 MAX_KERNEL_BYTES = 5_000_000
@@ -60,7 +60,7 @@ def test_sdist_has_the_tests_and_their_data(built):
     src, sdist, _ = built
     with tarfile.open(sdist) as tf:
         names = {n.split("/", 1)[1] for n in tf.getnames() if "/" in n}
-    expected = {"build_kernel.py", "tests/conftest.py", "tests/ab_exact.py",
+    expected = {"build.py", "tests/conftest.py", "tests/ab_exact.py",
                 "csrc/washer_api.h", "auto_constants/c.washer"}
     expected |= {str(p.relative_to(src)) for p in (src / "tests" / "data").rglob("*") if p.is_file()}
     assert not expected - names, f"missing from the sdist: {sorted(expected - names)[:10]}"

@@ -16,7 +16,7 @@ except ImportError as exc:  # pragma: no cover - exercised only on broken instal
     raise ImportError(
         "the compiled kernel washer._kernel is missing: install the package with "
         "`pip install .` (needs a C++ compiler and libeigen3-dev), or build in place "
-        "with `python build_kernel.py`") from exc
+        "with `python build.py`") from exc
 
 #: Speed laws of theta(t) and rotating-frame variants, by name.
 LAWS = {"constant": 0, "spinup": 1}

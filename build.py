@@ -1,7 +1,9 @@
 """cffi builder of the compiled kernel `washer._kernel` (out-of-line API mode).
 
 Used by `pip install .` through setup.py (cffi_modules), or directly for an
-in-place development build: `python build_kernel.py`.
+in-place development build: `python build.py`. `python -m build` in this folder
+means the PyPA frontend (sdists, wheels), not this file: run that way, this
+module hands over to the frontend (see the end of the file).
 Eigen's headers are taken from $EIGEN3_INCLUDE_DIR, default /usr/include/eigen3
 (Debian's libeigen3-dev).
 """
@@ -31,6 +33,26 @@ ffibuilder.set_source(
     language="c++",
 )
 
+
+def _frontend() -> None:
+    """`python -m build` started this file because the project folder comes first
+    on sys.path: run the PyPA `build` frontend the user asked for instead."""
+    import runpy
+    import sys
+    here = str(HERE)
+    sys.path[:] = [p for p in sys.path if p not in ("", ".", here)
+                   and Path(p or ".").resolve() != HERE]
+    sys.modules.pop("build", None)
+    try:
+        runpy.run_module("build", run_name="__main__", alter_sys=True)
+    except ImportError:
+        raise SystemExit("python -m build: the PyPA 'build' frontend is not installed "
+                         "(pip install build); `python build.py` compiles the kernel in place")
+
+
 if __name__ == "__main__":
-    os.chdir(HERE)
-    ffibuilder.compile(verbose=True)
+    if __spec__ is not None:           # run as `python -m build`, not as a script
+        _frontend()
+    else:
+        os.chdir(HERE)
+        ffibuilder.compile(verbose=True)
