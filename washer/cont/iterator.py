@@ -341,13 +341,13 @@ class Continuation:
                 self._pending.append(Step("note", text=f"NOTE:Possible special point "
                                                        f"({_key_name(key, self.sys.curve_type)}: {exc})"))
                 continue
-            sp.tests = self._tests(sp, self.sys.jacobian(sp.x), self.sys.factor(
-                self.sys.jacobian(sp.x), self.sys.border(sp.tangent)), None)
-            found = (sp, key)
+            J = self.sys.jacobian(sp.x)
+            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
+            found = (sp, key, J)
             target, span = sp, s_sp
         if found is None:
             return None
-        sp, key = found
+        sp, key, J = found
         # Other tests that change sign over the step and vanish at sp, to within the
         # location tolerance (their linear zero estimate from sp's value).
         tol = 10 * self.s.EPSS * (1 + math.sqrt(abs(self.s.DS * self.s.DSMAX)))
@@ -369,7 +369,6 @@ class Continuation:
             # from the previous point (AUTO stores it too).
             sec = sp.x - prev.x
             sp.tangent = sec / math.sqrt(self.sys.inner(sec, sec))
-            J = self.sys.jacobian(sp.x)
             sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
         return sp, best, same
 

@@ -13,9 +13,15 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from washer.auto.constants import DEFAULTS
+
 #: AUTO perturbs DS, DSMAX by (1 + 1e-7) and DSMIN by 1 / (1 + 1e-7) (INIT1), so
 #: that b-files show 8.2000000200 rather than 8.2: we do the same.
 PERTURB = 1 + 1e-7
+
+
+#: AUTO's defaults (main.f90:INIT), one table for the constants files and the engine.
+_D = DEFAULTS
 
 
 class SettingsError(ValueError):
@@ -24,43 +30,44 @@ class SettingsError(ValueError):
 
 @dataclass(frozen=True)
 class Settings:
-    """Everything the iterator, events and systems read. Field names are AUTO's.
+    """Everything the iterator, events and systems read. Field names are AUTO's,
+    defaults AUTO's (washer.auto.constants.DEFAULTS, with INIT1's perturbations).
 
     Units: DS, DSMIN, DSMAX are arclength in the THL/THU-weighted norm of the
     unknowns; EPSL, EPSU relative Newton tolerances; EPSS the relative
     location tolerance (|delta s| / (1 + sqrt(|DS DSMAX|)) < EPSS).
     """
-    IPS: int = 1
-    ISW: int = 1
-    ICP: tuple = (1,)          # 1-based PAR indices, principal first
-    NDIM: int = 2
-    NPAR: int = 36
-    DS: float = 0.01 * PERTURB
-    DSMIN: float = 0.005 / PERTURB
-    DSMAX: float = 0.1 * PERTURB
-    IADS: int = 1
-    NMX: int = 0
-    NPR: int = 0
-    ITMX: int = 9
-    ITNW: int = 5
-    NWTN: int = 3
-    EPSL: float = 1e-7
-    EPSU: float = 1e-7
-    EPSS: float = 1e-5
-    ILP: int = 1
-    ISP: int = 2
-    MXBF: int = 10
-    JAC: int = 0
-    RL0: float = -1.7976e308
-    RL1: float = 1.7976e308
-    A0: float = -1.7976e308
-    A1: float = 1.7976e308
-    NTST: int = 20
-    NCOL: int = 4
-    IAD: int = 3
-    IPLT: int = 0
-    IID: int = 2
-    IIS: int = 3
+    IPS: int = _D["IPS"]
+    ISW: int = _D["ISW"]
+    ICP: tuple = tuple(_D["ICP"])          # 1-based PAR indices, principal first
+    NDIM: int = _D["NDIM"]
+    NPAR: int = _D["NPAR"]
+    DS: float = _D["DS"] * PERTURB
+    DSMIN: float = _D["DSMIN"] / PERTURB
+    DSMAX: float = _D["DSMAX"] * PERTURB
+    IADS: int = _D["IADS"]
+    NMX: int = _D["NMX"]
+    NPR: int = _D["NPR"]
+    ITMX: int = _D["ITMX"]
+    ITNW: int = _D["ITNW"]
+    NWTN: int = _D["NWTN"]
+    EPSL: float = _D["EPSL"]
+    EPSU: float = _D["EPSU"]
+    EPSS: float = _D["EPSS"]
+    ILP: int = _D["ILP"]
+    ISP: int = _D["ISP"]
+    MXBF: int = _D["MXBF"]
+    JAC: int = _D["JAC"]
+    RL0: float = _D["RL0"]
+    RL1: float = _D["RL1"]
+    A0: float = _D["A0"]
+    A1: float = _D["A1"]
+    NTST: int = _D["NTST"]
+    NCOL: int = _D["NCOL"]
+    IAD: int = _D["IAD"]
+    IPLT: int = _D["IPLT"]
+    IID: int = _D["IID"]
+    IIS: int = _D["IIS"]
     THL: dict = field(default_factory=dict)      # {PAR index: weight}
     THU: dict = field(default_factory=dict)      # {U index (1-based): weight}
     UZR: tuple = ()            # ((PAR index, value, stop?), ...)

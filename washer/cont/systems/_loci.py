@@ -33,6 +33,18 @@ class LocusSystem(AlgebraicSystem):
         # frozen_second): the corrector reuses them within a step.
         self._second = None
 
+    def stored_point(self, start: StartData, kind: str):
+        """The extended state (n_eq,) stored with a point of the same curve (a
+        restart from a record of this locus), or None for a restart at the special
+        point itself. A record of another size is an error."""
+        if start.kind != kind:
+            return None
+        stored = np.asarray(start.u, dtype=float)
+        if len(stored) != self.n_eq:
+            raise ValueError(f"a {kind} record stores {self.n_eq} values (NDIM = {self.ndim}), "
+                             f"this one {len(stored)}")
+        return stored.copy()
+
     def stored_direction(self, start: StartData, kind: str):
         """The direction stored with a point of the same curve and the same free
         parameters (reused on a restart, as AUTO does), else None."""

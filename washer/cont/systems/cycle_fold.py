@@ -133,15 +133,19 @@ class CycleFoldLocus:
         return (out[0] - out[1]) / (4 * hp * hk)
 
     # ------------------------------------------------------------------ contract
-    def residual(self, x):
+    def _at_gauss(self, x):
+        """What the residual and the Jacobian both need: the unknowns unpacked, the
+        mesh profile W, the period T, (u, v) at the Gauss points and f, f_u there."""
         u, v, par, beta = self.unpack(x)
         W = self.coll.profile(x)
-        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
-        T = par[10]
+        n = self.n
         Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
         ug, vg = Wg[:, :n], Wg[:, n:]
-        fg = self.field.f(ug, par)
-        A = self.field.fu(ug, par)
+        return u, v, par, beta, W, par[10], ug, vg, self.field.f(ug, par), self.field.fu(ug, par)
+
+    def residual(self, x):
+        u, v, par, beta, W, T, ug, vg, fg, A = self._at_gauss(x)
+        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
         Fu = T * fg
         Fv = T * np.einsum("kij,kj->ki", A, vg) + (beta / T) * fg
         F = np.concatenate([Fu, Fv], axis=1).reshape(N, m, 2 * n)
@@ -152,14 +156,8 @@ class CycleFoldLocus:
         return self.coll.residual_general(W, F, ints)
 
     def jacobian(self, x):
-        u, v, par, beta = self.unpack(x)
-        W = self.coll.profile(x)
+        u, v, par, beta, W, T, ug, vg, fg, A = self._at_gauss(x)
         n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
-        T = par[10]
-        Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
-        ug, vg = Wg[:, :n], Wg[:, n:]
-        fg = self.field.f(ug, par)
-        A = self.field.fu(ug, par)
         Buv = self._second(ug, vg, par)                                    # f_uu v
         k = len(ug)
         D = np.zeros((k, 2 * n, 2 * n))

@@ -15,7 +15,7 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
-from washer.cont.systems._algebraic import AlgebraicSystem, null_vectors, orient
+from washer.cont.systems._algebraic import AlgebraicSystem, null_vectors
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
 #: test needs Im != 0, and finite-difference Jacobians leave rounding-level
@@ -32,20 +32,25 @@ def is_complex(lam: np.ndarray) -> np.ndarray:
     return np.abs(lam.imag) > IMAG_TOL * (1 + np.abs(lam))
 
 
-def hopf_test(lam: np.ndarray) -> float | None:
-    """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
+def critical_pair(lam: np.ndarray) -> complex | None:
+    """The complex eigenvalue closest to the imaginary axis (None if all are real):
+    the pair AUTO's HB test and PAR(11) follow."""
     cplx = lam[is_complex(lam)]
     if cplx.size == 0:
         return None
-    return float(cplx[np.argmin(np.abs(cplx.real))].real)
+    return complex(cplx[np.argmin(np.abs(cplx.real))])
+
+
+def hopf_test(lam: np.ndarray) -> float | None:
+    """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
+    mu = critical_pair(lam)
+    return None if mu is None else mu.real
 
 
 def hopf_period(lam: np.ndarray) -> float | None:
     """PAR(11) = 2 pi / |Im| of the pair closest to the imaginary axis (PVLSAE)."""
-    cplx = lam[is_complex(lam)]
-    if cplx.size == 0:
-        return None
-    return float(2 * np.pi / abs(cplx[np.argmin(np.abs(cplx.real))].imag))
+    mu = critical_pair(lam)
+    return None if mu is None else float(2 * np.pi / abs(mu.imag))
 
 
 def spectrum(lam: np.ndarray) -> Stability:
@@ -152,12 +157,11 @@ class EquilibriumSystem(AlgebraicSystem):
             return {}
         p = self._p(x)
         A = self.problem.dfdu(x[:-1], p)
-        lam = eigenvalues_sorted(A)
-        cplx = lam[is_complex(lam)]
-        if cplx.size == 0:
+        mu = critical_pair(eigenvalues_sorted(A))
+        if mu is None:
             return {}
-        omega = float(abs(cplx[np.argmin(np.abs(cplx.real))].imag))
+        omega = abs(mu.imag)
         return {"omega": omega, "l1": first_lyapunov(self.problem, x[:-1], p, omega, A)}
 
 
-__all__ = ["EquilibriumSystem", "eigenvalues_sorted", "hopf_test", "hopf_period", "orient"]
+__all__ = ["EquilibriumSystem", "critical_pair", "eigenvalues_sorted", "hopf_test", "hopf_period"]

@@ -33,14 +33,9 @@ class FoldSystem(LocusSystem):
     def __init__(self, start: StartData):
         self._setup(start, start.problem.ndim)
         n = self.ndim
-        stored = np.asarray(start.u, dtype=float)
-        if start.kind == "LP-curve":
-            if len(stored) != 2 * n + 1:
-                raise ValueError(f"a fold-curve record stores 2 NDIM + 1 = {2 * n + 1} values, "
-                                 f"this one {len(stored)}")
-            ext = stored.copy()
-        else:
-            u = stored[:n]
+        ext = self.stored_point(start, "LP-curve")
+        if ext is None:
+            u = np.asarray(start.u, dtype=float)[:n]
             phi = null_vectors(self.problem.dfdu(u, self.par), 1)[:, 0]
             ext = np.r_[u, phi / np.linalg.norm(phi), self.par[self.free[1] - 1]]
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]

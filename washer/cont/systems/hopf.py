@@ -33,15 +33,10 @@ class HopfSystem(LocusSystem):
     def __init__(self, start: StartData):
         self._setup(start, start.problem.ndim + 1)
         n = self.ndim
-        stored = np.asarray(start.u, dtype=float)
         p2 = self.par[self.free[1] - 1]
-        if start.kind == "HB-curve":
-            if len(stored) != 2 * n + 2:
-                raise ValueError(f"a Hopf-curve record stores 2 NDIM + 2 = {2 * n + 2} values, "
-                                 f"this one {len(stored)}")
-            ext = stored.copy()
-        else:
-            u = stored[:n]
+        ext = self.stored_point(start, "HB-curve")
+        if ext is None:
+            u = np.asarray(start.u, dtype=float)[:n]
             period = self.par[10] if len(self.par) > 10 else 0.0
             if not period > 0:
                 raise ValueError("the HB record has no period PAR(11) > 0 to start the Hopf "
@@ -53,7 +48,6 @@ class HopfSystem(LocusSystem):
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
         self.v_old = self._x0[n:2 * n] / np.linalg.norm(self._x0[n:2 * n])
         self._t0 = self.stored_direction(start, "HB-curve")
-
 
     # ------------------------------------------------------------ equations
     def residual(self, x):

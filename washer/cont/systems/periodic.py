@@ -391,21 +391,18 @@ class PeriodicOrbits:
         self._stab_cache = (np.array(x), self._suspended, out)
         return out
 
-    def _sp_active(self, name: str) -> bool:
-        return self.settings.detects(name)
-
     def active_tests(self) -> list:
         """LP of cycles (ILP), BP of cycles (|ISP| >= 2, != 4), PD and TR (ISP in {2, 4},
         NDIM > 2), as support.f90:CHECKSP, SP overriding."""
         out = []
-        if self._sp_active("LP"):
+        if self.settings.detects("LP"):
             out.append(int(Code.LPC))
-        if self._sp_active("BP"):
+        if self.settings.detects("BP"):
             out.append(int(Code.BPC))
         if self.ndim > 2:
-            if self._sp_active("PD"):
+            if self.settings.detects("PD"):
                 out.append(int(Code.PD))
-            if self._sp_active("TR"):
+            if self.settings.detects("TR"):
                 out.append(int(Code.TR))
         return out
 
