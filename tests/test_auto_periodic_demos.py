@@ -16,6 +16,7 @@ numbers are compared only where no relabelling intervened (lrz, chu, plp's first
 periodic runs). Exact: frc's period stays 2 pi / beta on both its branches (the
 appended oscillator fixes it).
 """
+import functools
 import math
 import re
 import shutil
@@ -23,7 +24,8 @@ from pathlib import Path
 
 import pytest
 
-from washer.auto.files import read_b, type_name
+from b_rows import branch_rows, segments
+from washer.auto.files import type_name
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -61,17 +63,8 @@ def run_periodic(cfile: Path, sv: str, **overrides):
     return res
 
 
-def rows(path: Path, periodic=True) -> list:
-    return [r for b in read_b(path) for r in b if (r.br < 0) == periodic]
-
-
-def segments(rs) -> list:
-    out = []
-    for r in rs:
-        if abs(r.pt) == 1:
-            out.append([])
-        out[-1].append(r)
-    return out
+#: Rows of the periodic branches of a b-file.
+rows = functools.partial(branch_rows, periodic=True)
 
 
 def compare(ours: list, ref: list, branch=True, uz_values=None) -> None:
@@ -206,11 +199,11 @@ def test_frc_forced_response(tmp_path_factory):
     compare(rows(d / "b.r1"), rows(REF / "frc" / "b.0"))
     run_periodic(d / "c.frc", "r2", e="frc", s="r1", IRS="UZ1", ICP=[5, 11], NMX=20, DS=-0.5,
                  DSMAX=5.0)
-    r1 = [r for b in read_b(d / "b.r1") for r in b]
-    r2 = [r for b in read_b(d / "b.r2") for r in b]
+    r1 = branch_rows(d / "b.r1")
+    r2 = branch_rows(d / "b.r2")
     for r in r1:
         assert r.values[-1] == pytest.approx(2 * math.pi / 100, rel=1e-7)
     for r in r2:
         assert r.values[-1] == pytest.approx(2 * math.pi / r.values[0], rel=1e-7)
-    ref2 = [r for b in read_b(REF / "frc" / "b.frc") for r in b]
+    ref2 = branch_rows(REF / "frc" / "b.frc")
     assert [type_name(r.ty) for r in r2 if r.lab] == [type_name(r.ty) for r in ref2 if r.lab]

@@ -18,6 +18,7 @@ value, EPSS (1 + sqrt|DS DSMAX|) + EPSL (1 + |value|) in each coordinate of a un
 tangent: this is the check that decides where AUTO itself is looser than 1e-5 (chu's
 HB: EPSS = 1e-4 there, AUTO is 1.4e-5 relative off the exact value).
 """
+import functools
 import math
 import shutil
 from pathlib import Path
@@ -25,9 +26,10 @@ from pathlib import Path
 import pytest
 
 import ab_exact
+from b_rows import branch_rows, segments
 import closed_form_exact as exact
 from washer.auto.constants import read_constants
-from washer.auto.files import read_b, type_name
+from washer.auto.files import type_name
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -44,19 +46,8 @@ def demo_dir(tmp_path_factory, demo: str) -> Path:
     return d
 
 
-def rows(path: Path, periodic=False) -> list:
-    """Rows of a b-file; AUTO's equilibrium branches have BR > 0, periodic BR < 0."""
-    return [r for b in read_b(path) for r in b if (r.br < 0) == periodic]
-
-
-def segments(rs) -> list:
-    """Rows split into branch computations (AUTO restarts PT at 1 for each)."""
-    out = []
-    for r in rs:
-        if abs(r.pt) == 1:
-            out.append([])
-        out[-1].append(r)
-    return out
+#: Rows of the equilibrium branches of a b-file (AUTO's BR > 0; periodic BR < 0).
+rows = functools.partial(branch_rows, periodic=False)
 
 
 def run_rows(cfile: Path, sv: str, **overrides) -> list:

@@ -27,8 +27,9 @@ import numpy as np
 import pytest
 
 import closed_form_exact as exact
+from b_rows import branch_rows, labelled, segments
 from washer.auto.constants import read_constants
-from washer.auto.files import read_b, type_name
+from washer.auto.files import type_name
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -54,22 +55,7 @@ def b_rows(folder: Path, sv: str) -> list:
     """Every row of the b-file a run wrote (AUTO's format: signed PT, integer TY code,
     values = PAR(ICP(1)), norm, U(1..), PAR(ICP(2..)) at 10 significant digits, which
     is far inside every tolerance used here)."""
-    return [r for branch in read_b(folder / f"b.{sv}") for r in branch]
-
-
-def segments(rows) -> list:
-    """The run's rows split into branch computations: each starts at PT 1 (AUTO resets
-    NTOT for every branch it computes, the first one and every switched one)."""
-    out = []
-    for r in rows:
-        if abs(r.pt) == 1:
-            out.append([])
-        out[-1].append(r)
-    return out
-
-
-def labelled(seg) -> list:
-    return [r for r in seg if r.lab]
+    return branch_rows(folder / f"b.{sv}")
 
 
 def summary(rows) -> list:
@@ -507,19 +493,19 @@ def test_dsmin_zero_is_replaced_and_does_not_hang(wall):
 
 
 def test_crossing_type_does_not_depend_on_which_test_is_located_first(tmp_path_factory):
-    """hopfcross2 (found in review): the loci of hopfcross with a p2-dependent frequency
-    w exp(+-p2). At the crossing both the BP and the ZH tests vanish; their linear zero
+    """hopfcross with k = PAR(4) = 1 (found in review): the same loci with a p2-dependent
+    frequency w exp(+-p2). At the crossing both the BP and the ZH tests vanish; their linear zero
     estimates now put ZH first (0.590 against 0.593 of the step). One special point must
     be reported, as BP (31: AUTO's test order, a bifurcation first), and MXBF must still
     switch onto the second locus and find its GH (x0 = p2 = 1/2, where l1 = (x0 - 1/2) /
     omega-type factor changes sign) and its fold."""
-    d = scratch(tmp_path_factory, "hopfcross2")
-    with time_limit(120, "hopfcross2"):
-        do_run(d / "c.hopfcross2", "eq")
-        res = do_run(d / "c.hopfcross2", "fwd", DS=0.02, **HB_CURVE)
+    d = scratch(tmp_path_factory, "hopfcross")
+    with time_limit(120, "hopfcross, k = 1"):
+        do_run(d / "c.hopfcross", "eq", PAR={4: 1.0})
+        res = do_run(d / "c.hopfcross", "fwd", DS=0.02, **HB_CURVE)
     assert res.status == "ok"
     got = [(seg[0].br, [r.ty for r in labelled(seg)]) for seg in segments(res.rows)]
     assert got == [(2, [31, -34]), (3, [-32, -34]), (3, [32, -34])]
     gh = res("GH1")
-    cfile = d / "c.hopfcross2"
+    cfile = d / "c.hopfcross"
     assert gh.par[1] == pytest.approx(0.5, abs=located_tol(cfile, 0.5, DS=0.02))
