@@ -588,3 +588,42 @@ def find_record(records: list[Record], irs) -> Record:
         return find(records, irs)
     except LookupError as exc:
         raise LookupError(f"IRS={irs!r}: {exc} in the restart file") from None
+
+
+def read_dat(path: Path, ndim: int) -> tuple[np.ndarray, np.ndarray]:
+    """A data file of AUTO's `dat='NAME'` (NAME.dat, copied by AUTO's CLUI to fort.3 and
+    read by STPNUB): one row per time point, `t u(1) ... u(NDIM)`, blank-separated, in
+    any Fortran real notation (1.0D+01 as well). Blank lines and lines starting with
+    '#' are skipped.
+
+    Returns (t (m,), U (m, NDIM)) with m >= 2 and t strictly increasing; anything else
+    raises AutoFileError naming the file, the line and what was expected. Columns beyond
+    NDIM + 1 are an error too (a file written for another problem)."""
+    path = Path(path)
+    text = _read_text(path, "a data file (t, u(1..NDIM) per line)")
+    rows, where = [], []
+    for k, line in enumerate(text.splitlines(), start=1):
+        toks = line.split()
+        if not toks or toks[0].startswith("#"):
+            continue
+        if len(toks) != ndim + 1:
+            raise AutoFileError(f"{path}:{k}: expected {ndim + 1} numbers (t and U(1..{ndim})),"
+                                f" got {len(toks)}")
+        try:
+            rows.append([_fortran_float(x) for x in toks])
+        except ValueError:
+            raise AutoFileError(f"{path}:{k}: expected numbers, got {line.strip()!r}") from None
+        if not all(math.isfinite(v) for v in rows[-1]):
+            raise AutoFileError(f"{path}:{k}: non-finite value in {line.strip()!r}")
+        where.append(k)
+    if len(rows) < 2:
+        raise AutoFileError(f"{path}: expected at least two rows (t, U(1..{ndim})), "
+                            f"got {len(rows)}")
+    data = np.array(rows)
+    t = data[:, 0]
+    bad = np.nonzero(np.diff(t) <= 0)[0]
+    if len(bad):
+        k = bad[0] + 1
+        raise AutoFileError(f"{path}:{where[k]}: t = {t[k]!r} does not increase (previous "
+                            f"t = {t[k - 1]!r})")
+    return t, data[:, 1:]
