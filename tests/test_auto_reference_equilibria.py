@@ -238,6 +238,22 @@ def test_plp_hopf_locus_matches_auto(plp):
     compare(plp["bwd"], [uz[0]], npar=2)
 
 
+def test_plp_hopf_locus_steps_as_auto(plp):
+    """DS, DSMAX and NMX mean what they mean in AUTO: the forward Hopf locus from HB1 to
+    the UZSTOP PAR(1) = 109 takes as many points as AUTO's (24 rows of b.loci from the HB
+    on, PAR(4) >= 3.4999; AUTO's d-file shows 2 Newton iterations per step, so ADPTDS
+    grows DS by 1.5 each time). Within one point: the step rule and the norm are AUTO's
+    (THU over the extended unknowns (u, v, kappa, PAR(ICP(2))), THL on PAR(ICP(1)), full
+    Newton); the first written step is not adapted here, and the halving at the UZ stop
+    may fall one point apart. With the second derivatives frozen inside a step Newton
+    needed 3 iterations, DS grew by 1.1 and the locus took 39 points."""
+    loci = segments(rows(REF / "plp" / "b.loci"))[0]
+    hb = plp["fwd"][0].values[0]
+    auto_fwd = [r for r in loci if r.values[0] >= hb - 1e-4]
+    assert len(auto_fwd) == 24
+    assert abs(len(plp["fwd"]) - len(auto_fwd)) <= 1
+
+
 def test_plp_exact(plp):
     """Hopf points (f = 0, trace = 0 in (s, a, PAR(4)), sympy) at PAR(1) = 110 (HB1) and at
     the UZ stops PAR(1) = 109 of the locus."""
