@@ -60,3 +60,27 @@ def test_equations_failing_at_a_trial_point_shrink_the_step(ab, tmp_path):
     assert res.specials[-1].ty == "MX" and "minimum step" in res.status
     p1 = np.array([r.values[0] for r in res.rows])
     assert p1.max() <= 0.12 and p1.max() > 0.11
+
+
+def test_a_failing_location_step_is_retried_halved():
+    """A trial step of the location that does not converge is retried at s halved back
+    towards the last converged trial (AUTO's STEPBV inside LCSPBV), and the zero is still
+    located: q(s) = s^2 - 1/4 from q(0) < 0 to q(1) > 0, whose secant estimate s = 1/4
+    lies where steps fail (s < 0.3); the retry at 0.625 converges and Muller finds 1/2."""
+    from types import SimpleNamespace
+    from washer.cont.events import LocationFailed, locate
+    settings = SimpleNamespace(EPSS=1e-8, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-3)
+    tried = []
+
+    def trial(s):
+        tried.append(s)
+        if s < 0.3:
+            raise RuntimeError("no convergence")
+        return None, s * s - 0.25
+    _, s = locate(trial, "LP", -0.25, 0.75, 1.0, settings)
+    assert s == pytest.approx(0.5, abs=1e-8)
+    assert tried[:2] == [pytest.approx(0.25), pytest.approx(0.625)]
+    # still failing below DSMIN: LocationFailed with what happened, for the d-file
+    with pytest.raises(LocationFailed, match="halving"):
+        locate(lambda s: (_ for _ in ()).throw(RuntimeError("diverges")), "LP", -0.25, 0.75,
+               1.0, settings)

@@ -12,7 +12,9 @@ up to the located point is searched again, so no zero is stepped over.
 Location (LCSPAE): trial points are continuation steps of arclength s from
 the previous point; the first trial is the secant estimate, then Muller's
 method (a parabola through the last three (s, q) pairs) kept inside the
-bracket, up to ITMX iterations. Converged when the last change of s satisfies
+bracket, up to ITMX iterations. A trial step that does not converge is retried
+at s halved back towards the last converged trial, down to DSMIN, as AUTO's
+STEPBV halves the step of its location (the bracket is kept). Converged when the last change of s satisfies
 |delta s| / (1 + sqrt(|DS DSMAX|)) < EPSS: that is the location tolerance in
 arclength (parameters are located to about that times the parameter's rate
 along the branch; in practice much better, since Muller converges with order
@@ -71,6 +73,27 @@ def _muller(s: list, q: list) -> float | None:
     return s2 - 2 * q2 / den
 
 
+def _converged_trial(trial, s_new: float, s_last: float, settings):
+    """trial(s_new), or, where its step does not converge, trial at s halved back towards
+    the last converged trial s_last (AUTO's LCSPBV steps from its last trial point with
+    STEPBV, which halves a failing step down to DSMIN): (point, q, s). LocationFailed when
+    the retried step is below DSMIN and still fails."""
+    first = None
+    while True:
+        try:
+            pt, q = trial(s_new)
+            return pt, q, s_new
+        except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+            # A trial step that does not converge (ConvergenceError, ProblemError are
+            # RuntimeErrors); programming errors are not turned into notes.
+            first = first or exc
+            half = s_last + (s_new - s_last) / 2
+            if abs(half - s_last) < settings.DSMIN or half == s_new:
+                raise LocationFailed(f"trial step failed at s = {s_new:.6g} after halving "
+                                     f"towards s = {s_last:.6g} down to DSMIN ({first})") from exc
+            s_new = half
+
+
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
@@ -93,12 +116,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     best = None
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
-        try:
-            pt, q = trial(s_new)
-        except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
-            # A trial step that does not converge (ConvergenceError, ProblemError are
-            # RuntimeErrors); programming errors are not turned into notes.
-            raise LocationFailed(f"trial step failed ({exc})") from exc
+        pt, q, s_new = _converged_trial(trial, s_new, s_last, settings)
         if q is None or not np.isfinite(q):
             raise LocationFailed("test function undefined at a trial point")
         if q == 0:
