@@ -1,4 +1,4 @@
-"""Speed of the exact stability analysis (issue 11, route b: shooting with the kernel).
+"""Speed of the exact stability analysis (shooting with the kernel).
 
     python benchmarks/bench_forced.py
 
@@ -12,12 +12,12 @@ Prints, at nominal values (reference set, Omega = 10 Hz):
       a converged periodic response per evaluation), and the same via pseudo-arclength
       continuation from C_p = 0.08 to 0.13 with detection and location;
   (4) the exact critical C_p with the averaged and frozen Hopf values (`critical_cp`);
-  (5) route (a), the engine (IPS = 2, e='washer:forced', NTST = 20, NCOL = 4, NDIM = 14):
-      the start (stpnt: route (b)'s orbit sampled at the 81 mesh nodes), one periodic
+  (5) the collocation run, the engine (IPS = 2, e='washer:forced', NTST = 20, NCOL = 4, NDIM = 14):
+      the start (stpnt: the shooting's orbit sampled at the 81 mesh nodes), one periodic
       response with its 14 multipliers (a continuation step: Newton on the collocation
       system, then the multipliers; mean over 10 steps in C_p = 0.2 -> 0.3, no special
       point), the TR point located (C_p 0.09 -> 0.11), and the shipped
-      auto_constants/c.washer.forced (C_p 0 -> 0.5, 31 points).
+      auto_constants/c.washer.machine.forced (C_p 0 -> 0.5, 31 points).
 Best of 3 wall times; 2 shared cores, so other load inflates them.
 """
 import shutil
@@ -29,11 +29,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import washer
-from washer import forced, kernel
-from washer.auto_washer import washer_problem
+from washer.machine import forced, kernel
+from washer.problems.washer import washer_problem
 from washer.run import run
 
-CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants" / "c.washer.forced"
+CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants" / "c.washer.machine.forced"
 
 
 def best_of(fn, repeat=3):
@@ -87,8 +87,8 @@ def main():
 
 
 def route_a(params, crit):
-    """Route (a): the engine on e='washer:forced' (outputs in a temporary folder)."""
-    print("\nroute (a): the engine, IPS = 2, e='washer:forced', NTST 20 x NCOL 4")
+    """The engine on e='washer:forced' (outputs in a temporary folder)."""
+    print("\nthe collocation run: the engine, IPS = 2, e='washer:forced', NTST 20 x NCOL 4")
 
     def start():
         pr = washer_problem("washer:forced", params=params)
@@ -97,9 +97,9 @@ def route_a(params, crit):
             pr._stpnt(u, scratch, t)
 
     t_s, _ = best_of(start)
-    print(f"  start (stpnt: route (b)'s orbit at 81 nodes): {t_s * 1e3:8.1f} ms")
+    print(f"  start (stpnt: the shooting's orbit at 81 nodes): {t_s * 1e3:8.1f} ms")
     with tempfile.TemporaryDirectory() as d:
-        cfile = Path(d) / "c.washer.forced"
+        cfile = Path(d) / "c.washer.machine.forced"
         shutil.copy(CONSTANTS, cfile)
 
         def go(**kw):
@@ -115,10 +115,10 @@ def route_a(params, crit):
         tr = r("TR1")
         mu = np.asarray(tr.stability.values)
         print(f"  TR located, C_p 0.09 -> 0.11          : {t_tr:8.3f} s, {len(r.rows)} points, "
-              f"C_p = {tr.solution.par[0]:.12f} (route b {crit['C_p_exact']:.12f}), "
+              f"C_p = {tr.solution.par[0]:.12f} (shooting {crit['C_p_exact']:.12f}), "
               f"critical mu = {forced.critical_pair(mu):.9f}")
         t_all, r = best_of(go())
-        print(f"  c.washer.forced, C_p 0 -> 0.5         : {t_all:8.3f} s, {len(r.rows)} points")
+        print(f"  c.washer.machine.forced, C_p 0 -> 0.5         : {t_all:8.3f} s, {len(r.rows)} points")
 
 
 if __name__ == "__main__":

@@ -32,7 +32,7 @@ import time
 import numpy as np
 
 import washer
-from washer import kernel
+from washer.machine import kernel
 from washer.sweep import parse_spec, run
 
 

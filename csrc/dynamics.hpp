@@ -19,7 +19,7 @@ using Mat6xS = Eigen::Matrix<double, 6, WASHER_N_SYMDIFF, Eigen::RowMajor>;
 using Mat12xD = Eigen::Matrix<double, 12, WASHER_N_DIFF, Eigen::RowMajor>;
 
 // Number of equally spaced frame angles of the averaged rotating frame
-// (MODEL.md section 4: the tau-dependence is 2 Omega and 4 Omega harmonics,
+// (docs/model.md section 4: the tau-dependence is 2 Omega and 4 Omega harmonics,
 // which a 16-point rectangle rule on the period integrates exactly up to order 14).
 constexpr int N_AVERAGE = 16;
 

@@ -1,5 +1,5 @@
 // Adaptive explicit Runge-Kutta integration inside the kernel, so that a whole
-// time response is one C call (no Python per step; ENGINEERING.md c).
+// time response is one C call (no Python per step).
 //
 // Dormand-Prince 5(4) with FSAL, standard error-per-unit-step control and
 // Hairer's 4th-order dense output (Hairer, Norsett & Wanner, Solving ODEs I,

@@ -1,7 +1,7 @@
 /* washer kernel C ABI. Plain C prototypes only: cffi's cdef() reads this file.
  *
  * Conventions
- *   P      kernel parameter vector, length washer_n_params(), order of washer/layout.py
+ *   P      kernel parameter vector, length washer_n_params(), order of washer/machine/layout.py
  *          (Omega in Hz, everything else SI).
  *   u      ground-frame state (q, q_dot), length 12 (eq 48).
  *   xi     rotating-frame state (eps, eps_dot), length 12 (eq 59).

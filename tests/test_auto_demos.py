@@ -111,7 +111,7 @@ def test_ab_closed_forms(ab_runs):
         bt = ab_runs[name]("BT1")
         assert bt.par[1] == pytest.approx(64 / 3, rel=1e-6)
         np.testing.assert_allclose(bt.U, [0.25, 4 / 3], rtol=1e-5)
-    # Folds satisfy u1 (1 - u1) = (1 + p3) / p2 (AUTO.md 6.1).
+    # Folds satisfy u1 (1 - u1) = (1 + p3) / p2 (docs/auto.md 6.1).
     for lp in (ab_runs["eq"]("LP1"), ab_runs["eq"]("LP2")):
         assert lp.U[0] * (1 - lp.U[0]) == pytest.approx(4 / 17, rel=1e-8)
 
@@ -146,7 +146,7 @@ def test_lorenz_closed_forms(lrz_runs):
     # The run uses JAC = 0: the Hopf test function is evaluated on central-difference
     # Jacobians, whose rounding noise (~1e-8 relative) makes it non-monotone at that
     # level, so no location can promise 1e-9 here. Asserted: the documented guarantee,
-    # and AUTO.md's comparison tolerance for located points (1e-6 relative; AUTO-07p's
+    # and docs/auto.md's comparison tolerance for located points (1e-6 relative; AUTO-07p's
     # own value, 24.736843683, is 6.4e-8 off).
     assert abs(hb.par[0] - 470 / 19) <= location_tolerance(c)
     assert hb.par[0] == pytest.approx(470 / 19, rel=1e-6)

@@ -93,7 +93,7 @@ def test_cli_errors_name_file_and_line(tmp_path, capsys):
 
 
 def test_plot_cli_draws_a_diagram(tmp_path):
-    from washer.plot import main as plot_main
+    from washer.plots.__main__ import main as plot_main
     for f in ("ab.py", "c.ab"):
         shutil.copy(DATA / "ab" / f, tmp_path)
     run(tmp_path / "c.ab", verbose=False, sv="eq")

@@ -192,7 +192,7 @@ def test_a_run_without_points_leaves_no_header_only_b_file(tmp_path):
 
 def test_d_file_lines_are_autos(tmp_path):
     """Point, eigenvalue and multiplier lines as AUTO-07p writes them (ab2p/d.eq, and
-    ab_po_raw/d.raw3 quoted in AUTO.md 2.3)."""
+    ab_po_raw/d.raw3 quoted in docs/auto.md 2.3)."""
     ref = (REF / "ab2p" / "d.eq.head").read_text().splitlines()
     out = OutputFiles(tmp_path, "x")
     out.column_titles = TITLES

@@ -9,9 +9,9 @@ types in order, and PAR(ICP(1)) and PERIOD of *located* points (UZ, LP, PD) at 1
 relative: the same collocation (NTST, NCOL, mesh adaption) solves the same discrete
 problem, so the remaining difference is the location tolerance EPSS. Regular NPR
 outputs and end points depend on the step-size history and are compared by type only;
-MAX U columns by neither (AUTO's own builds differ there in the 4th-5th digit, AUTO.md
+MAX U columns by neither (AUTO's own builds differ there in the 4th-5th digit, docs/auto.md
 section 0). Branch numbers follow AUTO's rule for IPS = 2 restarts at an HB: the
-label of the HB (AUTO.md 1.4); the script relabels its files between runs, so AUTO's
+label of the HB (docs/auto.md 1.4); the script relabels its files between runs, so AUTO's
 numbers are compared only where no relabelling intervened (lrz, chu, plp's first
 periodic runs). Exact: frc's period stays 2 pi / beta on both its branches (the
 appended oscillator fixes it).

@@ -187,7 +187,7 @@ def test_default_names_complete_but_never_override_the_users():
 
 
 def test_builtin_washer_supplies_its_names():
-    from washer.auto_washer import PAR_NAMES
+    from washer.machine.layout import PAR_NAMES
     assert PAR_NAMES == WASHER_NAMES
 
 

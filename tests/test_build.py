@@ -2,7 +2,8 @@
 from pathlib import Path
 
 import washer
-from washer import codegen, kernel, layout
+from washer import codegen
+from washer.machine import kernel, layout
 
 
 def test_compiled_extension_is_importable():

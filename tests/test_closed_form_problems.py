@@ -4,10 +4,10 @@ Each problem lives in tests/data/<name>/ (equations <name>.py, constants c.<name
 written as an AUTO user would, then kept fixed); tests/closed_form_exact.py
 computes the exact special points with sympy at test time. The expected types,
 their order along each branch and the branch numbers follow AUTO-07p's rules
-(AUTO.md sections 1 and 3, ae.f90: CNRLAE, SWPNT, LCSPAE, STPLAE).
+(docs/auto.md sections 1 and 3, ae.f90: CNRLAE, SWPNT, LCSPAE, STPLAE).
 
 Tolerances. A special point is located when the locator's arclength correction
-drops below EPSS (1 + sqrt|DS DSMAX|) (AUTO.md 3.2), so the located point lies
+drops below EPSS (1 + sqrt|DS DSMAX|) (docs/auto.md 3.2), so the located point lies
 within about that arclength of the true zero. Every coordinate of a unit tangent
 (THL = THU = 1) has |d coord / ds| <= 1, so the coordinate's error is at most that
 arclength, plus the Newton tolerance EPSL (1 + |value|) of the point itself:
@@ -148,7 +148,7 @@ def test_pfchain_negative_mxbf_counts_switches(pfchain):
 def test_pfchain_isw_minus1_restart_at_bp(pfchain):
     """A restart at a BP label with ISW = -1 switches branches (CNRLAE: STPRAE with the
     direction perpendicular to the stored one, then the switching step): one direction,
-    branch number = the largest in the restart file + 1 = 4 (AUTO.md 1.4), carrying the
+    branch number = the largest in the restart file + 1 = 4 (docs/auto.md 1.4), carrying the
     level-2 points; MXBF = 10 then switches at its BP (both directions, branch 5)."""
     assert pfchain["isw"].status == "ok"
     assert summary(pfchain["isw"].rows) == [(4, ["HB", "BP", "EP"]), (5, ["EP"]), (5, ["EP"])]
@@ -248,7 +248,7 @@ def test_hopfcross_equilibria(hopfcross):
 def test_hopfcross_codes_order_and_branches(hopfcross):
     """Forward along E1's locus: the crossing with E2's locus is a BP of the Hopf-curve
     system (code 31 = BP + 10 x 3 on an HB curve), then the UZ stop (-34). Branch 2 = the
-    label of HB1 (ISW = 2 restart, AUTO.md 1.4). MXBF = 10 then switches at the BP onto
+    label of HB1 (ISW = 2 restart, docs/auto.md 1.4). MXBF = 10 then switches at the BP onto
     E2's locus, branch 3, first with +DS: the null-vector direction is oriented to
     PAR(ICP(1))-dot > 0, which on E2's locus is p2 > 0, where the GH (-32) lies; then
     -DS, towards p2 < 0, where E2's locus folds in p1 (LP, 32). Backward from HB1 along
@@ -446,7 +446,7 @@ def wall(tmp_path):
 def test_ds_zero_is_replaced_by_0_1(wall):
     """DS = 0 becomes 0.1 (main.f90: INIT1). On the straight branch x = mu (45 degrees)
     the b-file's PT 2 lies two steps of DS from PT 1 (the unwritten first step plus the
-    first written one, AUTO.md 3.1), i.e. at mu = 2 x 0.1 / sqrt 2, times (1 + 1e-7)
+    first written one, docs/auto.md 3.1), i.e. at mu = 2 x 0.1 / sqrt 2, times (1 + 1e-7)
     (DS is perturbed by 1e-7); Newton is exact on a linear branch: 1e-6 relative."""
     with time_limit(60, "DS=0"):
         res = do_run(wall / "c.wall", "ds0", DS=0, RL1=0.9)

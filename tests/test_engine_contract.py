@@ -1,6 +1,6 @@
-"""The engine's shape (issue 8): every registered system honours the contract, runs live
+"""The engine's shape: every registered system honours the contract, runs live
 in memory without any sink, a run's result pickles and re-executes identically, and the
-test switches follow AUTO's CHECKSP table (AUTO.md section 1.3)."""
+test switches follow AUTO's CHECKSP table (docs/auto.md section 1.3)."""
 import pickle
 import shutil
 from pathlib import Path
@@ -51,7 +51,7 @@ def test_a_run_in_memory_needs_no_sink_pickles_and_repeats(tmp_path):
 
 
 @pytest.mark.parametrize("ips, isp, ilp, on", [
-    # AUTO.md 1.3: HB (and BT, GH, ZH, CP) iff IPS in {-1, 1, 11} and ISP not in {0, 3};
+    # docs/auto.md 1.3: HB (and BT, GH, ZH, CP) iff IPS in {-1, 1, 11} and ISP not in {0, 3};
     # BP for IPS < 2: iff ISP != 0, else |ISP| >= 2 and != 4; PD/TR iff ISP in {2, 4} and
     # IPS in {2, 7, 12}; LP by ILP.
     (1, 2, 1, {"LP", "BP", "HB", "GH", "ZH", "BT"}),

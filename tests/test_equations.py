@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 
 import washer
-from washer import kernel
-from washer.reference import newton_euler as ne
-from washer.reference.rods_literal import rod_forces_literal
+from washer.machine import kernel
+from washer.symbolic import newton_euler as ne
+from washer.symbolic.rods_literal import rod_forces_literal
 
 from conftest import random_state
 
@@ -34,7 +34,7 @@ def test_rhs_fixed_uses_the_speed_law(distinct_params):
 
 
 def test_smooth_rod_forces_equal_literal_equations():
-    """MODEL.md section 2 form == eqs 30-44 wherever d x v != 0, unequal coefficients."""
+    """docs/model.md section 2 form == eqs 30-44 wherever d x v != 0, unequal coefficients."""
     rng = np.random.default_rng(2)
     for _ in range(50):
         d = rng.normal(0, 0.3, 3) + [0, 0, 0.5]
@@ -98,7 +98,7 @@ def test_jacobians_equal_central_differences(distinct_params, system):
         J, Jp = kernel.jac_rot(u, P0, system)
     Jfd = _fd(f, u, 1e-6)
     assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))
-    from washer import layout
+    from washer.machine import layout
     for j, name in enumerate(kernel.DIFF_NAMES):
         i = layout.INDEX[name]
         col = _fd(lambda pi: f(u, np.r_[P0[:i], pi, P0[i + 1:]]), P0[i:i + 1], 1e-6)[:, 0]

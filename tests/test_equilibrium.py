@@ -1,4 +1,4 @@
-"""Equilibria and stability against MODEL.md section 5's cross-checks."""
+"""Equilibria and stability against docs/model.md section 5's cross-checks."""
 import numpy as np
 from scipy.optimize import brentq
 
@@ -24,7 +24,7 @@ def _critical_cp(params, frame):
 
 
 def test_averaged_system_has_hopf_near_0101(params):
-    """MODEL.md: averaged Hopf at C_p ~ 0.1010 with the pair at ~ +-58.9i."""
+    """docs/model.md: averaged Hopf at C_p ~ 0.1010 with the pair at ~ +-58.9i."""
     cp = _critical_cp(params, "averaged")
     assert abs(cp - 0.101) < 0.002 * 0.101
     m = washer.Model(params.replace(C_p=cp))
@@ -34,7 +34,7 @@ def test_averaged_system_has_hopf_near_0101(params):
 
 
 def test_frozen_system_hopf_is_lower(params):
-    """MODEL.md: frozen tau0 = 0 Hopf at C_p ~ 0.0745."""
+    """docs/model.md: frozen tau0 = 0 Hopf at C_p ~ 0.0745."""
     assert abs(_critical_cp(params, "frozen") - 0.0745) < 0.01 * 0.0745
 
 
@@ -48,7 +48,7 @@ def test_rotating_equilibrium_height(model):
 def test_batched_calls_match_single_calls(model):
     rng = np.random.default_rng(7)
     X = np.c_[rng.normal(0, 0.02, (5, 6)) + [0, 0, 0.39, 0, 0, 0], rng.normal(0, 0.1, (5, 6))]
-    from washer import kernel
+    from washer.machine import kernel
     Ps = np.array([model.params.replace(C_p=c).vector() for c in np.linspace(0, 0.3, 5)])
     out = kernel.rhs_rot_batch(X, Ps)
     J, Jp = kernel.jac_rot_batch(X, Ps)

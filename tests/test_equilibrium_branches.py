@@ -1,6 +1,6 @@
-"""Equilibria followed from the reference set (washer.equilibria) over Table 1's ranges.
+"""Equilibria followed from the reference set (washer.machine.equilibria) over Table 1's ranges.
 
-Tolerances: Newton stops at max|acc| <= 1e-11 (1 + max|x|) (washer.equilibria), so the
+Tolerances: Newton stops at max|acc| <= 1e-11 (1 + max|x|) (washer.machine.equilibria), so the
 residual bound below is what the method guarantees; "near the reference yaw" is 0.2 rad,
 against the pi of the half-turned tub a plain Newton found at K_s = 500 N/m.
 """
@@ -11,15 +11,15 @@ import pytest
 from scipy.optimize import fsolve
 
 import washer
-from washer import kernel
-from washer.equilibria import YAW_LIMIT, Equilibrium
+from washer.machine import kernel
+from washer.machine.equilibria import YAW_LIMIT, Equilibrium
 from washer.paper.analysis import RANGES
 
 KINDS = ("static", "averaged", "frozen")
 
 
 def _reported_fold(exc) -> float:
-    """The K_s (N/m) where washer.equilibria says the static branch ends (its message:
+    """The K_s (N/m) where washer.machine.equilibria says the static branch ends (its message:
     "ends at s = ... of the way (K_s = ...)")."""
     return float(re.search(r"\(K_s = ([0-9.]+)\)", str(exc)).group(1))
 
@@ -27,7 +27,7 @@ def _reported_fold(exc) -> float:
 @pytest.fixture(scope="module")
 def static_fold(params):
     """Where the static hanging branch with the nominal imbalance at rest folds, located
-    independently of washer.equilibria: solve F(q, K_s) = 0, J(q, K_s) v = 0, v.v0 = 1
+    independently of washer.machine.equilibria: solve F(q, K_s) = 0, J(q, K_s) v = 0, v.v0 = 1
     (13 unknowns, scipy fsolve), started from the point the continuation reports at
     K_s = 550 and 1 N/m on the branch's side of the K_s it reports (started on that K_s
     itself, fsolve's difference Jacobian stalls: ier 5). Returns (K_s (N/m), the
@@ -91,8 +91,8 @@ def test_equilibria_over_table1_ranges(params, name, static_fold):
                 assert name in x.info.path
 
 
-def test_issue_cases_k_s_500_rotating_is_not_half_turned(params):
-    """The issue's case: at K_s = 500 N/m the old solver returned eps6 = -3.12 rad.
+def test_k_s_500_rotating_is_not_half_turned(params):
+    """The case: at K_s = 500 N/m the old solver returned eps6 = -3.12 rad.
     The followed equilibrium is unrotated; the half-turned one still exists (Newton
     from the tipped static point finds it) and is labelled as not hanging."""
     m = washer.Model(params.replace(K_s=500.0))
@@ -107,7 +107,7 @@ def test_issue_cases_k_s_500_rotating_is_not_half_turned(params):
 
 @pytest.mark.parametrize("k_s", [550.0, 517.5])
 def test_static_below_the_fold_is_refused_and_the_tub_tips(params, k_s, static_fold):
-    """The issue's K_s = 550 and 517.5 N/m: with the 1 kg imbalance at rest on +x
+    """K_s = 550 and 517.5 N/m: with the 1 kg imbalance at rest on +x
     there is no hanging equilibrium (the error names the fold); the dynamics agree
     independently: released at rest from the hanging guess, the damped tub tips
     over (|beta| beyond 0.5 rad, twice the tilt at the fold; the run may stop at the

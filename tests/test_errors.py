@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 import washer
-from washer import kernel
-from washer.params import ParameterError, load_params
+from washer.machine import kernel
+from washer.machine.params import ParameterError, load_params
 
 REF = load_params().source
 
@@ -67,7 +67,7 @@ def test_nan_state_is_an_exception(model):
 
 def test_singular_mass_matrix_is_an_exception(params):
     P = params.vector()
-    P[[washer.layout.INDEX[n] for n in ("m_t", "m_b", "m_u", "J_tx", "J_ty", "J_tz", "J_bt", "J_bz")]] = 0
+    P[[washer.machine.layout.INDEX[n] for n in ("m_t", "m_b", "m_u", "J_tx", "J_ty", "J_tz", "J_bt", "J_bz")]] = 0
     with pytest.raises(washer.KernelError, match="singular"):
         kernel.rhs_fixed(0.0, np.r_[0, 0, 0.39, 0, 0, 0, np.zeros(6)], P)
 

@@ -1,11 +1,11 @@
-"""`python -m washer.figures` when runs fail or are interrupted (issue 9, item 3):
+"""`python -m washer.paper` when runs fail or are interrupted:
 non-zero exit naming the run, no verdicts on unfinished curves, Ctrl-C stops the job.
 The AUTO runs are replaced by stand-ins here (the real ones are test_paper's)."""
 from types import SimpleNamespace
 
 import pytest
 
-from washer import figures
+from washer.paper import job as figures
 from washer.paper import runs
 from washer.paper.runs import RunLog
 

@@ -1,12 +1,12 @@
-"""The forced periodic response and its Floquet multipliers (washer.forced, issue 11).
+"""The forced periodic response and its Floquet multipliers (washer.machine.forced).
 
-Route (b), shooting, is checked against closed forms (forced linear oscillator), an
+Shooting is checked against closed forms (forced linear oscillator), an
 independent spectral method (Hill's determinant for the damped Mathieu equation's
 period doubling), harmonic balance (Duffing fold), finite differences of the flow and
 scipy's solve_ivp; the washer orbit against its symmetry and the averaged system.
-Route (a), the engine (IPS = 2) on the system made autonomous by an appended oscillator
+The engine (IPS = 2) on the system made autonomous by an appended oscillator
 (AUTO's frc), is in ROUTES beside it, and on the washer (e='washer:forced',
-auto_constants/c.washer.forced) checked against route (b)'s TR point and multipliers.
+auto_constants/c.washer.forced) checked against the shooting's TR point and multipliers.
 """
 import math
 import shutil
@@ -19,7 +19,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, linear_sum_assignment
 
-from washer import Model, forced, kernel
+from washer import Model
+from washer.machine import forced, kernel
 from washer.cont.problem import Problem
 from washer.run import run
 
@@ -33,7 +34,7 @@ DATA = Path(__file__).parent / "data"
 @dataclass
 class ForcedSystem:
     """u' = f(t, u, p) with forcing of period T(p) = 2 pi / nu (through cos, sin of nu t,
-    so that route (a) can generate it with an appended oscillator).
+    so that the collocation run can generate it with an appended oscillator).
     jac(t, u, p) -> df/du (n, n); dfdp(t, u, p) -> df/dp (n,)."""
     f: callable
     jac: callable
@@ -60,18 +61,18 @@ class ForcedSystem:
 
 
 def shooting_route(system: ForcedSystem, u0, p):
-    """Route (b): Newton shooting; returns (u0 of the periodic orbit, multipliers)."""
+    """Newton shooting; returns (u0 of the periodic orbit, multipliers)."""
     u, Phi, *_ = forced.newton_periodic(lambda v: system.flow(v, p)[:2] + (0,), u0)
     return u, forced.sort_multipliers(np.linalg.eigvals(Phi))
 
 
-#: Collocation intervals of route (a) on the small test systems: the nodes' error is
+#: Collocation intervals of the collocation runs on the small test systems: the nodes' error is
 #: ~1e-11 at 40 (Gauss collocation is superconvergent there), ~4e-9 at 20.
 ENGINE_NTST = 40
 
 
 def engine_route(system: ForcedSystem, u0, p):
-    """Route (a): the engine (IPS = 2, AUTO's frc way). The system is made autonomous by
+    """The engine (IPS = 2, AUTO's frc way). The system is made autonomous by
     the oscillator x' = x + nu y - x (x^2 + y^2), y' = -nu x + y - y (x^2 + y^2), whose
     cycle is (sin nu t, cos nu t), with t = atan2(x, y) / nu, and continued in p from
     p = 0, where the orbit is u = 0 (the systems here have f(t, 0, 0) = 0), to UZ at p.
@@ -106,8 +107,8 @@ def engine_route(system: ForcedSystem, u0, p):
 
 
 def _without_oscillator(mu, T):
-    """Multipliers of route (a) less the oscillator's trivial 1 and radial exp(-2 T),
-    sorted as route (b)'s. (QZ gives conjugate pairs whose moduli differ by rounding,
+    """Multipliers of the collocation runs less the oscillator's trivial 1 and radial exp(-2 T),
+    sorted as the shooting's. (QZ gives conjugate pairs whose moduli differ by rounding,
     which would decide sort_multipliers' order: rounded to 1e-12 first.)"""
     mu = np.asarray(mu, dtype=complex)
     mu = np.delete(mu, np.argmin(np.abs(mu - 1)))
@@ -115,8 +116,8 @@ def _without_oscillator(mu, T):
     return forced.sort_multipliers(np.round(mu, 12))
 
 
-#: Routes computing a forced periodic orbit and its multipliers: (b) Newton shooting and
-#: (a) the engine with IPS = 2 and the forcing from an appended oscillator (AUTO's frc).
+#: Ways of computing a forced periodic orbit and its multipliers: Newton shooting and
+#: the engine with IPS = 2 and the forcing from an appended oscillator (AUTO's frc).
 ROUTES = {"shooting": shooting_route, "engine": engine_route}
 
 
@@ -153,7 +154,7 @@ def test_forced_linear_oscillator_matches_closed_form(route):
 
 
 def test_forced_linear_oscillator_from_a_user_file_matches_closed_form(tmp_path):
-    """Route (a) as an AUTO user runs it: tests/data/forced_linear/flin.py (the oscillator
+    """The collocation run as an AUTO user runs it: tests/data/forced_linear/flin.py (the oscillator
     appended by hand, the forcing F0 cos(nu t) = F0 y) and c.flin, a homotopy in F0 from
     frc-style exact start data at F0 = 0 to UZ at F0 = 0.7. The whole orbit at every mesh
     node, at its own time t = atan2(x, y) / nu, and the multipliers against the closed
@@ -430,7 +431,7 @@ def critical(params):
 
 
 def test_exact_critical_cp_near_averaged_and_far_from_frozen(critical):
-    """MODEL.md section 4: averaged Hopf at C_p ~ 0.1010, frozen (tau0 = 0) ~ 0.0745, and
+    """docs/model.md section 4: averaged Hopf at C_p ~ 0.1010, frozen (tau0 = 0) ~ 0.0745, and
     averaging matches the exact Floquet result to ~1e-4 relative."""
     ex, av, fr = critical["C_p_exact"], critical["C_p_averaged"], critical["C_p_frozen"]
     assert abs(av - 0.1010) < 5e-5 and abs(fr - 0.0745) < 5e-5
@@ -477,7 +478,7 @@ def test_tr_in_any_parameter_lies_on_the_critical_cp_surface(params, name):
     assert abs(sp.value - params["C_p"]) < 1e-9
 
 
-# ------------------------------------------------------------------ route (a) on the washer
+# ------------------------------------------------------------------ the collocation run on the washer
 
 CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants"
 
@@ -491,12 +492,12 @@ def engine_run(tmp_path_factory):
 
 
 def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critical):
-    """The issue's check of route (a) against route (b): the TR point in C_p and the
+    """The check of the collocation run against the shooting: the TR point in C_p and the
     multipliers there agree to 1e-6. Measured 5e-12 in C_p and 7e-12 in the multipliers:
     Gauss collocation (NTST = 20, NCOL = 4) is superconvergent at the mesh nodes (error
-    h^8: 1.4e-9 at NTST = 10), route (b)'s flow is at rtol 1e-10, and Muller's last step
+    h^8: 1.4e-9 at NTST = 10), the shooting's flow is at rtol 1e-10, and Muller's last step
     is far below EPSS = 1e-7; 1e-9 bounds all three with margin. The 14 multipliers are
-    route (b)'s 12 plus the oscillator's: the trivial 1 (first, AUTO's order) and its
+    the shooting's 12 plus the oscillator's: the trivial 1 (first, AUTO's order) and its
     radial exp(-2 T) (the monodromy matrix is block triangular)."""
     assert engine_run.status == "ok"
     assert [r.ty for r in engine_run.specials if r.ty] == ["EP", "TR", "UZ"]
@@ -513,7 +514,7 @@ def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critica
 
 def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, engine_run,
                                                                       critical):
-    """The start is route (b)'s orbit at the file's PAR (C_p = 0, not the reference
+    """The start is the shooting's orbit at the file's PAR (C_p = 0, not the reference
     0.101: stpnt is not corrected, so it must be computed there), the response is unstable
     below the TR point and stable above it up to C_p = 0.5, and the period stays 1/Omega
     on every point (the oscillator fixes it; Newton's EPSU = 1e-8 bounds its drift)."""
@@ -535,8 +536,8 @@ def test_forced_problem_is_the_kernel_rhs_at_the_oscillator_angle(params):
     (radius 0.7); the oscillator rows are frc's; the Jacobian (JAC = 1: kernel jac_fixed
     plus a central difference in theta) equals the engine's central differences of the
     whole right-hand side (JAC = 0) to their accuracy, ~1e-8 relative. stpnt's state at
-    t = 0 is route (b)'s orbit, periodic in t."""
-    from washer.auto_washer import washer_problem
+    t = 0 is the shooting's orbit, periodic in t."""
+    from washer.problems.washer import washer_problem
     pr = washer_problem("washer:forced", params=params)
     u0, par = pr.start(pr.npar)
     r = forced.periodic_response(params)
@@ -576,14 +577,14 @@ def test_flow_variational_refuses_bad_input(params, nominal):
 
 
 def test_report_section_states_the_computed_numbers(params, tmp_path):
-    from washer import forced_report
+    from washer.paper import exact_stability
     import json
-    res = forced_report.compute(params, n_curve=3, ends=False, progress=lambda *_: None)
-    md = forced_report.markdown(res)
+    res = exact_stability.compute(params, n_curve=3, ends=False, progress=lambda *_: None)
+    md = exact_stability.markdown(res)
     assert f"{res['nominal']['C_p_exact']:.10f}" in md
     assert f"{res['nominal']['C_p_averaged']:.10f}" in md
     f4 = res["fig4"]
     assert f4["C_p_exact"][0] == 0.0 and abs(f4["Omega"][-1] - 15.0) < 1e-12
     assert np.all(np.diff(f4["C_p_exact"]) > 0)          # the curve rises with speed
     assert md.count("\n| ") >= 3 + 3
-    json.loads(json.dumps(forced_report._jsonable(res)))
+    json.loads(json.dumps(exact_stability._jsonable(res)))

@@ -1,12 +1,12 @@
-"""`python -m washer.figures --quick` end to end: every AUTO run, the time
+"""`python -m washer.paper --quick` end to end: every AUTO run, the time
 responses, the figures and the report; the paper's claims that our model
-reproduces must keep holding (issue 4)."""
+reproduces must keep holding."""
 import re
 
 import numpy as np
 import pytest
 
-from washer import figures
+from washer.paper import job as figures
 from washer.paper import analysis as an
 
 
@@ -124,7 +124,7 @@ def test_time_responses_behave_as_the_paper_says(quick):
 
 
 def test_spinup_lift_is_the_torque_beyond_the_suspension_yaw_capacity(quick):
-    """Issue 9 item 5: the tub's lift in Figs 10-11 comes from eq 66's spin-up torque
+    """The tub's lift in Figs 10-11 comes from eq 66's spin-up torque
     exceeding the largest yaw moment the rods hold; the slower spin-up (chosen for
     T_peak <= M_max / 2) must keep the yaw below the fold and the lift small."""
     import json

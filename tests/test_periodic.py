@@ -459,11 +459,11 @@ def test_bp_of_cycles_located_and_switched():
 # ------------------------------------------------------------------ plots
 
 def test_plot_cli_draws_periodic_branches_and_an_orbit(tmp_path):
-    """python -m washer.plot on AUTO's b.lrz (equilibria and both periodic families) with
+    """python -m washer.plots on AUTO's b.lrz (equilibria and both periodic families) with
     a periodic b-file beside it, and on an s-file label (time profile + phase
     portrait); wrong uses exit with 2."""
     import shutil
-    from washer.plot import main as plot_main
+    from washer.plots.__main__ import main as plot_main
     ref = DATA / "auto_reference" / "periodic" / "lrz" / "b.lrz"
     shutil.copy(ref, tmp_path / "b.lrz")
     shutil.copy(RECORDS / "s.lrz", tmp_path / "s.lrz")
@@ -593,10 +593,10 @@ def test_washer_whirl_at_cp0_is_the_simulated_limit_cycle(tmp_path):
     2 kHz)."""
     import shutil
     from washer.cont import collocation as colm
-    from washer.machine import Model
-    from washer.params import load_params
+    from washer.machine.model import Model
+    from washer.machine.params import load_params
     from washer.run import run
-    from washer.simulate import simulate
+    from washer.machine.responses import simulate
     root = Path(__file__).parent.parent / "auto_constants"
     for f in ("c.washer", "c.washer.po"):
         shutil.copy(root / f, tmp_path)
@@ -690,7 +690,7 @@ def _aligned_difference(rec_a, rec_b) -> float:
 def test_located_orbits_agree_with_autos_profiles(tmp_path, demo, script):
     """Our orbit at a located special point of a demo run against AUTO's s-record of the
     same point, after phase alignment: max difference below 1e-5 of the amplitude (the
-    issue's criterion). Measured: chu's PD 1.5e-6 (PAR(1) 8.1959946 against AUTO's
+    criterion). Measured: chu's PD 1.5e-6 (PAR(1) 8.1959946 against AUTO's
     8.1959951), plp's LP 6.5e-6 (at a fold the orbit moves like the square root of the
     parameter distance; PAR(4) differs by 1.8e-7 relative)."""
     import shutil

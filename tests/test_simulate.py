@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import washer
-from washer import kernel, simulate
+from washer import simulate
+from washer.machine import kernel, responses
 
 
 @pytest.mark.parametrize("system,mode", [("fixed", "spinup"), ("rotating", "averaged"),
@@ -23,7 +24,7 @@ def test_kernel_integrator_agrees_with_solve_ivp(model, system, mode):
 
 def test_dense_output_matches_restarted_integration(model):
     """Output between steps (dense) == integrating exactly to that time."""
-    y0 = simulate.default_initial_state(model, "fixed")
+    y0 = responses.default_initial_state(model, "fixed")
     Y, _, _ = kernel.integrate("fixed", "spinup", 0.0, y0, model.P, [0.123456, 1.0], 1e-10, 1e-12)
     Z, _, _ = kernel.integrate("fixed", "spinup", 0.0, y0, model.P, [0.123456], 1e-10, 1e-12)
     assert np.max(np.abs(Y[0] - Z[0])) < 1e-8
@@ -31,7 +32,7 @@ def test_dense_output_matches_restarted_integration(model):
 
 def test_failure_keeps_partial_results(model):
     """A step limit stops the run: the points computed so far are returned and saved."""
-    y0 = simulate.default_initial_state(model, "fixed")
+    y0 = responses.default_initial_state(model, "fixed")
     with pytest.raises(washer.KernelError, match="step limit") as err:
         kernel.integrate("fixed", "spinup", 0.0, y0, model.P, np.linspace(0, 5, 101), 1e-8,
                          1e-10, max_steps=200)

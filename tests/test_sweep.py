@@ -73,7 +73,7 @@ def test_critical_uses_the_spec_base_parameters(tmp_path):
     from scipy.optimize import brentq
 
     import washer
-    from washer.params import default_params_path
+    from washer.machine.params import default_params_path
     from washer.sweep.tasks import stability
     ref = default_params_path().read_text()
     assert "J = [0.9, 0.9, 0.9]" in ref and "\nC_p = 0.101" in ref
@@ -217,7 +217,7 @@ def test_spinup_settles_on_the_averaged_equilibrium_where_stable(tmp_path):
     60 s, kernel DOPRI5) and the averaged rotating-frame equilibrium (Newton). Where
     the margin is below -0.2 1/s the transient has decayed by e^-10 by the window
     (50-60 s), and the averaged and exact systems differ by ~1e-4 relative
-    (MODEL.md section 4): radii must agree to 1e-3 relative (measured ~3e-7)."""
+    (docs/model.md section 4): radii must agree to 1e-3 relative (measured ~3e-7)."""
     spec = parse_spec("""
 [[study]]
 kinds = ["stability", "response"]
@@ -279,10 +279,10 @@ m_u = [0.6, 1.0, 1.4, 1.8]
 
 def test_critical_floquet_engine_is_the_forced_response_tr_point(params):
     """engine = 'floquet': the exact critical C_p (TR point of the forced response) equals
-    washer.forced.critical_cp's (the same Brent location on |mu_c| - 1, bracketed
+    washer.machine.forced.critical_cp's (the same Brent location on |mu_c| - 1, bracketed
     differently: both stop at xtol 1e-12, tolerance 1e-9), and differs from the averaged
     value by the averaging error (1.2e-5 at nominal values: asserted below 1e-3 relative)."""
-    from washer import forced
+    from washer.machine import forced
     from washer.sweep.tasks import critical
     got = critical(params, "C_p", 0.0, 3.0, "floquet")
     ref = forced.critical_cp(params)

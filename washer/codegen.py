@@ -11,7 +11,7 @@ Writes two functions (see csrc/generated/washer_model.h):
 The mass matrix is never inverted symbolically: C++ solves M a = f (LDLT).
 
 Differentiation and common-subexpression elimination run in symengine (sympy's
-own jacobian is ~100x slower on these expressions, ENGINEERING.md b). The
+own jacobian is ~100x slower on these expressions). The
 output is deterministic and stamped with a hash of its inputs, so a test can
 tell when the committed code is stale.
 """
@@ -25,9 +25,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 OUT_DIR = ROOT / "csrc" / "generated"
 #: Files whose content determines the generated code.
-INPUTS = ("washer/layout.py", "washer/codegen.py", "washer/model/kinematics.py",
-          "washer/model/bodies.py", "washer/model/rods.py", "washer/model/lagrange.py",
-          "washer/model/cprinter.py")
+INPUTS = ("washer/machine/layout.py", "washer/codegen.py", "washer/symbolic/kinematics.py",
+          "washer/symbolic/bodies.py", "washer/symbolic/rods.py", "washer/symbolic/lagrange.py",
+          "washer/symbolic/cprinter.py")
 
 
 def input_hash() -> str:
@@ -74,10 +74,10 @@ def generate() -> dict[str, str]:
     import sympy
     import symengine as se
 
-    from washer import layout
-    from washer.model.bodies import default_structure, param_symbols
-    from washer.model.cprinter import CxxPrinter
-    from washer.model.lagrange import coordinates, equations_of_motion
+    from washer.machine import layout
+    from washer.symbolic.bodies import default_structure, param_symbols
+    from washer.symbolic.cprinter import CxxPrinter
+    from washer.symbolic.lagrange import coordinates, equations_of_motion
 
     P = param_symbols()
     c = coordinates()
@@ -134,7 +134,7 @@ def generate() -> dict[str, str]:
         f"#define WASHER_DIFF_OMEGA_COL {layout.DIFF_PARAMS.index('Omega')}",
         f'#define WASHER_INPUTS_SHA256 "{input_hash()}"',
         "",
-        "// Kernel parameter vector P[] (order of washer/layout.py).",
+        "// Kernel parameter vector P[] (order of washer/machine/layout.py).",
         *[f"#define WP_{n} {i}" for i, n in enumerate(layout.PARAM_NAMES)],
         "",
         "// Columns of fp and Gp: parameters differentiated symbolically.",

@@ -44,7 +44,7 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
         raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py beside the file) "
                        "or e='washer'")
     if e.split(":")[0] == "washer":
-        from washer.auto_washer import forced_start_params, washer_problem
+        from washer.problems.washer import forced_start_params, washer_problem
         if e == "washer:forced" and c["IRS"] in (0, "0"):
             params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
         return washer_problem(e, params=params, source=c.source)
@@ -70,7 +70,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     if c["e"].split(":")[0] == "washer":
         # The built-in problem names its parameters, so ICP=['m_u'] works without
         # parnames in the constants file (names the file gives win).
-        from washer.auto_washer import PAR_NAMES
+        from washer.machine.layout import PAR_NAMES
         c = c.with_default_names(PAR_NAMES)
     if verbose:
         # Constants without effect here are said so, never silently ignored.

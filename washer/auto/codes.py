@@ -3,7 +3,7 @@
 A point's type is an integer `ITP`. On a one-parameter branch it is the base
 code below. On a codim-1 curve continued with ISW = 2 from a point of type
 ITPST (2 = LP, 3 = HB, 1 = BP, 5 = LP of cycles, 7 = PD, 8 = TR) every
-nonzero code becomes `base + sign(base) * 10 * ITPST` (AUTO.md section 2.1):
+nonzero code becomes `base + sign(base) * 10 * ITPST` (docs/auto.md section 2.1):
 UZ -34, EP 39, BT -31, GH -32, ZH -33, BP 31, LP 32 and regular NPR points 34 on
 a Hopf curve; UZ -24, EP 29, BT -21, CP -22 on a fold curve. Unlabelled points
 keep code 0 everywhere.

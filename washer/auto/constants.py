@@ -1,6 +1,6 @@
 """AUTO-07p constants files (c.NAME): parsing, defaults, overrides. No numerics.
 
-Syntax (AUTO.md section 1.1): free-form `KEY = value` statements separated by
+Syntax (docs/auto.md section 1.1): free-form `KEY = value` statements separated by
 commas, blanks or newlines; `#` and `!` start comments; values are Fortran
 numbers, quoted strings, [lists] and {dicts} (brackets may span lines); indices
 in ICP, THL, THU, UZR, UZSTOP, U and PAR may be names from parnames/unames, and
@@ -15,7 +15,7 @@ from pathlib import Path
 
 HUGE = 1.7976e308
 
-#: Every constant AUTO-07p knows, with its default (AUTO.md section 1.2).
+#: Every constant AUTO-07p knows, with its default (docs/auto.md section 1.2).
 DEFAULTS: dict[str, object] = {
     "e": "", "s": "", "dat": "", "sv": "", "unames": {}, "parnames": {}, "U": {}, "PAR": {},
     "NDIM": 2, "IPS": 1, "IRS": 0, "ILP": 1, "ICP": [1], "NTST": 20, "NCOL": 4, "IAD": 3,

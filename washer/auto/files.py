@@ -1,4 +1,4 @@
-"""AUTO-07p's b., s. and d. files (AUTO.md section 2): writers and readers. No numerics.
+"""AUTO-07p's b., s. and d. files (docs/auto.md section 2): writers and readers. No numerics.
 
 Writers append and flush one point at a time, so a run that fails half-way
 keeps every point computed so far. The layouts are AUTO-07p's (io.f90: STHD,
@@ -505,7 +505,7 @@ def read_s(path: Path) -> list[Record]:
     """All records of an s-file (ours or AUTO's), checked.
 
     Each record is a header of 12 or 16 integers and NROWPR lines of numbers
-    (AUTO.md 2.2); a header that is not integers, a record cut short, a number
+    (docs/auto.md 2.2); a header that is not integers, a record cut short, a number
     that does not parse or a block of the wrong size raises AutoFileError naming
     the file, the line and what was expected there, so a corrupt restart file
     never starts a run from wrong data.

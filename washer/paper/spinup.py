@@ -23,9 +23,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer import kernel
-from washer.equilibria import EquilibriumError, follow
-from washer.machine import Model
+from washer.machine import kernel
+from washer.machine.equilibria import EquilibriumError, follow
+from washer.machine.model import Model
 
 #: Dynamic amplification allowed for in the slow spin-up: a load applied as a step
 #: (eq 66's torque jumps to its peak at t = 0) drives an undamped linear oscillator
@@ -83,7 +83,7 @@ class YawCurve:
 
 def yaw_curve(params, sign: float = -1.0) -> YawCurve:
     """Continue the static equilibrium under an applied yaw moment Q = sign * |Q|
-    from 0 until it folds (washer.equilibria.follow); the residual is the
+    from 0 until it folds (washer.machine.equilibria.follow); the residual is the
     acceleration M^-1 (f(q) + Q e_gamma) at rest (eq 48 with an added generalised
     force), its Jacobian by forward differences."""
     m = Model(params)

@@ -1,4 +1,4 @@
-"""The self-excited whirl (issue 10, item 6): the periodic orbits of the averaged
+"""The self-excited whirl: the periodic orbits of the averaged
 rotating frame born at its Hopf point, continued down to C_p = 0 with their Floquet
 multipliers, against the long-time behaviour of the Fig 9 simulation.
 
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.machine import Model
+from washer.machine.model import Model
 
 #: Length (s) of the simulation judged against the C_p = 0 orbit, and the window
 #: at its end over which the envelope is taken (10 s = ~90 whirl periods). The
@@ -105,7 +105,7 @@ def whirl_family(folder: Path, progress=print) -> WhirlFamily:
 def simulated_envelope(params, t_end: float = T_LONG, window: float = WINDOW) -> dict:
     """The averaged rotating frame at C_p = 0 from Fig 9's initial state (eps3 =
     0.408 m, the rest zero) for t_end s: r and eps3 over the last `window` s (m)."""
-    from washer.simulate import simulate
+    from washer.machine.responses import simulate
     m = Model(params.replace(C_p=0.0))
     r = simulate(m, t_end, system="rotating", frame="averaged", samples_per_s=200.0,
                  progress=False)
@@ -143,7 +143,7 @@ def markdown(fam: WhirlFamily, cmp: dict, figure: str) -> str:
     """The report section."""
     o, e = cmp["orbit"], cmp["envelope"]
     lines = [
-        "## The self-excited whirl: periodic orbits from the Hopf point to C_p = 0 (issue 10)",
+        "## The self-excited whirl: periodic orbits from the Hopf point to C_p = 0",
         "",
         f"The averaged rotating frame's Hopf point (C_p = {fam.hopf_C_p:.4f}) gives birth to "
         "periodic orbits; AUTO-style collocation (`auto/c.washer.po`, IPS = 2) continues them "

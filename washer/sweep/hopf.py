@@ -11,7 +11,7 @@ washer.run (e='washer', averaged frame) in `folder`, as an AUTO script would:
 
 and returns the curve read back from the b-files (`washer.auto.files.read_b`)
 as a list of branches, arrays (k, 2) of (x, y). The b-files stay in `folder`
-(b.hopf_fwd, b.hopf_bwd), so `python -m washer.plot` can draw them too.
+(b.hopf_fwd, b.hopf_bwd), so `python -m washer.plots` can draw them too.
 
 Both parameters must be PAR entries of e='washer'; every other parameter is
 `params`' (injected into the problem: run(..., params=...)). The curve lies at
@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.params import Params
+from washer.machine.params import Params
 from washer.sweep.tasks import critical_constants
 
 #: The ranges are widened by this fraction of their span so that a boundary
@@ -61,7 +61,7 @@ UZSTOP = {{'{x}': [{x0!r}, {x1!r}], '{y}': [{y0!r}, {y1!r}]}}
 def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarray]:
     """Branches (k, 2) of the averaged system's Hopf curve in (x, y) within xr x yr."""
     from washer.auto.files import read_b
-    from washer.auto_washer import PAR_NAMES
+    from washer.machine.layout import PAR_NAMES
     from washer.run import run
     for name in (x, y):
         if name not in PAR_NAMES.values():

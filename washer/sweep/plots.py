@@ -94,7 +94,7 @@ def _range(st: Study, j: int) -> tuple[float, float]:
 
 
 def _label(name: str) -> str:
-    from washer import layout
+    from washer.machine import layout
     unit = layout.UNITS.get(name, "")
     return f"{name} ({unit})" if unit else name
 

@@ -20,6 +20,7 @@ import json
 
 import numpy as np
 
+from washer.machine import layout
 from washer.sweep.spec import Spec, Study
 
 #: Hex digits of a point id (64 bits: collisions are negligible below ~1e8 points).
@@ -99,6 +100,7 @@ def make_points(spec: Spec) -> list[dict]:
 
 def _effective(base: dict, setting: dict, name: str) -> float:
     """Value of `name` at a point: set, else tied to C_p, else the base value."""
-    if base["tied"] and name in ("C_ox", "C_oz") and "C_p" in setting:
-        return setting["C_p"]
+    leader = layout.TIED_TO.get(name)
+    if base["tied"] and leader in setting:
+        return setting[leader]
     return float(base["values"][name])

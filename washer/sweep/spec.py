@@ -38,7 +38,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from washer.params import Params, ParameterError, load_params
+from washer.machine.params import Params, ParameterError, load_params
 
 KINDS = ("stability", "critical", "response")
 SAMPLES = ("grid", "random", "lhs")
@@ -201,7 +201,7 @@ def _fixed(table, base: Params, where) -> dict:
 def _check_param(name: str, base: Params, at: str) -> None:
     if name not in base.values:
         raise SpecError(f"{at}: unknown parameter {name!r}; use kernel names "
-                        "(C_p, Omega, m_u, R_u, h_u, C_a, K_s, l0, J_bz, m_b, ... see washer/layout.py)")
+                        "(C_p, Omega, m_u, R_u, h_u, C_a, K_s, l0, J_bz, m_b, ... see washer/machine/layout.py)")
 
 
 def _num(v, at: str, what: str) -> float:
@@ -335,7 +335,7 @@ def _options(kind: str, table, at) -> dict:
 
 
 def _check_critical(opt: dict, axes, at) -> None:
-    from washer.auto_washer import PAR_NAMES
+    from washer.machine.layout import PAR_NAMES
     par = opt["parameter"]
     if par not in PAR_NAMES.values():
         raise SpecError(f"{at('parameter')}: critical parameter {par!r}: the continuation "

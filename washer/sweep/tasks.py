@@ -15,7 +15,7 @@ stability  averaged (or frozen) rotating-frame equilibrium eps* (eqs 60-65) and
     stab_whirl           |Im| of that eigenvalue, rad/s, rotating frame
     stab_whirl_ground    |2 pi Omega - stab_whirl|, rad/s: the same mode seen from
                          the ground (a whirl of the (x, y) plane; ~4 rad/s at the
-                         reference point, as MODEL.md section 4)
+                         reference point, as docs/model.md section 4)
     stab_damping_ratio   -Re/|lambda| of that eigenvalue (negative when unstable)
     stab_eps1..6         eps* (m, m, m, rad, rad, rad)
     stab_radius          hypot(eps1, eps2), m: the steady whirl radius of the
@@ -53,8 +53,8 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.machine import Model
-from washer.params import Params
+from washer.machine.model import Model
+from washer.machine.params import Params
 
 #: Output columns per kind (every row of a kind has all of them; NaN on failure).
 OUTPUTS: dict[str, tuple[str, ...]] = {
@@ -132,7 +132,7 @@ UZSTOP = {{'{name}': {hi!r}}}
 def critical_constants(name: str, lo: float, hi: float) -> str:
     """Text of a constants file continuing the averaged equilibrium in `name` from lo
     to hi; the other parameters come with the problem (run(..., params=...))."""
-    from washer.auto_washer import PAR_NAMES
+    from washer.machine.layout import PAR_NAMES
     par = {name: float(lo)}
     span = hi - lo
     return CRIT_CONSTANTS.format(
@@ -147,7 +147,7 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
 
     engine: "continuation" (the averaged system's Hopf point, washer.run) or
     "floquet": the exact result, the Neimark-Sacker (TR) point of the periodic
-    response at constant speed (MODEL.md section 4; washer.forced, shooting with
+    response at constant speed (docs/model.md section 4; washer.machine.forced, shooting with
     the kernel's variational flow), bracketed around the averaged value (averaging
     is accurate to ~1e-4 relative: FLOQUET_BRACKET leaves a wide margin).
     Adds crit_averaged (the averaged value) and crit_multiplier_angle (rad)."""
@@ -155,7 +155,7 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
         return _critical_floquet(params, parameter, lo, hi)
     if engine != "continuation":
         raise PointError(f"critical: unknown engine {engine!r}")
-    from washer.auto_washer import PAR_NAMES
+    from washer.machine.layout import PAR_NAMES
     from washer.run import run
     idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
     with tempfile.TemporaryDirectory(prefix="washer-critical-") as d:
@@ -180,7 +180,7 @@ FLOQUET_ABS = 1e-3
 def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> dict:
     """The exact critical value: the averaged one (continuation), then the TR point of
     the forced response within a bracket around it (Brent on |mu_c| - 1)."""
-    from washer import forced
+    from washer.machine import forced
     avg = critical(params, parameter, lo, hi, "continuation")
     v = avg["crit_value"]
     half = FLOQUET_BRACKET * abs(v) + FLOQUET_ABS * (hi - lo)

@@ -1,4 +1,4 @@
-"""A forced linear oscillator made autonomous as in AUTO's demo 'frc' (issue 11, route a):
+"""A forced linear oscillator made autonomous as in AUTO's demo 'frc':
 
     v' = w,  w' = F0 x - 2 zeta w0 w - w0^2 v          (x replaces cos(nu t))
     x' =  x + nu y - x (x^2 + y^2),   y' = -nu x + y - y (x^2 + y^2)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer import layout
+from washer.machine import layout
 
 try:
     from washer._kernel import ffi, lib
@@ -39,7 +39,7 @@ def _check_layout() -> None:
                   for i in range(lib.washer_n_params()))
     if names != layout.PARAM_NAMES:
         raise ImportError("washer._kernel was built from another parameter layout than "
-                          "washer/layout.py: regenerate (python -m washer.codegen) and rebuild")
+                          "washer/machine/layout.py: regenerate (python -m washer.codegen) and rebuild")
 
 
 _check_layout()

@@ -12,18 +12,14 @@ import functools
 
 import numpy as np
 
-from washer import kernel, layout
+from washer.machine import kernel, layout
 from washer.cont.problem import Problem
-from washer.machine import Model
-from washer.params import load_params
+from washer.machine.model import Model
+from washer.machine.params import load_params
 
-#: PAR(i) -> kernel parameter name. C_p moves C_ox and C_oz with it when the
-#: parameter file ties them (the paper's C_ox = C_oy = C_oz = C_p). PAR(11) and
-#: PAR(12) are AUTO's: the period, and the torus angle written at TR points of
-#: periodic orbits (a model parameter there would be overwritten in the s-file).
-PAR_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
-             8: "C_ox", 9: "C_oz", 10: "l0", 13: "J_bz", 14: "J_bt", 15: "m_b", 16: "h_b",
-             17: "m_t"}
+#: PAR(i) -> kernel parameter name (washer.machine.layout.PAR_NAMES). C_p moves C_ox
+#: and C_oz with it when the parameter file ties them (layout.moved_by).
+PAR_NAMES = layout.PAR_NAMES
 __doc__ += "\n".join(f"    PAR({i}) = {n} ({layout.UNITS[n]})" for i, n in PAR_NAMES.items())
 NPAR = 17
 
@@ -52,16 +48,16 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
     def kernel_params(par):
         P = base.copy()
         P[idx] = np.asarray(par)[par_idx]
-        if tied:
-            P[layout.INDEX["C_ox"]] = P[layout.INDEX["C_oz"]] = par[0]
+        for name in layout.moved_by("C_p", tied)[1:]:
+            P[layout.INDEX[name]] = par[0]
         return P
 
     def kernel_params_many(pars):
         pars = np.asarray(pars, dtype=float)
         P = np.repeat(base[None, :], len(pars), axis=0)
         P[:, idx] = pars[:, par_idx]
-        if tied:
-            P[:, layout.INDEX["C_ox"]] = P[:, layout.INDEX["C_oz"]] = pars[:, 0]
+        for name in layout.moved_by("C_p", tied)[1:]:
+            P[:, layout.INDEX[name]] = pars[:, 0]
         return P
 
     # jac_rot returns J and Jp together: dfdu and dfdp at the same point (every
@@ -92,9 +88,9 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
         for i, name in PAR_NAMES.items():
             if i <= len(par):
                 out[:, i - 1] = Jp[:, cols[name]]
-        if tied:
-            out[:, 0] += Jp[:, cols["C_ox"]] + Jp[:, cols["C_oz"]]
-            out[:, 7] = out[:, 8] = 0.0
+        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
+            out[:, 0] += Jp[:, cols[name]]
+            out[:, layout.PAR_INDEX[name] - 1] = 0.0
         return out
 
     def stpnt(u, par):
@@ -114,7 +110,7 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
 #: triangular); it only serves Newton.
 THETA_STEP = 1e-5
 #: Tolerances of the kernel DOPRI5 run that samples the start orbit at stpnt's times:
-#: well below the shooting's own 1e-10, so stpnt is the route (b) orbit to its accuracy.
+#: well below the shooting's own 1e-10, so stpnt is the shooting orbit to its accuracy.
 STPNT_RTOL, STPNT_ATOL = 1e-12, 1e-14
 #: NDIM of e='washer:forced': the washer's (q, q_dot) and the oscillator's (x, y).
 FORCED_NDIM = 14
@@ -122,7 +118,7 @@ FORCED_NDIM = 14
 
 def forced_problem(params=None, source: str = "<washer>") -> Problem:
     """e='washer:forced': the forced response at constant speed as an autonomous system
-    (issue 11, route a; AUTO's `frc` demo, AUTO.md section 3.5), NDIM = 14.
+    (AUTO's `frc` demo, docs/auto.md section 3.5), NDIM = 14.
 
     u = (q, q_dot, x, y): the ground-frame state of eq 48 and an appended oscillator
 
@@ -133,11 +129,11 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
     with law 'constant' (theta = beta t, theta_dot = beta) at t = theta / beta. The
     period PAR(11) is formally free but stays 1/Omega (the oscillator fixes it), and the
     monodromy matrix is block triangular: its multipliers are the washer's 12 (those of
-    washer.forced, route b) plus the oscillator's 1 (the trivial one) and exp(-2 PAR(11))
+    washer.machine.forced, by shooting) plus the oscillator's 1 (the trivial one) and exp(-2 PAR(11))
     (its radial decay, 0.819 at 10 Hz).
 
     PAR as e='washer' (PAR_NAMES; PAR(11) the period). stpnt(u, par, t) gives the
-    periodic response at the values of `params` (Newton shooting, washer.forced, done on
+    periodic response at the values of `params` (Newton shooting, washer.machine.forced, done on
     the first call) at the scaled time t in [0, 1], the washer part by the kernel's
     DOPRI5 from t = 0 at 1e-12: exact, as frc's STPNT is. Jacobian (JAC = 1): the
     kernel's jac_fixed for the washer block, the oscillator's exactly, d f / d theta by
@@ -194,14 +190,14 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
     def dfdu(u, par):
         return dfdu_batch(u, par)[0]
 
-    cache = {}          # scaled time -> (q, q_dot); "response": route (b)'s orbit
+    cache = {}          # scaled time -> (q, q_dot); "response": the shooting's orbit
 
     def washer_state(t):
         """The response's (q, q_dot) at scaled time t (cached: stpnt is called per node)."""
         t = float(t) % 1.0
         if t not in cache:
             if "response" not in cache:
-                from washer import forced
+                from washer.machine import forced
                 cache["response"] = forced.periodic_response(params)
             r = cache["response"]
             cache[t] = r.u0 if t == 0 else kernel.integrate(

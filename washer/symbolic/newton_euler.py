@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.params import Params
+from washer.machine.params import Params
 
 E3 = np.array([0.0, 0.0, 1.0])
 
@@ -61,7 +61,7 @@ def bodies(params: Params, theta: float, w: float, wd: float):
 
 
 def rod_forces_smooth(d, v, omega, K_s, C_a, C_p, C_ox, C_oz, l0):
-    """(F_o, M_o) on the rod at O, smooth form of MODEL.md section 2 (ground frame)."""
+    """(F_o, M_o) on the rod at O, smooth form of docs/model.md section 2 (ground frame)."""
     L = np.linalg.norm(d)
     e1 = d / L
     va = v @ e1

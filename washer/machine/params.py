@@ -1,7 +1,7 @@
 """Parameter sets: read and validate TOML files, build the kernel's vector.
 
 The file layout and units are those of `washer/data/reference.toml` (a copy of
-the project's reference set, MODEL.md section 5): SI units, Omega in Hz.
+the project's reference set, docs/model.md section 5): SI units, Omega in Hz.
 Errors name the file, the field and what was expected.
 
     >>> p = load_params()                 # the shipped reference set
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer import layout
+from washer.machine import layout
 
 
 class ParameterError(ValueError):
@@ -67,7 +67,7 @@ def default_params_path() -> Path:
 class Params:
     """A validated parameter set.
 
-    values: kernel-named scalars and rod joints (see `washer.layout`).
+    values: kernel-named scalars and rod joints (see `washer.machine.layout`).
     tied:   when True, C_ox and C_oz equal C_p (the paper's C_ox = C_oy = C_oz = C_p)
             and `replace(C_p=...)` moves all three.
     """
@@ -84,18 +84,18 @@ class Params:
         """A copy with some parameters changed (validated). Setting C_ox or
         C_oz unties them from C_p."""
         vals = dict(self.values)
-        tied = self.tied and not ({"C_ox", "C_oz"} & changes.keys())
+        tied = self.tied and not (layout.TIED_TO.keys() & changes.keys())
         for k, v in changes.items():
             if k not in vals:
                 raise ParameterError(f"unknown parameter {k!r}")
             vals[k] = float(v)
         if tied:
-            vals["C_ox"] = vals["C_oz"] = vals["C_p"]
+            _tie(vals)
         _check_values(vals, self.source)
         return Params(vals, tied, self.source)
 
     def vector(self) -> np.ndarray:
-        """Kernel parameter vector, shape (layout.N_PARAMS,), order of washer.layout."""
+        """Kernel parameter vector, shape (layout.N_PARAMS,), order of washer.machine.layout."""
         return np.array([self.values[n] for n in layout.PARAM_NAMES], dtype=float)
 
     def upper_joints(self) -> np.ndarray:
@@ -194,10 +194,10 @@ def params_from_dict(data: dict, source: str = "<dict>") -> Params:
                 if (section, key) in FLAT:
                     vals[FLAT[(section, key)]] = v
     vals.setdefault("tau0", 0.0)
-    tied = "C_ox" not in vals and "C_oz" not in vals
+    tied = not (layout.TIED_TO.keys() & vals.keys())
     if tied:
-        vals["C_ox"] = vals["C_oz"] = vals["C_p"]
-    elif "C_ox" not in vals or "C_oz" not in vals:
+        _tie(vals)
+    elif not layout.TIED_TO.keys() <= vals.keys():
         raise ParameterError(f"{_where(source, 'suspension')}: give both C_ox and C_oz, or "
                              "neither (then both equal C_p)")
     vals["r_tx"], vals["r_ty"], vals["r_tz"] = raw[("tub", "r")]
@@ -214,7 +214,7 @@ def _rods(raw: dict, vals: dict, source: str) -> None:
     if n != layout.N_RODS:
         raise ParameterError(
             f"{where} = {n}: the compiled kernel was generated for {layout.N_RODS} rods "
-            "(change N_RODS in washer/layout.py, run `python -m washer.codegen` and reinstall)")
+            "(change N_RODS in washer/machine/layout.py, run `python -m washer.codegen` and reinstall)")
     joints = {}
     for end, z_key in (("upper", "upper_z"), ("lower", None)):
         explicit = raw.get(("suspension", f"{end}_joints"))
@@ -239,6 +239,12 @@ def _rods(raw: dict, vals: dict, source: str) -> None:
             vals[layout.rod_param(f, k)] = joints["upper"][k][i]
         for i, f in enumerate(("Ox", "Oy", "Oz")):
             vals[layout.rod_param(f, k)] = joints["lower"][k][i]
+
+
+def _tie(vals: dict) -> None:
+    """Apply the tie rule (layout.TIED_TO: C_ox = C_oz = C_p) in place."""
+    for name, leader in layout.TIED_TO.items():
+        vals[name] = vals[leader]
 
 
 def load_params(path: str | Path | None = None) -> Params:

@@ -1,5 +1,5 @@
 """The exact stability of the spinning washer: the forced periodic response and its Floquet
-multipliers, by shooting with the compiled kernel (issue 11, route b).
+multipliers, by shooting with the compiled kernel (shooting).
 
 At constant speed (theta = 2 pi Omega t) the ground-frame equations (eq 48) are
 non-autonomous with period T = 1/Omega. Their steady response is a T-periodic orbit
@@ -8,10 +8,10 @@ u(t) = (q, q_dot)(t), found here by Newton on the periodicity condition
     G(u0) = phi_T(u0) - u0 = 0,      dG/du0 = Phi - I,
 
 with phi_T the flow over one period from t = 0 (theta = 0) and Phi the monodromy matrix,
-both from one kernel call (`washer.kernel.flow_variational`: DOPRI5 on the flow and its
+both from one kernel call (`washer.machine.kernel.flow_variational`: DOPRI5 on the flow and its
 variational equations). The Floquet multipliers are the eigenvalues of Phi; the orbit is
 asymptotically stable when all lie inside the unit circle. The averaged rotating-frame
-system's Hopf point (MODEL.md section 4) approximates a Neimark-Sacker (torus, AUTO's TR)
+system's Hopf point (docs/model.md section 4) approximates a Neimark-Sacker (torus, AUTO's TR)
 bifurcation of this orbit: a complex pair leaving the unit circle.
 
     >>> p = load_params()
@@ -30,15 +30,15 @@ exactly (the factors are in the other order), while a half turn takes them to
 (-alpha, -beta, gamma) exactly. Hence the rotating-frame coordinates eps (eq 52) of the
 orbit are periodic with period T/2 = 1/(2 Omega), all six; the positions eps1..3 (a true
 vector) even with T/4, but the angles eps4..6 not with T/4. This is the 2 Omega harmonic
-of MODEL.md section 4 (Cardan angles do not rotate like a vector); the 4 Omega rod harmonic
+of docs/model.md section 4 (Cardan angles do not rotate like a vector); the 4 Omega rod harmonic
 respects T/4. At the reference point the tub's orientation matrix seen from the rotating
 frame, Rz(-tau) A Rz(tau), is T/4-periodic and varies by only ~1e-7 over the orbit, while
 eps6 (gamma) swings by 4e-4 rad: the steady response is almost a rigid whirl, and the
 2 Omega harmonic of the eps coordinates is nearly all coordinate effect.
 
-Route (a) of the issue (the engine with IPS = 2 and an appended oscillator, AUTO's `frc`
-demo) is e='washer:forced' (washer.auto_washer.forced_problem, whose stpnt is this module's
-orbit; auto_constants/c.washer.forced); tests/test_forced.py compares the two routes'
+The collocation way (the engine with IPS = 2 and an appended oscillator, AUTO's `frc`
+demo) is e='washer:forced' (washer.problems.washer.forced_problem, whose stpnt is this module's
+orbit; auto_constants/c.washer.forced); tests/test_forced.py compares the two ways'
 TR point and multipliers (agreement ~5e-12).
 """
 from __future__ import annotations
@@ -48,15 +48,15 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from washer import kernel, layout
-from washer.machine import Model
-from washer.params import Params
+from washer.machine import kernel, layout
+from washer.machine.model import Model
+from washer.machine.params import Params
 
 TWO_PI = 2.0 * np.pi
 
 #: Integration tolerances of the shooting (relative, absolute in m, rad, m/s, rad/s).
 #: 1e-10/1e-12 make the monodromy matrix accurate to ~1e-9 (checked against finite
-#: differences and solve_ivp in the tests), well below the 1e-6 agreement the issue asks
+#: differences and solve_ivp in the tests), well below the 1e-6 agreement required
 #: of the located critical values.
 RTOL, ATOL = 1e-10, 1e-12
 #: Newton stops when max|u(T) - u0| <= NEWTON_TOL * (1 + max|u0|): about the flow's
@@ -126,8 +126,7 @@ def _direction(params: Params, name: str) -> np.ndarray:
     if name not in PARAMETERS:
         raise ValueError(f"parameter: expected one of {', '.join(PARAMETERS)}, got {name!r}")
     d = np.zeros(kernel.N_DIFF)
-    cols = [name] + (["C_ox", "C_oz"] if name == "C_p" and params.tied else [])
-    for c in cols:
+    for c in layout.moved_by(name, params.tied):
         d[kernel.DIFF_NAMES.index(c)] = 1.0
     return d
 
@@ -516,7 +515,8 @@ def averaged_hopf(params: Params, frame: str = "averaged", c_max: float = 2.0,
     raise ValueError(f"averaged_hopf ({frame}): no Hopf point for C_p in [0, {c_max}]")
 
 
-def _hopf_or_nan(params: Params, frame: str):
+def hopf_or_nan(params: Params, frame: str):
+    """`averaged_hopf`, or (nan, nan eigenvalues) where there is no Hopf point."""
     try:
         return averaged_hopf(params, frame)
     except ValueError:          # no sign change of max Re(lambda) in the bracket: no Hopf
@@ -528,14 +528,14 @@ def critical_cp(params: Params, rel_bracket: float = 0.05, abs_bracket: float = 
     beside the averaged and frozen (tau0 = params['tau0']) Hopf values.
 
     The TR point is bracketed within +-(rel_bracket |C_p,avg| + abs_bracket) of the averaged
-    Hopf value (clipped at C_p = 0): averaging is accurate to far better (MODEL.md section 4;
+    Hopf value (clipped at C_p = 0): averaging is accurate to far better (docs/model.md section 4;
     here 1e-5 absolute). Returns a dict: C_p_exact/averaged/frozen (nan where the frozen
     system has no Hopf in (0, 2)), the multipliers at the exact point (12,), the critical
     multiplier and its Floquet exponent log(mu)/T (1/s, imaginary part modulo 2 pi Omega:
     the ground-frame whirl), the averaged eigenvalues at the averaged Hopf point (1/s),
     and the ForcedResponse there."""
-    cp_avg, lam_avg = _hopf_or_nan(params, "averaged")
-    cp_frozen, _ = _hopf_or_nan(params, "frozen")
+    cp_avg, lam_avg = hopf_or_nan(params, "averaged")
+    cp_frozen, _ = hopf_or_nan(params, "frozen")
     if np.isnan(cp_avg):        # below the averaged curve's lower end: search from C_p = 0
         bracket, start = (0.0, 2 * abs_bracket), None
     else:
@@ -548,90 +548,3 @@ def critical_cp(params: Params, rel_bracket: float = 0.05, abs_bracket: float = 
             "C_p_frozen": cp_frozen, "multipliers": r.multipliers,
             "critical_multiplier": mu_c, "critical_exponent": np.log(mu_c) / r.T,
             "averaged_eigenvalues": lam_avg, "response": r}
-
-
-def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
-    """Omega (Hz) of the lower end of the Fig 4 curve, where the critical C_p reaches 0:
-    kind 'exact' (TR of the forced response at C_p = 0, Brent on Omega) or 'averaged'
-    / 'frozen' (Hopf of the rotating-frame system at C_p = 0). Below it the response is
-    stable even without joint damping."""
-    q = params.replace(C_p=0.0)
-    if kind == "exact":
-        return locate_tr(q, "Omega", bracket)[1].value
-    state = {"eps": None}
-
-    def g(om):
-        m = Model(q.replace(Omega=om))
-        state["eps"] = m.rotating_equilibrium(frame=kind, guess=state["eps"])
-        return float(m.eigenvalues(state["eps"], frame=kind).real.max())
-
-    return brentq(g, *bracket, xtol=1e-12)
-
-
-def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 15.0,
-                   rel_bracket: float = 0.05) -> dict:
-    """The exact Fig 4 curve: critical C_p (TR of the forced response) against Omega (Hz),
-    by successive one-parameter TR locations in C_p at each Omega (not a two-parameter
-    TR-curve continuation), with the averaged and frozen Hopf values at the same Omega.
-
-    omegas: Omega values (Hz); default n values from the exact lower end (`lower_end`,
-    where C_p,crit = 0; ~4 Hz at the reference values) to omega_max, quadratically
-    spaced (denser at the steep lower end). Returns a dict of
-    arrays (len(omegas),): Omega, C_p_exact, C_p_averaged, C_p_frozen (nan where the frozen
-    system has no Hopf in (0, 2)), error = exact - averaged, mu_angle (rad) of the
-    critical multiplier; and 'Omega_low' = {exact, averaged} lower ends (Hz)."""
-    low = {"exact": lower_end(params, "exact"), "averaged": lower_end(params, "averaged")}
-    if omegas is None:          # denser near the lower end, where the curve is steep
-        omegas = low["exact"] + (omega_max - low["exact"]) * np.linspace(0.0, 1.0, n) ** 2
-    rows = []
-    for om in omegas:
-        q = params.replace(Omega=float(om))
-        if abs(om - low["exact"]) <= 1e-9 * om:     # the end itself: C_p,crit = 0 by definition
-            r = {"Omega": float(om), "C_p_exact": 0.0,
-                 "C_p_averaged": _hopf_or_nan(q, "averaged")[0],
-                 "C_p_frozen": _hopf_or_nan(q, "frozen")[0],
-                 "critical_multiplier": critical_pair(
-                     periodic_response(q.replace(C_p=0.0)).multipliers)}
-        else:
-            r = critical_cp(q, rel_bracket)
-        rows.append(r)
-    cp_ex = np.array([r["C_p_exact"] for r in rows])
-    cp_av = np.array([r["C_p_averaged"] for r in rows])
-    return {"Omega": np.array([r["Omega"] for r in rows]), "C_p_exact": cp_ex,
-            "C_p_averaged": cp_av, "C_p_frozen": np.array([r["C_p_frozen"] for r in rows]),
-            "error": cp_ex - cp_av,
-            "mu_angle": np.array([np.angle(r["critical_multiplier"]) for r in rows]),
-            "Omega_low": low}
-
-
-#: Ends of Table 1's ranges of the parameters of Figs 5-7 (auto_constants/c.washer.hopf.*).
-TABLE1_ENDS = (("m_u", 0.01), ("m_u", 2.5), ("R_u", 0.001), ("R_u", 0.25), ("C_a", 0.0),
-               ("C_a", 5000.0), ("K_s", 500.0), ("K_s", 4500.0))
-
-
-def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
-    """Exact minus averaged critical C_p at parameter points [(name, value), ...] (default:
-    the ends of Table 1's ranges of Figs 5-7). Each row: name, value, C_p_exact,
-    C_p_averaged, C_p_frozen, error; C_p values nan (and 'note' says why) where there is no
-    Hopf/TR point to compare (e.g. stable down to C_p = 0)."""
-    rows = []
-    for name, value in points:
-        row = {"name": name, "value": float(value)}
-        try:
-            c = critical_cp(params.replace(**{name: value}))
-            row.update(C_p_exact=c["C_p_exact"], C_p_averaged=c["C_p_averaged"],
-                       C_p_frozen=c["C_p_frozen"], error=c["C_p_exact"] - c["C_p_averaged"],
-                       note="undamped at C_p = 0: neutral, not a Hopf" if
-                       c["C_p_averaged"] == 0.0 else "")
-        except (ValueError, ShootingError, kernel.KernelError) as exc:
-            q = params.replace(**{name: value})
-            note = f"no TR point near the averaged Hopf ({type(exc).__name__})"
-            try:
-                if periodic_response(q.replace(C_p=0.0)).stable:
-                    note = "stable down to C_p = 0: no TR point"
-            except (ShootingError, kernel.KernelError):
-                pass
-            row.update(C_p_exact=np.nan, C_p_averaged=_hopf_or_nan(q, "averaged")[0],
-                       C_p_frozen=np.nan, error=np.nan, note=note)
-        rows.append(row)
-    return rows

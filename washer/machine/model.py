@@ -7,16 +7,16 @@
     >>> r = m.simulate(50.0, system="fixed", law="spinup") # time response (eq 48 + 66)
 
 Frames: "fixed" is the ground frame (eq 48, non-autonomous); "frozen" and
-"averaged" are the rotating-frame forms of eq 59 (MODEL.md section 4).
+"averaged" are the rotating-frame forms of eq 59 (docs/model.md section 4).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from washer import kernel, layout
-from washer.equilibria import (YAW_LIMIT, Equilibrium, EquilibriumError, EquilibriumInfo,
+from washer.machine import kernel, layout
+from washer.machine.equilibria import (YAW_LIMIT, Equilibrium, EquilibriumError, EquilibriumInfo,
                                changed_params, follow, sigma_min, yaw_of)
-from washer.params import Params
+from washer.machine.params import Params
 
 ROTATING = ("frozen", "averaged")
 
@@ -80,7 +80,7 @@ def _reference_equilibrium(kind: str, frame: str | None):
     hanging, unrotated equilibrium (yaw 0 and -0.039 rad). Cached."""
     key = (kind, frame)
     if key not in _REFERENCE:
-        from washer.params import load_params
+        from washer.machine.params import load_params
         ref = load_params()
         P0 = ref.replace(Omega=0.0).vector()
         res, jac = _residuals("static", None)
@@ -134,10 +134,8 @@ class Model:
 
     def tied_column(self, Jp: np.ndarray, name: str) -> np.ndarray:
         """Derivative along parameter `name` as the user moves it (C_p moves C_ox, C_oz when tied)."""
-        cols = [name]
-        if name == "C_p" and self.params.tied:
-            cols += ["C_ox", "C_oz"]
-        return sum(Jp[..., kernel.DIFF_NAMES.index(c)] for c in cols)
+        return sum(Jp[..., kernel.DIFF_NAMES.index(c)]
+                   for c in layout.moved_by(name, self.params.tied))
 
     def mass_forces(self, q, qd, theta: float, w: float, wd: float = 0.0):
         """M (6, 6) and f (6,) with M q_ddot = f (eqs 48-49)."""
@@ -148,7 +146,7 @@ class Model:
         """q* (6,) at rest: Omega = 0, basket angle 0 (imbalance on +x); m, rad.
 
         The hanging equilibrium, followed by natural continuation from the
-        reference set's (module `washer.equilibria`) in every parameter that
+        reference set's (module `washer.machine.equilibria`) in every parameter that
         differs. Returns an `Equilibrium` (an ndarray) whose `.info` says which
         equilibrium it is (branch, residual, yaw, hanging). Raises
         EquilibriumError where that branch does not reach the parameters: it
@@ -230,5 +228,5 @@ class Model:
     # -------------------------------------------------------------- time responses
     def simulate(self, t_end: float, **kwargs):
         """Time response; see `washer.simulate.simulate` for the arguments."""
-        from washer.simulate import simulate
+        from washer.machine.responses import simulate
         return simulate(self, t_end, **kwargs)

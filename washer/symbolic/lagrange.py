@@ -12,10 +12,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from washer.model.bodies import Structure
-from washer.model.kinematics import (eccentric_offset, rate_matrix_b, rotation_bc,
+from washer.symbolic.bodies import Structure
+from washer.symbolic.kinematics import (eccentric_offset, rate_matrix_b, rotation_bc,
                                      rotation_rb, tilde)
-from washer.model.rods import suspension_force
+from washer.symbolic.rods import suspension_force
 
 
 @dataclass(frozen=True)

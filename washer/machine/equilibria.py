@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer import kernel, layout
+from washer.machine import kernel, layout
 
 #: Newton iterations per substep. From a secant predictor Newton converges
 #: quadratically in 2-4 iterations; needing more means the step is too long.

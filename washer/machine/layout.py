@@ -1,6 +1,6 @@
 """The kernel's parameter vector: names, order, units (single source of truth).
 
-The compiled kernel, the code generator, `washer.params` and the AUTO problem
+The compiled kernel, the code generator, `washer.machine.params` and the AUTO problem
 all index parameters through this table; a test checks that the compiled
 kernel was generated from the same table.
 
@@ -70,3 +70,26 @@ SYMBOLIC_DIFF_PARAMS: tuple[str, ...] = tuple(p for p in DIFF_PARAMS if p != "Om
 Q_NAMES = ("x", "y", "z", "alpha", "beta", "gamma")
 #: State names of the rotating-frame system (eq 59), xi = (eps, eps_dot).
 EPS_NAMES = tuple(f"eps{i}" for i in range(1, 7))
+
+
+# ------------------------------------------------------------------ the parameter map
+#: The tie rule: with tied dampings (the paper's C_ox = C_oy = C_oz = C_p, a parameter set
+#: that gives neither C_ox nor C_oz) these parameters follow the one named.
+TIED_TO = {"C_ox": "C_p", "C_oz": "C_p"}
+
+
+def moved_by(name: str, tied: bool) -> tuple[str, ...]:
+    """The kernel parameters that change when the user changes `name`: itself, and with
+    tied dampings the parameters tied to it (C_p moves C_ox and C_oz)."""
+    return (name,) + (tuple(k for k, v in TIED_TO.items() if v == name) if tied else ())
+
+
+#: AUTO's PAR(i) -> kernel parameter name, for the washer as a continuation problem
+#: (e='washer'): the one map between PAR indices and names. PAR(11) and PAR(12) are
+#: AUTO's: the period, and the torus angle written at TR points of periodic orbits (a
+#: model parameter there would be overwritten in the s-file).
+PAR_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
+             8: "C_ox", 9: "C_oz", 10: "l0", 13: "J_bz", 14: "J_bt", 15: "m_b", 16: "h_b",
+             17: "m_t"}
+#: PAR index of each name in PAR_NAMES.
+PAR_INDEX = {n: i for i, n in PAR_NAMES.items()}

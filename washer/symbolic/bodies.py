@@ -3,8 +3,8 @@
 The paper's general form (section 2.1.4) has N1 bodies fixed to the tub
 ("first category") and N2 bodies spinning about axes parallel to Z_b with
 theta_i = p_i * theta ("second category"). `default_structure()` builds the
-reference machine of MODEL.md section 1 (one lumped tub, the basket, the
-imbalance, four rods) with every quantity a symbol of `washer.layout`.
+reference machine of docs/model.md section 1 (one lumped tub, the basket, the
+imbalance, four rods) with every quantity a symbol of `washer.machine.layout`.
 A user extension (a motor rotor with gear ratio p_i, a second imbalance, six
 rods) is another `Structure`; the generated kernel is then rebuilt.
 """
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from washer import layout
+from washer.machine import layout
 
 
 @dataclass(frozen=True)
@@ -65,7 +65,7 @@ def param_symbols() -> dict[str, sp.Symbol]:
 
 
 def default_structure(P: dict[str, sp.Symbol] | None = None) -> Structure:
-    """The reference machine (MODEL.md section 1) in terms of layout symbols."""
+    """The reference machine (docs/model.md section 1) in terms of layout symbols."""
     P = P or param_symbols()
     zero = sp.Integer(0)
     tub = TubBody(P["m_t"], (P["r_tx"], P["r_ty"], P["r_tz"]), (P["J_tx"], P["J_ty"], P["J_tz"]))

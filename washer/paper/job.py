@@ -1,6 +1,6 @@
 """Reproduce the paper's section 3 (Figs 3-11) and report how close it comes.
 
-    python -m washer.figures [--quick] [--out out/paper]
+    python -m washer.paper [--quick] [--out out/paper]
 
 Runs every AUTO constants file of Figs 3-7 (copied into OUT/auto and run
 there), the time responses of Figs 8-11, measures what the paper claims, and
@@ -18,15 +18,16 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.machine import Model
+from washer.machine.model import Model
 from washer.paper import analysis as an
 from washer.paper import spinup as sp
 from washer.paper.runs import FRAMES, run_all
-from washer.params import load_params
-from washer.simulate import SETUPS, simulate
+from washer.machine.params import load_params
+from washer.paper.setups import SETUPS
+from washer.machine.responses import simulate
 
 #: Figs 8-9 duration in quick mode (s); otherwise the paper's setups
-#: (`washer.simulate.SETUPS`: C_p, durations, the trajectory windows of Figs 10c/11c).
+#: (`washer.paper.setups.SETUPS`: C_p, durations, the trajectory windows of Figs 10c/11c).
 T_ROT_QUICK = 25.0
 #: Start of the late window for the orbit measures and spectra (s; 20 s: 0.05 Hz bins).
 SPECTRUM_FROM = 30.0
@@ -178,7 +179,7 @@ def write_summary(path: Path, m: dict, resp: dict) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m washer.figures", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m washer.paper", description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="coarser steps, shorter Figs 8-9")
     ap.add_argument("--out", type=Path, default=Path("out/paper"), help="output folder")
     args = ap.parse_args(argv)
@@ -186,7 +187,7 @@ def main(argv: list[str] | None = None) -> int:
     import matplotlib
     matplotlib.use("Agg")
     from washer.paper import report
-    from washer.plots import paper as plots
+    from washer.paper import figures as plots
 
     t0 = time.perf_counter()
     params = load_params()
@@ -251,17 +252,17 @@ def main(argv: list[str] | None = None) -> int:
     for fig in ("fig8", "fig9"):
         for frame, r in resp[fig]["responses"].items():
             r.save(d / "data" / f"{fig}_{frame}")
-    # The exact question behind Figs 3-4 (issue 11): Floquet stability of the forced
+    # The exact question behind Figs 3-4: Floquet stability of the forced
     # periodic response of eq 48 at constant speed, beside the averaged/frozen Hopf.
     print("Exact stability of the forced response (Floquet multipliers, shooting):")
-    from washer import forced_report
+    from washer.paper import exact_stability
     t2 = time.perf_counter()
-    exact = forced_report.compute(params, forced_report.N_CURVE_QUICK if args.quick
-                                  else forced_report.N_CURVE, ends=not args.quick,
+    exact = exact_stability.compute(params, exact_stability.N_CURVE_QUICK if args.quick
+                                  else exact_stability.N_CURVE, ends=not args.quick,
                                   progress=lambda m: print(m, flush=True))
-    exact_files = forced_report.write(d, exact)
+    exact_files = exact_stability.write(d, exact)
     t_exact = time.perf_counter() - t2
-    # The whirl past the Hopf point (issue 10): the periodic orbits down to C_p = 0
+    # The whirl past the Hopf point: the periodic orbits down to C_p = 0
     # against the long-time envelope of the Fig 9 simulation.
     print("The self-excited whirl (periodic orbits, IPS = 2):")
     from washer.paper import whirl
@@ -278,9 +279,9 @@ def main(argv: list[str] | None = None) -> int:
                         timing=dict(auto=t_auto, sim=t_sim, total=wall))
     with open(path, "a", encoding="utf-8") as fh:
         fh.write("\n" + whirl.markdown(fam, whirl_cmp, "whirl_orbits.png") + "\n")
-        fh.write("\n" + forced_report.markdown(exact)
+        fh.write("\n" + exact_stability.markdown(exact)
                  + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
-                 f"(computed in {t_exact:.1f} s: `python -m washer.forced_report` reruns it)\n")
+                 f"(computed in {t_exact:.1f} s: `python -m washer.paper.exact_stability` reruns it)\n")
     for k, paths in figs.items():
         print(f"  {k}: " + ", ".join(p.name for p in paths))
     print("  forced: " + ", ".join(p.name for p in exact_files))

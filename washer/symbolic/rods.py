@@ -2,16 +2,16 @@
 
 The paper's rod frame (eqs 26-29) takes e3 = d x v / |d x v|, undefined when
 the joint velocity v is zero or parallel to d (at every equilibrium). With
-C_oy = C_oz the same forces have the smooth vector form of MODEL.md section 2,
-used here; `washer.reference.rods_literal` keeps the literal eqs 30-44 and a
+C_oy = C_oz the same forces have the smooth vector form of docs/model.md section 2,
+used here; `washer.symbolic.rods_literal` keeps the literal eqs 30-44 and a
 test checks that both agree wherever the literal ones are defined.
 """
 from __future__ import annotations
 
 import sympy as sp
 
-from washer.model.bodies import Rod, Structure
-from washer.model.kinematics import tilde
+from washer.symbolic.bodies import Rod, Structure
+from washer.symbolic.kinematics import tilde
 
 
 def rod_force_and_torque(d, v, w, K_s, C_a, C_p, C_ox, C_oz, l0):
@@ -34,7 +34,7 @@ def rod_force_and_torque(d, v, w, K_s, C_a, C_p, C_ox, C_oz, l0):
 
 
 def rod_generalized_force(rod: Rod, S: Structure, x, A, B, phi_dot, x_dot) -> sp.Matrix:
-    """Generalized force (6-vector) of one rod on q (eq 45, corrected per MODEL.md).
+    """Generalized force (6-vector) of one rod on q (eq 45, corrected per docs/model.md).
 
     The tub receives F = -F_o at O and the torque T = -M_o; by virtual power
     Q = [F; (A B)^T ((A r_d) x F + T)].

@@ -1,14 +1,15 @@
-"""The exact stability numbers of issue 11, as a report section of `python -m
-washer.figures` (which calls compute, write and markdown) or on its own:
+"""The exact stability of the forced response as a report section of `python -m
+washer.paper` (which calls compute, write and markdown), with the studies behind it
+(the exact Fig 4 curve, its lower end, the averaging error at Table 1's ends); on its own:
 
-    python -m washer.forced_report [--quick] [--out out/forced]
+    python -m washer.paper.exact_stability [--quick] [--out out/forced]
 
 writes OUT/forced.json (all numbers), OUT/forced.md (a Markdown section) and
 OUT/fig4_exact.png/.pdf (the exact critical C_p against Omega beside the averaged and
 frozen ones). From Python: `results = compute(params)`, `markdown(results)`,
 `plot_fig4(ax, results)`.
 
-Everything comes from washer.forced (route b: shooting with the kernel's variational
+Everything comes from washer.machine.forced (shooting with the kernel's variational
 flow); the exact curve is obtained by successive one-parameter TR locations in C_p at
 each Omega, not by a two-parameter TR-curve continuation.
 """
@@ -22,11 +23,101 @@ from pathlib import Path
 
 import numpy as np
 
-from washer import forced
-from washer.params import load_params
+from scipy.optimize import brentq
+
+from washer.machine import forced, kernel
+from washer.machine.model import Model
+from washer.machine.params import load_params
 
 #: Points on the exact Fig 4 curve (lower end to 15 Hz); --quick uses N_CURVE_QUICK.
 N_CURVE, N_CURVE_QUICK = 23, 6
+
+
+def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
+    """Omega (Hz) of the lower end of the Fig 4 curve, where the critical C_p reaches 0:
+    kind 'exact' (TR of the forced response at C_p = 0, Brent on Omega) or 'averaged'
+    / 'frozen' (Hopf of the rotating-frame system at C_p = 0). Below it the response is
+    stable even without joint damping."""
+    q = params.replace(C_p=0.0)
+    if kind == "exact":
+        return forced.locate_tr(q, "Omega", bracket)[1].value
+    state = {"eps": None}
+
+    def g(om):
+        m = Model(q.replace(Omega=om))
+        state["eps"] = m.rotating_equilibrium(frame=kind, guess=state["eps"])
+        return float(m.eigenvalues(state["eps"], frame=kind).real.max())
+
+    return brentq(g, *bracket, xtol=1e-12)
+
+
+def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 15.0,
+                   rel_bracket: float = 0.05) -> dict:
+    """The exact Fig 4 curve: critical C_p (TR of the forced response) against Omega (Hz),
+    by successive one-parameter TR locations in C_p at each Omega (not a two-parameter
+    TR-curve continuation), with the averaged and frozen Hopf values at the same Omega.
+
+    omegas: Omega values (Hz); default n values from the exact lower end (`lower_end`,
+    where C_p,crit = 0; ~4 Hz at the reference values) to omega_max, quadratically
+    spaced (denser at the steep lower end). Returns a dict of
+    arrays (len(omegas),): Omega, C_p_exact, C_p_averaged, C_p_frozen (nan where the frozen
+    system has no Hopf in (0, 2)), error = exact - averaged, mu_angle (rad) of the
+    critical multiplier; and 'Omega_low' = {exact, averaged} lower ends (Hz)."""
+    low = {"exact": lower_end(params, "exact"), "averaged": lower_end(params, "averaged")}
+    if omegas is None:          # denser near the lower end, where the curve is steep
+        omegas = low["exact"] + (omega_max - low["exact"]) * np.linspace(0.0, 1.0, n) ** 2
+    rows = []
+    for om in omegas:
+        q = params.replace(Omega=float(om))
+        if abs(om - low["exact"]) <= 1e-9 * om:     # the end itself: C_p,crit = 0 by definition
+            r = {"Omega": float(om), "C_p_exact": 0.0,
+                 "C_p_averaged": forced.hopf_or_nan(q, "averaged")[0],
+                 "C_p_frozen": forced.hopf_or_nan(q, "frozen")[0],
+                 "critical_multiplier": forced.critical_pair(
+                     forced.periodic_response(q.replace(C_p=0.0)).multipliers)}
+        else:
+            r = forced.critical_cp(q, rel_bracket)
+        rows.append(r)
+    cp_ex = np.array([r["C_p_exact"] for r in rows])
+    cp_av = np.array([r["C_p_averaged"] for r in rows])
+    return {"Omega": np.array([r["Omega"] for r in rows]), "C_p_exact": cp_ex,
+            "C_p_averaged": cp_av, "C_p_frozen": np.array([r["C_p_frozen"] for r in rows]),
+            "error": cp_ex - cp_av,
+            "mu_angle": np.array([np.angle(r["critical_multiplier"]) for r in rows]),
+            "Omega_low": low}
+
+
+#: Ends of Table 1's ranges of the parameters of Figs 5-7 (auto_constants/c.washer.hopf.*).
+TABLE1_ENDS = (("m_u", 0.01), ("m_u", 2.5), ("R_u", 0.001), ("R_u", 0.25), ("C_a", 0.0),
+               ("C_a", 5000.0), ("K_s", 500.0), ("K_s", 4500.0))
+
+
+def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
+    """Exact minus averaged critical C_p at parameter points [(name, value), ...] (default:
+    the ends of Table 1's ranges of Figs 5-7). Each row: name, value, C_p_exact,
+    C_p_averaged, C_p_frozen, error; C_p values nan (and 'note' says why) where there is no
+    Hopf/TR point to compare (e.g. stable down to C_p = 0)."""
+    rows = []
+    for name, value in points:
+        row = {"name": name, "value": float(value)}
+        try:
+            c = forced.critical_cp(params.replace(**{name: value}))
+            row.update(C_p_exact=c["C_p_exact"], C_p_averaged=c["C_p_averaged"],
+                       C_p_frozen=c["C_p_frozen"], error=c["C_p_exact"] - c["C_p_averaged"],
+                       note="undamped at C_p = 0: neutral, not a Hopf" if
+                       c["C_p_averaged"] == 0.0 else "")
+        except (ValueError, forced.ShootingError, kernel.KernelError) as exc:
+            q = params.replace(**{name: value})
+            note = f"no TR point near the averaged Hopf ({type(exc).__name__})"
+            try:
+                if forced.periodic_response(q.replace(C_p=0.0)).stable:
+                    note = "stable down to C_p = 0: no TR point"
+            except (forced.ShootingError, kernel.KernelError):
+                pass
+            row.update(C_p_exact=np.nan, C_p_averaged=forced.hopf_or_nan(q, "averaged")[0],
+                       C_p_frozen=np.nan, error=np.nan, note=note)
+        rows.append(row)
+    return rows
 
 
 def compute(params, n_curve: int = N_CURVE, ends: bool = True, progress=print) -> dict:
@@ -45,12 +136,12 @@ def compute(params, n_curve: int = N_CURVE, ends: bool = True, progress=print) -
         averaged_crossing=c["averaged_eigenvalues"][0], wall=time.perf_counter() - t)
     t = time.perf_counter()
     progress(f"  forced response: exact Fig 4 curve ({n_curve} values of Omega)")
-    out["fig4"] = forced.critical_curve(params, n=n_curve)
+    out["fig4"] = critical_curve(params, n=n_curve)
     out["fig4"]["wall"] = time.perf_counter() - t
     if ends:
         t = time.perf_counter()
         progress("  forced response: averaging error at the ends of Table 1's ranges")
-        out["ends"] = forced.averaging_errors(params)
+        out["ends"] = averaging_errors(params)
         out["ends_wall"] = time.perf_counter() - t
     return out
 
@@ -65,7 +156,7 @@ def markdown(res: dict) -> str:
     mu = np.asarray(n["multipliers"])
     rel = (n["C_p_exact"] - n["C_p_averaged"]) / n["C_p_averaged"]
     lines = [
-        "## Exact stability: Floquet multipliers of the forced response (issue 11)",
+        "## Exact stability: Floquet multipliers of the forced response",
         "",
         "The ground-frame equations at constant speed (eq 48, theta = 2 pi Omega t) have a "
         "periodic steady response of period T = 1/Omega; it is computed by Newton shooting "
@@ -164,8 +255,8 @@ def write(out: Path, res: dict) -> list[Path]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m washer.forced_report",
-                                 description="The exact stability numbers of issue 11 (Floquet "
+    ap = argparse.ArgumentParser(prog="python -m washer.paper.exact_stability",
+                                 description="The exact stability numbers of the forced response (Floquet "
                                  "multipliers of the forced response): JSON, Markdown, Fig 4.")
     ap.add_argument("--out", type=Path, default=Path("out/forced"))
     ap.add_argument("--quick", action="store_true",

@@ -1,7 +1,7 @@
 """The paper's rod forces exactly as written (eqs 26-44, with errata 4 and 5).
 
 Defined only where d x v != 0 (eq 28 divides by |d x v|). Kept as the check
-of the smooth form the model uses (`washer.model.rods`).
+of the smooth form the model uses (`washer.symbolic.rods`).
 """
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 (tau0 = 0) frame dashed grey, the paper's own figure where it gives one.
 
 Each function takes Curves (`washer.paper.runs`) or Responses
-(`washer.simulate`) plus the measured numbers, and saves PNG + PDF under `stem`.
+(`washer.machine.responses`) plus the measured numbers, and saves PNG + PDF under `stem`.
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Bifurcation diagrams and periodic orbits from AUTO files.
 
-    python -m washer.plot b.NAME [b.OTHER ...] [--x 0] [--y 1] [--out STEM]
-    python -m washer.plot s.NAME --label 8 [--components 1 2 3] [--phase 1 2] [--out STEM]
+    python -m washer.plots b.NAME [b.OTHER ...] [--x 0] [--y 1] [--out STEM]
+    python -m washer.plots s.NAME --label 8 [--components 1 2 3] [--phase 1 2] [--out STEM]
 
 b-files: columns are those of the b-file rows: 0 = PAR(ICP(1)), 1 = L2-norm (or the IPLT
 measure), 2.. = U(i) (equilibria) or MAX U(i) (periodic orbits), then the other ICP
@@ -20,7 +20,7 @@ from pathlib import Path
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m washer.plot",
+    ap = argparse.ArgumentParser(prog="python -m washer.plots",
                                  description="Bifurcation diagrams (b-files) and periodic "
                                              "orbits (s-files, --label)")
     ap.add_argument("files", type=Path, nargs="+", metavar="FILE")

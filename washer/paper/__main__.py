@@ -1,0 +1,3 @@
+from washer.paper.job import main
+
+raise SystemExit(main())
