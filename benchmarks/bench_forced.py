@@ -83,10 +83,10 @@ def main():
     t_cc, c = best_of(lambda: forced.critical_cp(params))
     print(f"  critical_cp (exact, averaged, frozen): {t_cc:8.3f} s: "
           f"{c['C_p_exact']:.10f}, {c['C_p_averaged']:.10f}, {c['C_p_frozen']:.10f}")
-    route_a(params, c)
+    collocation_run(params, c)
 
 
-def route_a(params, crit):
+def collocation_run(params, crit):
     """The engine on e='washer:forced' (outputs in a temporary folder)."""
     print("\nthe collocation run: the engine, IPS = 2, e='washer:forced', NTST 20 x NCOL 4")
 
