@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from washer.cont import collocation as col
+from washer.cont.floquet import pencil_multipliers
 
 
 # ---------------------------------------------------------------- weights (AUTO tables)
@@ -113,7 +114,7 @@ def test_monodromy_of_a_constant_linear_system():
     M = -np.linalg.solve(P1, P0)
     import scipy.linalg
     np.testing.assert_allclose(M, scipy.linalg.expm(T * A), atol=1e-9)
-    mu = col.floquet_multipliers(P0, P1)
+    mu = pencil_multipliers(P0, P1)
     expect = np.exp(T * np.linalg.eigvals(A))
     for m in expect:
         assert np.min(np.abs(mu - m)) < 1e-9
@@ -126,7 +127,7 @@ def test_huge_multipliers_do_not_overflow():
     T = 30.0
     mesh = col.Mesh.uniform(100, 4)
     P0, P1 = col.condense_blocks(_linear_blocks(lambda t: A, T, mesh), 3)
-    mu = col.floquet_multipliers(P0, P1)
+    mu = pencil_multipliers(P0, P1)
     assert abs(mu[0] - 1) < 1e-12                      # the zero exponent: mu = 1
     big = mu[-1]
     assert np.isinf(big) or abs(math.log(abs(big)) / 600 - 1) < 1e-3   # e^600 = 4e260
@@ -149,6 +150,6 @@ def test_multipliers_of_a_time_periodic_linear_system():
     P0, P1 = col.condense_blocks(_linear_blocks(lambda t: R(t) @ B @ R(t).T, T, mesh), 2)
     import scipy.linalg
     expect = np.linalg.eigvals(scipy.linalg.expm(T * B - S))
-    mu = col.floquet_multipliers(P0, P1)
+    mu = pencil_multipliers(P0, P1)
     for m in expect:
         assert np.min(np.abs(mu - m)) < 1e-9 * max(1, abs(m))

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
+from washer.auto.codes import find, parse_label, split_code, type_name  # noqa: F401 (re-exported)
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47
@@ -181,6 +181,12 @@ class Record:
     t: np.ndarray | None = None
     ntst: int = 0
     ncol: int = 0
+
+    @property
+    def curve_type(self) -> int:
+        """AUTO's ITPST of the curve the point lies on, carried by its written code:
+        0 on ordinary branches, 2 fold, 3 Hopf, 5/7/8 loci of cycles."""
+        return split_code(self.ty)[1]
 
     def text(self) -> str:
         if np.ndim(self.U) == 2:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.auto.codes import find, type_name
+from washer.auto.codes import find, split_code, type_name
 from washer.cont.system import Solution, Stability
 
 
@@ -62,6 +62,11 @@ class Labelled:
     @property
     def ty(self) -> str:
         return type_name(self.code)
+
+    @property
+    def curve_type(self) -> int:
+        """AUTO's ITPST of the curve the point lies on (0 on ordinary branches)."""
+        return split_code(self.code)[1]
 
     @property
     def par(self) -> np.ndarray:

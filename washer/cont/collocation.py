@@ -28,13 +28,11 @@ Contents, with the AUTO routine each follows:
 * `Collocation`: residual and sparse Jacobian of the discretised BVP with a fixed
   sparsity pattern (the CSC structure is built once per mesh, each evaluation only
   fills the values), and the dense local blocks of every interval.
-* `condense_blocks` / `floquet_multipliers` (CONPAR + REDUCE + FLOWKM): the
-  interior unknowns of each interval are eliminated (condensation of parameters),
-  then the chain of intervals is reduced pairwise (cyclic reduction with orthogonal
-  transformations), which leaves P0 u(0) + P1 u(1) = 0; the monodromy matrix is
-  -P1^-1 P0 and its eigenvalues are computed as the QZ eigenvalues of the pencil
-  (P0, -P1), so that huge multipliers (long orbits near a homoclinic one) come out
-  as large or infinite values instead of overflowing a product of matrices.
+* `condense_blocks` (CONPAR + REDUCE): the interior unknowns of each interval are
+  eliminated (condensation of parameters), then the chain of intervals is reduced
+  pairwise (cyclic reduction with orthogonal transformations), which leaves
+  P0 u(0) + P1 u(1) = 0: the monodromy matrix is -P1^-1 P0, whose eigenvalues are
+  `washer.cont.floquet.pencil_multipliers`.
 * `eqdf`, `new_mesh`, `interpolate` (EQDF, NEWMSH, INTERP): mesh adaptation by
   equidistribution of the (NCOL+1)-st derivative's NCOL+1-st root.
 """
@@ -43,7 +41,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse as sp
 
 #: AUTO's EQDF treats NCOL-th derivatives below this as zero ("small derivative" case:
@@ -330,29 +327,6 @@ def condense_blocks(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarr
             Bn = np.concatenate([Bn, B[-1:]])
         A, B = An, Bn
     return A[0], B[0]
-
-
-def floquet_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
-    """Eigenvalues of the monodromy matrix -P1^-1 P0 (FLOWKM), as the generalized
-    eigenvalues of the pencil (P0, -P1) by QZ; infinite ones come out as inf.
-    Sorted as AUTO prints them (FNSPBV): the one closest to 1 first, the others by
-    increasing distance of |mu| from 1. Shape (NDIM,), complex."""
-    with np.errstate(all="ignore"):
-        mu = scipy.linalg.eigvals(P0, -P1)
-    mu = np.where(np.isfinite(mu), mu, np.inf + 0j)
-    return sort_multipliers(mu)
-
-
-def sort_multipliers(mu: np.ndarray) -> np.ndarray:
-    """AUTO's order: the multiplier closest to 1 first, then by ||mu| - 1|."""
-    mu = np.asarray(mu, complex)
-    if len(mu) == 0:
-        return mu
-    with np.errstate(invalid="ignore"):
-        i1 = int(np.nanargmin(np.abs(mu - 1)))
-        rest = np.delete(mu, i1)
-        rest = rest[np.argsort(np.abs(np.abs(rest) - 1), kind="stable")]
-    return np.r_[mu[i1], rest]
 
 
 # --------------------------------------------------------------------------- adaptation

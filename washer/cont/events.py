@@ -21,12 +21,46 @@ along the branch; in practice much better, since Muller converges with order
 ~1.84 and the last step is below the tolerance). A location that does not
 converge, or whose trial step fails, is not an error: the point is kept
 unlabelled and the d-file says "NOTE:Possible special point" (AUTO).
+
+When several zeros lie in one step (`first_zero`), the earliest is located first and
+the interval up to it searched again; zeros of several tests at one point are one
+special point whose type is the first in AUTO's order (PRIORITY); at a BP the
+branch's direction is the secant from the previous point.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
+
+from washer.auto.codes import Code, curve_code, type_name
+
+#: A zero estimated within this fraction of a step from a located special
+#: point lies on it: a second test vanishes there too (a transcritical BP is
+#: also a zero eigenvalue). AUTO takes simultaneous zeros first come, first
+#: served: the second is not located again.
+SIMULTANEOUS = 1e-6
+
+
+#: AUTO's order among tests that vanish at the same point (LCSPAE: first come,
+#: first served in its test order, a bifurcation overriding UZ, CP overriding LP).
+PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.BPC, Code.LPC,
+            Code.PD, Code.TR)
+
+
+def _key_name(key, curve_type: int = 0) -> str:
+    """'HB', 'GH', 'UZ2', ... for a test key (notes)."""
+    if isinstance(key, tuple):
+        return f"UZ{key[1] + 1}"
+    return type_name(curve_code(key, curve_type))
+
+
+def _priority(key) -> int:
+    """Rank of a test key in PRIORITY (UZ keys, tuples, come last)."""
+    if isinstance(key, tuple):
+        return len(PRIORITY) + 1
+    return PRIORITY.index(key) if key in PRIORITY else len(PRIORITY)
+
 
 #: A located "zero" whose test value exceeds both bracketing values in
 #: magnitude is a sign change through a pole or a jump (e.g. the first
@@ -151,3 +185,74 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
     return pt, s_best
+
+
+def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
+               curve_type: int = 0):
+    """The earliest accepted zero between the points prev and cur (a step of arclength
+    ds): (point, key, keys of other tests vanishing at the same point) or None. A zero
+    that cannot be located is left (`note` says so, AUTO's "Possible special point")
+    and the next one is tried.
+
+    trial(s, key) -> (point, value of test key): the continuation step of arclength s
+        from prev, evaluating that test only.
+    accepted(key, prev, cur) -> bool: the system's acceptance rule (UZ keys always).
+    refresh(point) -> None: all test values at a located point, at its tangent.
+    inner(a, b): the system's inner product (the BP's secant is made unit in it).
+    note(text): a d-file note.
+
+    Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
+    two Hopf loci crossing) are one special point: its type is the first in AUTO's
+    order (PRIORITY), whichever zero was located."""
+    target, span, found = cur, ds, None
+    failed: set = set()
+    for _ in range(2 * len(cur.tests) + 1):
+        keys = [k for k in sign_changes(prev.tests, target.tests)
+                if (found is None or k != found[1]) and k not in failed
+                and accepted(k, prev, target)
+                and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
+                < (1 - SIMULTANEOUS if found is not None else 2)]
+        if not keys:
+            break
+        keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
+        key = keys[0]
+        try:
+            sp, s_sp = locate(lambda s_: trial(s_, key), key, prev.tests[key],
+                              target.tests[key], span, settings)
+        except RuntimeError as exc:
+            # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
+            # that zero stays unlocated (AUTO: "Possible special point"); the other
+            # tests of the interval are still looked at (a UZSTOP next to a noisy GH
+            # test must still stop the run).
+            failed.add(key)
+            note(f"NOTE:Possible special point ({_key_name(key, curve_type)}: {exc})")
+            continue
+        refresh(sp)
+        found = (sp, key)
+        target, span = sp, s_sp
+    if found is None:
+        return None
+    sp, key = found
+    # Other tests that change sign over the step and vanish at sp, to within the
+    # location tolerance (their linear zero estimate from sp's value).
+    tol = 10 * settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    same = []
+    for k in sign_changes(prev.tests, cur.tests):
+        # User values (UZ) are never merged: two UZR values are two points.
+        if k == key or isinstance(k, tuple) or isinstance(key, tuple) \
+                or k not in sp.tests or sp.tests[k] is None:
+            continue
+        slope = abs(cur.tests[k] - prev.tests[k]) / abs(ds)
+        if slope > 0 and abs(sp.tests[k]) / slope < tol and accepted(k, prev, cur):
+            same.append(k)
+    best = min([key] + same, key=_priority)
+    if best != key:
+        same = [k for k in same if k != best] + [key]
+    if best == Code.BP:
+        # At a branch point G_x has a two-dimensional null space: the bordered
+        # tangent solve is singular there. The branch's direction is the secant
+        # from the previous point (AUTO stores it too).
+        sec = sp.x - prev.x
+        sp.tangent = sec / math.sqrt(inner(sec, sec))
+        refresh(sp)
+    return sp, best, same

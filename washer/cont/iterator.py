@@ -27,10 +27,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from washer.cont.branch import Point
-from washer.auto.codes import Code, curve_code, type_name
-from washer.cont.events import LocationFailed, linear_fraction, locate, sign_changes
+from washer.auto.codes import Code
+from washer.cont.events import first_zero
 from washer.cont.problem import ProblemError
-from washer.cont.systems._algebraic import orient
+from washer.cont.linalg import orient
 
 #: A Newton iterate whose correction exceeds this multiple of the first
 #: correction diverges (AUTO's SOLVAE: DELREF = 20 max(...)).
@@ -42,33 +42,6 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
-#: A zero estimated within this fraction of a step from a located special
-#: point lies on it: a second test vanishes there too (a transcritical BP is
-#: also a zero eigenvalue). AUTO takes simultaneous zeros first come, first
-#: served: the second is not located again.
-SIMULTANEOUS = 1e-6
-
-
-#: AUTO's order among tests that vanish at the same point (LCSPAE: first come,
-#: first served in its test order, a bifurcation overriding UZ, CP overriding LP).
-PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.BPC, Code.LPC,
-            Code.PD, Code.TR)
-
-
-def _key_name(key, curve_type: int = 0) -> str:
-    """'HB', 'GH', 'UZ2', ... for a test key (notes)."""
-    if isinstance(key, tuple):
-        return f"UZ{key[1] + 1}"
-    return type_name(curve_code(key, curve_type))
-
-
-def _priority(key) -> int:
-    """Rank of a test key in PRIORITY (UZ keys, tuples, come last)."""
-    if isinstance(key, tuple):
-        return len(PRIORITY) + 1
-    return PRIORITY.index(key) if key in PRIORITY else len(PRIORITY)
-
-
 class ConvergenceError(RuntimeError):
     """A corrector (or start correction) did not converge."""
 
@@ -128,6 +101,7 @@ class Continuation:
         self.tests = list(system.active_tests())
         self.state: State | None = None
         self.failure = "No convergence with minimum step size"
+        self._located_J = None
 
     # ------------------------------------------------------------ corrector
     def correct(self, x_pred, x_ref, t_ref, ds, plane: bool | None = None):
@@ -151,7 +125,7 @@ class Continuation:
                     # converged to is the same; the blocks are refreshed at every
                     # converged point (evaluate), where tangent and tests need them.
                     J = sysm.jacobian(x, frozen_second=True) if \
-                        getattr(sysm, "freezes_second_derivatives", False) else sysm.jacobian(x)
+                        sysm.freezes_second_derivatives else sysm.jacobian(x)
             except ProblemError as exc:
                 # A trial point outside the equations' domain: a failed step.
                 raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
@@ -311,66 +285,20 @@ class Continuation:
 
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
-        """The earliest accepted zero between prev and cur: (point, key, keys of
-        other tests vanishing at the same point) or None. A zero that cannot be
-        located is left (a note says so) and the next one is tried.
+        """The earliest accepted zero between prev and cur (`events.first_zero`)."""
+        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key: self._trial(prev, s_, key),
+                          accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
+                          note=lambda text: self._pending.append(Step("note", text=text)),
+                          curve_type=self.sys.curve_type)
 
-        Zeros of several tests at one point (a transcritical BP is also a zero
-        eigenvalue; two Hopf loci crossing) are one special point: its type is
-        the first in AUTO's order (PRIORITY), whichever zero was located."""
-        target, span, found = cur, ds, None
-        failed: set = set()
-        for _ in range(2 * len(cur.tests) + 1):
-            keys = [k for k in sign_changes(prev.tests, target.tests)
-                    if (found is None or k != found[1]) and k not in failed
-                    and self._accepted(k, prev, target)
-                    and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
-                    < (1 - SIMULTANEOUS if found is not None else 2)]
-            if not keys:
-                break
-            keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
-            key = keys[0]
-            trial = lambda s_: self._trial(prev, s_, key)
-            try:
-                sp, s_sp = locate(trial, key, prev.tests[key], target.tests[key], span, self.s)
-            except (LocationFailed, ConvergenceError, ProblemError) as exc:
-                # That zero stays unlocated (AUTO: "Possible special point"); the
-                # other tests of the interval are still looked at (a UZSTOP next to
-                # a noisy GH test must still stop the run).
-                failed.add(key)
-                self._pending.append(Step("note", text=f"NOTE:Possible special point "
-                                                       f"({_key_name(key, self.sys.curve_type)}: {exc})"))
-                continue
-            J = self.sys.jacobian(sp.x)
-            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
-            found = (sp, key, J)
-            target, span = sp, s_sp
-        if found is None:
-            return None
-        sp, key, J = found
-        # Other tests that change sign over the step and vanish at sp, to within the
-        # location tolerance (their linear zero estimate from sp's value).
-        tol = 10 * self.s.EPSS * (1 + math.sqrt(abs(self.s.DS * self.s.DSMAX)))
-        same = []
-        for k in sign_changes(prev.tests, cur.tests):
-            # User values (UZ) are never merged: two UZR values are two points.
-            if k == key or isinstance(k, tuple) or isinstance(key, tuple) \
-                    or k not in sp.tests or sp.tests[k] is None:
-                continue
-            slope = abs(cur.tests[k] - prev.tests[k]) / abs(ds)
-            if slope > 0 and abs(sp.tests[k]) / slope < tol and self._accepted(k, prev, cur):
-                same.append(k)
-        best = min([key] + same, key=_priority)
-        if best != key:
-            same = [k for k in same if k != best] + [key]
-        if best == Code.BP:
-            # At a branch point G_x has a two-dimensional null space: the bordered
-            # tangent solve is singular there. The branch's direction is the secant
-            # from the previous point (AUTO stores it too).
-            sec = sp.x - prev.x
-            sp.tangent = sec / math.sqrt(self.sys.inner(sec, sec))
-            sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
-        return sp, best, same
+    def _refresh(self, sp: Point) -> None:
+        """All test values at a located point, at its (possibly replaced) tangent; the
+        point's Jacobian is evaluated once."""
+        cached = self._located_J
+        if cached is None or cached[0] is not sp or not np.array_equal(cached[1], sp.x):
+            cached = self._located_J = (sp, sp.x.copy(), self.sys.jacobian(sp.x))
+        J = cached[2]
+        sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
 
     def _trial(self, prev: Point, s_, key):
         pt = self._step(prev, s_, keys=[key])
@@ -486,8 +414,7 @@ class Continuation:
     def _adapt_mesh(self, p: Point, n_points: int) -> None:
         """Mesh adaptation of BVP systems (AUTO's ADAPT every IAD points): the
         system moves the accepted point and its tangent to its new mesh."""
-        wants = getattr(self.sys, "wants_remesh", None)
-        if wants is not None and wants(n_points):
+        if self.sys.wants_remesh(n_points):
             p.x, p.tangent = self.sys.remesh(p.x, p.tangent)
 
     def _flush(self):

@@ -1,8 +1,8 @@
 """One AUTO run: constants + problem (+ restart records) -> branches, through sinks.
 
 This is AUTO's AUTOAE/AUTOBV driver: it resolves the start (IRS, ISW, the
-restart record's type) to a continued system from the registry, numbers
-branches, points and labels as AUTO does, applies the stop rules (NMX, the
+restart record's type) to a continued system from the registry
+(`washer.cont.start`), numbers points and labels as AUTO does, applies the stop rules (NMX, the
 RL0/RL1/A0/A1 window, UZSTOP and negative UZR, STOP/SP counts, negative
 ILP/ISP, BT on Hopf curves, MX) and switches branches at BPs (MXBF, a queue:
 BPs found on switched branches are switched at too, up to |MXBF| in the whole
@@ -17,18 +17,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import washer.cont.systems  # noqa: F401  (fills the registry)
+from washer.auto.codes import Code, curve_code, type_name
+from washer.cont import start
 from washer.cont.branch import Branch, Labelled, Point
-from washer.auto.codes import Code, curve_code, split_code, type_name
-from washer.auto.files import find_record as files_find_record
 from washer.cont.iterator import Continuation, ConvergenceError
 from washer.cont.problem import ProblemError
-from washer.cont.settings import Settings, SettingsError
-from washer.cont.system import StartData, lookup
-
-
-class RunError(RuntimeError):
-    """A run could not start (bad constants, missing restart label, ...)."""
+from washer.cont.settings import Settings
+from washer.cont.start import RunError  # noqa: F401  (the run's start errors)
 
 
 @dataclass
@@ -43,31 +38,6 @@ class Run:
     first_label: bool = True         # the start point is labelled EP (IRS = 0 only)
     label0: int = 0                  # labels continue from here (LAB, or the restart file's)
     branch: Branch = field(default_factory=Branch)
-
-
-def find_record(records, irs):
-    """AUTO's FINDLB (washer.auto.files.find_record) with a RunError."""
-    try:
-        return files_find_record(records, irs)
-    except LookupError as exc:
-        raise RunError(str(exc)) from None
-
-
-def start_kind(rec, ndim: int) -> str:
-    """The registry's start kind of a record: its type name, or 'HB-curve' /
-    'LP-curve' for points of ISW = 2 curves (the stored state is extended)."""
-    if rec is None:
-        return ""
-    base, curve = split_code(rec.ty)
-    stored = np.asarray(rec.U)
-    if stored.ndim == 1 and curve == 0:
-        if len(stored) == 2 * ndim + 2:
-            curve = 3
-        elif len(stored) == 2 * ndim + 1:
-            curve = 2
-    if curve in (2, 3) and stored.ndim == 1:
-        return {2: "LP-curve", 3: "HB-curve"}[curve]
-    return type_name(base)
 
 
 class _Executor:
@@ -102,11 +72,8 @@ class _Executor:
         return out
 
     def info_at(self, point: Point, base: int) -> dict:
-        f = getattr(self.run.system, "info", None)
-        if f is None:
-            return {}
         try:
-            info = f(point.x, base)
+            info = self.run.system.info(point.x, base)
         except (ProblemError, np.linalg.LinAlgError, ValueError):
             return {}
         if "l1" in info:
@@ -182,97 +149,18 @@ def _stable(p: Point) -> bool | None:
 def build(c, problem, records=None, name: str = "", records_source: str = "the restart file"
           ) -> tuple[Run, int, str]:
     """Resolve constants + problem + restart records into a Run (system and
-    settings), the branch number and the start mode. records_source names the
-    s-file in messages. Raises RunError."""
-    try:
-        s = Settings.from_constants(c)
-    except SettingsError as exc:
-        raise RunError(str(exc)) from None
-    if s.NDIM != problem.ndim:
-        raise RunError(f"{c.source}: NDIM={s.NDIM} but the equations '{problem.name}' have "
-                       f"{problem.ndim} unknowns")
-    if s.ISW not in (1, -1, 2):
-        raise RunError(f"{c.source}: ISW={s.ISW} is not implemented (1, -1 and 2 are: ISW = 3 "
-                       "loci of branch points in generic systems are not)")
-    for key in ("LAB", "IBR"):
-        if c[key] < 0:
-            raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 (0 = automatic)")
-    problem = problem.with_jac(s.JAC)
-    if problem.npar > s.NPAR:
-        s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
-    irs = c["IRS"]
-    mlab = mbr = 0
-    rec = None
-    if irs not in (0, "0"):
-        if not records:
-            raise RunError(f"{c.source}: IRS={irs!r} needs a restart file (s=NAME) with records")
-        try:
-            rec = find_record(records, irs)
-        except RunError as exc:
-            raise RunError(f"{records_source}: {exc}") from None
-        if rec.ndim_user != problem.ndim:
-            raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
-                           f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
-        mlab = max(r.lab for r in records)
-        mbr = max(abs(r.br) for r in records)
-        u = np.array(rec.U, dtype=float)
-        par = np.zeros(max(s.NPAR, len(rec.par)))
-        par[:len(rec.par)] = rec.par
-    else:
-        u, par = problem.start(s.NPAR)
-    if len(par) < s.NPAR:
-        par = np.r_[par, np.zeros(s.NPAR - len(par))]
-    for k, v in c["PAR"].items():
-        i = c.par_index(k)
-        if not 1 <= i <= len(par):
-            raise RunError(f"{c.source}: PAR={{{k!r}: ...}}: PAR({i}) is outside 1..NPAR="
-                           f"{len(par)}")
-        par[i - 1] = float(v)
-    for k, v in c["U"].items():
-        i = c.u_index(k)
-        if not 1 <= i <= problem.ndim:
-            raise RunError(f"{c.source}: U={{{k!r}: ...}}: U({i}) is outside 1..NDIM="
-                           f"{problem.ndim}")
-        if u.ndim == 1:
-            u[i - 1] = float(v)
-    kind = start_kind(rec, problem.ndim)
-    if s.ISW == -1 and kind not in ("BP", "PD"):
-        raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
-                       f"{kind or 'a regular point'} (IRS={irs!r})")
-    if s.IPS == 2 and rec is not None and np.asarray(rec.U).ndim == 1 and kind != "HB":
-        raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
-                       f"solution, got {kind or 'a regular point'} of an algebraic branch "
-                       f"(IRS={irs!r})")
-    if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
-        raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart at "
-                       f"an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
-    if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
-        s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
-    isw_key = -1 if s.ISW == -1 and kind == "BP" else (2 if s.ISW == 2 or kind.endswith("curve") else 1)
-    try:
-        ctor = lookup(s.IPS, isw_key, kind)
-    except KeyError as exc:
-        raise RunError(f"{c.source}: {exc.args[0]}") from None
-    names = {int(k): v for k, v in c["unames"].items()}
-    start = StartData(problem, s, u, par, rec, kind, names)
-    try:
-        system = ctor(start)
-    except (ValueError, ProblemError, np.linalg.LinAlgError) as exc:
-        raise RunError(f"{c.source}: cannot start from {kind or 'this point'}: {exc}") from None
-    # Branch number (AUTO's NEWLAB).
-    if c["IBR"]:
-        br = c["IBR"]
-    elif rec is None or s.ISW < 0:
-        br = mbr + 1
-    elif (abs(rec.ty) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
-        br = rec.lab
-    else:
-        br = abs(rec.br)
-    pn = {int(k): v for k, v in c["parnames"].items()}
-    titles = [pn.get(s.ICP[0], f"PAR({s.ICP[0]})")] + list(system.column_titles()) + \
-        [("PERIOD" if i == 11 and 11 not in pn else pn.get(i, f"PAR({i})")) for i in s.ICP[1:]]
-    run = Run(c, s, system, name or problem.name, titles, rec.lab if rec is not None else 0,
-              first_label=rec is None, label0=c["LAB"] or mlab)
+    settings), the branch number and the start mode (`washer.cont.start`).
+    records_source names the s-file in messages. Raises RunError."""
+    s, problem = start.settings_for(c, problem)
+    rec = start.restart_record(c, problem, records, records_source)
+    u, par = start.start_values(c, s, problem, rec)
+    system, s, kind = start.system_for(c, s, problem, u, par, rec)
+    # Numbering continues the restart file's only when restarting from it.
+    known = records if rec is not None else []
+    br = start.branch_number(c, s, rec, kind, known)
+    run = Run(c, s, system, name or problem.name, start.column_titles(c, s, system),
+              rec.lab if rec is not None else 0, first_label=rec is None,
+              label0=start.first_label(c, known))
     mode = "switch" if (s.ISW == -1 and kind == "BP" and system.arclength == "sphere") else "fresh"
     return run, br, mode
 

@@ -28,17 +28,23 @@ arclength : str
     <x - x_old, xdot_old>_theta = ds, Newton-chord (NWTN), no hidden step.
 free : list[int]
     The free parameters, 1-based PAR indices, principal first (AUTO's ICP(1..NFPR)).
+freezes_second_derivatives : bool
+    True when `jacobian(x, frozen_second=True)` may reuse the second-derivative
+    blocks of the last full evaluation (loci whose Jacobians hold f_uu terms): the
+    corrector then asks for that inexact Newton matrix (the residual stays exact, so
+    the point converged to is the same); tangents and tests use full evaluations.
 
 Methods
 -------
 residual(x) -> ndarray (N,)
 jacobian(x) -> ndarray (N, N + 1) or a scipy.sparse matrix of that shape
     dG/dx. Built from the problem's Jacobians or finite differences (JAC = 0).
+    Systems with `freezes_second_derivatives` also take `frozen_second=True`.
 factor(J, border) -> Factor
     A factorisation of the square matrix [J; border] (border: (N + 1,) row) with
     `.solve(rhs) -> (N + 1,)` and `.sign_logdet() -> (sign, log|det|)` (AUTO's BP
-    test on algebraic branches is this determinant). `dense_factor` below is the
-    default; collocation systems supply a structured one.
+    test on algebraic branches is this determinant). `washer.cont.linalg.dense_factor`
+    is the default; collocation systems supply a structured one.
 inner(a, b) -> float
     AUTO's weighted inner product of two unknown vectors (THU on the state,
     THL on the parameters; integrals over [0, 1] for periodic orbits). The
@@ -81,15 +87,24 @@ column_titles() -> list[str]
 directions(x, tangent, code) -> list[ndarray]
     Directions of the other branch(es) at a located branch point (BP switching).
     Empty if the system cannot switch there.
+info(x, code) -> dict
+    Extra results at a located special point of base code `code` (the first
+    Lyapunov coefficient 'l1' at HB); {} where there are none.
+wants_remesh(n_points) -> bool, remesh(x, *vectors) -> tuple[ndarray, ...]
+    Mesh adaptation (AUTO's ADAPT every IAD points, BVPs): after the n-th written
+    point the iterator asks `wants_remesh(n)` and, if so, replaces the point and its
+    tangent by `remesh(x, tangent)` (both moved onto the new mesh; the system moves
+    its own reference data). Systems without a mesh answer False
+    (`washer.cont.systems.bvp.CollocationBVP` is the base of those with one).
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
 
 import numpy as np
-import scipy.linalg
+
+from washer.cont.linalg import Factor
 
 
 @dataclass
@@ -129,58 +144,12 @@ class Solution:
     ndim_user: int = 0
 
 
-class Factor(Protocol):
-    def solve(self, rhs: np.ndarray) -> np.ndarray: ...
-    def sign_logdet(self) -> tuple[float, float]: ...
-
-
-class DenseFactor:
-    """A dense square system [J; border] (AUTO's GEL: Gaussian elimination with
-    pivoting). Small systems are solved directly by LAPACK's gesv on each call
-    (cheaper than keeping a factorisation through scipy's wrappers at these
-    sizes); larger ones are LU-factorised once for Newton-chord reuse."""
-
-    #: Above this size the LU factors are kept for repeated solves.
-    LU_SIZE = 60
-
-    def __init__(self, M: np.ndarray):
-        self.M = M
-        self.lu = None
-        if len(M) > self.LU_SIZE:
-            with warnings.catch_warnings():
-                # An exactly singular matrix (at a branch point) is handled in solve().
-                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                self.lu = scipy.linalg.lu_factor(M, check_finite=False)
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        try:
-            if self.lu is not None:
-                x = scipy.linalg.lu_solve(self.lu, rhs, check_finite=False)
-            else:
-                x = np.linalg.solve(self.M, rhs)
-        except np.linalg.LinAlgError:
-            x = np.full(len(rhs), np.nan)
-        if not np.all(np.isfinite(x)):
-            # Exactly at a branch point the Newton matrix is singular but the
-            # system is consistent: take the minimum-norm least-squares step.
-            x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]
-        return x
-
-    def sign_logdet(self) -> tuple[float, float]:
-        sign, logdet = np.linalg.slogdet(self.M)
-        return float(sign), float(logdet)
-
-
-def dense_factor(J, border: np.ndarray) -> DenseFactor:
-    """Default `factor`: LU of [J; border] for dense J."""
-    return DenseFactor(np.vstack([np.asarray(J), border]))
-
-
 class ContinuedSystem(Protocol):
     n_eq: int
     curve_type: int
     arclength: str
     free: list
+    freezes_second_derivatives: bool
 
     def residual(self, x: np.ndarray) -> np.ndarray: ...
     def jacobian(self, x: np.ndarray): ...
@@ -197,6 +166,9 @@ class ContinuedSystem(Protocol):
     def solution(self, x: np.ndarray, tangent: np.ndarray) -> Solution: ...
     def column_titles(self) -> list: ...
     def directions(self, x: np.ndarray, tangent: np.ndarray, code: int) -> list: ...
+    def info(self, x: np.ndarray, code: int) -> dict: ...
+    def wants_remesh(self, n_points: int) -> bool: ...
+    def remesh(self, x: np.ndarray, *vectors: np.ndarray) -> tuple: ...
 
 
 @dataclass

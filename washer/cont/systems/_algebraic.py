@@ -6,22 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from washer.auto.codes import Code
-from washer.cont.system import Solution, dense_factor
-
-
-def null_vectors(A: np.ndarray, k: int) -> np.ndarray:
-    """k right singular vectors of the smallest singular values, shape (cols, k)."""
-    _, _, Vt = np.linalg.svd(A)
-    return Vt[-k:].T
-
-
-def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
-    """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
-    if it is negligible, the first non-negligible component positive."""
-    if abs(t[lam_index]) / (1 + abs(lam)) > epsl:
-        return t if t[lam_index] > 0 else -t
-    big = np.flatnonzero(np.abs(t) > 1e-8 * np.max(np.abs(t)))
-    return t if t[big[0]] > 0 else -t
+from washer.cont.linalg import dense_factor, null_vectors, orient
+from washer.cont.system import Solution
 
 
 class AlgebraicSystem:
@@ -32,6 +18,7 @@ class AlgebraicSystem:
     """
     arclength = "sphere"
     curve_type = 0
+    freezes_second_derivatives = False
 
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:
@@ -45,6 +32,17 @@ class AlgebraicSystem:
 
     def update(self, x, tangent) -> None:
         """Nothing moves with the branch by default."""
+
+    def info(self, x, code) -> dict:
+        """No extra results by default."""
+        return {}
+
+    def wants_remesh(self, n_points: int) -> bool:
+        """Algebraic systems have no mesh."""
+        return False
+
+    def remesh(self, x, *vectors) -> tuple:
+        return (x,) + vectors
 
     # ------------------------------------------------------------- tests
     def _lp_bp(self, tangent, factor, codes) -> dict:

@@ -29,10 +29,9 @@ import math
 
 import numpy as np
 
-from washer.cont import collocation as col
 from washer.auto.codes import Code
 from washer.cont.system import Solution, register
-from washer.cont.systems.periodic import SparseFactor, VectorField
+from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 
 #: Relative step of the mixed second differences (eps^(1/4)).
 H2 = 1e-4
@@ -41,14 +40,15 @@ NORM = 1.0
 
 
 @register(2, 2, "LP")
-class CycleFoldLocus:
+class CycleFoldLocus(CollocationBVP):
     curve_type = 5
-    arclength = "plane"
+    nint = 3
 
     def __init__(self, data):
         s = data.settings
         self.settings, self.problem = s, data.problem
-        self.n = s.NDIM
+        self.n = self.ndim = s.NDIM
+        self.n_comp = 2 * s.NDIM
         icp = list(s.ICP)
         others = [i for i in icp[1:] if i != 11]
         if not others:
@@ -68,35 +68,21 @@ class CycleFoldLocus:
         self._from_lp(rec)
 
     # ------------------------------------------------------------------ set-up
-    def _set_mesh(self, mesh: col.Mesh) -> None:
-        self.mesh = mesh
-        self.coll = col.Collocation(mesh, 2 * self.n, nint=3)
-        self.n_eq = self.coll.n_eq
-        thu = self.settings.theta_u(self.n)
-        th = np.r_[thu, np.ones(self.n)]
+    def tail_weights(self) -> np.ndarray:
         s = self.settings
-        self.weights = np.r_[np.kron(self.coll.w_node, th), s.theta_par(11),
-                             s.theta_par(self.p2), 1.0, s.theta_par(self.p1)]
+        return np.r_[s.theta_par(11), s.theta_par(self.p2), 1.0, s.theta_par(self.p1)]
 
     def _from_lp(self, rec) -> None:
         s, n = self.settings, self.n
-        U_r = np.asarray(rec.U, float)[:, :n]
-        ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n]
-        mesh_r = col.Mesh(np.asarray(rec.t, float)[::rec.ncol].copy(), rec.ncol)
-        if (rec.ntst, rec.ncol) == (s.NTST, s.NCOL):
-            mesh, U, V = mesh_r, U_r.copy(), ud_r.copy()
-        else:
-            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST), s.NCOL)
-            U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
-            V = col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
-        self._set_mesh(mesh)
+        mesh_r, U_r, ud_r = stored_profile(rec, n)
+        mesh, (U, V) = onto_mesh(mesh_r, [U_r, ud_r], s.NTST, s.NCOL, n)
+        self.set_mesh(mesh)
         T = self.par[10]
         rl = dict(zip(list(rec.icp)[:2], rec.rldot[:2], strict=False))
         beta = T * rl.get(11, 0.0)
         scale = math.sqrt(NORM / (self.coll.integral(np.sum(V * V, axis=1)) + beta ** 2))
         V, beta = V * scale, beta * scale
-        self.U_old = U.copy()
-        self.up_old = T * self.field.f(U, self.par)
+        self.set_phase_reference(U, self.par)
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), T, self.par[self.p2 - 1], beta, self.par[self.p1 - 1]],
                        None)
@@ -181,21 +167,9 @@ class CycleFoldLocus:
         int_par[2, 2] = 2 * beta
         return self.coll.jacobian_general(blocks, dF.reshape(4, N, m, 2 * n), int_u, int_par)
 
-    def factor(self, J, border):
-        return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
-
-    def inner(self, a, b) -> float:
-        return float(np.dot(a, self.weights * b))
-
-    def border(self, t):
-        return self.weights * np.asarray(t, float)
-
     def params(self, x):
         u, v, par, beta = self.unpack(x)
         return par
-
-    def start(self):
-        return self._start
 
     def stability(self, x, J=None):
         return None
@@ -216,52 +190,16 @@ class CycleFoldLocus:
 
     def update(self, x, tangent) -> None:
         u, v, par, beta = self.unpack(x)
-        self.U_old = u.copy()
-        self.up_old = par[10] * self.field.f(u, par)
+        self.set_phase_reference(u, par)
         self.par = par
 
-    def wants_remesh(self, n_points: int) -> bool:
-        iad = self.settings.IAD
-        return iad > 0 and n_points % iad == 0
-
-    def remesh(self, x, *vectors):
-        """ADAPT on the extended profile (same NTST, NCOL)."""
-        W = self.coll.profile(x)
-        old = self.mesh
-        tm = col.new_mesh(old, W[:, :self.n], old.ntst, periodic=True)
-
-        def move(vec):
-            vec = np.asarray(vec, float)
-            Wv = vec[:self.coll.n_u].reshape(-1, 2 * self.n)
-            return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), vec[-4:]]
-        out = [move(x)] + [move(v) for v in vectors]
-        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
-        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
-        self._set_mesh(col.Mesh(tm, old.ncol))
-        return tuple(out)
-
-    def column_titles(self) -> list:
-        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
-        un = self.unames
-        return ["L2-NORM"] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
-                              for i in range(1, n2 + 1)]
-
     def solution(self, x, tangent) -> Solution:
+        """b-row columns of u; the record stores W = (u, v) and PAR with AUTO's NPARI = 2
+        internal parameters (beta, c) appended."""
         u, v, par, beta = self.unpack(x)
-        W = self.coll.profile(x)
-        w = self.coll.w_node
-        thu = self.settings.theta_u(self.n)
-        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
-        cols = [math.sqrt(w @ (u ** 2 @ thu))] + [float(np.max(u[:, i])) for i in range(n2)]
-        full = np.r_[par, beta, NORM]                      # NPARI = 2: beta, c (AUTO)
-        udot = rldot = None
-        if tangent is not None:
-            udot = self.coll.profile(tangent).copy()
-            rldot = [float(tangent[-1]), float(tangent[-4]), float(tangent[-3]),
-                     float(tangent[-2])]
-        return Solution(par=full, columns=cols, u=W.copy(), t=self.mesh.node_times(),
-                        udot=udot, rldot=rldot or [], ntst=self.mesh.ntst, ncol=self.mesh.ncol,
-                        ndim_user=self.n)
+        return self.bvp_solution(
+            x, tangent, np.r_[par, beta, NORM],
+            lambda t: [float(t[-1]), float(t[-4]), float(t[-3]), float(t[-2])])
 
     def directions(self, x, tangent, code) -> list:
         return []

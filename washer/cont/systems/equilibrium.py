@@ -15,7 +15,8 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
-from washer.cont.systems._algebraic import AlgebraicSystem, null_vectors
+from washer.cont.linalg import null_vectors
+from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
 #: test needs Im != 0, and finite-difference Jacobians leave rounding-level

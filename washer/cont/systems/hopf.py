@@ -20,7 +20,7 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import StartData, register
-from washer.cont.systems._algebraic import null_vectors
+from washer.cont.linalg import null_vectors
 from washer.cont.systems._loci import LocusSystem
 from washer.cont.systems.equilibrium import eigenvalues_sorted
 

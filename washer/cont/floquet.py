@@ -1,0 +1,172 @@
+"""Floquet multipliers of periodic orbits and the test functions on them, in one place
+for every system that has multipliers (collocation, shooting): AUTO's FLOWKM (the
+multipliers), FNSPBV (stability, 'multiplier inaccurate'), TPSPBV (PD or TR) and the
+tests of cycles FNLPBV (LP), FNBPBV (BP), FNSPBV (PD, TR).
+
+Order of the multipliers (AUTO's, `sort_multipliers`): the one closest to 1 first (the
+trivial multiplier of an autonomous orbit), then the others by increasing distance of
+|mu| from the unit circle, so mu[1] is the nontrivial multiplier nearest the circle.
+
+The tests, with the sign conventions of AUTO:
+* LP of cycles: the PAR(ICP(1))-component of the unit tangent.
+* BP of cycles: a determinant of the bordered Jacobian reduced to the boundary
+  unknowns, supplied by the system (it depends on the discretisation).
+* PD: |mu_2| - 1 where TPSPBV classes mu_2 as real and < -0.5, else undefined.
+* TR: |mu_2| - 1 where TPSPBV classes mu_2 as complex (|Im| > sqrt(EPSS)), else
+  undefined. This is the only torus test of the engine.
+PD and TR are accepted only where the stable count changed (FNSPBV), and undefined
+while the multipliers are inaccurate or NDIM <= 2 (a planar orbit has one nontrivial
+multiplier, real and positive).
+"""
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+import scipy.linalg
+
+from washer.auto.codes import Code
+from washer.cont.system import Stability
+
+#: Stability tolerance of FNSPBV: |mu| <= 1 + STABLE_TOL counts as inside the circle.
+STABLE_TOL = 1e-5
+#: AUTO's "multiplier inaccurate" rule (FNSPBV): detection is suspended when the
+#: multiplier closest to 1 is farther than INACCURATE from 1, resumed below ACCURATE.
+INACCURATE = 5e-2
+ACCURATE = 1e-2
+#: The note a Stability carries while the multipliers are inaccurate.
+INACCURATE_NOTE = "Multiplier inaccurate"
+
+
+def sort_multipliers(mu) -> np.ndarray:
+    """AUTO's order: the multiplier closest to 1 first, then by ||mu| - 1|."""
+    mu = np.asarray(mu, complex)
+    if len(mu) == 0:
+        return mu
+    with np.errstate(invalid="ignore"):
+        i1 = int(np.nanargmin(np.abs(mu - 1)))
+        rest = np.delete(mu, i1)
+        rest = rest[np.argsort(np.abs(np.abs(rest) - 1), kind="stable")]
+    return np.r_[mu[i1], rest]
+
+
+def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the monodromy matrix -P1^-1 P0 (FLOWKM; P0, P1 from
+    `washer.cont.collocation.condense_blocks`), as the generalized eigenvalues of the
+    pencil (P0, -P1) by QZ, so that huge multipliers (long orbits near a homoclinic one)
+    come out as large or infinite values instead of overflowing; infinite ones are inf.
+    Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
+    with np.errstate(all="ignore"):
+        mu = scipy.linalg.eigvals(P0, -P1)
+    mu = np.where(np.isfinite(mu), mu, np.inf + 0j)
+    return sort_multipliers(mu)
+
+
+def classify(mu: np.ndarray, epss: float) -> tuple[int, float | None]:
+    """AUTO's TPSPBV + FNSPBV on sorted multipliers: (Code.PD / Code.TR / 0,
+    |mu_2| - 1 or None); mu_2 is the nontrivial multiplier closest to the circle."""
+    if len(mu) < 2:
+        return 0, None
+    m2 = mu[1]
+    if not np.isfinite(m2):
+        return 0, None
+    if abs(m2.imag) > math.sqrt(epss):
+        return int(Code.TR), float(abs(m2) - 1)
+    if m2.real < -0.5:
+        return int(Code.PD), float(abs(m2) - 1)
+    return 0, None
+
+
+def torus_angle(mu: np.ndarray, epss: float) -> float | None:
+    """|arg mu_2| where TPSPBV classes the point as TR (AUTO writes it to PAR(12)), else None."""
+    kind, _ = classify(mu, epss)
+    if kind != Code.TR:
+        return None
+    return abs(math.atan2(mu[1].imag, mu[1].real))
+
+
+def stability(mu: np.ndarray, ndim: int, suspended: bool) -> Stability:
+    """Stable count (AUTO's NINS) and notes of sorted multipliers (FNSPBV).
+
+    n_stable counts the trivial multiplier plus the others with |mu| <= 1 + STABLE_TOL.
+    While the trivial multiplier is inaccurate (|mu_1 - 1| > INACCURATE, until it is
+    back below ACCURATE; `suspended` says whether it was at the previous point) NINS = 0
+    with the note INACCURATE_NOTE. AUTO enters that state only when the multiplier
+    nearest the circle is also of PD/TR type (otherwise it goes on counting the
+    inaccurate multipliers: lrz's PT 28 is 'Stable: 3' in its d-file); this enters it
+    whenever mu_1 is off, so such points are reported unstable, not stable."""
+    notes = []
+    err = abs(mu[0] - 1) if len(mu) else 0.0
+    n_st = 1 + int(np.sum(np.abs(mu[1:]) <= 1 + STABLE_TOL))
+    if err > INACCURATE or (suspended and err >= ACCURATE):
+        notes.append(INACCURATE_NOTE)
+        n_st = 0
+    elif suspended:
+        notes.append("Multiplier accurate again")
+    return Stability(values=mu, n_stable=n_st, stable=n_st == ndim, kind="multipliers",
+                     notes=notes)
+
+
+def inaccurate(st: Stability | None) -> bool:
+    return st is not None and INACCURATE_NOTE in st.notes
+
+
+def active_tests(settings, ndim: int) -> list:
+    """LP of cycles (ILP), BP of cycles (|ISP| >= 2, != 4), PD and TR (ISP in {2, 4},
+    NDIM > 2), as support.f90:CHECKSP, SP overriding (Settings.detects)."""
+    out = []
+    if settings.detects("LP"):
+        out.append(int(Code.LPC))
+    if settings.detects("BP"):
+        out.append(int(Code.BPC))
+    if ndim > 2:
+        if settings.detects("PD"):
+            out.append(int(Code.PD))
+        if settings.detects("TR"):
+            out.append(int(Code.TR))
+    return out
+
+
+def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
+                   bp: Callable[[], float | None] | None = None) -> dict:
+    """{Code.LPC, Code.BPC, Code.PD, Code.TR: value or None} for the requested codes.
+
+    tangent : the unit tangent (its last component is PAR(ICP(1))-dot) or None.
+    st : the point's Stability (sorted multipliers) or None.
+    bp : computes the system's BP determinant; called only when BPC is asked for, the
+        tangent is known and the multipliers are accurate (while the trivial multiplier
+        is inaccurate, long orbits near a homoclinic one, the reduced determinant is
+        roundoff: lrz's grows to 1e46 and flips sign at T ~ 300 and 850; AUTO keeps
+        testing there and its value happens not to flip; BP of cycles is not reported).
+    """
+    codes = [int(c) for c in codes]
+    out = {}
+    if Code.LPC in codes:
+        out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
+    if Code.BPC in codes:
+        out[int(Code.BPC)] = None if (tangent is None or inaccurate(st) or bp is None) \
+            else bp()
+    if Code.PD in codes or Code.TR in codes:
+        pd = tr = None
+        if ndim > 2 and st is not None and not inaccurate(st):
+            kind, d = classify(st.values, epss)
+            if kind == Code.PD:
+                pd = d
+            elif kind == Code.TR:
+                tr = d
+        if Code.PD in codes:
+            out[int(Code.PD)] = pd
+        if Code.TR in codes:
+            out[int(Code.TR)] = tr
+    return out
+
+
+def accept(code: int, prev, cur, ndim: int) -> bool:
+    """PD/TR only if the stable count changed (FNSPBV: NINS1 == NINS -> no point), never
+    for NDIM <= 2. LP/BP of cycles and UZ always."""
+    if code in (Code.PD, Code.TR):
+        if ndim <= 2 or prev.stability is None or cur.stability is None:
+            return False
+        return prev.stability.n_stable != cur.stability.n_stable
+    return True

@@ -1,0 +1,130 @@
+"""Linear algebra of the continuation: the bordered Newton matrix [J; border] and
+its factorisations (AUTO's GEL for dense algebraic systems, SuperLU for the sparse
+collocation matrices), null vectors, and the orientation rule of a fresh tangent.
+
+Every factorisation honours `Factor`: `.solve(rhs)` and `.sign_logdet()` (AUTO's BP
+test on algebraic branches is the determinant of the bordered matrix).
+"""
+from __future__ import annotations
+
+import warnings
+from typing import Protocol
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+#: SuperLU column ordering: minimum degree on A^T + A. Measured on lrz's bordered
+#: collocation matrices (N = 425 / 1805): 0.7 / 3.9 ms per factorisation, fill 8.8e3 /
+#: 3.6e4, against 2.1 / 15.7 ms for the default COLAMD and 2.7 / 36 ms for the natural
+#: order (the dense border, phase and parameter rows/columns ruin the band otherwise).
+PERMC_SPEC = "MMD_AT_PLUS_A"
+
+
+class Factor(Protocol):
+    def solve(self, rhs: np.ndarray) -> np.ndarray: ...
+    def sign_logdet(self) -> tuple[float, float]: ...
+
+
+class DenseFactor:
+    """A dense square system [J; border] (AUTO's GEL: Gaussian elimination with
+    pivoting). Small systems are solved directly by LAPACK's gesv on each call
+    (cheaper than keeping a factorisation through scipy's wrappers at these
+    sizes); larger ones are LU-factorised once for Newton-chord reuse."""
+
+    #: Above this size the LU factors are kept for repeated solves.
+    LU_SIZE = 60
+
+    def __init__(self, M: np.ndarray):
+        self.M = M
+        self.lu = None
+        if len(M) > self.LU_SIZE:
+            with warnings.catch_warnings():
+                # An exactly singular matrix (at a branch point) is handled in solve().
+                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+                self.lu = scipy.linalg.lu_factor(M, check_finite=False)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        try:
+            if self.lu is not None:
+                x = scipy.linalg.lu_solve(self.lu, rhs, check_finite=False)
+            else:
+                x = np.linalg.solve(self.M, rhs)
+        except np.linalg.LinAlgError:
+            x = np.full(len(rhs), np.nan)
+        if not np.all(np.isfinite(x)):
+            # Exactly at a branch point the Newton matrix is singular but the
+            # system is consistent: take the minimum-norm least-squares step.
+            x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]
+        return x
+
+    def sign_logdet(self) -> tuple[float, float]:
+        sign, logdet = np.linalg.slogdet(self.M)
+        return float(sign), float(logdet)
+
+
+def dense_factor(J, border: np.ndarray) -> DenseFactor:
+    """Default `factor`: LU of [J; border] for dense J."""
+    return DenseFactor(np.vstack([np.asarray(J), border]))
+
+
+class SparseFactor:
+    """SuperLU factorisation (scipy.sparse.linalg.splu) of the bordered collocation
+    matrix, with the determinant's sign and log-magnitude (for the contract)."""
+
+    def __init__(self, M: sp.csc_matrix):
+        self.M = M
+        try:
+            self.lu = spla.splu(M, permc_spec=PERMC_SPEC)
+        except RuntimeError:
+            # Exactly singular: at a Hopf start point the period column T f(u_HB) is 0
+            # (constant solutions exist for every T). Solves fall back to least squares.
+            self.lu = None
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self.lu is None:
+            return np.linalg.lstsq(self.M.toarray(), np.asarray(rhs, float), rcond=None)[0]
+        return self.lu.solve(np.asarray(rhs, float))
+
+    def sign_logdet(self) -> tuple[float, float]:
+        if self.lu is None:
+            return 0.0, -np.inf
+        d = self.lu.U.diagonal()
+        if np.any(d == 0):
+            return 0.0, -np.inf
+        sign = _perm_sign(self.lu.perm_r) * _perm_sign(self.lu.perm_c) * np.prod(np.sign(d))
+        return float(sign), float(np.sum(np.log(np.abs(d))))
+
+
+def _perm_sign(p: np.ndarray) -> float:
+    """Sign (+1/-1) of a permutation given as an index array."""
+    p = np.asarray(p)
+    seen = np.zeros(len(p), bool)
+    sign = 1.0
+    for i in range(len(p)):
+        if seen[i]:
+            continue
+        j, length = i, 0
+        while not seen[j]:
+            seen[j] = True
+            j = p[j]
+            length += 1
+        if length % 2 == 0:
+            sign = -sign
+    return sign
+
+
+def null_vectors(A: np.ndarray, k: int) -> np.ndarray:
+    """k right singular vectors of the smallest singular values, shape (cols, k)."""
+    _, _, Vt = np.linalg.svd(A)
+    return Vt[-k:].T
+
+
+def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
+    """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
+    if it is negligible, the first non-negligible component positive."""
+    if abs(t[lam_index]) / (1 + abs(lam)) > epsl:
+        return t if t[lam_index] > 0 else -t
+    big = np.flatnonzero(np.abs(t) > 1e-8 * np.max(np.abs(t)))
+    return t if t[big[0]] > 0 else -t

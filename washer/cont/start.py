@@ -1,0 +1,160 @@
+"""Where a run starts: constants + problem + restart records -> the settings, the start
+data and the continued system (AUTO's RSPTAE/RSPTBV, the registry's lookup), then the
+run's numbering (NEWLAB: branch and label numbers) and the b-file's column titles.
+
+Each function does one of those jobs; `washer.cont.runner.build` strings them together.
+Errors are `RunError`s naming the constants file and what was expected.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+import washer.cont.systems  # noqa: F401  (fills the registry)
+from washer.auto.codes import split_code, type_name
+from washer.auto.files import find_record
+from washer.cont.problem import ProblemError
+from washer.cont.settings import Settings, SettingsError
+from washer.cont.system import StartData, lookup
+
+
+class RunError(RuntimeError):
+    """A run could not start (bad constants, missing restart label, ...)."""
+
+
+def settings_for(c, problem) -> tuple[Settings, object]:
+    """The run's Settings from the constants, checked against the equations, and the
+    problem with the constants' JAC applied."""
+    try:
+        s = Settings.from_constants(c)
+    except SettingsError as exc:
+        raise RunError(str(exc)) from None
+    if s.NDIM != problem.ndim:
+        raise RunError(f"{c.source}: NDIM={s.NDIM} but the equations '{problem.name}' have "
+                         f"{problem.ndim} unknowns")
+    if s.ISW not in (1, -1, 2):
+        raise RunError(f"{c.source}: ISW={s.ISW} is not implemented (1, -1 and 2 are: "
+                         "ISW = 3 loci of branch points in generic systems are not)")
+    for key in ("LAB", "IBR"):
+        if c[key] < 0:
+            raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 "
+                             "(0 = automatic)")
+    problem = problem.with_jac(s.JAC)
+    if problem.npar > s.NPAR:
+        s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
+    return s, problem
+
+
+def restart_record(c, problem, records, records_source: str = "the restart file"):
+    """The record IRS names (AUTO's FINDLB), or None for IRS = 0."""
+    irs = c["IRS"]
+    if irs in (0, "0"):
+        return None
+    if not records:
+        raise RunError(f"{c.source}: IRS={irs!r} needs a restart file (s=NAME) with records")
+    try:
+        rec = find_record(records, irs)
+    except LookupError as exc:
+        raise RunError(f"{records_source}: {exc}") from None
+    if rec.ndim_user != problem.ndim:
+        raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
+                         f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
+    return rec
+
+
+def start_values(c, s: Settings, problem, rec) -> tuple[np.ndarray, np.ndarray]:
+    """(u, par): the record's stored state and PAR (or the problem's stpnt), with the
+    constants' PAR and U overrides applied. par has at least NPAR entries."""
+    if rec is not None:
+        u = np.array(rec.U, dtype=float)
+        par = np.zeros(max(s.NPAR, len(rec.par)))
+        par[:len(rec.par)] = rec.par
+    else:
+        u, par = problem.start(s.NPAR)
+    if len(par) < s.NPAR:
+        par = np.r_[par, np.zeros(s.NPAR - len(par))]
+    for k, v in c["PAR"].items():
+        i = c.par_index(k)
+        if not 1 <= i <= len(par):
+            raise RunError(f"{c.source}: PAR={{{k!r}: ...}}: PAR({i}) is outside 1..NPAR="
+                             f"{len(par)}")
+        par[i - 1] = float(v)
+    for k, v in c["U"].items():
+        i = c.u_index(k)
+        if not 1 <= i <= problem.ndim:
+            raise RunError(f"{c.source}: U={{{k!r}: ...}}: U({i}) is outside 1..NDIM="
+                             f"{problem.ndim}")
+        if u.ndim == 1:
+            u[i - 1] = float(v)
+    return u, par
+
+
+def start_kind(rec) -> str:
+    """The registry's start kind of a record: its type name, or 'HB-curve' / 'LP-curve'
+    for points of the ISW = 2 curves of algebraic problems (the record's written code
+    carries the curve: a UZ on a Hopf curve is -34)."""
+    if rec is None:
+        return ""
+    base, curve = split_code(rec.ty)
+    if curve in (2, 3) and np.ndim(rec.U) == 1:
+        return {2: "LP-curve", 3: "HB-curve"}[curve]
+    return type_name(base)
+
+
+def system_for(c, s: Settings, problem, u, par, rec):
+    """The continued system of the start (registry key (IPS, ISW, start kind)) and the
+    settings it runs with (restarting a point of a curve continues the curve)."""
+    irs = c["IRS"]
+    kind = start_kind(rec)
+    if s.ISW == -1 and kind not in ("BP", "PD"):
+        raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
+                         f"{kind or 'a regular point'} (IRS={irs!r})")
+    if s.IPS == 2 and rec is not None and np.asarray(rec.U).ndim == 1 and kind != "HB":
+        raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
+                         f"solution, got {kind or 'a regular point'} of an algebraic branch "
+                         f"(IRS={irs!r})")
+    if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
+        raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart "
+                         f"at an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
+    if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
+        s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
+    isw_key = -1 if s.ISW == -1 and kind == "BP" else \
+        (2 if s.ISW == 2 or kind.endswith("curve") else 1)
+    try:
+        ctor = lookup(s.IPS, isw_key, kind)
+    except KeyError as exc:
+        raise RunError(f"{c.source}: {exc.args[0]}") from None
+    names = {int(k): v for k, v in c["unames"].items()}
+    try:
+        system = ctor(StartData(problem, s, u, par, rec, kind, names))
+    except (ValueError, ProblemError, np.linalg.LinAlgError) as exc:
+        raise RunError(f"{c.source}: cannot start from {kind or 'this point'}: {exc}") \
+            from None
+    return system, s, kind
+
+
+def branch_number(c, s: Settings, rec, kind: str, records) -> int:
+    """AUTO's NEWLAB: IBR if given; a new branch after the file's highest for IRS = 0
+    and switches; the HB's label for a periodic branch from it (and for a curve started
+    at a special point); else the record's branch."""
+    mbr = max((abs(r.br) for r in records), default=0) if records else 0
+    if c["IBR"]:
+        return c["IBR"]
+    if rec is None or s.ISW < 0:
+        return mbr + 1
+    if (abs(rec.ty) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
+        return rec.lab
+    return abs(rec.br)
+
+
+def first_label(c, records) -> int:
+    """Labels continue from LAB, or from the restart file's highest."""
+    mlab = max((r.lab for r in records), default=0) if records else 0
+    return c["LAB"] or mlab
+
+
+def column_titles(c, s: Settings, system) -> list:
+    """The b-file's titles: PAR(ICP(1)), the system's columns, the other free parameters
+    (PERIOD for PAR(11) unless the constants name it), as parnames names them."""
+    pn = {int(k): v for k, v in c["parnames"].items()}
+    return [pn.get(s.ICP[0], f"PAR({s.ICP[0]})")] + list(system.column_titles()) + \
+        [("PERIOD" if i == 11 and 11 not in pn else pn.get(i, f"PAR({i})")) for i in s.ICP[1:]]

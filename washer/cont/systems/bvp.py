@@ -1,0 +1,277 @@
+"""The base of every system discretised by collocation on [0, 1] (AUTO's BVP family:
+periodic orbits, the loci of their special points, and later general BVPs): the mesh,
+the unknown layout, the weighted inner product, the sparse factorisation, the phase
+reference, mesh adaptation, the restart of a stored profile, the reduction of the
+bordered matrix onto the boundary unknowns, and the b-file columns.
+
+Unknowns x = (W flattened node-major (NTST*NCOL + 1, n_comp), then `n_tail` parameter
+unknowns in the order the subclass chooses, PAR(ICP(1)) last). W's first NDIM components
+are the user's u; loci append their extra components (v of the fold of cycles).
+
+A subclass sets, before calling `set_mesh`: `settings`, `problem`, `ndim` (the user's
+NDIM), `n_comp`, `nint` (the integral conditions), `tail_weights()` (the THL weights of
+the n_tail = nint + 1 parameter unknowns, in layout order), and implements residual,
+jacobian, params, period(par), stability, active_tests, test_functions, accept,
+solution and directions. What it gets (the contract's BVP hooks, read by the iterator):
+
+wants_remesh(n_points) -> bool, remesh(x, *vectors) -> tuple
+    AUTO's ADAPT every IAD written points: a new mesh equidistributing the profile of u
+    (same NTST, NCOL); x and the vectors (tangent, ...) are interpolated onto it, the
+    phase reference too, and `mesh_changed()` drops what the subclass cached.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse.linalg as spla
+
+from washer.cont import collocation as col
+from washer.cont.linalg import PERMC_SPEC, SparseFactor
+from washer.cont.problem import FD_STEP
+from washer.cont.system import Solution
+
+
+class VectorField:
+    """f, f_u, f_p of a washer.cont.problem.Problem at many points at once: a thin
+    adapter over Problem.func_many / dfdu_many (one batched or vectorised call per
+    stencil, the user's Jacobian when JAC != 0, else central differences with AUTO's
+    step FD_STEP (1 + |u_i|))."""
+
+    def __init__(self, problem, ndim: int):
+        self.problem, self.ndim = problem, ndim
+
+    def f(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
+        """f at the rows of U (k, NDIM) -> (k, NDIM)."""
+        return self.problem.func_many(np.asarray(U, float), par)
+
+    def fu(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
+        """f_u at the rows of U -> (k, NDIM, NDIM)."""
+        U = np.asarray(U, float)
+        return self.problem.dfdu_many(U, np.broadcast_to(par, (len(U), len(par))))
+
+    def fp(self, U: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
+        """d f / d PAR(index) at the rows of U -> (k, NDIM): central differences in two
+        batched calls (a per-point analytic dfdp costs k calls: on the washer, 8640 kernel
+        calls took 40 % of a run; the difference quotient is accurate to ~1e-9 relative,
+        ample for Newton's parameter column)."""
+        h = FD_STEP * (1 + abs(par[index - 1]))
+        pp, pm = np.array(par, float), np.array(par, float)
+        pp[index - 1] += h
+        pm[index - 1] -= h
+        return (self.f(U, pp) - self.f(U, pm)) / (2 * h)
+
+
+def stored_profile(rec, ndim: int, n_keep: int | None = None):
+    """(mesh, U, udot) of an s-record of a BVP: U (NTPL, n_keep) its first n_keep (default
+    NDIM) components, udot the direction's (or None when not stored)."""
+    n_keep = ndim if n_keep is None else n_keep
+    U_r = np.asarray(rec.U, float)[:, :n_keep]
+    ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
+    if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
+        raise ValueError(f"BVP restart: record with {len(U_r)} points but NTST = "
+                         f"{ntst_r}, NCOL = {ncol_r} in its header")
+    t_r = getattr(rec, "t", None)
+    t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
+    ud_r = None
+    if rec.udot is not None:
+        ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n_keep]
+    return col.Mesh(t_r[::ncol_r].copy(), ncol_r), U_r, ud_r
+
+
+def onto_mesh(mesh_r: col.Mesh, profiles, ntst: int, ncol: int, guide: int):
+    """AUTO's ADAPT2: stored profiles moved onto a run's mesh of NTST intervals of
+    NCOL: copied when the mesh sizes agree, else NEWMSH (equidistributing the first
+    `guide` components of the first profile) + INTERP. Returns (mesh, profiles); None
+    profiles stay None."""
+    if (mesh_r.ntst, mesh_r.ncol) == (ntst, ncol):
+        return mesh_r, [None if P is None else P.copy() for P in profiles]
+    mesh = col.Mesh(col.new_mesh(mesh_r, profiles[0][:, :guide], ntst, periodic=True), ncol)
+    return mesh, [None if P is None else col.interpolate(mesh_r, P, mesh.tm, ncol)
+                  for P in profiles]
+
+
+class CollocationBVP:
+    """Base class: see the module docstring."""
+    curve_type = 0
+    arclength = "plane"
+    freezes_second_derivatives = False
+    nint = 1
+
+    # ------------------------------------------------------------------ set-up
+    @property
+    def n_tail(self) -> int:
+        return self.nint + 1
+
+    def set_mesh(self, mesh: col.Mesh) -> None:
+        self.mesh = mesh
+        self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint)
+        self.n_eq = self.coll.n_eq
+        thu = self.settings.theta_u(self.ndim)
+        th = np.r_[thu, np.ones(self.n_comp - self.ndim)]
+        self.weights = np.r_[np.kron(self.coll.w_node, th), self.tail_weights()]
+
+    def tail_weights(self) -> np.ndarray:
+        raise NotImplementedError
+
+    def period(self, par) -> float:
+        """The period T scaling u' = T f(u) (PAR(11))."""
+        return float(par[10])
+
+    def set_phase_reference(self, U: np.ndarray, par: np.ndarray) -> None:
+        """CONTBV's STUPBV: the profile of u becomes the integral phase condition's
+        reference, u'_old = T f(u_old) at the nodes (AUTO's UOLDPS, UPOLDP)."""
+        self.U_old = np.array(U[:, :self.ndim])
+        self.up_old = self.period(par) * self.field.f(self.U_old, par)
+
+    # ------------------------------------------------------------------ contract
+    def factor(self, J, border: np.ndarray) -> SparseFactor:
+        return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
+
+    def inner(self, a: np.ndarray, b: np.ndarray) -> float:
+        """int_0^1 sum_i THU_i a_i(t) b_i(t) dt + sum THL(k) a_k b_k over the parameter
+        unknowns (AUTO's RINPR + THL; THL(11) = 0 by default)."""
+        return float(np.dot(a, self.weights * b))
+
+    def border(self, t: np.ndarray) -> np.ndarray:
+        """The row r with r @ a == inner(a, t)."""
+        return self.weights * np.asarray(t, float)
+
+    def start(self):
+        return self._start
+
+    def info(self, x, code) -> dict:
+        """Nothing is computed at special points of BVPs beyond the b-row."""
+        return {}
+
+    # ------------------------------------------------------------------ mesh adaptation
+    def wants_remesh(self, n_points: int) -> bool:
+        """AUTO adapts the mesh after point NTOT when IAD > 0 and NTOT % IAD == 0."""
+        iad = self.settings.IAD
+        return iad > 0 and n_points % iad == 0
+
+    def remesh(self, x: np.ndarray, *vectors) -> tuple:
+        """AUTO's ADAPT: a new mesh (same NTST, NCOL) equidistributing EQDF of the
+        profile of u; x and every further vector in the unknown layout (tangent,
+        previous point) are interpolated onto it; the phase reference too."""
+        old = self.mesh
+        W = self.coll.profile(x)
+        tm = col.new_mesh(old, W[:, :self.ndim], old.ntst, periodic=True)
+        nt = self.n_tail
+
+        def move(v):
+            v = np.asarray(v, float)
+            Wv = v[:self.coll.n_u].reshape(-1, self.n_comp)
+            return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), v[-nt:]]
+        out = [move(x)] + [move(v) for v in vectors]
+        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
+        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
+        self.set_mesh(col.Mesh(tm, old.ncol))
+        self.mesh_changed()
+        return tuple(out)
+
+    def mesh_changed(self) -> None:
+        """Drop what was cached on the old mesh."""
+
+    # ------------------------------------------------------------------ reduction
+    def reduce(self, J, border: np.ndarray):
+        """Reduce the bordered matrix [J; border] onto the unknowns S = (W(0), the
+        parameter unknowns) and the equations R = (boundary conditions, integrals,
+        border): returns (Sc, X) with Sc = M_RS - M_RI M_II^-1 M_IS, a square matrix
+        (n_comp + n_tail) whose determinant vanishes exactly where the bordered matrix
+        is singular (M_II, the collocation equations for the nodes after t = 0, is a
+        discretised initial-value problem and stays invertible), and X = M_II^-1 M_IS
+        for the back substitution of the interior nodes."""
+        M = self.coll.bordered(J, border).tocsc()
+        n, nu, nc = self.n_comp, self.coll.n_u, self.coll.n_coll
+        cols_S = np.r_[np.arange(n), nu + np.arange(self.n_tail)]
+        cols_I = np.arange(n, nu)
+        M_II = M[:nc][:, cols_I].tocsc()
+        M_IS = M[:nc][:, cols_S].toarray()
+        X = spla.splu(M_II, permc_spec=PERMC_SPEC).solve(M_IS)
+        M_R = M[nc:]
+        Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X
+        return Sc, X
+
+    def bp_function(self, J, tangent: np.ndarray) -> float:
+        """The BP test of BVPs: det of the bordered Jacobian reduced onto the boundary
+        unknowns (`reduce`), as det(S / |S|_F): bounded by 1, independent of the overall
+        scale, and zero exactly where the bordered Jacobian is singular, like AUTO's
+        FNBPBV (the reduced determinant over det P1). (Normalising each row instead
+        would divide out the very row that vanishes at a decoupled BP, e.g.
+        1 - exp((mu - a) T) of a symmetry-breaking direction.)"""
+        Sc = self.reduce(J, self.weights * tangent)[0]
+        scale = np.linalg.norm(Sc)
+        if not np.isfinite(scale) or scale == 0:
+            return 0.0
+        sign, logdet = np.linalg.slogdet(Sc / scale)
+        return float(sign * math.exp(logdet))
+
+    def null_vector(self, J, border: np.ndarray) -> np.ndarray:
+        """A null vector of the (singular or nearly singular) bordered matrix
+        [J; border]: the smallest right singular vector of the reduced matrix, then the
+        interior nodes by back substitution."""
+        Sc, X = self.reduce(J, border)
+        n, nu = self.n_comp, self.coll.n_u
+        _, _, Vt = np.linalg.svd(Sc)
+        zS = Vt[-1]
+        z = np.zeros(self.coll.n_x)
+        z[np.r_[np.arange(n), nu + np.arange(self.n_tail)]] = zS
+        z[n:nu] = -X @ zS
+        return z
+
+    # ------------------------------------------------------------------ output
+    def n2(self) -> int:
+        """AUTO's N2: how many MAX U(i) columns the b-file shows (ICP counts at least
+        two entries: the period is free on periodic branches)."""
+        return max(0, min(self.ndim, 7 - max(len(self.settings.ICP), 2)))
+
+    def measure(self, U: np.ndarray) -> float:
+        """The b-file's second column by IPLT (STPLBV) on the profile of u: 0 or out of
+        range: L2 norm sqrt(int sum THU_i u_i^2 dt) (RNRMSQ); 1..NDIM: max of U(IPLT);
+        -NDIM..-1: min; NDIM+1..2 NDIM: integral of U(IPLT - NDIM); 2 NDIM+1..3 NDIM: L2
+        norm of U(IPLT - 2 NDIM)."""
+        n, iplt = self.ndim, self.settings.IPLT
+        w = self.coll.w_node
+        iab = abs(iplt)
+        if iplt > 0 and iab <= n:
+            return float(np.max(U[:, iab - 1]))
+        if iplt < 0 and iab <= n:
+            return float(np.min(U[:, iab - 1]))
+        if n < iplt <= 2 * n:
+            return float(w @ U[:, iplt - n - 1])
+        if 2 * n < iplt <= 3 * n:
+            return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
+        thu = self.settings.theta_u(n)
+        return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
+
+    def column_titles(self) -> list:
+        n, iplt = self.ndim, self.settings.IPLT
+        iab = abs(iplt)
+        if iplt > 0 and iab <= n:
+            first = f"MAX U({iab})"
+        elif iplt < 0 and iab <= n:
+            first = f"MIN U({iab})"
+        elif n < iplt <= 2 * n:
+            first = f"INTEGRAL U({iplt - n})"
+        elif 2 * n < iplt <= 3 * n:
+            first = f"L2-NORM U({iplt - 2 * n})"
+        else:
+            first = "L2-NORM"
+        un = self.unames
+        return [first] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
+                          for i in range(1, self.n2() + 1)]
+
+    def bvp_solution(self, x, tangent, par, rldot) -> Solution:
+        """The Solution of x: b-row columns of u, the whole profile W and its direction
+        stored; rldot(tangent) gives the record's parameter derivatives."""
+        W = self.coll.profile(x)
+        cols = [self.measure(W)] + [float(np.max(W[:, i])) for i in range(self.n2())]
+        udot = None
+        rl = []
+        if tangent is not None:
+            udot = self.coll.profile(tangent).copy()
+            rl = rldot(tangent)
+        return Solution(par=par, columns=cols, u=W.copy(), t=self.mesh.node_times(),
+                        udot=udot, rldot=rl, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
+                        ndim_user=self.ndim)
