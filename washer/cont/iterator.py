@@ -42,6 +42,23 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
+def adapt_step(ds: float, nit: int, s) -> float:
+    """AUTO's ADPTDS: grow or shrink the step by the Newton iteration count of the
+    last step (settings s: ITNW, DSMAX), capped at DSMAX."""
+    if nit <= 1:
+        f = 2.0
+    elif nit == 2:
+        f = 1.5
+    elif 3 <= nit <= s.ITNW // 2:
+        f = 1.1
+    elif nit >= s.ITNW:
+        f = 0.5
+    else:
+        f = 1.0
+    new = ds * f
+    return float(math.copysign(min(abs(new), s.DSMAX), new))
+
+
 class ConvergenceError(RuntimeError):
     """A corrector (or start correction) did not converge."""
 
@@ -267,22 +284,6 @@ class Continuation:
                     return None, ds
                 self._pending.append(Step("note", text=f"NOTE:Retrying step ({exc})"))
 
-    def adapt(self, ds: float, nit: int) -> float:
-        """AUTO's ADPTDS: grow or shrink by the Newton iteration count, cap at DSMAX."""
-        s = self.s
-        if nit <= 1:
-            f = 2.0
-        elif nit == 2:
-            f = 1.5
-        elif 3 <= nit <= s.ITNW // 2:
-            f = 1.1
-        elif nit >= s.ITNW:
-            f = 0.5
-        else:
-            f = 1.0
-        new = ds * f
-        return float(math.copysign(min(abs(new), s.DSMAX), new))
-
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
         """The earliest accepted zero between prev and cur (`events.first_zero`)."""
@@ -399,7 +400,7 @@ class Continuation:
         yield from self._accept(nxt, current)
         st.n_since_adapt += 1
         if self.s.IADS > 0 and st.n_since_adapt >= self.s.IADS:
-            st.ds = self.adapt(st.ds, nxt.iterations)
+            st.ds = adapt_step(st.ds, nxt.iterations, self.s)
             st.n_since_adapt = 0
 
     def _accept(self, pt: Point, prev: Point):

@@ -6,6 +6,8 @@ fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
 hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
 periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
 cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
+bvp          the collocation base of periodic orbits and their loci (registers nothing)
+_algebraic, _loci  the bases of the algebraic systems
 """
 import importlib
 import pkgutil
