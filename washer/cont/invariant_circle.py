@@ -53,11 +53,15 @@ import numpy as np
 #: error of ~1e-10 (the washer's flow at rtol 1e-10); asking less would chase noise.
 NEWTON_TOL = 1e-9
 NEWTON_MAX_ITER = 10
-#: Eigenvectors whose energy in Fourier modes |k| <= K/LOW_FRACTION exceeds LOW_ENERGY
-#: of the total count as resolved when the normal moduli are read (Jorba's filter):
-#: the high modes of a degree-K interpolant are not.
+#: Eigenvectors whose energy in Fourier modes |k| <= K/LOW_FRACTION is at least LOW_ENERGY
+#: of the total count as resolved when the normal moduli are read (Jorba's filter): the
+#: high modes of a degree-K interpolant are not. (An eigenvalue of a circle shared by two
+#: eigenvectors mixes them: a resolved one may show half its energy low.)
 LOW_FRACTION = 3
-LOW_ENERGY = 0.9
+LOW_ENERGY = 0.4
+#: Moduli of one circle of eigenvalues agree to the eigensolver's accuracy (~1e-10 for the
+#: resolved ones); logs closer than this are one group.
+GROUP_TOL = 1e-8
 
 
 class CircleError(RuntimeError):
@@ -124,7 +128,7 @@ def resample(X, N: int) -> np.ndarray:
 class Circle:
     """An invariant circle: node values X (N, n) at theta_j = 2 pi j / N, rotation number
     rho (turns per iterate), parameter p; residual max|G|; moduli: the normal Lyapunov
-    multipliers per iterate (n - 1,) in decreasing order (nan if not computed), tangent:
+    multipliers per iterate (distinct values, decreasing; nan if not computed), tangent:
     the tangent direction's modulus (1 up to discretisation)."""
     X: np.ndarray
     rho: float
@@ -185,11 +189,14 @@ def normal_moduli(X, rho: float, DF) -> tuple[np.ndarray, float, np.ndarray]:
     """Stability of the circle X (N, n) with rotation number rho from the Jacobians DF
     (N, n, n) at its nodes: the generalised eigenproblem blockdiag(DF) v = lambda (R (x) I) v.
 
-    Returns (moduli (n - 1,) of the normal directions in decreasing order, the tangent
-    direction's modulus, all eigenvalues (N n,)). Each of the n circles of eigenvalues is
-    represented by its eigenvectors that are resolved (at least LOW_ENERGY of their energy
-    in Fourier modes |k| <= K / LOW_FRACTION); the tangent one is the circle whose
-    eigenvectors best align with x'(theta)."""
+    Returns (the distinct moduli of the normal directions in decreasing order (at most
+    n - 1: a complex pair of normal multipliers shares one), the tangent direction's
+    modulus, all eigenvalues (N n,)). Only resolved eigenvectors are read (at least
+    LOW_ENERGY of their energy in Fourier modes |k| <= K / LOW_FRACTION: the high modes of
+    a degree-K interpolant carry spurious moduli); their moduli, equal on each circle to
+    the eigensolver's accuracy, are grouped where consecutive logs differ by less than
+    GROUP_TOL. The tangent is the eigenvector best aligned with x'(theta); its group is
+    left out."""
     X = np.asarray(X, dtype=float)
     N, n = X.shape
     K = (N - 1) // 2
@@ -197,42 +204,21 @@ def normal_moduli(X, rho: float, DF) -> tuple[np.ndarray, float, np.ndarray]:
     A = np.zeros((N * n, N * n))
     for j in range(N):
         A[j * n:(j + 1) * n, j * n:(j + 1) * n] = DF[j]
-    B = np.kron(R, np.eye(n))
-    lam, V = np.linalg.eig(np.linalg.solve(B, A))
+    lam, V = np.linalg.eig(np.linalg.solve(np.kron(R, np.eye(n)), A))
     # Energy of each eigenvector in the low Fourier modes (in theta, per component).
-    Vt = V.reshape(N, n, -1)
-    C = np.abs(np.fft.fft(Vt, axis=0)) ** 2
+    C = np.abs(np.fft.fft(V.reshape(N, n, -1), axis=0)) ** 2
     k = np.abs(np.r_[np.arange(K + 1), np.arange(-K, 0)])
     low = C[k <= max(1, K // LOW_FRACTION)].sum(axis=(0, 1)) / C.sum(axis=(0, 1))
-    mod = np.abs(lam)
-    ok = low >= LOW_ENERGY
-    # Tangent: the eigenvector of largest overlap with x'(theta) (a k = 0 mode of the shift).
+    logm = np.log(np.abs(lam))
     dX = (shift_matrix(N, 0.0, 1) @ X).ravel()
-    dX /= np.linalg.norm(dX)
-    overlap = np.abs(dX @ V.conj()) / np.linalg.norm(V, axis=0)
+    overlap = np.abs(dX @ V.conj()) / (np.linalg.norm(V, axis=0) * np.linalg.norm(dX))
     i_tan = int(np.argmax(overlap))
-    tangent = float(mod[i_tan])
-    # Group the resolved moduli into n circles: sort, cut at the n - 1 largest log gaps,
-    # drop the tangent's group, keep one modulus per group (its median).
-    sel = np.sort(np.log(mod[ok & (np.arange(mod.size) != i_tan)]))[::-1]
-    groups = _cluster(sel, n - 1) if sel.size else []
-    moduli = np.array([np.exp(np.median(g)) for g in groups])
-    # The tangent's own circle is among the groups: remove the group nearest log|tangent|.
-    if moduli.size >= n:
-        drop = int(np.argmin(np.abs(np.log(moduli) - np.log(tangent))))
-        moduli = np.delete(moduli, drop)
-    return np.sort(moduli)[::-1], tangent, lam
-
-
-def _cluster(values: np.ndarray, m: int) -> list[np.ndarray]:
-    """Split sorted (descending) values into at most m + 1 groups at the largest gaps."""
-    if values.size <= 1:
-        return [values]
-    gaps = -np.diff(values)
-    tol = 1e-6 * max(1.0, float(np.abs(values).max()))
-    cut = np.sort(np.argsort(gaps)[::-1][:m])
-    cut = cut[gaps[cut] > tol]
-    return [g for g in np.split(values, cut + 1) if g.size]
+    tangent = float(np.exp(logm[i_tan]))
+    sel = np.sort(logm[low >= LOW_ENERGY])[::-1]
+    groups = np.split(sel, np.nonzero(-np.diff(sel) > GROUP_TOL)[0] + 1) if sel.size else []
+    moduli = [np.exp(np.median(g)) for g in groups
+              if not np.any(np.abs(g - logm[i_tan]) <= GROUP_TOL)]
+    return np.array(sorted(moduli, reverse=True)), tangent, lam
 
 
 def newton(eq: InvarianceEquation, z0, extra=None, tol: float = NEWTON_TOL,
@@ -262,8 +248,9 @@ def newton(eq: InvarianceEquation, z0, extra=None, tol: float = NEWTON_TOL,
 @dataclass
 class CircleBranch:
     """A continued family of invariant circles, in the order computed: circles (list of
-    Circle), p (m,), rho (m,), amplitude (m,) = the largest Fourier-mode-1 amplitude of
-    the circle (its radius for a round circle), moduli (m, n - 1), stable (m,), status."""
+    Circle), p (m,), rho (m,), amplitude (m,) = the Fourier-mode-1 amplitude of the circle
+    (2-norm over components: its radius for a round circle), leading (m,): the largest
+    normal modulus, stable (m,), status."""
     circles: list
     status: str
     wall: float
@@ -281,8 +268,9 @@ class CircleBranch:
         return np.array([amplitudes(c.X)[1] for c in self.circles])
 
     @property
-    def moduli(self) -> np.ndarray:
-        return np.array([c.moduli for c in self.circles])
+    def leading(self) -> np.ndarray:
+        """The largest normal modulus of each circle (m,): < 1 where it attracts."""
+        return np.array([c.moduli.max() if c.moduli.size else np.nan for c in self.circles])
 
     @property
     def stable(self) -> np.ndarray:
@@ -364,10 +352,17 @@ def continue_circle(fmap, first: Circle, stop: float, *, second: Circle | None =
         z = zof(circles[-1])
         zp = z + h * t
         eq.set_reference(circles[-1].X)
+        last = (zp[-1] - stop) * direction >= 0
+        if last:        # the step would pass the end: predict onto p = stop, keep p there
+            zp = z + (stop - z[-1]) / t[-1] * t
+            e_p = np.zeros(zp.size)
+            e_p[-1] = 1.0
 
-        def extra(zz, zp=zp):
-            return float((w * t) @ (zz - zp)), w * t
-
+            def extra(zz):
+                return zz[-1] - stop, e_p
+        else:
+            def extra(zz, zp=zp):
+                return float((w * t) @ (zz - zp)), w * t
         try:
             zn, DF, res, it = newton(eq, zp, extra, tol)
         except (CircleError, np.linalg.LinAlgError, ArithmeticError, RuntimeError):
@@ -377,12 +372,7 @@ def continue_circle(fmap, first: Circle, stop: float, *, second: Circle | None =
                 break
             continue
         X, rho, p = eq.split(zn)
-        if (p - stop) * direction > 0:     # passed the end: land on p = stop
-            zs = z + (zn - z) * (stop - z[-1]) / (zn[-1] - z[-1])
-            e_p = np.zeros(zn.size)
-            e_p[-1] = 1.0
-            zn, DF, res, it = newton(eq, zs, lambda zz: (zz[-1] - stop, e_p), tol)
-            X, rho, p = eq.split(zn)
+        if last:
             status = "reached"
         moduli, tangent, _ = normal_moduli(X, rho, DF)
         c = Circle(X, rho, p, res, moduli, tangent, it)

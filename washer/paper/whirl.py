@@ -48,6 +48,10 @@ class WhirlFamily:
     seconds: float
     hopf_C_p: float = float("nan")
     labels: list = field(default_factory=list)
+    #: Time average of r over each orbit (m) and the largest tilt of the tub's axis
+    #: from the vertical (rad), per orbit.
+    r_mean: np.ndarray = field(default_factory=lambda: np.array([]))
+    tilt_max: np.ndarray = field(default_factory=lambda: np.array([]))
 
 
 class _Profiles:
@@ -78,9 +82,12 @@ class _Profiles:
         mu = np.asarray(st.values) if st is not None else np.array([1.0])
         # The trivial multiplier (closest to 1) says nothing about stability.
         nontrivial = np.delete(mu, np.argmin(np.abs(mu - 1))) if len(mu) > 1 else mu
+        t = np.asarray(lab.solution.t)            # mesh times in [0, 1]
+        r_mean = float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+        tilt = np.arccos(np.clip(np.cos(U[:, 3]) * np.cos(U[:, 4]), -1.0, 1.0)).max()
         self.rows.append((lab.values[0], lab.solution.par[10], r.min(), r.max(),
                           U[:, 2].min(), U[:, 2].max(), np.abs(nontrivial).max(),
-                          bool(lab.stable), lab.ty))
+                          bool(lab.stable), r_mean, tilt, lab.ty))
 
 
 def whirl_family(folder: Path, progress=print) -> WhirlFamily:
@@ -94,12 +101,14 @@ def whirl_family(folder: Path, progress=print) -> WhirlFamily:
     progress("  the whirl's periodic orbits from the Hopf point to C_p = 0 (c.washer.po)")
     res = run(Path(folder) / "c.washer.po", verbose=False, sinks=[sink])
     rows = sink.rows
-    cols = list(zip(*rows)) if rows else [[]] * 9
+    cols = list(zip(*rows)) if rows else [[]] * 11
     arr = [np.array(c, dtype=float) for c in cols[:7]]
     return WhirlFamily(*arr, stable=np.array(cols[7], dtype=bool), status=str(res.status),
                        seconds=time.perf_counter() - t0,
                        hopf_C_p=float(arr[0][0]) if len(arr[0]) else float("nan"),
-                       labels=[(c, t) for c, *_, t in rows if t])
+                       labels=[(c, t) for c, *_, t in rows if t],
+                       r_mean=np.array(cols[8], dtype=float),
+                       tilt_max=np.array(cols[9], dtype=float))
 
 
 def simulated_envelope(params, t_end: float = T_LONG, window: float = WINDOW) -> dict:
