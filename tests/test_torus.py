@@ -1,11 +1,11 @@
-"""The exact whirl (washer.torus): the half-period map of the rotating frame and its
+"""The exact whirl (washer.machine.torus): the half-period map of the rotating frame and its
 invariant circles, checked against independent computations: finite differences of the
-map, the one-period monodromy matrix of washer.forced, the normal form of a supercritical
+map, the one-period monodromy matrix of washer.machine.forced, the normal form of a supercritical
 Neimark-Sacker point, and a long simulation of eq 48 that knows nothing of the circle."""
 import numpy as np
 import pytest
 
-from washer import forced, torus
+from washer.machine import forced, torus
 from washer.cont import invariant_circle as ic
 
 
@@ -16,7 +16,7 @@ def response(params):
 
 def test_forced_response_is_a_fixed_point_of_the_half_period_map(params, response):
     """The half-turn symmetry makes the rotating-frame orbit T/2-periodic: the T-periodic
-    response of washer.forced is a fixed point of the T/2 map (to the flow's accuracy)."""
+    response of washer.machine.forced is a fixed point of the T/2 map (to the flow's accuracy)."""
     xi = forced.rotating_from_ground(response.u0, params["Omega"], 0.0)
     F, _, _ = torus.half_period_map(params)(xi[None, :], params["C_p"])
     assert np.abs(F[0] - xi).max() < 1e-8 * (1 + np.abs(xi).max())
@@ -51,7 +51,7 @@ def test_half_period_map_derivatives_against_finite_differences(params, response
 
 
 def test_birth_is_the_torus_point(params):
-    """At the TR point of washer.forced the T/2 map's critical multiplier is on the unit
+    """At the TR point of washer.machine.forced the T/2 map's critical multiplier is on the unit
     circle, and its square is the one-period critical multiplier."""
     b = torus.birth(params)
     c = forced.critical_cp(params)

@@ -2,7 +2,7 @@
 
 At constant speed the ground-frame equations (eq 48) are T-periodic (T = 1/Omega); in the
 rotating frame (eq 52) they are T/2-periodic (the half-turn symmetry of the four rods,
-`washer.forced`). Past the torus (TR) point of the forced response the attractor is a
+`washer.machine.forced`). Past the torus (TR) point of the forced response the attractor is a
 two-frequency motion: the spin Omega and the whirl. Its section by the stroboscopic map
 over T/2 in rotating coordinates,
 
@@ -38,9 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from washer import forced, kernel
+from washer.machine import forced, kernel
 from washer.cont import invariant_circle as ic
-from washer.params import Params
+from washer.machine.params import Params
 
 TWO_PI = 2.0 * np.pi
 #: Nodes on the circle (2K + 1). At C_p = 0 the circle's Fourier amplitudes fall ~2.7x
@@ -50,7 +50,7 @@ TWO_PI = 2.0 * np.pi
 N_NODES = 33
 #: Radius (m, offset of the tub) of the first circle, born at the TR point.
 FIRST_AMPLITUDE = 0.004
-#: Integration tolerances of the map: those of the forced response (`washer.forced`).
+#: Integration tolerances of the map: those of the forced response (`washer.machine.forced`).
 RTOL, ATOL = forced.RTOL, forced.ATOL
 
 
