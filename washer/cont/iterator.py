@@ -174,14 +174,22 @@ class Continuation:
         raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
 
     def correct_start(self, x):
-        """Newton at fixed PAR(ICP(1)) with AUTO's EPSU test: a start point that
-        is not quite a solution (STPNT rounding, a restart in other parameters)
-        is corrected before the branch begins. The matrix is [J; e_last] (the
-        principal parameter held), through the system's own factorisation."""
+        """Newton with AUTO's EPSU test: a start point that is not quite a solution
+        (STPNT rounding, a restart in other parameters) is corrected before the
+        branch begins, orthogonally to the branch: the matrix is [J; t] with t the
+        null vector of J at the start. (Holding PAR(ICP(1)) instead fails where the
+        branch is parallel to the other unknowns there: a locus along which the
+        principal parameter is constant, as dd2's period-doubling curve p1 = 3.)"""
         s = self.s
         x = np.array(x, dtype=float)
         e = np.zeros(len(x))
         e[-1] = 1.0
+        try:
+            J0 = self.sys.jacobian(x)
+        except ProblemError as exc:
+            raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
+        if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
+            e = np.linalg.svd(J0)[2][-1]
         for _ in range(START_ITERATIONS):
             try:
                 G = self.sys.residual(x)
@@ -199,9 +207,8 @@ class Continuation:
             x = x + dx
             if np.max(np.abs(dx)) / (1 + np.max(np.abs(x[:-1]))) <= s.EPSU:
                 return x
-        raise ConvergenceError("the starting point is not a solution and Newton (at fixed "
-                               f"PAR({self.s.ICP[0]})) did not converge in {START_ITERATIONS} "
-                               "iterations to EPSU")
+        raise ConvergenceError("the starting point is not a solution and Newton did not "
+                               f"converge in {START_ITERATIONS} iterations to EPSU")
 
     # -------------------------------------------------------------- tangent
     def tangent(self, J, ref):

@@ -161,7 +161,8 @@ def build(c, problem, records=None, name: str = "", records_source: str = "the r
     run = Run(c, s, system, name or problem.name, start.column_titles(c, s, system),
               rec.lab if rec is not None else 0, first_label=rec is None,
               label0=start.first_label(c, known))
-    mode = "switch" if (s.ISW == -1 and kind == "BP" and system.arclength == "sphere") else "fresh"
+    mode = getattr(system, "start_mode", None) or \
+        ("switch" if (s.ISW == -1 and kind == "BP" and system.arclength == "sphere") else "fresh")
     return run, br, mode
 
 

@@ -20,6 +20,19 @@ from washer.auto.constants import DEFAULTS
 PERTURB = 1 + 1e-7
 
 
+#: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
+UNSUPPORTED_IPS = {
+    5: "algebraic optimisation with FOPT",
+    7: "boundary value problems with Floquet multipliers",
+    9: "homoclinic and heteroclinic orbits (HomCont)",
+    11: "spatially uniform solutions of a parabolic PDE",
+    12: "travelling waves of a parabolic PDE",
+    14: "time evolution of a parabolic PDE with periodic boundary conditions",
+    15: "optimisation of periodic solutions",
+    16: "time evolution of a parabolic PDE with user boundary conditions",
+    17: "stationary states of a parabolic PDE",
+}
+
 #: AUTO's defaults (main.f90:INIT), one table for the constants files and the engine.
 _D = DEFAULTS
 
@@ -107,6 +120,8 @@ class Settings:
         if name in ("HB", "BT", "CP", "GH", "ZH"):
             return self.IPS in (-1, 1, 11) and isp not in (0, 3)
         if name in ("PD", "TR"):
+            if self.IPS == -1:                  # maps: any ISP but 0
+                return isp != 0
             return isp in (2, 4) and self.IPS in (2, 7, 12)
         return False
 
@@ -145,10 +160,13 @@ class Settings:
             if i < 1:
                 raise SettingsError(f"{src}: ICP = {c['ICP']}: parameter indices start at 1")
         ips = c["IPS"]
+        if ips in UNSUPPORTED_IPS:
+            raise SettingsError(f"{src}: IPS = {ips} ({UNSUPPORTED_IPS[ips]}) is not supported "
+                                "yet")
         npar = c["NPAR"]
         if ips in (1, -1, 2) or ips >= 7:
             npar = max(npar, 11)             # PAR(11) holds the period (INIT2)
-        if ips == 2:
+        if ips == 2 or (ips == -1 and c["ISP"] != 0):
             npar = max(npar, 12)             # PAR(12): torus angle
         npar = max(npar, max(icp))
         thl = {c.par_index(k): float(v) for k, v in c["THL"].items()}
