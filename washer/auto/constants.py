@@ -34,8 +34,6 @@ REAL_KEYS = {"EPSL", "EPSU", "EPSS", "DS", "DSMIN", "DSMAX", "RL0", "RL1", "A0",
 STR_KEYS = {"e", "s", "dat", "sv", "TY"}
 #: Constants accepted but without effect in this engine, with the reason.
 IGNORED = {
-    "NBC": "boundary conditions: general BVPs (IPS = 4) are not implemented; IPS = 2 sets its own",
-    "NINT": "integral conditions: general BVPs are not implemented; IPS = 2 sets its own",
     "IID": "the d-file is always written at AUTO's level 2",
     "IIS": "the direction is always stored in the s-file (AUTO's IIS = 3)",
     "dat": "starting from data files is not implemented (stpnt(u, par, t) gives an orbit)",

@@ -13,6 +13,15 @@ User problems live in NAME.py beside the constants file (e='NAME'):
     def pvls(u, par): ...         # optional, AUTO's PVLS: set PAR entries in place
                                   # from the solution u ((NDIM,) for equilibria,
                                   # (NTPL, NDIM) mesh values for periodic orbits)
+    def bcnd(u0, u1, par): ...    # boundary value problems (IPS = 4), AUTO's BCND:
+                                  # the NBC boundary conditions, (NBC,), from
+                                  # u0 = u(0), u1 = u(1) (NDIM,) each
+    def icnd(u, uold, udot, upold, par): ...
+                                  # IPS = 4, AUTO's ICND: the NINT integrands, (NINT,),
+                                  # at one point t of the mesh: u(t), the previous
+                                  # solution uold(t), the branch direction udot(t)
+                                  # and upold(t) = f(uold(t)) (for phase conditions);
+                                  # the engine integrates them over [0, 1]
 
 Built-in problems may also pass batched callables, `func_batch(us, pars)`
 ((k, NDIM), (k, NPAR) -> (k, NDIM)) and `dfdu_batch(us, pars)` (-> (k, NDIM,
@@ -29,6 +38,8 @@ import inspect
 from pathlib import Path
 
 import numpy as np
+
+from washer.cont.pvls import Orbit
 
 #: Relative finite-difference step for Jacobians: AUTO's HMACH = 1e-7, central
 #: differences with h = 1e-7 (1 + |u_i|) (ae.f90:FUNI).
@@ -56,8 +67,11 @@ class Problem:
 
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
-                 parnames: dict | None = None, unames: dict | None = None, jac: int = 0):
+                 parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
+                 bcnd=None, icnd=None):
         self.ndim, self.name, self.npar = ndim, name, npar
+        self._bcnd, self._icnd = bcnd, icnd
+        self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
         self._vectorised = None       # does func accept (ndim, k) arrays? (checked once)
@@ -270,11 +284,82 @@ class Problem:
         par = np.array(par, dtype=float)
         if self._pvls is not None:
             try:
-                self._pvls(np.array(u, dtype=float), par)
+                # An Orbit (washer.cont.pvls: a BVP solution with its mesh and AUTO's
+                # GETP helpers) is a fresh array already: passed as it is.
+                self._pvls(u if isinstance(u, Orbit) else np.array(u, dtype=float), par)
             except Exception as exc:
                 raise ProblemError(f"{self.name}: pvls(u, par) failed: {type(exc).__name__}: "
                                    f"{exc}") from exc
         return par
+
+    def bcnd(self, u0, u1, par, nbc: int) -> np.ndarray:
+        """AUTO's BCND: the (nbc,) boundary conditions at u(0) = u0, u(1) = u1."""
+        if self._bcnd is None:
+            raise ProblemError(f"{self.name}: NBC = {nbc} boundary conditions but no "
+                               "bcnd(u0, u1, par)")
+        fb = np.atleast_1d(self._call(self._bcnd, "bcnd", u0, u1, par))
+        if fb.shape != (nbc,):
+            raise ProblemError(f"{self.name}: bcnd returned shape {fb.shape}, expected "
+                               f"({nbc},) (NBC)")
+        if not np.all(np.isfinite(fb)):
+            raise ProblemError(f"{self.name}: bcnd(u0, u1, par) returned non-finite values")
+        return fb
+
+    def icnd(self, u, uold, udot, upold, par, nint: int) -> np.ndarray:
+        """AUTO's ICND: the (nint,) integrands at one mesh point."""
+        if self._icnd is None:
+            raise ProblemError(f"{self.name}: NINT = {nint} integral conditions but no "
+                               "icnd(u, uold, udot, upold, par)")
+        fi = np.atleast_1d(self._call(self._icnd, "icnd", u, uold, udot, upold, par))
+        if fi.shape != (nint,):
+            raise ProblemError(f"{self.name}: icnd returned shape {fi.shape}, expected "
+                               f"({nint},) (NINT)")
+        if not np.all(np.isfinite(fi)):
+            raise ProblemError(f"{self.name}: icnd(u, uold, udot, upold, par) returned "
+                               "non-finite values")
+        return fi
+
+    def icnd_many(self, U, Uold, Udot, Upold, par, nint: int) -> np.ndarray:
+        """The integrands at k mesh points at once: each argument (k, ndim) -> (k, nint).
+        A user's icnd written with numpy operations on rows (`u[0] - par[1]`) is called
+        once with (ndim, k) arrays, after a first call has been checked point by point;
+        otherwise once per point (one check for the whole batch)."""
+        if self._icnd is None:
+            raise ProblemError(f"{self.name}: NINT = {nint} integral conditions but no "
+                               "icnd(u, uold, udot, upold, par)")
+        args = [np.asarray(a, dtype=float) for a in (U, Uold, Udot, Upold)]
+        k = len(args[0])
+        if self._icnd_vectorised is not False and k > 1:
+            try:
+                with np.errstate(all="ignore"):
+                    out = np.asarray(self._icnd(*[a.T for a in args], par), dtype=float)
+                if out.shape == (nint,) and nint == k:
+                    raise ValueError("ambiguous shape")
+                out = np.broadcast_to(out.reshape(nint, -1), (nint, k)).T
+            except Exception:
+                self._icnd_vectorised = False
+            else:
+                if self._icnd_vectorised is None:
+                    ref = np.array([self.icnd(*[a[j] for a in args], par, nint)
+                                    for j in range(k)])
+                    self._icnd_vectorised = bool(np.allclose(ref, out, rtol=1e-13, atol=0))
+                    return ref
+                if np.all(np.isfinite(out)):
+                    return np.array(out)
+        fn = self._icnd
+        try:
+            out = np.array([np.atleast_1d(fn(*[a[j] for a in args], par)) for j in range(k)],
+                           dtype=float)
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: icnd(u, uold, udot, upold, par) failed: "
+                               f"{type(exc).__name__}: {exc}") from exc
+        if out.shape != (k, nint):
+            raise ProblemError(f"{self.name}: icnd returned shape {out.shape[1:]}, expected "
+                               f"({nint},) (NINT)")
+        if not np.all(np.isfinite(out)):
+            raise ProblemError(f"{self.name}: icnd(u, uold, udot, upold, par) returned "
+                               "non-finite values")
+        return out
 
     @property
     def stpnt_has_time(self) -> bool:
@@ -329,4 +414,5 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     if not callable(getattr(mod, "func", None)):
         raise ProblemError(f"{path}: defines no func(u, par)")
     return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
-                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None))
+                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
+                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None))

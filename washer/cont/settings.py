@@ -77,6 +77,8 @@ class Settings:
     A1: float = _D["A1"]
     NTST: int = _D["NTST"]
     NCOL: int = _D["NCOL"]
+    NBC: int = _D["NBC"]
+    NINT: int = _D["NINT"]
     IAD: int = _D["IAD"]
     IPLT: int = _D["IPLT"]
     IID: int = _D["IID"]
@@ -199,5 +201,6 @@ class Settings:
                    NWTN=c["NWTN"], EPSL=c["EPSL"], EPSU=c["EPSU"], EPSS=c["EPSS"],
                    ILP=c["ILP"], ISP=c["ISP"], MXBF=c["MXBF"], JAC=c["JAC"], RL0=c["RL0"],
                    RL1=c["RL1"], A0=c["A0"], A1=c["A1"], NTST=c["NTST"], NCOL=c["NCOL"],
+                   NBC=c["NBC"], NINT=c["NINT"],
                    IAD=c["IAD"], IPLT=c["IPLT"], IID=c["IID"], IIS=c["IIS"], THL=thl, THU=thu,
                    UZR=tuple(uz), STOP=stop, SP_OFF=frozenset(off), SP_ON=frozenset(on))

@@ -1,0 +1,172 @@
+"""General boundary value problems (IPS = 4): AUTO-07p's demos bvp, pvl, non, ext and
+lin (their constants unchanged, the scripts' overrides only) against AUTO's own
+b-files, and the 1-D Bratu problem against its closed form.
+
+Located points (BP, LP, UZ) are compared with AUTO's to the location tolerance both
+engines promise, EPSS (1 + sqrt(|DS DSMAX|)) on the arclength (the tangent is unit,
+so a parameter moves by at most that much). End points depend on the step history and
+are compared by type only.
+"""
+import math
+import shutil
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+
+from b_rows import branch_rows
+from washer.auto.constants import read_constants
+from washer.auto.files import type_name
+from washer.run import run
+
+DATA = Path(__file__).parent / "data" / "bvp"
+
+
+def demo(tmp_path: Path, name: str) -> Path:
+    for f in (DATA / name).iterdir():
+        if f.is_file():
+            shutil.copy(f, tmp_path)
+    return tmp_path
+
+
+def tolerance(c, **over) -> float:
+    ds = over.get("DS", c["DS"])
+    dsmax = over.get("DSMAX", c["DSMAX"])
+    return c["EPSS"] * (1 + math.sqrt(abs(ds * dsmax)))
+
+
+def auto_rows(name: str, bfile: str) -> list:
+    """(type, branch, PAR(ICP(1))) of AUTO's labelled rows."""
+    return [(type_name(r.ty), r.br, r.values[0])
+            for r in branch_rows(DATA / name / "autoref" / bfile) if r.lab]
+
+
+def ours(*runs) -> list:
+    return [(s.ty, s.br, s.par[s_icp - 1]) for r, s_icp in runs for s in r.specials]
+
+
+def compare(got, ref, tol, uz_targets=()):
+    """Types and branches in order; located values within `tol` of AUTO's. A UZ on a
+    UZR/UZSTOP value of PAR(ICP(1)) itself (`uz_targets`) is judged by that exact
+    value: ours on it to 1e-9, AUTO's within twice the tolerance (AUTO stops locating
+    on EPSS: bvp's UZSTOP p1 = 0 is -2.8e-5 in its b-file)."""
+    assert [(t, b) for t, b, _ in got] == [(t, b) for t, b, _ in ref]
+    for (t, b, o), (_, _, a) in zip(got, ref):
+        if t == "UZ" and any(abs(o - v) <= 1e-9 for v in uz_targets):
+            v = min(uz_targets, key=lambda v: abs(o - v))
+            assert abs(a - v) <= 2 * tol, (t, b, o, a)
+        elif t != "EP":
+            assert abs(o - a) <= tol, (t, b, o, a)
+
+
+def test_bvp_demo_trivial_branch(tmp_path):
+    """bvp.auto's first run: on u = 0 the linearisation u'' = -(p1 pi)^2 u has
+    nontrivial solutions at p1 = 1, 2, ...: five BPs, then UZSTOP 5.5. The located
+    BPs are the collocation's discrete eigenvalues (NTST = 20, NCOL = 4), which lie
+    within 1e-7 of the integers (3e-8 at p1 = 5, the error growing with p1)."""
+    d = demo(tmp_path, "bvp")
+    c = read_constants(d / "c.bvp")
+    r = run(d / "c.bvp", e="bvp", sv="bvp", verbose=False)
+    assert r.status == "ok"
+    ref = auto_rows("bvp", "b.bvp")
+    compare(ours((r, 1)), [x for x in ref if x[1] == 1], tolerance(c))
+    for k, bp in enumerate(s for s in r.specials if s.ty == "BP"):
+        assert bp.par[0] == pytest.approx(k + 1, abs=1e-7)
+
+
+@pytest.mark.slow
+def test_bvp_demo_switched_branches(tmp_path):
+    """bvp.auto: ISW = -1 at each BP, both directions, DSMAX = 10, UZR on p2 = int u1:
+    every UZ (and the two folds) of AUTO's b.bvp, in order, on branch 2."""
+    d = demo(tmp_path, "bvp")
+    c = read_constants(d / "c.bvp")
+    r = run(d / "c.bvp", e="bvp", sv="bvp", verbose=False)
+    runs = [(r, 1)]
+    for bp in [s for s in r.specials if s.ty == "BP"]:
+        for ds in (c["DS"], -c["DS"]):
+            q = run(d / "c.bvp", e="bvp", s="bvp", IRS=bp.lab, ISW=-1, DSMAX=10, DS=ds,
+                    UZR={2: [-6.0, -3.0, 3.0, 6.0]}, UZSTOP={1: [0.0, 5.5], 2: [-9.0, 9.0]},
+                    sv="sw", verbose=False)
+            assert q.status == "ok"
+            runs.append((q, 1))
+    compare(ours(*runs), auto_rows("bvp", "b.bvp"), tolerance(c, DSMAX=10), uz_targets=(0.0,))
+
+
+def bratu_theta(lam: float, branch: int) -> float:
+    """theta of the 1-D Bratu solution u = -2 ln(cosh(theta (t - 1/2) / 2) / cosh(theta/4))
+    of u'' + lam e^u = 0, u(0) = u(1) = 0: lam = theta^2 / (2 cosh^2(theta / 4)); the
+    lower branch has theta below the fold's theta_c (theta tanh(theta/4) = 4)."""
+    mpmath.mp.dps = 30
+    g = lambda th: th ** 2 / (2 * mpmath.cosh(th / 4) ** 2) - lam
+    return float(mpmath.findroot(g, 1.0 if branch == 0 else 8.0))
+
+
+def test_pvl_demo_and_bratu_closed_form(tmp_path):
+    """pvl (the 1-D Bratu problem, with a PVLS writing GETP measures into PAR(2..5)):
+    AUTO's UZ, LP, UZ, UZ, UZ in order within the location tolerance; the fold at the
+    closed form's lam_c = theta_c^2 / (2 cosh^2(theta_c/4)) (theta_c tanh(theta_c/4) = 4)
+    to the discretisation's accuracy (NTST = 5: AUTO 3.7e-8 off, ours the same); the
+    PVLS values u2(0) = theta tanh(theta/4) at the UZ points lam = 2 of both branches."""
+    d = demo(tmp_path, "pvl")
+    c = read_constants(d / "c.pvl")
+    r = run(d / "c.pvl", e="pvl", sv="pvl", verbose=False)
+    assert r.status == "ok"
+    compare(ours((r, 1)), auto_rows("pvl", "b.pvl"), tolerance(c))
+    mpmath.mp.dps = 30
+    th_c = float(mpmath.findroot(lambda th: th * mpmath.tanh(th / 4) - 4, 4.8))
+    lam_c = th_c ** 2 / (2 * math.cosh(th_c / 4) ** 2)
+    assert r("LP1").par[0] == pytest.approx(lam_c, abs=1e-7)
+    uz = [s for s in r.specials if s.ty == "UZ" and abs(s.par[0] - 2.0) < 1e-6]
+    assert len(uz) == 2
+    for branch, s in enumerate(uz):
+        th = bratu_theta(2.0, branch)
+        assert s.par[3] == pytest.approx(th * math.tanh(th / 4), rel=1e-5)   # GETP('BV0', 2)
+        assert s.par[2] == pytest.approx(-s.par[3], rel=1e-5)                # GETP('MIN', 2)
+
+
+def test_non_demo(tmp_path):
+    d = demo(tmp_path, "non")
+    c = read_constants(d / "c.non")
+    r = run(d / "c.non", e="non", sv="non", verbose=False)
+    assert r.status == "ok"
+    compare(ours((r, 1)), auto_rows("non", "b.non"), tolerance(c))
+
+
+def test_ext_demo(tmp_path):
+    """ext: BPs of the trivial branch on a coarse mesh (NTST = 8, NCOL = 2: the discrete
+    BPs lie off the integers), then the branch from BP3 with NCOL = 3 to UZSTOP 6."""
+    d = demo(tmp_path, "ext")
+    c = read_constants(d / "c.ext")
+    r1 = run(d / "c.ext", e="ext", sv="ext", verbose=False)
+    r2 = run(d / "c.ext", e="ext", s="ext", IRS=r1("BP3").lab, ISW=-1, NCOL=3, sv="ext2",
+             verbose=False)
+    assert r1.status == r2.status == "ok"
+    compare(ours((r1, 1), (r2, 1)), auto_rows("ext", "b.ext"), tolerance(c))
+
+
+def test_lin_demo(tmp_path):
+    """lin: the linear eigenvalue problem; BPs at the discrete eigenvalues, the
+    eigenfunction branch from BP1 (NTST = 6, UZ at int u1^2 = 1), then a continuation
+    in (p1, p2) from that UZ to the A1 = 5 end point."""
+    d = demo(tmp_path, "lin")
+    c = read_constants(d / "c.lin")
+    r1 = run(d / "c.lin", e="lin", sv="lin", verbose=False)
+    r2 = run(d / "c.lin", e="lin", s="lin", IRS=r1("BP1").lab, NTST=6, ISW=-1, DSMAX=0.5,
+             A1=5.0, sv="lin2", verbose=False)
+    r3 = run(d / "c.lin", e="lin", s="lin2", IRS=r2("UZ1").lab, ICP=[1, 2], NTST=5, ISW=1,
+             DSMAX=0.5, A1=5.0, UZR={3: 1.0}, sv="lin3", verbose=False)
+    assert r1.status == r2.status == r3.status == "ok"
+    compare(ours((r1, 1), (r2, 1)), auto_rows("lin", "b.lin"), tolerance(c, DSMAX=0.5))
+    compare(ours((r3, 1)), auto_rows("lin", "b.2p"), tolerance(c, DSMAX=0.5))
+    # On the eigenfunction branch p1 stays the first eigenvalue.
+    assert r2("UZ1").par[0] == pytest.approx(1.0, abs=1e-6)
+
+
+def test_bvp_needs_its_conditions(tmp_path):
+    """NBC conditions without bcnd: a clear error naming what is missing."""
+    d = demo(tmp_path, "non")
+    text = (d / "non.py").read_text().replace("def bcnd", "def _no_bcnd")
+    (d / "non.py").write_text(text)
+    r = run(d / "c.non", e="non", sv="non", verbose=False)
+    assert "NBC = 3 boundary conditions but no bcnd(u0, u1, par)" in r.status

@@ -1,0 +1,479 @@
+"""General boundary value problems (IPS = 4): AUTO's AUTOBV with the user's FUNC,
+BCND and ICND (bvp.f90, toolboxbv.f90: STPNBV, STPNUB, FNLPBV, FNBPBV).
+
+    u'(t) = f(u(t), p),  t in [0, 1]
+    b(u(0), u(1), p) = 0                                   (NBC conditions, bcnd)
+    int_0^1 g(u(t), u_old(t), u'_old... , p) dt = 0         (NINT conditions, icnd)
+
+with NFPR = NBC + NINT - NDIM + 1 free parameters PAR(ICP(1..NFPR)); further ICP
+entries are only written (AUTO's "overspecified" parameters). The integrand icnd
+receives u(t), the previous solution u_old(t), the branch direction udot(t) and
+upold(t) = f(u_old(t), p) at each mesh node (AUTO's ICNI arguments); the integral is
+the collocation's node quadrature (WINT).
+
+Discretisation as for periodic orbits (washer.cont.collocation): NTST intervals,
+NCOL Gauss points, the NCOL + 1 equally spaced nodes per interval as unknowns.
+Unknowns x = (U flattened node-major, PAR(ICP(2..NFPR)), PAR(ICP(1))). The sparse
+Jacobian is assembled here (boundary conditions couple u(0), u(1) and the parameters
+in any way, and there are NFPR parameter unknowns), not by the periodic pattern of
+`collocation.Collocation` that the base `systems.bvp.CollocationBVP` builds on; the
+mesh adaptation equidistributes without periodic wrap-around (EQDF's open-interval
+end rule).
+
+Starts:
+* IRS = 0: STPNT at every node time of the uniform mesh, stpnt(u, par, t) (AUTO's
+  STPNUB); the direction is the null vector of the Jacobian, PAR(ICP(1))-dot > 0
+  (or the first non-negligible free parameter's; STDRBV).
+* a stored BVP solution: moved onto the run's mesh when NTST/NCOL differ (ADAPT2),
+  its direction reused when the free parameters agree (STPNBV1).
+* ISW = -1 at a BP (code 6): the null vector of the Jacobian bordered by the stored
+  direction (STDRBV with IPERP = 1): the other branch.
+
+Test functions: LP (code 5) the PAR(ICP(1))-component of the unit tangent (FNLPBV),
+BP (code 6) the determinant of the bordered Jacobian reduced onto (u(0), the free
+parameters) and normalised (the role of FNBPBV's det(reduced)/det(P1)). No stability
+(PT > 0), no automatic branch switching (MXBF is for algebraic problems).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from washer.auto.codes import Code
+from washer.cont import collocation as col
+from washer.cont.pvls import Orbit
+from washer.cont.system import Solution, register
+from washer.cont.linalg import PERMC_SPEC, SparseFactor
+from washer.cont.systems.bvp import VectorField
+
+#: Relative step of the finite differences of bcnd and icnd (AUTO's HMACH).
+FD_REL = 1e-7
+#: GENWTS's (WT, WP) by NCOL, computed once (a remesh only moves the mesh).
+_WEIGHTS: dict = {}
+
+
+class BoundaryValueProblem:
+    """The continued system of a general BVP (IPS = 4, ISW = 1 or -1 at a BP)."""
+    curve_type = 0
+    arclength = "plane"
+
+    def __init__(self, data):
+        s = data.settings
+        self.settings, self.problem = s, data.problem
+        self.ndim = n = s.NDIM
+        self.nbc, self.nint = s.NBC, s.NINT
+        nfpr = self.nbc + self.nint - n + 1
+        if nfpr < 1:
+            raise ValueError(f"NBC = {self.nbc}, NINT = {self.nint}, NDIM = {n}: NBC + NINT - "
+                             f"NDIM + 1 = {nfpr} free parameters; expected at least 1")
+        if len(s.ICP) < nfpr:
+            raise ValueError(f"NBC + NINT - NDIM + 1 = {nfpr} free parameters, but ICP = "
+                             f"{list(s.ICP)} names {len(s.ICP)}")
+        self.nfpr = nfpr
+        self.free = list(s.ICP[:nfpr])
+        self._order = self.free[1:] + self.free[:1]      # x's parameter slots
+        self.field = VectorField(self.problem, n)
+        self.par = np.zeros(max(s.NPAR, max(s.ICP)))
+        p = np.asarray(data.par, float)
+        self.par[:min(len(p), len(self.par))] = p[:len(self.par)]
+        self.unames = dict(getattr(data, "unames", {}) or {})
+        self.kind = (data.kind or "").upper()
+        self.n_points = 0
+        rec = data.record
+        if rec is None:
+            self._from_stpnt()
+        elif np.ndim(rec.U) == 2 and len(rec.U) > 1:
+            self._from_record(rec)
+        else:
+            # An algebraic record: a constant solution on the uniform mesh (RSPTBV).
+            self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
+            U = np.tile(np.asarray(rec.U, float)[:n], (self.mesh.n_nodes, 1))
+            self._begin(U, None)
+
+    # ------------------------------------------------------------------ set-up
+    def _set_mesh(self, mesh: col.Mesh) -> None:
+        self.mesh = mesh
+        m, n, N = mesh.ncol, self.ndim, mesh.ntst
+        if m not in _WEIGHTS:
+            _WEIGHTS[m] = col.lagrange_weights(m)
+        self.WT, self.WP = _WEIGHTS[m]
+        self.w_node = mesh.node_weights()
+        self.n_u = mesh.n_nodes * n
+        self.n_coll = N * m * n
+        self.n_eq = self.n_coll + self.nbc + self.nint
+        self.n_x = self.n_u + self.nfpr
+        self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
+        j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
+                                    np.arange(n), indexing="ij")
+        self._rows_blk = ((j * m + c) * n + i).ravel()
+        self._cols_blk = ((j * m + k) * n + l).ravel()
+        thu = self.settings.theta_u(n)
+        self.weights = np.r_[np.kron(self.w_node, thu),
+                             [self.settings.theta_par(i) for i in self._order]]
+
+    def _x(self, U, par) -> np.ndarray:
+        return np.r_[np.asarray(U, float).ravel(), [par[i - 1] for i in self._order]]
+
+    def _from_stpnt(self) -> None:
+        """STPNUB: stpnt(u, par, t) at every node of the uniform mesh (the parameters
+        are the start data's: stpnt's at t = 0 with the constants' PAR overrides)."""
+        s = self.settings
+        self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
+        npar = len(self.par)
+        U = np.array([self.problem.start(npar, tj)[0] for tj in self.mesh.node_times()])
+        self._begin(U, None)
+
+    def _from_record(self, rec) -> None:
+        """STPNBV1 + ADAPT2: the stored solution on the run's mesh."""
+        s, n = self.settings, self.ndim
+        U_r = np.asarray(rec.U, float)[:, :n]
+        ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
+        if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
+            raise ValueError(f"BVP restart: record with {len(U_r)} points but NTST = {ntst_r}, "
+                             f"NCOL = {ncol_r} in its header")
+        t_r = getattr(rec, "t", None)
+        t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
+        mesh_r = col.Mesh(t_r[::ncol_r].copy(), ncol_r)
+        ud_r = None
+        if rec.udot is not None:
+            ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n]
+        if ntst_r == s.NTST and ncol_r == s.NCOL:
+            mesh, U, ud = mesh_r, U_r.copy(), ud_r
+        else:
+            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST, periodic=False), s.NCOL)
+            U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
+            ud = None if ud_r is None else col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
+        self._set_mesh(mesh)
+        rldot = list(getattr(rec, "rldot", []) or [])
+        icp_r = list(getattr(rec, "icp", []) or [])
+        old = None
+        if ud is not None and len(rldot) >= self.nfpr and len(icp_r) >= self.nfpr:
+            # The stored direction in this run's parameter order (by index).
+            dpar = dict(zip(icp_r, rldot))
+            if all(i in dpar for i in self.free):
+                old = np.r_[ud.ravel(), [dpar[i] for i in self._order]]
+        same = old is not None and icp_r[:self.nfpr] == self.free
+        self._begin(U, old if (same or self.settings.ISW == -1) else None)
+
+    def _begin(self, U, old) -> None:
+        self.U_old = np.array(U, float)
+        self.udot_old = np.zeros_like(self.U_old)
+        self.up_old = self.field.f(self.U_old, self.par)          # STUPBV
+        x0 = self._x(U, self.par)
+        self._stored = old
+        self._start = (x0, None)
+
+    # ------------------------------------------------------------------ helpers
+    def unpack(self, x):
+        par = self.par.copy()
+        for k, i in enumerate(self._order):
+            par[i - 1] = x[self.n_u + k]
+        return x[:self.n_u].reshape(-1, self.ndim), par
+
+    def at_gauss(self, U):
+        return np.einsum("kc,jkn->jcn", self.WT, U[self.local])
+
+    def _bc(self, U, par):
+        if self.nbc == 0:
+            return np.zeros(0)
+        return self.problem.bcnd(U[0], U[-1], par, self.nbc)
+
+    def _ic_nodes(self, U, par) -> np.ndarray:
+        """The integrands at every node, (n_nodes, NINT)."""
+        return self.problem.icnd_many(U, self.U_old, self.udot_old, self.up_old, par,
+                                      self.nint)
+
+    # ------------------------------------------------------------------ contract
+    def residual(self, x):
+        U, par = self.unpack(x)
+        N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
+        fg = self.field.f(self.at_gauss(U).reshape(-1, n), par).reshape(N, m, n)
+        coll = np.einsum("kc,jkn->jcn", self.WP, U[self.local]) - self.mesh.dtm[:, None, None] * fg
+        parts = [coll.ravel(), self._bc(U, par)]
+        if self.nint:
+            parts.append(self.w_node @ self._ic_nodes(U, par))
+        return np.concatenate(parts)
+
+    def jacobian(self, x):
+        U, par = self.unpack(x)
+        N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
+        ug = self.at_gauss(U).reshape(-1, n)
+        A = self.field.fu(ug, par).reshape(N, m, n, n)
+        eye = np.eye(n)
+        blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
+               - self.mesh.dtm[:, None, None, None, None]
+               * self.WT.T[None, :, None, :, None] * A[:, :, :, None, :])
+        rows = [self._rows_blk]
+        cols = [self._cols_blk]
+        vals = [blk.ravel()]
+        # parameter columns of the collocation equations
+        rc = np.arange(self.n_coll)
+        for k, i in enumerate(self._order):
+            dF = self.field.fp(ug, par, i).reshape(N, m, n)
+            rows.append(rc)
+            cols.append(np.full(self.n_coll, self.n_u + k))
+            vals.append((-self.mesh.dtm[:, None, None] * dF).ravel())
+        # boundary conditions: central differences in u(0), u(1) and the parameters
+        if self.nbc:
+            r0 = self.n_coll
+            Jb = self._bc_jacobian(U, par)                  # (nbc, 2n + nfpr)
+            for q in range(self.nbc):
+                rows.append(np.full(2 * n + self.nfpr, r0 + q))
+                cols.append(np.r_[np.arange(n), self.n_u - n + np.arange(n),
+                                  self.n_u + np.arange(self.nfpr)])
+                vals.append(Jb[q])
+        if self.nint:
+            r0 = self.n_coll + self.nbc
+            Ju, Jp = self._ic_jacobian(U, par)             # (nint, n_nodes, n), (nint, nfpr)
+            for q in range(self.nint):
+                rows.append(np.full(self.n_x, r0 + q))
+                cols.append(np.arange(self.n_x))
+                vals.append(np.r_[(self.w_node[:, None] * Ju[q]).ravel(), Jp[q]])
+        J = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(self.n_eq, self.n_x)).tocsc()
+        return J
+
+    def _bc_jacobian(self, U, par) -> np.ndarray:
+        n = self.ndim
+        z = np.r_[U[0], U[-1], [par[i - 1] for i in self._order]]
+
+        def fb(zz):
+            p = par.copy()
+            for k, i in enumerate(self._order):
+                p[i - 1] = zz[2 * n + k]
+            return self.problem.bcnd(zz[:n], zz[n:2 * n], p, self.nbc)
+        out = np.empty((self.nbc, len(z)))
+        for j in range(len(z)):
+            h = FD_REL * (1 + abs(z[j]))
+            zp, zm = z.copy(), z.copy()
+            zp[j] += h
+            zm[j] -= h
+            out[:, j] = (fb(zp) - fb(zm)) / (2 * h)
+        return out
+
+    def _ic_jacobian(self, U, par):
+        n, nn = self.ndim, len(U)
+        Ju = np.empty((self.nint, nn, n))
+        for l in range(n):
+            h = FD_REL * (1 + np.abs(U[:, l]))
+            Up, Um = U.copy(), U.copy()
+            Up[:, l] += h
+            Um[:, l] -= h
+            Ju[:, :, l] = ((self._ic_nodes(Up, par) - self._ic_nodes(Um, par)) / (2 * h[:, None])).T
+        Jp = np.empty((self.nint, self.nfpr))
+        for k, i in enumerate(self._order):
+            h = FD_REL * (1 + abs(par[i - 1]))
+            pp, pm = par.copy(), par.copy()
+            pp[i - 1] += h
+            pm[i - 1] -= h
+            Jp[:, k] = self.w_node @ (self._ic_nodes(U, pp) - self._ic_nodes(U, pm)) / (2 * h)
+        return Ju, Jp
+
+    def factor(self, J, border):
+        M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
+                      format="csc")
+        return SparseFactor(M)
+
+    def inner(self, a, b) -> float:
+        return float(np.dot(a, self.weights * b))
+
+    def border(self, t):
+        return self.weights * np.asarray(t, float)
+
+    def params(self, x):
+        U, par = self.unpack(x)
+        if getattr(self.problem, "has_pvls", False):
+            orbit = Orbit.of(U, self.mesh.node_times(), self.w_node, par[10] if len(par) > 10
+                             else 0.0, self.mesh.ntst, self.mesh.ncol, None)
+            par = self.problem.pvls(orbit, par)
+        return par
+
+    def start(self):
+        x0 = self._start[0]
+        J = self.jacobian(x0)
+        if self._stored is not None and self.settings.ISW == -1:
+            # STDRBV with IPERP = 1: the other branch at a BP.
+            z = self.null_vector(J, self.weights * self._stored)
+            return x0, self._orient(z / math.sqrt(self.inner(z, z)), x0)
+        if self._stored is not None:
+            nrm = math.sqrt(self.inner(self._stored, self._stored))
+            if nrm > 0:
+                return x0, self._stored / nrm
+        z = self.null_vector(J, np.zeros(self.n_x))
+        return x0, self._orient(z / math.sqrt(self.inner(z, z)), x0)
+
+    def _orient(self, t, x):
+        """STDRBV's sign: the first free parameter (PAR(ICP(1)) first) with a
+        non-negligible rate increases; else the first such U(i) at t = 1."""
+        s = self.settings
+        for slot in [self.n_x - 1] + list(range(self.n_u, self.n_x - 1)):
+            if abs(t[slot]) / (1 + abs(x[slot])) > s.EPSL:
+                return t if t[slot] > 0 else -t
+        last = slice(self.n_u - self.ndim, self.n_u)
+        for tv, xv in zip(t[last], x[last]):
+            if abs(tv) / (1 + abs(xv)) > s.EPSU:
+                return t if tv > 0 else -t
+        return t
+
+    def stability(self, x, J=None):
+        return None
+
+    def active_tests(self) -> list:
+        out = []
+        if self.settings.detects("LP"):
+            out.append(int(Code.LPC))
+        if self.settings.detects("BP"):
+            out.append(int(Code.BPC))
+        return out
+
+    def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
+        codes = self.active_tests() if codes is None else [int(c) for c in codes]
+        out = {}
+        if Code.LPC in codes:
+            out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
+        if Code.BPC in codes:
+            Jx = J if J is not None else self.jacobian(x)
+            try:
+                out[int(Code.BPC)] = None if tangent is None else self.bp_function(Jx, tangent)
+            except RuntimeError:
+                out[int(Code.BPC)] = None
+        return out
+
+    def accept(self, code, prev, cur) -> bool:
+        return True
+
+    def update(self, x, tangent) -> None:
+        """CONTBV: the accepted point becomes the reference of the integral conditions
+        (u_old, udot, upold = f(u_old))."""
+        U, par = self.unpack(x)
+        self.U_old = U.copy()
+        if tangent is not None:
+            self.udot_old = tangent[:self.n_u].reshape(-1, self.ndim).copy()
+        self.up_old = self.field.f(U, par)
+        self.par = par
+        self.n_points += 1
+
+    def wants_remesh(self, n_points: int) -> bool:
+        iad = self.settings.IAD
+        return iad > 0 and n_points % iad == 0
+
+    def remesh(self, x, *vectors) -> tuple:
+        """ADAPT: re-equidistribute the mesh (same NTST, NCOL), moving x, the vectors
+        and the references of the integral conditions onto it."""
+        U, _ = self.unpack(x)
+        old = self.mesh
+        tm = col.new_mesh(old, U, old.ntst, periodic=False)
+
+        def move(v):
+            v = np.asarray(v, float)
+            Uv = v[:self.n_u].reshape(-1, self.ndim)
+            return np.r_[col.interpolate(old, Uv, tm, old.ncol).ravel(), v[self.n_u:]]
+        out = [move(x)] + [move(v) for v in vectors]
+        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
+        self.udot_old = col.interpolate(old, self.udot_old, tm, old.ncol)
+        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
+        self._set_mesh(col.Mesh(tm, old.ncol))
+        return tuple(out)
+
+    # ------------------------------------------------------------------ output
+    def measure(self, U) -> float:
+        """The b-file's second column by IPLT (STPLBV), as for periodic orbits."""
+        n, iplt = self.ndim, self.settings.IPLT
+        w = self.w_node
+        iab = abs(iplt)
+        if iplt > 0 and iab <= n:
+            return float(np.max(U[:, iab - 1]))
+        if iplt < 0 and iab <= n:
+            return float(np.min(U[:, iab - 1]))
+        if n < iplt <= 2 * n:
+            return float(w @ U[:, iplt - n - 1])
+        if 2 * n < iplt <= 3 * n:
+            return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
+        thu = self.settings.theta_u(n)
+        return float(math.sqrt(w @ (U ** 2 @ thu)))
+
+    def n2(self) -> int:
+        nicp = len(self.settings.ICP)
+        return 0 if nicp > 7 else max(0, min(self.ndim, 7 - nicp))
+
+    def column_titles(self) -> list:
+        n, iplt = self.ndim, self.settings.IPLT
+        iab = abs(iplt)
+        if iplt > 0 and iab <= n:
+            first = f"MAX U({iab})"
+        elif iplt < 0 and iab <= n:
+            first = f"MIN U({iab})"
+        elif n < iplt <= 2 * n:
+            first = f"INTEGRAL U({iplt - n})"
+        elif 2 * n < iplt <= 3 * n:
+            first = f"L2-NORM U({iplt - 2 * n})"
+        else:
+            first = "L2-NORM"
+        un = self.unames
+        return [first] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
+                          for i in range(1, self.n2() + 1)]
+
+    def solution(self, x, tangent) -> Solution:
+        U, _ = self.unpack(x)
+        par = self.params(x)
+        cols = [self.measure(U)] + [float(np.max(U[:, i])) for i in range(self.n2())]
+        udot, rldot = None, []
+        if tangent is not None:
+            udot = tangent[:self.n_u].reshape(-1, self.ndim).copy()
+            slot = {i: self.n_u + k for k, i in enumerate(self._order)}
+            rldot = [float(tangent[slot[i]]) for i in self.free]
+        return Solution(par=par, columns=cols, u=U.copy(), t=self.mesh.node_times(),
+                        udot=udot, rldot=rldot, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
+                        ndim_user=self.ndim)
+
+    # ------------------------------------------------------------------ BP, switching
+    def _schur(self, J, border):
+        """[J; border] reduced onto S = (u(0), the free parameters) and R = (boundary
+        and integral conditions, border): Sc = M_RS - M_RI M_II^-1 M_IS, square of
+        size NDIM + NFPR; M_II (the collocation equations in the nodes after t = 0)
+        is a discretised initial-value problem and stays invertible."""
+        M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
+                      format="csc")
+        n = self.ndim
+        cols_S = np.r_[np.arange(n), self.n_u + np.arange(self.nfpr)]
+        cols_I = np.arange(n, self.n_u)
+        rows_I = np.arange(self.n_coll)
+        rows_R = np.arange(self.n_coll, M.shape[0])
+        M_II = M[rows_I][:, cols_I].tocsc()
+        M_IS = M[rows_I][:, cols_S].toarray()
+        lu = spla.splu(M_II, permc_spec=PERMC_SPEC)
+        X = lu.solve(M_IS)
+        M_R = M[rows_R]
+        Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X
+        return Sc, cols_S, cols_I, X
+
+    def bp_function(self, J, tangent) -> float:
+        Sc = self._schur(J, self.weights * tangent)[0]
+        scale = np.linalg.norm(Sc)
+        if not np.isfinite(scale) or scale == 0:
+            return 0.0
+        sign, logdet = np.linalg.slogdet(Sc / scale)
+        return float(sign * math.exp(logdet))
+
+    def null_vector(self, J, border) -> np.ndarray:
+        Sc, cols_S, cols_I, X = self._schur(J, border)
+        zS = np.linalg.svd(Sc)[2][-1]
+        z = np.zeros(self.n_x)
+        z[cols_S] = zS
+        z[cols_I] = -X @ zS
+        return z
+
+    def directions(self, x, tangent, code) -> list:
+        if int(code) != int(Code.BPC):
+            return []
+        z = self.null_vector(self.jacobian(x), self.weights * tangent)
+        return [z / math.sqrt(self.inner(z, z))]
+
+
+register(4, 1, "*")(BoundaryValueProblem)
+register(4, -1, "BP")(BoundaryValueProblem)
+
+__all__ = ["BoundaryValueProblem"]
