@@ -59,6 +59,7 @@ class BoundaryValueProblem:
     """The continued system of a general BVP (IPS = 4, ISW = 1 or -1 at a BP)."""
     curve_type = 0
     arclength = "plane"
+    freezes_second_derivatives = False
 
     def __init__(self, data):
         s = data.settings
@@ -344,6 +345,10 @@ class BoundaryValueProblem:
 
     def accept(self, code, prev, cur) -> bool:
         return True
+
+    def info(self, x, code) -> dict:
+        """Nothing is computed at special points of BVPs beyond the b-row."""
+        return {}
 
     def update(self, x, tangent) -> None:
         """CONTBV: the accepted point becomes the reference of the integral conditions
