@@ -170,3 +170,50 @@ def test_bvp_needs_its_conditions(tmp_path):
     (d / "non.py").write_text(text)
     r = run(d / "c.non", e="non", sv="non", verbose=False)
     assert "NBC = 3 boundary conditions but no bcnd(u0, u1, par)" in r.status
+
+
+def test_nep_demo(tmp_path):
+    """nep: the BP of the nonlinear eigenvalue problem at p1 = p2 = pi^2 / 2 (ours to
+    1e-8, AUTO's 4.9348023388), UZ on p1 = 2, 4, ... on both branches."""
+    d = demo(tmp_path, "nep")
+    c = read_constants(d / "c.nep.1")
+    r = run(d / "c.nep.1", e="nep", sv="nep", verbose=False)
+    runs = [(r, 1)]
+    for bp in [s for s in r.specials if s.ty == "BP"]:
+        runs.append((run(d / "c.nep.2", e="nep", s="nep", IRS=bp.lab, sv="nep2",
+                         verbose=False), 1))
+    assert all(q.status == "ok" for q, _ in runs)
+    compare(ours(*runs), auto_rows("nep", "b.nep"), tolerance(c))
+    assert r("BP1").par[0] == pytest.approx(math.pi ** 2 / 2, abs=1e-8)
+
+
+def test_obv_demo(tmp_path):
+    """obv: continuation of an optimality system (NBC = 6, NINT = 5: eight free
+    parameters), three BPs; the switched branch; restarts with other free parameters
+    (ICP changed, the stored direction then not reused) and fewer integral conditions
+    taken from the same icnd (the first NINT). The multipliers that stay at 0 on the
+    first branch give no UZ (AUTO: none either)."""
+    d = demo(tmp_path, "obv")
+    c = read_constants(d / "c.obv")
+    r1 = run(d / "c.obv", e="obv", sv="obv", verbose=False)
+    r2 = run(d / "c.obv", e="obv", s="obv", IRS=r1("BP1").lab, ISW=-1, NMX=5, sv="o1",
+             verbose=False)
+    r3 = run(d / "c.obv", e="obv", s="o1", IRS=r2.specials[-1].lab,
+             ICP=[10, 1, 2, 17, 18, 13, 14, 15], ISW=1, NMX=100, sv="o2", verbose=False)
+    r4 = run(d / "c.obv", e="obv", s="o2", IRS=r3("UZ2").lab,
+             ICP=[10, 1, 2, 3, 18, 13, 14, 15], ISW=1, NMX=25, sv="o3", verbose=False)
+    for r, bfile in ((r1, "b.obv"), (r2, "b.1"), (r3, "b.2"), (r4, "b.3")):
+        assert r.status == "ok"
+        compare(ours((r, 10)), auto_rows("obv", bfile), tolerance(c))
+
+
+def test_tim_demo(tmp_path):
+    """tim: NDIM = 10, NTST = 100, fixed steps (IADS = 0) to NMX = 10: the end point is
+    then determined by the steps alone, and agrees with AUTO's to the Newton tolerance."""
+    d = demo(tmp_path, "tim")
+    c = read_constants(d / "c.tim")
+    r = run(d / "c.tim", e="tim", sv="tim", verbose=False)
+    assert r.status == "ok"
+    ref = auto_rows("tim", "b.tim")
+    assert [(s.ty, s.br) for s in r.specials] == [(t, b) for t, b, _ in ref]
+    assert r.specials[-1].par[0] == pytest.approx(ref[-1][2], abs=10 * c["EPSL"])

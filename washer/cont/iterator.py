@@ -42,6 +42,9 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
+#: A UZ test value |PAR(i) - value| below this fraction of 1 + |value| is rounding:
+#: the parameter is on the value (no sign change is seen there).
+UZ_ROUNDING = 1e-13
 def adapt_step(ds: float, nit: int, s) -> float:
     """AUTO's ADPTDS: grow or shrink the step by the Newton iteration count of the
     last step (settings s: ITNW, DSMAX), capped at DSMAX."""
@@ -264,7 +267,11 @@ class Continuation:
             par = self.sys.params(pt.x)
             for k in uz_keys:
                 i, v, _ = self.uz[k]
-                out[("UZ", k)] = float(par[i - 1] - v)
+                q = float(par[i - 1] - v)
+                # A parameter sitting on the value to rounding (a free parameter that
+                # stays 0 while Newton leaves it at +-1e-190, as obv's multipliers on
+                # their trivial branch) is on it, not crossing it back and forth.
+                out[("UZ", k)] = 0.0 if abs(q) <= UZ_ROUNDING * (1 + abs(v)) else q
         return out
 
     # ----------------------------------------------------------------- step

@@ -14,7 +14,8 @@ User problems live in NAME.py beside the constants file (e='NAME'):
                                   # from the solution u ((NDIM,) for equilibria,
                                   # (NTPL, NDIM) mesh values for periodic orbits)
     def bcnd(u0, u1, par): ...    # boundary value problems (IPS = 4), AUTO's BCND:
-                                  # the NBC boundary conditions, (NBC,), from
+                                  # the NBC boundary conditions (the first NBC of
+                                  # what it returns, as AUTO's FB(1..NBC)), from
                                   # u0 = u(0), u1 = u(1) (NDIM,) each
     def icnd(u, uold, udot, upold, par): ...
                                   # IPS = 4, AUTO's ICND: the NINT integrands, (NINT,),
@@ -298,6 +299,8 @@ class Problem:
             raise ProblemError(f"{self.name}: NBC = {nbc} boundary conditions but no "
                                "bcnd(u0, u1, par)")
         fb = np.atleast_1d(self._call(self._bcnd, "bcnd", u0, u1, par))
+        if fb.ndim == 1 and len(fb) > nbc:
+            fb = fb[:nbc]                 # the first NBC, as AUTO's FB(1..NBC)
         if fb.shape != (nbc,):
             raise ProblemError(f"{self.name}: bcnd returned shape {fb.shape}, expected "
                                f"({nbc},) (NBC)")
@@ -311,6 +314,8 @@ class Problem:
             raise ProblemError(f"{self.name}: NINT = {nint} integral conditions but no "
                                "icnd(u, uold, udot, upold, par)")
         fi = np.atleast_1d(self._call(self._icnd, "icnd", u, uold, udot, upold, par))
+        if fi.ndim == 1 and len(fi) > nint:
+            fi = fi[:nint]                # the first NINT, as AUTO's FI(1..NINT)
         if fi.shape != (nint,):
             raise ProblemError(f"{self.name}: icnd returned shape {fi.shape}, expected "
                                f"({nint},) (NINT)")
@@ -333,9 +338,9 @@ class Problem:
             try:
                 with np.errstate(all="ignore"):
                     out = np.asarray(self._icnd(*[a.T for a in args], par), dtype=float)
-                if out.shape == (nint,) and nint == k:
-                    raise ValueError("ambiguous shape")
-                out = np.broadcast_to(out.reshape(nint, -1), (nint, k)).T
+                if out.ndim != 2 or out.shape[1] != k or out.shape[0] < nint:
+                    raise ValueError("not a batch")
+                out = out[:nint].T
             except Exception:
                 self._icnd_vectorised = False
             else:
@@ -348,8 +353,8 @@ class Problem:
                     return np.array(out)
         fn = self._icnd
         try:
-            out = np.array([np.atleast_1d(fn(*[a[j] for a in args], par)) for j in range(k)],
-                           dtype=float)
+            out = np.array([np.atleast_1d(fn(*[a[j] for a in args], par))[:nint]
+                            for j in range(k)], dtype=float)
         except Exception as exc:
             raise ProblemError(f"{self.name}: icnd(u, uold, udot, upold, par) failed: "
                                f"{type(exc).__name__}: {exc}") from exc
