@@ -1,0 +1,173 @@
+"""Compile C and Fortran sources into a shared library, once, cached by content.
+
+One job: sources (files on disk or generated text) -> a `.so` that cffi can
+dlopen. The library's name carries a SHA-256 of everything that decides the
+machine code (the compiler's version line, the flags, every source's name and
+bytes, the include files), so an unchanged source is never compiled twice and
+an edited one always is. Libraries live in a cache folder:
+
+    $WASHER_CACHE, else $XDG_CACHE_HOME/washer/compiled, else ~/.cache/washer/compiled
+
+Compilers are the system's `gcc` and `gfortran` (Debian packages `gcc` and
+`gfortran`); $CC and $FC override them. A failed compile raises CompileError
+with the compiler's own messages, which name the user's file and line.
+
+Used by the AUTO user files (washer.cont.compiled) and by generated problems.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+#: Bumped when the way libraries are built changes (invalidates the cache).
+BUILD_VERSION = "1"
+#: Optimisation as AUTO-07p's own build of user files (-O), plus position-independent code.
+C_FLAGS = ("-O2", "-fPIC")
+FORTRAN_FLAGS = ("-O2", "-fPIC")
+FORTRAN_SUFFIXES = (".f90", ".f", ".f95", ".f03", ".F", ".F90")
+
+
+class CompileError(RuntimeError):
+    """A source did not compile or link; the message holds the compiler's output."""
+
+
+@dataclass(frozen=True)
+class Source:
+    """One translation unit: `name` is how messages and the compiler call it
+    (a path for user files), `text` its bytes (None: read `path`)."""
+    name: str
+    text: bytes | None = None
+    path: Path | None = None
+
+    def data(self) -> bytes:
+        if self.text is not None:
+            return self.text
+        try:
+            return Path(self.path).read_bytes()
+        except OSError as exc:
+            raise CompileError(f"{self.path}: cannot read the source ({exc.strerror})") from None
+
+    @property
+    def fortran(self) -> bool:
+        return Path(self.name).suffix in FORTRAN_SUFFIXES
+
+
+def source_file(path) -> Source:
+    """A source on disk (compiled where it is, so messages name its path)."""
+    p = Path(path)
+    return Source(name=str(p), path=p)
+
+
+def source_text(name: str, text: str | bytes) -> Source:
+    """A generated source (written to the build folder under `name`)."""
+    return Source(name=name, text=text.encode() if isinstance(text, str) else text)
+
+
+def cache_dir() -> Path:
+    env = os.environ.get("WASHER_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "washer" / "compiled"
+
+
+def _compiler(kind: str) -> str:
+    env, default, package = {"c": ("CC", "gcc", "gcc"),
+                             "fortran": ("FC", "gfortran", "gfortran")}[kind]
+    exe = os.environ.get(env) or default
+    if shutil.which(exe) is None:
+        raise CompileError(f"no {kind} compiler: '{exe}' is not on PATH (install the Debian "
+                           f"package {package}: apt-get install {package}; or set ${env})")
+    return exe
+
+
+@lru_cache(maxsize=None)
+def _version(exe: str) -> str:
+    try:
+        out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.SubprocessError) as exc:
+        raise CompileError(f"cannot run the compiler '{exe}': {exc}") from None
+    return (out.stdout.splitlines() or [""])[0]
+
+
+def library_key(sources: list[Source], includes: list[Path] = (), extra: str = "") -> str:
+    """The content hash naming a library: compilers' versions, flags, sources, includes."""
+    h = hashlib.sha256()
+    kinds = {"fortran" if s.fortran else "c" for s in sources}
+    kinds.add("c")
+    for kind in sorted(kinds):
+        h.update(_version(_compiler(kind)).encode() + b"\0")
+    h.update(repr((BUILD_VERSION, C_FLAGS, FORTRAN_FLAGS, extra)).encode())
+    for s in sources:
+        h.update(Path(s.name).name.encode() + b"\0" + s.data() + b"\0")
+    for inc in includes:
+        for f in sorted(Path(inc).glob("*.h")):
+            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()[:20]
+
+
+def build_library(sources: list[Source], name: str, includes: list[Path] = (),
+                  defines: dict | None = None, cache: Path | None = None) -> Path:
+    """The shared library of `sources`, compiled now or found in the cache.
+
+    name: a readable prefix of the library file; includes: header folders;
+    defines: preprocessor macros for the C sources. Compiling happens in a
+    temporary folder (Fortran module files go there too, never beside the
+    user's file) and the finished library is moved into place atomically, so
+    concurrent builds of the same sources cannot leave half a file."""
+    defines = dict(defines or {})
+    key = library_key(sources, includes, repr(sorted(defines.items())))
+    folder = Path(cache) if cache is not None else cache_dir()
+    lib = folder / f"{_safe(name)}-{key}.so"
+    if lib.exists():
+        return lib
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CompileError(f"{folder}: cannot create the compile cache ({exc.strerror}); "
+                           "set $WASHER_CACHE to a writable folder") from None
+    fortran = any(s.fortran for s in sources)
+    with tempfile.TemporaryDirectory(prefix="washer-build-") as tmp:
+        objs = []
+        for k, s in enumerate(sources):
+            if s.path is not None:
+                src = str(s.path)
+            else:
+                src = os.path.join(tmp, Path(s.name).name)
+                Path(src).write_bytes(s.text)
+            obj = os.path.join(tmp, f"{k}.o")
+            if s.fortran:
+                cmd = [_compiler("fortran"), *FORTRAN_FLAGS, "-J", tmp, "-c", src, "-o", obj]
+            else:
+                cmd = [_compiler("c"), *C_FLAGS, *(f"-I{i}" for i in includes),
+                       *(f"-D{k}={v}" for k, v in defines.items()), "-c", src, "-o", obj]
+            _call(cmd, s.name)
+            objs.append(obj)
+        out = os.path.join(tmp, "lib.so")
+        linker = _compiler("fortran") if fortran else _compiler("c")
+        _call([linker, "-shared", *objs, "-o", out, "-lm"], name)
+        partial = folder / f".{lib.name}.{os.getpid()}"
+        shutil.copyfile(out, partial)
+        os.replace(partial, lib)
+    return lib
+
+
+def _call(cmd: list[str], what: str) -> None:
+    try:
+        res = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    except (OSError, subprocess.SubprocessError) as exc:
+        raise CompileError(f"{what}: cannot run {cmd[0]}: {exc}") from None
+    if res.returncode != 0:
+        msg = (res.stderr or res.stdout).strip()
+        raise CompileError(f"{what}: compiling failed ({Path(cmd[0]).name} exit "
+                           f"{res.returncode}):\n{msg}")
+
+
+def _safe(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name) or "lib"

@@ -1,0 +1,254 @@
+"""AUTO-07p user files in Fortran or C as continuation problems.
+
+    problem = load_compiled_problem("ab.f90", ndim=2)     # or ab.f, ab.c
+
+compiles the user file with washer's bridge (compiled_shim.c) into a shared
+library (washer.cont.compile: once, cached by content hash, recompiled when the
+file changes), loads it through cffi and returns a washer.cont.problem.Problem
+calling AUTO's user ABI:
+
+    FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)   right-hand side; IJAC = 1 (JAC = 1, -1):
+                                            DFDU, IJAC = 2 (JAC = 1): DFDP too
+    STPNT(NDIM,U,PAR,T)                     start (T in [0, 1] for orbits)
+    PVLS(NDIM,U,PAR)                        solution measures, with GETP
+    BCND, ICND, FOPT                        boundary / integral conditions, objective
+
+C files follow AUTO's auto_f2c.h conventions (0-based arrays, column-major
+Jacobians); washer ships that header (washer/cont/include). The batched entries
+of the bridge evaluate a whole stencil or all collocation points in one foreign
+call, so the per-point cost is the user's code plus a few nanoseconds.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from cffi import FFI
+
+from washer.cont.compile import (CompileError, build_library, source_file, source_text)
+from washer.cont.problem import Problem, ProblemError
+
+HERE = Path(__file__).parent
+SHIM = HERE / "compiled_shim.c"
+INCLUDE = HERE / "include"
+#: User-file suffixes, in AUTO's order of lookup (runAUTO: .f90, .f, .c).
+SUFFIXES = (".f90", ".f", ".c")
+#: Length of the ICP array passed to user routines (AUTO passes its NPARX-long ICP).
+ICP_LENGTH = 200
+
+CDEF = """
+void washer_set_context(int ips, int ndim, int ntst, int ncol, int nbc, int nint,
+                        const double *dtm);
+void washer_set_measures(double rds, double fldf, double hbff, double biff, double spbf,
+                         int nins, const double *eig);
+int washer_has(const char *name);
+void washer_func_batch(int k, int ndim, int npar, const double *us, const double *pars,
+                       int par_stride, const int *icp, double *fs, double *scratch);
+void washer_jac_batch(int k, int ndim, int npar, const double *us, const double *pars,
+                      int par_stride, const int *icp, int ijac, double *fs, double *dfdus,
+                      double *dfdps, double *scratch);
+void washer_stpnt(int ndim, double t, double *u, double *par);
+void washer_pvls(int ndim, const double *u, double *par);
+void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
+                 const double *u1, int ijac, double *fb, double *dbc);
+void washer_icnd_batch(int k, int ndim, const double *par, const int *icp, int nint,
+                       const double *u, const double *uold, const double *udot,
+                       const double *upold, double *fi, double *scratch);
+void washer_fopt(int ndim, const double *u, const int *icp, const double *par, int ijac,
+                 double *fs, double *dfdu, double *dfdp);
+"""
+
+_ffi = FFI()
+_ffi.cdef(CDEF)
+_libs: dict[str, object] = {}          # one dlopen per library file
+
+
+def find_user_file(name: str, folder: Path) -> Path | None:
+    """folder/NAME.f90, NAME.f or NAME.c (AUTO's order), or None."""
+    for suffix in SUFFIXES:
+        p = Path(folder) / f"{name}{suffix}"
+        if p.exists():
+            return p
+    return None
+
+
+def compile_user_file(path) -> Path:
+    """The shared library of a user file and the bridge (compiled or from the cache)."""
+    path = Path(path)
+    fortran = path.suffix != ".c"
+    sources = [source_file(path), source_text("washer_shim.c", SHIM.read_bytes())]
+    return build_library(sources, path.stem, includes=[INCLUDE],
+                         defines={"WASHER_FORTRAN": int(fortran)})
+
+
+def _open(lib_path: Path):
+    key = str(lib_path)
+    if key not in _libs:
+        _libs[key] = _ffi.dlopen(key)
+    return _libs[key]
+
+
+def _dptr(a: np.ndarray):
+    return _ffi.from_buffer("double[]", a)
+
+
+class CompiledUser:
+    """The user routines of one compiled file, with numpy in and out.
+
+    Arrays passed in must be float64; they are made C-contiguous here. PAR
+    arrays are passed whole (the user may read any PAR(i) up to their length)."""
+
+    def __init__(self, path: Path, ndim: int):
+        self.path, self.ndim = Path(path), ndim
+        self.lib = _open(compile_user_file(path))
+        self.has = {n: bool(self.lib.washer_has(n.encode()))
+                    for n in ("func", "stpnt", "bcnd", "icnd", "fopt", "pvls")}
+        if not self.has["func"]:
+            raise ProblemError(f"{path}: defines no FUNC (AUTO's FUNC(NDIM,U,ICP,PAR,IJAC,F,"
+                               "DFDU,DFDP) is required)")
+        self.icp = np.zeros(ICP_LENGTH, dtype=np.int32)
+        self.icp[0] = 1
+        self._icp_ptr = _ffi.from_buffer("int[]", self.icp)
+        self._scratch = np.zeros(0)
+        self._scratch_ptr = None
+
+    def set_icp(self, icp) -> None:
+        """The run's ICP (what FUNC, BCND, ICND see as ICP(1..))."""
+        self.icp[:] = 0
+        self.icp[:len(icp)] = icp
+
+    def _scratch_for(self, npar: int, extra: int = 0):
+        need = self.ndim * (self.ndim + npar) + extra
+        if len(self._scratch) < need:
+            self._scratch = np.zeros(max(need, self.ndim * (self.ndim + 64)))
+            self._scratch_ptr = _dptr(self._scratch)
+        return self._scratch_ptr
+
+    @staticmethod
+    def _pars(pars, k):
+        pars = np.ascontiguousarray(pars, dtype=float)
+        if pars.ndim == 1:
+            return pars, pars.shape[0], 0
+        return pars, pars.shape[1], pars.shape[1]
+
+    def func_batch(self, us, pars) -> np.ndarray:
+        """f at the rows of us (k, NDIM); pars (k, NPAR) or (NPAR,) -> (k, NDIM)."""
+        us = np.ascontiguousarray(us, dtype=float)
+        k = us.shape[0]
+        pars, npar, stride = self._pars(pars, k)
+        fs = np.empty((k, self.ndim))
+        self.lib.washer_func_batch(k, self.ndim, npar, _dptr(us), _dptr(pars), stride,
+                                   self._icp_ptr, _dptr(fs), self._scratch_for(npar))
+        return fs
+
+    def func(self, u, par) -> np.ndarray:
+        return self.func_batch(np.asarray(u, float).reshape(1, -1), par)[0]
+
+    def jac_batch(self, us, pars, with_dfdp: bool = False):
+        """(f, dfdu (k, NDIM, NDIM), dfdp (k, NDIM, NPAR) or None) from FUNC with IJAC = 1/2."""
+        us = np.ascontiguousarray(us, dtype=float)
+        k = us.shape[0]
+        pars, npar, stride = self._pars(pars, k)
+        fs = np.empty((k, self.ndim))
+        J = np.empty((k, self.ndim, self.ndim))
+        P = np.empty((k, self.ndim, npar)) if with_dfdp else None
+        self.lib.washer_jac_batch(k, self.ndim, npar, _dptr(us), _dptr(pars), stride,
+                                  self._icp_ptr, 2 if with_dfdp else 1, _dptr(fs), _dptr(J),
+                                  _dptr(P) if with_dfdp else _ffi.NULL,
+                                  self._scratch_for(npar))
+        return fs, J, P
+
+    def dfdu(self, u, par) -> np.ndarray:
+        return self.jac_batch(np.asarray(u, float).reshape(1, -1), par)[1][0]
+
+    def dfdu_batch(self, us, pars) -> np.ndarray:
+        return self.jac_batch(us, pars)[1]
+
+    def dfdp(self, u, par) -> np.ndarray:
+        return self.jac_batch(np.asarray(u, float).reshape(1, -1), par, True)[2][0]
+
+    def stpnt(self, u, par, t: float = 0.0) -> None:
+        """AUTO's STPNT into u (NDIM,) and par (NPAR,) in place."""
+        if not self.has["stpnt"]:
+            raise ProblemError(f"{self.path}: defines no STPNT (needed to start with IRS = 0)")
+        self.lib.washer_stpnt(self.ndim, float(t), _dptr(u), _dptr(par))
+
+    def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0, ips: int | None = None) -> None:
+        """AUTO's PVLS on u: (NDIM,) for algebraic problems, (NTPL, NDIM) mesh values of
+        a BVP (t: the NTPL mesh times, or uniform). Sets par in place."""
+        u = np.ascontiguousarray(u, dtype=float)
+        keep = []
+        if u.ndim == 2:
+            ntpl = u.shape[0]
+            if not (ntst and ncol):
+                ncol = 4 if (ntpl - 1) % 4 == 0 else 1
+                ntst = (ntpl - 1) // ncol
+            dtm = _ffi.NULL
+            if t is not None and len(t) == ntpl:
+                d = np.ascontiguousarray(np.diff(np.asarray(t, float)[::ncol]))
+                keep.append(d)
+                dtm = _dptr(d)
+            # UPS(NDIM*NCOL, NTST+1): the mesh points in a row, padded to full columns.
+            ups = np.zeros(self.ndim * ncol * (ntst + 1))
+            ups[:u.size] = u.ravel()
+            self.lib.washer_set_context(2 if ips is None else ips, self.ndim, ntst, ncol, 0, 0,
+                                        dtm)
+            self.lib.washer_pvls(self.ndim, _dptr(ups), _dptr(par))
+        else:
+            self.lib.washer_set_context(1 if ips is None else ips, self.ndim, 0, 0, 0, 0,
+                                        _ffi.NULL)
+            self.lib.washer_pvls(self.ndim, _dptr(u), _dptr(par))
+
+    def bcnd(self, par, nbc: int, u0, u1) -> np.ndarray:
+        """AUTO's BCND: the NBC boundary conditions at u(0) = u0, u(1) = u1."""
+        par = np.ascontiguousarray(par, dtype=float)
+        fb = np.zeros(nbc)
+        dbc = np.zeros(max(1, nbc * (2 * self.ndim + len(par))))
+        self.lib.washer_bcnd(self.ndim, _dptr(par), self._icp_ptr, nbc,
+                             _dptr(np.ascontiguousarray(u0, float)),
+                             _dptr(np.ascontiguousarray(u1, float)), 0, _dptr(fb), _dptr(dbc))
+        return fb
+
+    def icnd_batch(self, par, nint: int, u, uold, udot, upold) -> np.ndarray:
+        """AUTO's ICND at k points (k, NDIM) each -> (k, NINT) integrands."""
+        arrs = [np.ascontiguousarray(a, dtype=float) for a in (u, uold, udot, upold)]
+        k = arrs[0].shape[0]
+        par = np.ascontiguousarray(par, dtype=float)
+        fi = np.zeros((k, nint))
+        scratch = np.zeros(max(1, nint * (self.ndim + len(par))))
+        self.lib.washer_icnd_batch(k, self.ndim, _dptr(par), self._icp_ptr, nint,
+                                   *(_dptr(a) for a in arrs), _dptr(fi), _dptr(scratch))
+        return fi
+
+
+class CompiledProblem(Problem):
+    """A Problem whose equations are a compiled AUTO user file (`.user` holds the
+    routines: bcnd, icnd_batch, fopt for the boundary-value engine)."""
+
+    def __init__(self, user: CompiledUser, name: str):
+        self.user = user
+        super().__init__(user.ndim, user.func, stpnt=user.stpnt if user.has["stpnt"] else None,
+                         dfdu=user.dfdu, dfdp=user.dfdp, name=name,
+                         dfdu_batch=user.dfdu_batch, func_batch=user.func_batch,
+                         pvls=user.pvls if user.has["pvls"] else None)
+
+    def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0) -> np.ndarray:
+        """PAR after the user's PVLS (a copy); t, ntst, ncol: the mesh of a BVP solution."""
+        par = np.array(par, dtype=float)
+        if self._pvls is not None:
+            self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+        return par
+
+    def set_icp(self, icp) -> None:
+        self.user.set_icp(icp)
+
+
+def load_compiled_problem(path, ndim: int, name: str = "") -> CompiledProblem:
+    """The Problem of an AUTO user file (.f90, .f or .c). Raises CompileError (with the
+    compiler's messages) or ProblemError."""
+    path = Path(path)
+    return CompiledProblem(CompiledUser(path, ndim), name or path.stem)
+
+
+__all__ = ["CompileError", "CompiledProblem", "CompiledUser", "find_user_file",
+           "compile_user_file", "load_compiled_problem"]

@@ -1,0 +1,293 @@
+/* The bridge between washer and an AUTO-07p user file (Fortran or C), compiled with it.
+ *
+ * One entry per user routine with a single C signature whatever the user's language,
+ * and batched entries that loop over many points in one foreign call (stencils of
+ * finite differences, collocation points), so the FFI cost is paid once per batch.
+ * Arrays from Python are C-ordered: points are rows (k, ndim); Jacobians come back
+ * row-major (k, ndim, ndim), transposed here from AUTO's column-major DFDU(NDIM,NDIM).
+ *
+ * WASHER_FORTRAN = 1: the user routines are gfortran's func_, stpnt_, ... (all
+ * arguments by reference; argument orders of AUTO's Fortran interface). Routines the
+ * file does not define are weak symbols (NULL). WASHER_FORTRAN = 0: the C file's
+ * table `user` (auto_f2c.h).
+ *
+ * GETP, AUTO's support routine for PVLS (support.f90:GETP), reads the context that
+ * washer_set_context stores before each PVLS call.
+ */
+#include <math.h>
+#include <string.h>
+#include <stddef.h>
+
+#if WASHER_FORTRAN
+extern void func_(const int *ndim, const double *u, const int *icp, const double *par,
+                  const int *ijac, double *f, double *dfdu, double *dfdp) __attribute__((weak));
+extern void stpnt_(const int *ndim, double *u, double *par, const double *t)
+    __attribute__((weak));
+extern void bcnd_(const int *ndim, const double *par, const int *icp, const int *nbc,
+                  const double *u0, const double *u1, double *fb, const int *ijac,
+                  double *dbc) __attribute__((weak));
+extern void icnd_(const int *ndim, const double *par, const int *icp, const int *nint,
+                  const double *u, const double *uold, const double *udot,
+                  const double *upold, double *fi, const int *ijac, double *dint)
+    __attribute__((weak));
+extern void fopt_(const int *ndim, const double *u, const int *icp, const double *par,
+                  const int *ijac, double *fs, double *dfdu, double *dfdp) __attribute__((weak));
+extern void pvls_(const int *ndim, const double *u, double *par) __attribute__((weak));
+#else
+#define WRAPPER
+#include "auto_f2c.h"
+#endif
+
+/* ------------------------------------------------------------------ context for GETP */
+static struct {
+    int ips, ndim, ntst, ncol, nbc, nint, nins;
+    const double *dtm;          /* (ntst,) mesh interval lengths, NULL: uniform */
+    double rds, fldf, hbff, biff, spbf;
+    const double *eig;          /* (2 * ndim,) re, im alternating, NULL: none */
+} ctx = {1, 0, 0, 0, 0, 0, 0, NULL, 0, 0, 0, 0, 0, NULL};
+
+void washer_set_context(int ips, int ndim, int ntst, int ncol, int nbc, int nint,
+                        const double *dtm)
+{
+    ctx.ips = ips; ctx.ndim = ndim; ctx.ntst = ntst; ctx.ncol = ncol;
+    ctx.nbc = nbc; ctx.nint = nint; ctx.dtm = dtm;
+}
+
+void washer_set_measures(double rds, double fldf, double hbff, double biff, double spbf,
+                         int nins, const double *eig)
+{
+    ctx.rds = rds; ctx.fldf = fldf; ctx.hbff = hbff; ctx.biff = biff; ctx.spbf = spbf;
+    ctx.nins = nins; ctx.eig = eig;
+}
+
+/* Lagrange quadrature weights of NCOL + 1 equally spaced nodes on [0, 1] (AUTO's WINT). */
+static void wint(int ncol, double *w)
+{
+    /* integrate each Lagrange basis polynomial with a Gauss-Legendre rule exact for its degree */
+    static const double gx[8] = {-0.9602898564975363, -0.7966664774136267,
+        -0.5255324099163290, -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
+        0.7966664774136267, 0.9602898564975363};
+    static const double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+        0.3626837833783620, 0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+        0.1012285362903763};
+    for (int i = 0; i <= ncol; i++) {
+        double s = 0.0;
+        for (int g = 0; g < 8; g++) {
+            double x = 0.5 * (gx[g] + 1.0), l = 1.0;
+            for (int j = 0; j <= ncol; j++)
+                if (j != i) l *= (x - (double)j / ncol) / ((double)(i - j) / ncol);
+            s += 0.5 * gw[g] * l;
+        }
+        w[i] = s;
+    }
+}
+
+/* u is UPS(NDIM*NCOL, NTST+1) in AUTO's layout = the NTPL mesh points one after another. */
+static double mesh_value(const double *u, int j, int ic) { return u[j * ctx.ndim + ic - 1]; }
+
+static double dtm_of(int j) { return ctx.dtm ? ctx.dtm[j] : 1.0 / ctx.ntst; }
+
+static double integral(const double *u, int ic, int square)
+{
+    double w[64], s = 0.0;
+    if (ctx.ncol <= 0 || ctx.ncol > 63) return 0.0;
+    wint(ctx.ncol, w);
+    for (int j = 0; j < ctx.ntst; j++) {
+        double part = 0.0;
+        for (int k = 0; k <= ctx.ncol; k++) {
+            double v = mesh_value(u, j * ctx.ncol + k, ic);
+            part += w[k] * (square ? v * v : v);
+        }
+        s += dtm_of(j) * part;
+    }
+    return s;
+}
+
+static double getp_c(const char *code, int ic, const double *u)
+{
+    char c[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 3 && code[i]; i++)
+        c[i] = (code[i] >= 'a' && code[i] <= 'z') ? code[i] - 32 : code[i];
+    int ntpl = ctx.ntst * ctx.ncol + 1;
+    double v = 0.0;
+    if (ctx.ips <= 1 || ctx.ips == 5 || ctx.ips == 11) {
+        if (!strcmp(c, "NRM")) v = fabs(u[ic - 1]);
+        else if (!strcmp(c, "INT") || !strcmp(c, "MAX") || !strcmp(c, "MIN") ||
+                 !strcmp(c, "BV1")) v = u[ic - 1];
+        else if (!strcmp(c, "HBF")) v = ctx.hbff;
+        else if (!strcmp(c, "BIF")) v = ctx.biff;
+    } else {
+        if (!strcmp(c, "NRM")) v = sqrt(integral(u, ic, 1));
+        else if (!strcmp(c, "INT")) v = integral(u, ic, 0);
+        else if (!strcmp(c, "MAX") || !strcmp(c, "MIN") || !strcmp(c, "MXT") ||
+                 !strcmp(c, "MNT")) {
+            int best = 0, want_max = (c[1] == 'A' || c[1] == 'X');
+            for (int j = 1; j < ntpl; j++) {
+                double a = mesh_value(u, j, ic), b = mesh_value(u, best, ic);
+                if (want_max ? a > b : a < b) best = j;
+            }
+            if (c[2] == 'T') {       /* time of the extremum */
+                int jj = best / ctx.ncol, kk = best % ctx.ncol;
+                double t = 0.0;
+                for (int j = 0; j < jj && j < ctx.ntst; j++) t += dtm_of(j);
+                if (jj < ctx.ntst) t += dtm_of(jj) * kk / ctx.ncol;
+                v = t;
+            } else v = mesh_value(u, best, ic);
+        }
+        else if (!strcmp(c, "DTM")) v = (ic >= 1 && ic <= ctx.ntst) ? dtm_of(ic - 1) : 0.0;
+        else if (!strcmp(c, "WIN")) {
+            double w[64];
+            if (ctx.ncol > 0 && ctx.ncol < 64 && ic >= 0 && ic <= ctx.ncol) {
+                wint(ctx.ncol, w); v = w[ic];
+            }
+        }
+        else if (!strcmp(c, "BV1")) v = mesh_value(u, ntpl - 1, ic);
+        else if (!strcmp(c, "BIF")) v = ctx.biff;
+        else if (!strcmp(c, "SPB")) v = ctx.spbf;
+    }
+    if (!strcmp(c, "BV0")) v = u[ic - 1];
+    else if (!strcmp(c, "STP")) v = ctx.rds;
+    else if (!strcmp(c, "FLD")) v = ctx.fldf;
+    else if (!strcmp(c, "STA")) v = ctx.nins;
+    else if (!strcmp(c, "EIG")) v = (ctx.eig && ic >= 1 && ic <= 2 * ctx.ndim) ? ctx.eig[ic - 1] : 0.0;
+    else if (!strcmp(c, "NDI") || !strcmp(c, "NDX")) v = ctx.ndim;
+    else if (!strcmp(c, "NTS")) v = ctx.ntst;
+    else if (!strcmp(c, "NCO")) v = ctx.ncol;
+    else if (!strcmp(c, "NBC")) v = ctx.nbc;
+    else if (!strcmp(c, "NIN")) v = ctx.nint;
+    return v;
+}
+
+/* Fortran: DOUBLE PRECISION FUNCTION GETP(CODE, IC, UPS), CHARACTER*3 CODE (the hidden
+   length argument follows the others). C: getp(code, ic, u). */
+double getp_(const char *code, const int *ic, const double *u, size_t len)
+{
+    char c[4] = {' ', ' ', ' ', 0};
+    for (size_t i = 0; i < 3 && i < len; i++) c[i] = code[i];
+    for (int i = 2; i >= 0 && c[i] == ' '; i--) c[i] = 0;
+    return getp_c(c, *ic, u);
+}
+
+double getp(const char *code, int ic, const double *u) { return getp_c(code, ic, u); }
+
+/* ------------------------------------------------------------------ user routines */
+int washer_has(const char *name)
+{
+#if WASHER_FORTRAN
+    if (!strcmp(name, "func")) return func_ != NULL;
+    if (!strcmp(name, "stpnt")) return stpnt_ != NULL;
+    if (!strcmp(name, "bcnd")) return bcnd_ != NULL;
+    if (!strcmp(name, "icnd")) return icnd_ != NULL;
+    if (!strcmp(name, "fopt")) return fopt_ != NULL;
+    if (!strcmp(name, "pvls")) return pvls_ != NULL;
+    return 0;
+#else
+    (void)name;
+    return 1;
+#endif
+}
+
+static void call_func(int ndim, const double *u, const int *icp, const double *par, int ijac,
+                      double *f, double *dfdu, double *dfdp)
+{
+#if WASHER_FORTRAN
+    func_(&ndim, u, icp, par, &ijac, f, dfdu, dfdp);
+#else
+    user.func(ndim, u, icp, par, ijac, f, dfdu, dfdp);
+#endif
+}
+
+/* f at k points: us (k, ndim), pars (k, npar) with row stride par_stride (0: one PAR
+   for all points), fs (k, ndim). scratch: ndim * (ndim + npar) doubles for DFDU/DFDP,
+   which FUNC may touch even with IJAC = 0. */
+void washer_func_batch(int k, int ndim, int npar, const double *us, const double *pars,
+                       int par_stride, const int *icp, double *fs, double *scratch)
+{
+    for (int i = 0; i < k; i++) {
+        memset(fs + (size_t)i * ndim, 0, sizeof(double) * ndim);
+        call_func(ndim, us + (size_t)i * ndim, icp, pars + (size_t)i * par_stride, 0,
+                  fs + (size_t)i * ndim, scratch, scratch + (size_t)ndim * ndim);
+    }
+    (void)npar;
+}
+
+/* The user's Jacobians (IJAC = 1: DFDU; IJAC = 2: DFDU and DFDP) at k points.
+   dfdus (k, ndim, ndim) row-major; dfdps (k, ndim, npar) row-major or NULL. */
+void washer_jac_batch(int k, int ndim, int npar, const double *us, const double *pars,
+                      int par_stride, const int *icp, int ijac, double *fs, double *dfdus,
+                      double *dfdps, double *scratch)
+{
+    double *a = scratch, *b = scratch + (size_t)ndim * ndim;
+    for (int i = 0; i < k; i++) {
+        memset(a, 0, sizeof(double) * (size_t)ndim * (ndim + npar));
+        memset(fs + (size_t)i * ndim, 0, sizeof(double) * ndim);
+        call_func(ndim, us + (size_t)i * ndim, icp, pars + (size_t)i * par_stride, ijac,
+                  fs + (size_t)i * ndim, a, b);
+        double *J = dfdus + (size_t)i * ndim * ndim;
+        for (int r = 0; r < ndim; r++)
+            for (int c = 0; c < ndim; c++) J[r * ndim + c] = a[r + c * ndim];
+        if (dfdps) {
+            double *P = dfdps + (size_t)i * ndim * npar;
+            for (int r = 0; r < ndim; r++)
+                for (int c = 0; c < npar; c++) P[r * npar + c] = b[r + c * ndim];
+        }
+    }
+}
+
+void washer_stpnt(int ndim, double t, double *u, double *par)
+{
+#if WASHER_FORTRAN
+    stpnt_(&ndim, u, par, &t);
+#else
+    user.stpnt(ndim, t, u, par);
+#endif
+}
+
+void washer_pvls(int ndim, const double *u, double *par)
+{
+#if WASHER_FORTRAN
+    pvls_(&ndim, u, par);
+#else
+    user.pvls(ndim, u, par);
+#endif
+}
+
+/* BCND: fb (nbc,), dbc column-major (nbc, 2 ndim + npar) when ijac > 0. */
+void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
+                 const double *u1, int ijac, double *fb, double *dbc)
+{
+#if WASHER_FORTRAN
+    bcnd_(&ndim, par, icp, &nbc, u0, u1, fb, &ijac, dbc);
+#else
+    user.bcnd(ndim, par, icp, nbc, u0, u1, ijac, fb, dbc);
+#endif
+}
+
+/* ICND at k points (collocation points): u, uold, udot, upold (k, ndim); fi (k, nint). */
+void washer_icnd_batch(int k, int ndim, const double *par, const int *icp, int nint,
+                       const double *u, const double *uold, const double *udot,
+                       const double *upold, double *fi, double *scratch)
+{
+    int ijac = 0;
+    for (int i = 0; i < k; i++) {
+        size_t o = (size_t)i * ndim;
+#if WASHER_FORTRAN
+        icnd_(&ndim, par, icp, &nint, u + o, uold + o, udot + o, upold + o,
+              fi + (size_t)i * nint, &ijac, scratch);
+#else
+        user.icnd(ndim, par, icp, nint, u + o, uold + o, udot + o, upold + o, ijac,
+                  fi + (size_t)i * nint, scratch);
+#endif
+    }
+}
+
+/* FOPT (IPS = 5, 15): the objective fs and, with ijac, its derivatives (column-major). */
+void washer_fopt(int ndim, const double *u, const int *icp, const double *par, int ijac,
+                 double *fs, double *dfdu, double *dfdp)
+{
+#if WASHER_FORTRAN
+    fopt_(&ndim, u, icp, par, &ijac, fs, dfdu, dfdp);
+#else
+    user.fopt(ndim, u, icp, par, ijac, fs, dfdu, dfdp);
+#endif
+}
