@@ -146,21 +146,23 @@ def _stable(p: Point) -> bool | None:
     return None if p is None or p.stability is None else bool(p.stability.stable)
 
 
-def build(c, problem, records=None, name: str = "", records_source: str = "the restart file"
-          ) -> tuple[Run, int, str]:
+def build(c, problem, records=None, name: str = "", records_source: str = "the restart file",
+          mlab: int | None = None, mbr: int | None = None) -> tuple[Run, int, str]:
     """Resolve constants + problem + restart records into a Run (system and
     settings), the branch number and the start mode (`washer.cont.start`).
-    records_source names the s-file in messages. Raises RunError."""
+    records_source names the s-file in messages. mlab, mbr: the largest label and
+    branch number of the data the restart record came from (default: of `records`;
+    AUTO's CLUI passes them with a single solution). Raises RunError."""
     s, problem = start.settings_for(c, problem)
     rec = start.restart_record(c, problem, records, records_source)
     u, par = start.start_values(c, s, problem, rec)
     system, s, kind = start.system_for(c, s, problem, u, par, rec)
     # Numbering continues the restart file's only when restarting from it.
     known = records if rec is not None else []
-    br = start.branch_number(c, s, rec, kind, known)
+    br = start.branch_number(c, s, rec, kind, known, mbr=mbr if rec is not None else None)
     run = Run(c, s, system, name or problem.name, start.column_titles(c, s, system),
               rec.lab if rec is not None else 0, first_label=rec is None,
-              label0=start.first_label(c, known))
+              label0=start.first_label(c, known, mlab=mlab if rec is not None else None))
     mode = getattr(system, "start_mode", None) or \
         ("switch" if (s.ISW == -1 and kind == "BP" and system.arclength == "sphere") else "fresh")
     return run, br, mode

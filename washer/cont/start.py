@@ -132,11 +132,12 @@ def system_for(c, s: Settings, problem, u, par, rec):
     return system, s, kind
 
 
-def branch_number(c, s: Settings, rec, kind: str, records) -> int:
-    """AUTO's NEWLAB: IBR if given; a new branch after the file's highest for IRS = 0
-    and switches; the HB's label for a periodic branch from it (and for a curve started
-    at a special point); else the record's branch."""
-    mbr = max((abs(r.br) for r in records), default=0) if records else 0
+def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = None) -> int:
+    """AUTO's NEWLAB: IBR if given; a new branch after the file's highest (or `mbr`) for
+    IRS = 0 and switches; the HB's label for a periodic branch from it (and for a curve
+    started at a special point); else the record's branch."""
+    if mbr is None:
+        mbr = max((abs(r.br) for r in records), default=0) if records else 0
     if c["IBR"]:
         return c["IBR"]
     if rec is None or s.ISW < 0:
@@ -146,10 +147,14 @@ def branch_number(c, s: Settings, rec, kind: str, records) -> int:
     return abs(rec.br)
 
 
-def first_label(c, records) -> int:
-    """Labels continue from LAB, or from the restart file's highest."""
-    mlab = max((r.lab for r in records), default=0) if records else 0
-    return c["LAB"] or mlab
+def first_label(c, records, mlab: int | None = None) -> int:
+    """The label before the run's first: LAB - 1 when LAB is given (LAB is the first
+    label, AUTO's NEWLAB), else the restart file's highest (or `mlab`)."""
+    if c["LAB"]:
+        return c["LAB"] - 1
+    if mlab is None:
+        mlab = max((r.lab for r in records), default=0) if records else 0
+    return mlab
 
 
 def column_titles(c, s: Settings, system) -> list:

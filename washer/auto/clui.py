@@ -1,0 +1,555 @@
+"""AUTO-07p's command language (the CLUI) on washer's engine.
+
+    python -m washer.auto NAME.auto         # run an AUTO script in the current folder
+    python -m washer.auto                   # interactive, like `auto`
+    from washer.auto import run, load, save, append, merge, relabel, cl, ...
+
+The commands and their meanings are AUTO's (python/auto/AUTOCommands.py): one
+runner holds the current constants and restart solution; `run(data, **constants)`
+restarts from a solution, a diagram (its IRS or last solution), a name (c.NAME,
+s.NAME, e = NAME) or the runner's state, writes fort.7/8/9 (b./s./d.<sv> with
+sv='name') and returns the bifurcation diagram (washer.auto.diagram.Diagram).
+Constants keep AUTO's "None means default" semantics: a constants file given with
+c= replaces every constant it does not set by its default, a keyword changes one,
+DS='-' reverses the direction. The equations are NAME.py (washer's Python user
+files) or AUTO's NAME.f90 / NAME.f / NAME.c, compiled on first use.
+
+Scripts are read in AUTO's dialect: Python 2 `print "..."` statements are
+accepted. An unknown command stops the script with its name and line.
+"""
+from __future__ import annotations
+
+import glob
+import os
+import shutil
+import sys
+from pathlib import Path
+
+from washer.auto.constants import DEFAULTS, Constants, ConstantsError, read_constants
+from washer.auto.diagram import Diagram, Solution, SolutionList, read_solutions, type_name
+
+#: Constants a constants file resets to "default" when it does not set them (parseC's
+#: list); the special keys e, unames, parnames survive a new constants file.
+STANDARD_KEYS = [k for k in DEFAULTS if k not in ("e", "unames", "parnames")]
+SPECIAL_KEYS = ("e", "unames", "parnames", "homcont")
+#: Constants a solution taken from a run does not carry to the next run (bifDiag.nonekeys).
+NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
+#: File name of the unsaved output of a run (AUTO's units 7, 8, 9).
+FORT = ("fort.7", "fort.8", "fort.9")
+
+
+class AutoError(RuntimeError):
+    """A command failed (AUTO's AUTORuntimeError)."""
+
+
+class AutoConstants(dict):
+    """AUTO's constants as the CLUI holds them (parseC): every standard key present,
+    None meaning AUTO's default; updates replace values, None included."""
+
+    def __init__(self, other=None, **kw):
+        super().__init__({k: None for k in STANDARD_KEYS})
+        if other is not None:
+            for k, v in dict(other).items():
+                dict.__setitem__(self, k, _copyval(v))
+        if kw:
+            self.update(kw)
+
+    def __setitem__(self, key, value):
+        if key == "DS" and value in ("-", "+"):
+            cur = self.get("DS")
+            cur = 0.01 if cur is None else float(cur)
+            value = -cur if value == "-" else abs(cur)
+        dict.__setitem__(self, key, _copyval(value))
+
+    def update(self, d=None, **kw):
+        items = dict(d or {})
+        items.update(kw)
+        for k, v in items.items():
+            if k in self or k in SPECIAL_KEYS:
+                self[k] = v
+            elif not str(k).startswith("Active "):
+                raise AutoError(f"Unknown option: {k}")
+
+    def copy(self) -> "AutoConstants":
+        return AutoConstants(self)
+
+    def washer(self, source: str) -> Constants:
+        """The engine's checked Constants (defaults where None)."""
+        c = Constants(source=source)
+        for k, v in self.items():
+            if v is None or k == "homcont":
+                continue
+            c.set(k, v, f"{source}: {k}")
+        return c
+
+
+def _copyval(v):
+    return v.copy() if isinstance(v, (dict, list)) else v
+
+
+def read_auto_constants(name: str) -> AutoConstants:
+    """c.NAME as AUTO's parseC sees it: the keys the file sets; the rest None."""
+    path = Path(f"c.{name}")
+    if not path.exists():
+        raise AutoError(f"{path}: no such constants file")
+    try:
+        c = read_constants(path)
+    except ConstantsError as exc:
+        raise AutoError(str(exc)) from None
+    out = AutoConstants()
+    for k in c.given:
+        out[k] = c[k]
+    return out
+
+
+# ----------------------------------------------------------------------------- runner
+
+class Runner:
+    """What the CLUI remembers between commands: constants and the restart solution."""
+
+    def __init__(self):
+        self.constants = AutoConstants()
+        self.solution = Solution(None)
+        self._problems: dict = {}
+
+    def problem(self, e: str, ndim: int):
+        """The equations named e in the current folder: NAME.py, else NAME.f90/.f/.c
+        (compiled once, cached), or washer's built-in problems (e = 'washer...')."""
+        from washer.cont.compiled import find_user_file, load_compiled_problem
+        from washer.cont.problem import load_python_problem
+        if not e:
+            raise AutoError("The equation file argument is missing.")
+        folder = Path(".").resolve()
+        if e.split(":")[0] == "washer":
+            from washer.run import resolve_problem
+            return resolve_problem(Constants({"e": e}), folder)
+        py = folder / f"{e}.py"
+        path = py if py.exists() else find_user_file(e, folder)
+        if path is None:
+            raise AutoError(f"No equations file found for: '{e}' (expected {e}.f90, {e}.f, "
+                            f"{e}.c or {e}.py in {folder})")
+        key = (str(path), path.stat().st_mtime_ns, ndim)
+        if key not in self._problems:
+            if path.suffix == ".py":
+                self._problems[key] = load_python_problem(e, folder, ndim)
+            else:
+                self._problems[key] = load_compiled_problem(path, ndim, name=e)
+        return self._problems[key]
+
+
+_runner = Runner()
+
+
+def _abbrev(kw: dict) -> dict:
+    """AUTO's long option names (equation, constants, solution) to the short ones."""
+    out = dict(kw)
+    for long, short in (("equation", "e"), ("constants", "c"), ("solution", "s"),
+                        ("homcont", "h")):
+        if long in out:
+            v = out.pop(long)
+            out.setdefault(short, v)
+    return out
+
+
+def _configure(data=None, **kw) -> Solution:
+    """load()'s work: resolve c=/s=/e= and data into the runner; the selected solution."""
+    R = _runner
+    kw = _abbrev(kw)
+    kw.pop("h", None)
+    resolved = {}
+    missing_s = None
+    for short, reader in (("c", read_auto_constants), ("s", _read_s)):
+        if short in kw:
+            value = kw.pop(short)
+            explicit = True
+        elif isinstance(data, str):
+            value, explicit = data, False
+        else:
+            continue
+        if isinstance(value, str):
+            try:
+                value = reader(value)
+            except AutoError as exc:
+                if short == "c" and explicit:
+                    raise
+                if short == "s" and explicit:
+                    missing_s = exc
+                value = None
+        resolved[short] = value
+    if isinstance(data, str) and "e" not in kw:
+        kw["e"] = data
+    if "e" in kw:
+        _check_equation(kw["e"])
+    if data is not None and hasattr(data, "load") and not isinstance(data, str):
+        if resolved.get("c") is not None:
+            kw["constants"] = resolved["c"]
+        sol = data.load(**kw)
+        R.constants.update(sol.c)
+        R.solution = sol
+        return R.solution.load(constants=R.constants)
+    if "c" in resolved and resolved["c"] is not None:
+        R.constants.update(resolved["c"])
+    if "s" in resolved:
+        R.solution = resolved["s"] if resolved["s"] is not None else Solution(None)
+    R.constants.update(kw)
+    if missing_s is not None and R.constants.get("IRS"):
+        raise AutoError(str(missing_s))
+    return R.solution.load(constants=R.constants)
+
+
+def _read_s(name: str) -> SolutionList:
+    path = Path(f"s.{name}")
+    if not path.exists():
+        raise AutoError(f"{path}: no such solution file")
+    return SolutionList(read_solutions(path))
+
+
+def _check_equation(e) -> None:
+    if not e or str(e).split(":")[0] == "washer":
+        return
+    for ext in (".f90", ".f", ".c", ".py"):
+        if os.path.exists(f"{e}{ext}"):
+            return
+    raise AutoError(f"No equations file found for: '{e}'")
+
+
+def _execute(sol: Solution) -> Diagram:
+    """One run of the engine from the selected solution; its output files parsed back."""
+    from washer.cont.runner import RunError, build, execute
+    from washer.cont.problem import ProblemError
+    from washer.cont.sinks import FileSink, ScreenSink
+    from washer.cont.compile import CompileError
+    c = sol.c
+    e = c.get("e") or ""
+    if c.get("IRS") and sol.empty:
+        raise AutoError(f"Restart label IRS={c['IRS']} not found.")
+    sv = c.get("sv") or ""
+    try:
+        wc = c.washer(f"c.{e}")
+        wc.set("sv", "")
+        wc.set("s", "")
+        problem = _runner.problem(e, wc["NDIM"])
+        records = None
+        if not sol.empty and c.get("IRS"):
+            wc.set("IRS", sol.rec.lab)
+            records = [sol.rec]
+        else:
+            wc.set("IRS", 0)
+        if hasattr(problem, "set_icp"):
+            try:
+                problem.set_icp(wc.icp())
+            except ConstantsError:
+                pass
+        r, br, mode = build(wc, problem, records, name=e, records_source="the restart solution",
+                            mlab=sol._mlab if records else None,
+                            mbr=sol._mbr if records else None)
+    except (ConstantsError, RunError, ProblemError, CompileError) as exc:
+        raise AutoError(str(exc)) from None
+    name = sv or ".washer-fort"
+    files = FileSink(Path("."), name)
+    result = execute(r, br, mode, [files, ScreenSink()])
+    paths = [Path(f"{k}.{name}") for k in "bsd"]
+    if not sv:
+        for p, f in zip(paths, FORT):
+            os.replace(p, f)
+        paths = [Path(f) for f in FORT]
+    print(f"{e} ... done", flush=True)
+    keep = AutoConstants(c)
+    for k in NONE_KEYS:
+        keep[k] = None
+    bd = Diagram.read(*paths, c=keep)
+    bd.status = result.status
+    return bd
+
+
+# ----------------------------------------------------------------------------- commands
+
+def run(data=None, sv=None, ap=None, **kw) -> Diagram:
+    """Run AUTO from data (solution, diagram, name or the loaded state) with constants
+    kw; sv='name' saves to b./s./d.name, ap='name' appends there too."""
+    if sv is not None:
+        kw["sv"] = sv
+    sol = _configure(data, **kw)
+    res = _execute(sol)
+    sv = _runner.constants.get("sv")
+    _runner.constants["sv"] = None
+    if sv:
+        print(f"Saving to b.{sv}, s.{sv}, and d.{sv} ... done")
+        if ap is not None:
+            append(sv, ap)
+    elif ap is not None:
+        append(ap)
+    return res
+
+
+def load(data=None, **kw):
+    """Load files (a name: c.NAME, s.NAME, e=NAME) or return a solution of data with
+    constants changed (AUTO's load)."""
+    sol = _configure(data, **kw)
+    return sol
+
+
+def loadbd(name=None, **kw) -> Diagram:
+    """The bifurcation diagram of b./s./d.NAME (fort.7/8/9 without a name)."""
+    if isinstance(name, Diagram):
+        return name
+    paths = [f"{k}.{name}" for k in "bsd"] if name else list(FORT)
+    if not any(os.path.exists(p) for p in paths[:2]):
+        raise AutoError(f"no output files {paths[0]}, {paths[1]}")
+    return Diagram.read(*paths)
+
+
+def sl(name=None) -> SolutionList:
+    """The solutions of s.NAME (fort.8 without a name)."""
+    return SolutionList(read_solutions(f"s.{name}" if name else "fort.8"))
+
+
+def dg(name=None) -> Diagram:
+    """The bifurcation diagram of b.NAME alone."""
+    return Diagram.read(f"b.{name}" if name else "fort.7")
+
+
+def _names(name) -> list[str]:
+    return [f"{k}.{name}" for k in "bsd"]
+
+
+def save(name1, name2=None):
+    """save(x, 'name'): write diagram x to b./s./d.name (a solution or list: s.name
+    only); save('name'): copy fort.7/8/9 to b./s./d.name. Existing files -> NAME~."""
+    parsed = None
+    if name2 is not None:
+        parsed, name1 = name1, name2
+    paths = _names(name1)
+    for p in paths:
+        if os.path.exists(p):
+            shutil.copy(p, p + "~")
+    if parsed is not None:
+        if isinstance(parsed, list) and not isinstance(parsed, (Diagram, SolutionList)) and \
+                parsed and isinstance(parsed[0], Solution):
+            parsed = SolutionList(parsed)
+        if isinstance(parsed, Diagram) and len(parsed) and len(parsed[0]):
+            parsed.write(name1)
+            print(f"Saving to {paths[0]}, {paths[1]}, and {paths[2]} ... done")
+        else:
+            if isinstance(parsed, Solution):
+                parsed = SolutionList([parsed])
+            parsed.write(paths[1])
+            print(f"Saving to {paths[1]} ... done")
+        return
+    for f, p in zip(FORT, paths):
+        if os.path.exists(f):
+            shutil.copy(f, p)
+            print(f"Saving {f} as {p} ... done")
+
+
+def append(name1, name2=None):
+    """append(x, 'name'): x to the end of b./s./d.name; append('name'): fort.7/8/9 to
+    b./s./d.name; append('a', 'b'): files a to files b; append('name', x): the files
+    to diagram x (in place)."""
+    if isinstance(name1, Diagram) and name2 is not None and not isinstance(name2, Diagram):
+        name1.write(name2, append=True)
+        print(f"Appending to b.{name2}, s.{name2} and d.{name2} ... done")
+        return
+    if isinstance(name2, Diagram):
+        other = name1 if isinstance(name1, Diagram) else loadbd(name1)
+        name2.extend(other)
+        return
+    src = _names(name1) if name2 is not None else list(FORT)
+    dst = _names(name2 if name2 is not None else name1)
+    for a, b in zip(src, dst):
+        try:
+            with open(a, "rb") as fa, open(b, "ab") as fb:
+                shutil.copyfileobj(fa, fb)
+            print(f"Appending {a} to {b} ... done")
+        except OSError as exc:
+            print(f"Appending {a} to {b}: {exc}")
+
+
+def _transform_files(name1, name2, how: str) -> None:
+    src = _names(name1) if name1 else list(FORT)
+    bd = Diagram.read(*src)
+    new = bd.relabel() if how == "relabel" else bd.merge()
+    if name2 is None:
+        for p in src:
+            if os.path.exists(p):
+                shutil.copy(p, p + "~")
+        new.write(src)
+    else:
+        new.write(name2)
+
+
+def relabel(name1=None, name2=None):
+    """relabel(x): a copy of diagram x with labels 1, 2, ...; relabel('name'): the files."""
+    if name1 is not None and not isinstance(name1, str):
+        out = name1.relabel()
+        print("Relabeling done")
+        return out
+    _transform_files(name1, name2, "relabel")
+    print("Relabeling done")
+
+
+def merge(name1=None, name2=None):
+    """merge(x): a copy of diagram x with branches continued both ways joined."""
+    if name1 is not None and not isinstance(name1, str):
+        out = name1.merge()
+        print("Merge done")
+        return out
+    _transform_files(name1, name2, "merge")
+    print("Merging done")
+
+
+def clean():
+    """Delete fort.*, *.o, *.exe and *.*~ in the current folder."""
+    for f in sorted(set(glob.glob("fort.*") + glob.glob("*.o") + glob.glob("*.exe") +
+                        glob.glob("*.*~"))):
+        os.remove(f)
+    print("Deleting fort.* *.o *.exe *.*~ ... done")
+
+
+def df():
+    """Delete fort.* files."""
+    for f in glob.glob("fort.*"):
+        os.remove(f)
+    print("Deleting fort.* ... done")
+
+
+def delete(name):
+    """Delete b./s./d.NAME."""
+    for p in _names(name):
+        if os.path.exists(p):
+            os.remove(p)
+            print(f"Deleting {p} ... done")
+
+
+def copy(name1, name2, name3=None, name4=None):
+    """Copy c./b./s./d.name1 to name2 (folders as AUTO's copy)."""
+    dir1 = dir2 = ""
+    if os.path.isdir(name1):
+        dir1, name1 = name1, name2
+        name2 = name4 if name4 is not None else name3
+        if name4 is not None:
+            dir2 = name3
+    elif os.path.isdir(name2):
+        dir2 = name2
+        name2 = name3 if name3 is not None else name1
+    done = False
+    for k in "bsdc":
+        a, b = os.path.join(dir1, f"{k}.{name1}"), os.path.join(dir2, f"{k}.{name2}")
+        if os.path.exists(a):
+            shutil.copy(a, b)
+            print(f"Copying {a} to {b} ... done")
+            done = True
+    if not done:
+        raise AutoError(f"Copying: no files found for [bsdc].{name1}")
+
+
+def move(name1, name2, name3=None, name4=None):
+    """Move c./b./s./d.name1 to name2."""
+    copy(name1, name2, name3, name4)
+    for k in "bsdc":
+        p = os.path.join(name1 if os.path.isdir(name1) else "", f"{k}.{name1}")
+        if os.path.exists(p) and not os.path.isdir(name1):
+            os.remove(p)
+
+
+def ch(entry=None, value=None, **kw):
+    """Change constants of the runner: ch('NMX', 50) or ch(NMX=50)."""
+    if entry is not None:
+        _runner.constants.update({entry: value})
+        print(f"{entry} changed to {value}")
+    else:
+        _runner.constants.update(kw)
+        print(str(kw))
+
+
+def pr(parameter=None):
+    """Print the runner's constants (or one)."""
+    c = _runner.constants
+    if parameter is not None:
+        print(c.get(parameter))
+        return c.get(parameter)
+    for k, v in c.items():
+        if v is not None:
+            print(f"{k} = {v!r}")
+
+
+def splabs(s, typename):
+    """Labels of the solutions of type typename in s."""
+    return [x["LAB"] for x in (s if isinstance(s, SolutionList) else s())
+            if x["TY"] == typename]
+
+
+def wait():
+    """A no-op in scripts (AUTO waits for Enter)."""
+
+
+def cat(f=None):
+    if f:
+        sys.stdout.write(Path(f).read_text())
+
+
+def ls(dir=None):
+    print("\n".join(sorted(os.listdir(dir or "."))))
+
+
+def cd(dir=None):
+    os.chdir(os.path.expanduser(dir or "~"))
+
+
+def shell(cmd):
+    os.system(cmd)
+
+
+def quit():
+    raise SystemExit(0)
+
+
+def plot(name=None, **kw):
+    """Draw a bifurcation diagram into a PNG file (no window): the diagram's first
+    column against its second for every branch, stable parts solid, labels marked.
+    Returns the PNG's path."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    bd = name if isinstance(name, Diagram) else loadbd(name)
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for b in bd:
+        if not b.rows or len(b.rows[0].values) < 2:
+            continue
+        x = [r.values[0] for r in b.rows]
+        y = [r.values[1] for r in b.rows]
+        ax.plot(x, y, "k-", lw=1)
+        for r in b.rows:
+            if r.lab and type_name(r.ty) not in ("", "RG"):
+                ax.plot(r.values[0], r.values[1], "ro", ms=3)
+                ax.annotate(f"{type_name(r.ty)}{r.lab}", (r.values[0], r.values[1]), fontsize=7)
+        if b.titles:
+            ax.set_xlabel(b.titles[0])
+            ax.set_ylabel(b.titles[1] if len(b.titles) > 1 else "")
+    global _plots
+    _plots += 1
+    out = Path(kw.get("file") or f"{name if isinstance(name, str) else 'plot'}-{_plots}.png")
+    fig.savefig(out, dpi=100)
+    plt.close(fig)
+    print(f"Plot written to {out}")
+    return out
+
+
+_plots = 0
+
+
+def info(s):
+    sys.stdout.write(s)
+
+
+#: Every command under AUTO's names and aliases.
+COMMANDS = {
+    "run": run, "r": run, "rn": run, "load": load, "ld": load, "loadbd": loadbd, "bd": loadbd,
+    "save": save, "sv": save, "append": append, "ap": append, "merge": merge, "mb": merge,
+    "relabel": relabel, "rl": relabel, "clean": clean, "cl": clean, "delete": delete,
+    "dl": delete, "copy": copy, "cp": copy, "move": move, "mv": move, "ch": ch, "cc": ch,
+    "changeconstant": ch, "pr": pr, "pc": pr, "printconstant": pr, "sl": sl,
+    "solutionget": sl, "dg": dg, "diagramget": dg, "df": df, "deletefort": df, "wait": wait,
+    "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
+    "pl": plot, "p2": plot, "splabs": splabs, "info": info,
+}

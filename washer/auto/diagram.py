@@ -1,0 +1,566 @@
+"""AUTO's data objects as its CLUI shows them: solutions, solution lists, bifurcation diagrams.
+
+    bd = Diagram.read("b.ab", "s.ab", "d.ab")   # AUTO's bifDiag
+    bd("HB1"), bd("UZ"), bd(3), bd()            # label selection -> Solution / SolutionList
+    bd[0]                                        # a Branch; bd["PAR(1)"]: a column of branch 0
+    bd + other, bd.relabel(), bd.merge()         # new diagrams
+    bd.write("ab")                               # b.ab, s.ab, d.ab
+
+Labels, branch numbers and point numbers follow AUTO's python/auto (bifDiag.py,
+parseB.py, parseS.py): a solution taken from a diagram carries the diagram's
+largest label and branch number (`mlab`, `mbr`), from which a run restarted at it
+numbers its new labels and branches. Rows and s-records are kept as read and
+written back unchanged except for the fields a command changes (labels on
+relabel, point numbers on merge). No numerics here.
+"""
+from __future__ import annotations
+
+import copy as _copy
+import re
+from pathlib import Path
+
+import numpy as np
+
+from washer.auto.codes import split_code, type_name as _type_name
+from washer.auto.files import AutoFileError, Record, Row, _read_record, _read_text, fmt_e
+
+
+def type_name(code: int) -> str:
+    """AUTO's short type name of a code ('RG' for labelled regular points)."""
+    if split_code(code)[0] == 4:
+        return "RG"
+    return _type_name(code)
+
+
+def _match_type(name: str, code: int) -> bool:
+    return type_name(code) == name
+
+
+def _parse_key(label):
+    """'HB2' -> ('HB', 2); 'HB' -> ('HB', None); 3 -> 3."""
+    if isinstance(label, (int, np.integer)):
+        return int(label)
+    m = re.fullmatch(r"([A-Za-z]{2,3}?)(\d*)", str(label).strip())
+    if not m:
+        raise KeyError(f"bad label {label!r}: expected a number or a type such as 'HB' or 'HB2'")
+    return m.group(1).upper(), (int(m.group(2)) if m.group(2) else None)
+
+
+class Solution:
+    """One labelled solution (AUTO's AUTOSolution): an s-record with the constants `c`
+    (an AutoConstants: what a run restarted from it uses) and the b-file row `b`.
+
+    s['PAR(1)'], s['U(1)'], names from parnames/unames, s['LAB'], s['TY'], s['BR'],
+    s['PT'], s.PAR (the vector), s.U, s.t; s.load(**constants) -> a copy with the
+    constants changed; s.run(**constants)."""
+
+    def __init__(self, record: Record | None, c=None, raw: list[str] | None = None,
+                 row: Row | None = None, titles: list[str] | None = None):
+        self.rec = record
+        self.c = c
+        self.raw = raw or []             # the record's body lines, as read
+        self.row = row
+        self.titles = titles or []
+        self._mlab = record.lab if record is not None else 0
+        self._mbr = abs(record.br) if record is not None else 0
+
+    # ------------------------------------------------------------ identity
+    def _with(self, br=None, pt=None, ty=None, lab=None) -> "Solution":
+        new = _copy.copy(self)
+        if self.rec is not None:
+            new.rec = _copy.copy(self.rec)
+            for k, v in (("br", br), ("pt", pt), ("ty", ty), ("lab", lab)):
+                if v is not None:
+                    setattr(new.rec, k, v)
+        return new
+
+    @property
+    def empty(self) -> bool:
+        return self.rec is None
+
+    def _need(self):
+        if self.rec is None:
+            raise KeyError("a solution without data (no restart point)")
+        return self.rec
+
+    @property
+    def PAR(self) -> np.ndarray:
+        return np.asarray(self._need().par)
+
+    @property
+    def U(self) -> np.ndarray:
+        return np.asarray(self._need().U)
+
+    @property
+    def t(self):
+        return self._need().t
+
+    def _names(self, key: str) -> dict:
+        c = self.c or {}
+        return {v: int(k) for k, v in (c.get(key) or {}).items()}
+
+    def __getitem__(self, key):
+        rec = self._need()
+        if isinstance(key, str):
+            k = key.strip()
+            simple = {"LAB": rec.lab, "Label": rec.lab, "BR": rec.br, "Branch number": rec.br,
+                      "PT": rec.pt, "Point number": rec.pt, "TY number": rec.ty,
+                      "Type number": rec.ty, "TY": type_name(rec.ty),
+                      "Type name": type_name(rec.ty), "ISW": rec.isw, "NTST": rec.ntst,
+                      "NCOL": rec.ncol, "IPS": rec.ips, "NDIM": rec.ndim_user,
+                      "PAR": self.PAR, "p": self.PAR, "U": self.U, "t": rec.t,
+                      "data": self, "Active ICP": list(rec.icp), "rldot": list(rec.rldot)}
+            if k in simple:
+                return simple[k]
+            m = re.fullmatch(r"PAR\((\d+)\)", k)
+            if m:
+                return float(rec.par[int(m.group(1)) - 1])
+            if k == "PERIOD":
+                return float(rec.par[10])
+            m = re.fullmatch(r"U\((\d+)\)", k)
+            if m:
+                U = np.asarray(rec.U)
+                return U[..., int(m.group(1)) - 1] if U.ndim == 2 else float(U[int(m.group(1)) - 1])
+            pn, un = self._names("parnames"), self._names("unames")
+            if k in pn:
+                return float(rec.par[pn[k] - 1])
+            if k in un:
+                U = np.asarray(rec.U)
+                return U[..., un[k] - 1] if U.ndim == 2 else float(U[un[k] - 1])
+            if self.row is not None and k in self.titles:
+                return self.row.values[self.titles.index(k)]
+            raise KeyError(f"{key!r}: not a field of this solution (LAB, TY, BR, PT, "
+                           "PAR(i), U(i), a parameter or state name)")
+        return self.U[key]
+
+    def __contains__(self, key) -> bool:
+        try:
+            self[key]
+            return True
+        except (KeyError, IndexError):
+            return False
+
+    def get(self, key, default=None):
+        try:
+            return self[key]
+        except (KeyError, IndexError):
+            return default
+
+    def __repr__(self) -> str:
+        if self.rec is None:
+            return "<Solution without data>"
+        r = self.rec
+        return (f"<Solution BR={r.br} PT={r.pt} TY={type_name(r.ty)} LAB={r.lab}>")
+
+    def __str__(self) -> str:
+        if self.rec is None:
+            return "Solution without data"
+        r = self.rec
+        lines = [f"  BR    PT  TY  LAB  ISW  NTST  NCOL",
+                 f"{r.br:4d}{r.pt:6d}  {type_name(r.ty):>2}{r.lab:5d}{r.isw:5d}{r.ntst:6d}{r.ncol:6d}"]
+        pars = ", ".join(f"PAR({i + 1})={v:.6g}" for i, v in enumerate(r.par[:12]))
+        lines.append(pars)
+        return "\n".join(lines)
+
+    # ------------------------------------------------------------ constants
+    def load(self, **kw) -> "Solution":
+        """A copy with constants updated (AUTO's AUTOSolution.load): kw 'constants' (an
+        AutoConstants) first, then the keywords; IRS becomes this solution's label."""
+        from washer.auto.clui import AutoConstants
+        constants = kw.pop("constants", None)
+        c = AutoConstants(self.c)
+        oldirs = c.get("IRS")
+        if constants is not None:
+            c.update(constants)
+        c.update(kw)
+        if oldirs is not None and c.get("IRS") == 0:
+            return Solution(None, c)
+        new = self._with()
+        if self.rec is not None and self.rec.lab != 0:
+            c["IRS"] = self.rec.lab
+        new.c = c
+        return new
+
+    def run(self, **kw):
+        from washer.auto.clui import run
+        return run(self, **kw)
+
+    # ------------------------------------------------------------ writing
+    def text(self) -> str:
+        """The s-record: header rewritten from the fields, body as read."""
+        r = self._need()
+        if not self.raw:
+            return r.text()
+        head = self.raw[0].split()
+        h = [int(x) for x in head]
+        h[0], h[1], h[2], h[3] = abs(r.br), (abs(r.pt) - 1) % 9999 + 1, r.ty, r.lab
+        fmt = [6, 6, 6, 6, 6, 6, 8, 6, 8] + [5] * (len(h) - 9)
+        line = "".join(f"{v:{w}d}" for v, w in zip(h, fmt))
+        return "\n".join([line] + self.raw[1:]) + "\n"
+
+
+class SolutionList(list):
+    """AUTO's parseS: a list of Solutions with label selection by call."""
+
+    def __call__(self, label=None):
+        if label is None:
+            return self
+        if callable(label) and not isinstance(label, str):
+            return SolutionList(s for s in self if label(s))
+        if isinstance(label, (list, tuple)):
+            out = SolutionList()
+            for s in self:
+                if any(_selects(s, k, self) for k in label):
+                    out.append(s)
+            return out
+        key = _parse_key(label)
+        if isinstance(key, int):
+            for s in self:
+                if s.rec.lab == key:
+                    return s
+            raise KeyError(f"Label {label} not found (labels: {self.getLabels()})")
+        name, n = key
+        hits = [s for s in self if _match_type(name, s.rec.ty)]
+        if n is None:
+            return SolutionList(hits)
+        if n > len(hits):
+            raise KeyError(f"Label {label} not found: there are {len(hits)} {name} solutions")
+        return hits[n - 1]
+
+    def getLabels(self) -> list[int]:
+        return [s.rec.lab for s in self]
+
+    def load(self, **kw) -> Solution:
+        """The solution IRS names (the last one without IRS), with constants updated."""
+        irs = kw.get("IRS")
+        if irs is None and kw.get("constants") is not None:
+            irs = kw["constants"].get("IRS")
+        sol = None
+        if irs is not None:
+            if irs != 0:
+                try:
+                    sol = self(irs)
+                except KeyError:
+                    sol = None
+        elif len(self):
+            sol = self[-1]
+        else:
+            raise RuntimeError("Cannot start from an empty solution list.")
+        if sol is None or isinstance(sol, SolutionList):
+            sol = Solution(None)
+        return sol.load(**kw)
+
+    def relabel(self) -> "SolutionList":
+        out = SolutionList()
+        for i, s in enumerate(self, 1):
+            n = s._with(lab=i)
+            n._mlab = len(self)
+            out.append(n)
+        return out
+
+    def write(self, path) -> None:
+        Path(path).write_text("".join(s.text() for s in self if not s.empty))
+
+    def __add__(self, other):
+        return SolutionList(list(self) + list(other))
+
+
+def _selects(s: Solution, key, _lst) -> bool:
+    k = _parse_key(key)
+    if isinstance(k, int):
+        return s.rec.lab == k
+    return _match_type(k[0], s.rec.ty) and k[1] is None
+
+
+class Branch:
+    """One branch of a b-file (AUTO's AUTOBranch): header lines, column titles, rows;
+    labelled rows carry their Solution; `c` the constants of the run that made it."""
+
+    def __init__(self, header=None, titles=None, rows=None, c=None):
+        self.header: list[str] = list(header or [])
+        self.titles: list[str] = list(titles or [])
+        self.rows: list[Row] = list(rows or [])
+        self.solutions: dict[int, Solution] = {}
+        self.c = c
+        self.diagnostics = ""
+
+    @property
+    def BR(self) -> int:
+        return self.rows[0].br if self.rows else 0
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            k = self._column(key)
+            return np.array([r.values[k] for r in self.rows])
+        return self.rows[key]
+
+    def _column(self, key: str) -> int:
+        if key in self.titles:
+            return self.titles.index(key)
+        c = self.c or {}
+        for i, n in (c.get("parnames") or {}).items():
+            if n == key and f"PAR({i})" in self.titles:
+                return self.titles.index(f"PAR({i})")
+        for i, n in (c.get("unames") or {}).items():
+            for t in (f"U({i})", f"MAX U({i})"):
+                if n == key and t in self.titles:
+                    return self.titles.index(t)
+        if key == "PERIOD" and "PAR(11)" in self.titles:
+            return self.titles.index("PAR(11)")
+        raise KeyError(f"{key!r}: no such column (columns: {self.titles})")
+
+    @property
+    def coordnames(self) -> list[str]:
+        return list(self.titles)
+
+    def labelled(self):
+        """(row index, row) of the labelled rows."""
+        return [(i, r) for i, r in enumerate(self.rows) if r.lab]
+
+    def copy(self) -> "Branch":
+        b = Branch(self.header, self.titles, [_copy.copy(r) for r in self.rows], self.c)
+        b.solutions = dict(self.solutions)
+        b.diagnostics = self.diagnostics
+        return b
+
+    def solution_list(self, mbr=None, mlab=None) -> SolutionList:
+        out = SolutionList()
+        for i, r in self.labelled():
+            s = self.solutions.get(i)
+            if s is None:
+                continue
+            s = s._with(br=abs(r.br), pt=(abs(r.pt) - 1) % 9999 + 1, ty=r.ty, lab=r.lab)
+            s.row, s.titles = r, self.titles
+            s._mlab = mlab if mlab is not None else s.rec.lab
+            s._mbr = mbr if mbr is not None else abs(r.br)
+            out.append(s)
+        return out
+
+    def __call__(self, label=None):
+        return self.solution_list()(label)
+
+    def text(self) -> str:
+        lines = [h for h in self.header]
+        for r in self.rows:
+            vals = "".join(fmt_e(v) for v in r.values)
+            lines.append(f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}")
+        return "\n".join(lines) + "\n"
+
+
+class Diagram(list):
+    """AUTO's bifDiag: a list of Branches (`+` concatenates, `bd[0]` a branch,
+    `bd['PAR(1)']` a column of the first branch, `bd('HB1')` a solution)."""
+
+    def __init__(self, branches=()):
+        super().__init__(branches)
+
+    @classmethod
+    def read(cls, b_path, s_path=None, d_path=None, c=None) -> "Diagram":
+        """Branches of a b-file with the s-file's records attached to the labelled rows
+        in order, and the d-file's text on the first branch (as AUTO's bifDiag)."""
+        branches = read_branches(b_path, c) if b_path and Path(b_path).exists() else []
+        sols = read_solutions(s_path, c) if s_path and Path(s_path).exists() else []
+        if not branches and sols:
+            return cls([_branch_of_solutions(sols, c)])
+        k = 0
+        for b in branches:
+            for i, r in b.labelled():
+                if k < len(sols):
+                    b.solutions[i] = sols[k]
+                    k += 1
+        if branches and d_path and Path(d_path).exists():
+            branches[0].diagnostics = Path(d_path).read_text(errors="replace")
+        return cls(branches)
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            return self[0][key] if len(self) else np.array([])
+        out = list.__getitem__(self, key)
+        return Diagram(out) if isinstance(key, slice) else out
+
+    def __add__(self, other):
+        if isinstance(other, Solution):
+            other = Diagram([_branch_of_solutions([other], other.c)])
+        return Diagram(list(self) + list(other))
+
+    def __radd__(self, other):
+        return Diagram(list(other) + list(self))
+
+    def getLabels(self) -> list[int]:
+        return [r.lab for b in self for _, r in b.labelled()]
+
+    def __call__(self, label=None):
+        mbr = max((abs(b.BR) for b in self), default=0)
+        mlab = max(self.getLabels() or [0])
+        sols = SolutionList()
+        for b in self:
+            sols.extend(b.solution_list(mbr, mlab))
+        return sols(label)
+
+    def load(self, **kw) -> Solution:
+        return self().load(**kw)
+
+    def run(self, **kw):
+        from washer.auto.clui import run
+        return run(self, **kw)
+
+    @property
+    def c(self):
+        return self[0].c if len(self) else None
+
+    def relabel(self) -> "Diagram":
+        """Labels 1, 2, ... in order over all branches (AUTO's relabel of a bifDiag)."""
+        lab = 1
+        out = []
+        for b in self:
+            nb = b.copy()
+            for i, r in nb.labelled():
+                r.lab = lab
+                lab += 1
+            out.append(nb)
+        return Diagram(out)
+
+    def merge(self) -> "Diagram":
+        """Join a branch and the next one when they have the same branch number, start at
+        the same point and run in opposite directions (DS of opposite signs): the second
+        reversed, then the first without its start point; labels renumbered from the
+        smallest of the two, point numbers 1, 2, ... (AUTO's parseBR.merge)."""
+        data: list[Branch] = []
+        fw = None
+        for bw in self:
+            data.append(bw)
+            if fw is None or fw.BR != bw.BR or not fw.rows or not bw.rows or (
+                    fw.c is not bw.c and _ds(fw.c) * _ds(bw.c) > 0):
+                fw = bw
+                continue
+            if fw.rows[0].values != bw.rows[0].values:
+                fw = bw
+                continue
+            new = Branch(fw.header, fw.titles, c=fw.c)
+            order = [(bw, i) for i in range(len(bw.rows) - 1, -1, -1)] + \
+                    [(fw, i) for i in range(1, len(fw.rows))]
+            labs = [r.lab for _, r in fw.labelled()] + [r.lab for _, r in bw.labelled()]
+            lab = min(labs) if labs else 0
+            for n, (src, i) in enumerate(order):
+                r = _copy.copy(src.rows[i])
+                sign = -1 if r.pt < 0 else 1
+                r.pt = sign * (n % 9999 + 1)
+                if r.lab:
+                    r.lab = lab
+                    lab += 1
+                    if i in src.solutions:
+                        new.solutions[n] = src.solutions[i]
+                new.rows.append(r)
+            new.diagnostics = fw.diagnostics + bw.diagnostics
+            data[-2:] = [new]
+            fw = None
+        return Diagram(data)
+
+    def write(self, name_or_paths, append: bool = False) -> tuple[Path, Path, Path]:
+        """b.NAME, s.NAME, d.NAME (or three paths)."""
+        if isinstance(name_or_paths, (tuple, list)):
+            b, s, d = (Path(p) for p in name_or_paths)
+        else:
+            b, s, d = (Path(f"{k}.{name_or_paths}") for k in "bsd")
+        mode = "a" if append else "w"
+        with open(b, mode) as fb:
+            fb.write("".join(br.text() for br in self if br.rows))
+        with open(s, mode) as fs:
+            fs.write("".join(sol.text() for sol in self() if not sol.empty))
+        diag = "".join(br.diagnostics for br in self)
+        if diag or not append:
+            with open(d, mode) as fd:
+                fd.write(diag)
+        return b, s, d
+
+    def __repr__(self) -> str:
+        return f"<Diagram: {len(self)} branch(es), labels {self.getLabels()}>"
+
+    def __str__(self) -> str:
+        out = []
+        for b in self:
+            for _, r in b.labelled():
+                vals = "".join(f"{v:14.5E}" for v in r.values[:6])
+                out.append(f"{r.br:4d}{r.pt:6d} {type_name(r.ty):>3}{r.lab:5d}{vals}")
+        return "\n".join(out)
+
+
+def _ds(c) -> float:
+    try:
+        v = (c or {}).get("DS")
+        return 0.01 if v is None else float(v)
+    except (TypeError, ValueError):
+        return 0.01
+
+
+def _branch_of_solutions(sols, c) -> Branch:
+    """A diagram of solutions alone (no b-file): one row per solution (AUTO does the same)."""
+    b = Branch(c=c)
+    for i, s in enumerate(sols):
+        r = s.rec
+        b.rows.append(Row(r.br, r.pt, r.ty, r.lab, []))
+        b.solutions[i] = s
+    b.header = []
+    return b
+
+
+# --------------------------------------------------------------------------- readers
+
+_TITLE_SPLIT = re.compile(r"\s{2,}")
+
+
+def _titles(line: str) -> list[str]:
+    """Column titles of the '   0    PT  TY  LAB  PAR(1) ...' line (19-wide columns)."""
+    rest = line[len("   0    PT  TY  LAB "):]
+    return [rest[i:i + 19].strip() for i in range(0, len(rest), 19) if rest[i:i + 19].strip()]
+
+
+def read_branches(path, c=None) -> list[Branch]:
+    """Branches of a b-file: a new branch at each header block or change of BR."""
+    text = _read_text(Path(path), "an AUTO b-file")
+    branches: list[Branch] = []
+    header: list[str] = []
+    titles: list[str] = []
+    cur = None
+    for line in text.splitlines():
+        f = line.split()
+        if not f:
+            continue
+        if f[0] == "0":
+            header.append(line)
+            if len(f) > 3 and f[1] == "PT" and f[2] == "TY":
+                titles = _titles(line)
+            continue
+        try:
+            br, pt, ty, lab = (int(x) for x in f[:4])
+            vals = [float(x.replace("D", "E").replace("d", "e")) for x in f[4:]]
+        except ValueError:
+            raise AutoFileError(f"{path}: a row that is not numbers: {line.strip()[:60]!r}")
+        if header or cur is None or br != cur.BR:
+            cur = Branch(header, titles, c=c)
+            branches.append(cur)
+            header = []
+        cur.rows.append(Row(br, pt, ty, lab, vals))
+    return branches
+
+
+def read_solutions(path, c=None) -> list[Solution]:
+    """Solutions of an s-file, each with its record's lines kept."""
+    path = Path(path)
+    lines = _read_text(path, "an AUTO s-file").splitlines()
+    out, i = [], 0
+    while i < len(lines):
+        if not lines[i].split():
+            i += 1
+            continue
+        rec, nrowpr = _read_record(path, lines, i)
+        out.append(Solution(rec, c, raw=lines[i:i + 1 + nrowpr]))
+        i += 1 + nrowpr
+    mlab = max((s.rec.lab for s in out), default=0)
+    mbr = max((abs(s.rec.br) for s in out), default=0)
+    for s in out:
+        s._mlab, s._mbr = mlab, mbr
+    return out
