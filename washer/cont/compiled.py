@@ -111,6 +111,16 @@ class CompiledUser:
         self._icp_ptr = _ffi.from_buffer("int[]", self.icp)
         self._scratch = np.zeros(0)
         self._scratch_ptr = None
+        self._pvls_seen = not self.has["pvls"]
+
+    def _first_pvls(self, u, pars) -> None:
+        """AUTO calls PVLS on the starting point before FUNC, and user files rely on it
+        for one-time set-up (the brc and brf demos allocate FUNC's matrices there): the
+        first FUNC call of this library is preceded by a PVLS call on its point, with
+        PAR a scratch copy (its changes are not kept)."""
+        self._pvls_seen = True
+        par = np.array(pars[0] if np.ndim(pars) == 2 else pars, dtype=float)
+        self.pvls(np.array(u[0], dtype=float), par)
 
     def set_icp(self, icp) -> None:
         """The run's ICP (what FUNC, BCND, ICND see as ICP(1..))."""
@@ -134,6 +144,8 @@ class CompiledUser:
     def func_batch(self, us, pars) -> np.ndarray:
         """f at the rows of us (k, NDIM); pars (k, NPAR) or (NPAR,) -> (k, NDIM)."""
         us = np.ascontiguousarray(us, dtype=float)
+        if not self._pvls_seen:
+            self._first_pvls(us, pars)
         k = us.shape[0]
         pars, npar, stride = self._pars(pars, k)
         fs = np.empty((k, self.ndim))
@@ -147,6 +159,8 @@ class CompiledUser:
     def jac_batch(self, us, pars, with_dfdp: bool = False):
         """(f, dfdu (k, NDIM, NDIM), dfdp (k, NDIM, NPAR) or None) from FUNC with IJAC = 1/2."""
         us = np.ascontiguousarray(us, dtype=float)
+        if not self._pvls_seen:
+            self._first_pvls(us, pars)
         k = us.shape[0]
         pars, npar, stride = self._pars(pars, k)
         fs = np.empty((k, self.ndim))

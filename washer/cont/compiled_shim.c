@@ -170,6 +170,58 @@ double getp_(const char *code, const int *ic, const double *u, size_t len)
 
 double getp(const char *code, int ic, const double *u) { return getp_c(code, ic, u); }
 
+/* GE(IAM,N,M1A,A,NRHS,NDX,U,M1F,F,IR,IC,DET): AUTO's linear solver that user files call
+   (support.f90:GE -> GELI): solves A U = F for NRHS right-hand sides by Gaussian
+   elimination with complete pivoting; A and F are overwritten, DET is det(A). Column-major
+   A(M1A,N), U(NDX,NRHS), F(M1F,NRHS); IR, IC: pivot rows / columns (1-based). */
+void ge_(const int *iam, const int *n_, const int *m1a_, double *a, const int *nrhs_,
+         const int *ndx_, double *u, const int *m1f_, double *f, int *ir, int *ic, double *det)
+{
+    int n = *n_, m1a = *m1a_, nrhs = *nrhs_, ndx = *ndx_, m1f = *m1f_;
+    (void)iam;
+    for (int i = 0; i < n; i++) { ir[i] = i + 1; ic[i] = i + 1; }
+    double d = 1.0;
+#define A_(i, j) a[(i) + (size_t)(j) * m1a]
+#define F_(i, j) f[(i) + (size_t)(j) * m1f]
+    for (int k = 0; k < n; k++) {
+        int pr = k, pc = k;
+        double best = -1.0;
+        for (int j = k; j < n; j++)
+            for (int i = k; i < n; i++)
+                if (fabs(A_(i, j)) > best) { best = fabs(A_(i, j)); pr = i; pc = j; }
+        if (pr != k) {
+            for (int j = 0; j < n; j++) { double t = A_(k, j); A_(k, j) = A_(pr, j); A_(pr, j) = t; }
+            for (int j = 0; j < nrhs; j++) { double t = F_(k, j); F_(k, j) = F_(pr, j); F_(pr, j) = t; }
+            int t = ir[k]; ir[k] = ir[pr]; ir[pr] = t;
+            d = -d;
+        }
+        if (pc != k) {
+            for (int i = 0; i < n; i++) { double t = A_(i, k); A_(i, k) = A_(i, pc); A_(i, pc) = t; }
+            int t = ic[k]; ic[k] = ic[pc]; ic[pc] = t;
+            d = -d;
+        }
+        double piv = A_(k, k);
+        d *= piv;
+        if (piv == 0.0) continue;
+        for (int i = k + 1; i < n; i++) {
+            double m = A_(i, k) / piv;
+            if (m == 0.0) continue;
+            for (int j = k; j < n; j++) A_(i, j) -= m * A_(k, j);
+            for (int j = 0; j < nrhs; j++) F_(i, j) -= m * F_(k, j);
+        }
+    }
+    for (int r = 0; r < nrhs; r++) {
+        for (int i = n - 1; i >= 0; i--) {
+            double sum = F_(i, r);
+            for (int j = i + 1; j < n; j++) sum -= A_(i, j) * u[(ic[j] - 1) + (size_t)r * ndx];
+            u[(ic[i] - 1) + (size_t)r * ndx] = A_(i, i) != 0.0 ? sum / A_(i, i) : 0.0;
+        }
+    }
+#undef A_
+#undef F_
+    *det = d;
+}
+
 /* ------------------------------------------------------------------ user routines */
 int washer_has(const char *name)
 {

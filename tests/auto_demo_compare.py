@@ -1,0 +1,213 @@
+"""Run an AUTO-07p demo folder unchanged with `python -m washer.auto NAME.auto` and compare
+every special point of every b-file AUTO wrote (tests/data/auto_demos/NAME/autoref) with ours.
+
+A special point is a labelled b-file row other than a regular NPR output (RG). Ours matches
+AUTO's when it has the same type, label and branch number in the same order (the two label
+sequences are aligned, so one extra or missing point costs only itself), and, for located
+points (every type but EP and MX, whose place is the step history's), the same continuation
+parameter PAR(ICP(1)) within AUTO's location tolerance and the same period (PAR(11)) where
+the b-file shows it.
+
+Location tolerance: AUTO (and washer) stop locating a zero when the arclength correction is
+below EPSS (1 + sqrt(|DS DSMAX|)) (AUTO.md 0); the tangent is unit in a norm in which
+PAR(ICP(1)) has weight 1 (THL), so each engine's parameter is within that distance of the
+exact zero, and the two within twice it. EPSS, DS, DSMAX are read from the header of AUTO's
+own b-file branch. The period has no weight in the arclength of periodic orbits (THL
+{11: 0}), so the tolerance does not bound it: it is compared at 1e-3 relative (AUTO's UZ at
+PERIOD = 1000 in the ab demo is 999.88; the exact value is the UZ value itself).
+
+    python tests/auto_demo_compare.py [DEMO ...]     # run and print the README table
+"""
+from __future__ import annotations
+
+import difflib
+import gzip
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+DEMOS = Path(__file__).parent / "data" / "auto_demos"
+sys.path.insert(0, str(ROOT))
+
+from washer.auto.diagram import read_branches, type_name  # noqa: E402
+
+UNLOCATED = ("EP", "MX")
+PERIOD_RTOL = 1e-3
+
+
+@dataclass
+class Point:
+    file: str
+    ty: str
+    br: int
+    lab: int
+    par: float
+    period: float | None
+    tol: float
+
+    @property
+    def key(self):
+        return (self.ty, self.br, self.lab)
+
+
+@dataclass
+class Result:
+    demo: str
+    returncode: int
+    seconds: float
+    auto_points: int = 0
+    matched: int = 0
+    problems: list = field(default_factory=list)
+    log: str = ""
+
+
+def _text(path: Path) -> str:
+    if path.suffix == ".gz":
+        with gzip.open(path, "rt") as f:
+            return f.read()
+    return path.read_text()
+
+
+def _header_value(header: list[str], key: str) -> float | None:
+    for line in header:
+        m = re.search(re.escape(key) + r"\s*=\s*([-+0-9.EeDd]+)", line)
+        if m:
+            return float(m.group(1).replace("D", "E"))
+    return None
+
+
+def points(path: Path, reference: bool) -> list[Point]:
+    """The special points of a b-file (gzipped or not)."""
+    import tempfile
+    with tempfile.NamedTemporaryFile("w", suffix=".b", delete=False) as tmp:
+        tmp.write(_text(path))
+    try:
+        branches = read_branches(tmp.name)
+    finally:
+        os.unlink(tmp.name)
+    out = []
+    header: list[str] = []
+    for b in branches:
+        if b.header:
+            header = b.header
+        epss = _header_value(header, "EPSS") or 1e-5
+        ds = abs(_header_value(header, "DS") or 0.01)
+        dsmax = abs(_header_value(header, "DSMAX") or 0.1)
+        tol = 2 * epss * (1 + math.sqrt(ds * dsmax))
+        titles = b.titles
+        k_per = None
+        for name in ("PERIOD", "PAR(11)"):
+            if name in titles[1:]:
+                k_per = titles.index(name)
+        for r in b.rows:
+            name = type_name(r.ty)
+            if r.lab and name not in ("RG", ""):
+                per = r.values[k_per] if k_per is not None and k_per < len(r.values) else None
+                out.append(Point(path.name.removesuffix(".gz"), name, r.br, r.lab,
+                                 r.values[0] if r.values else float("nan"), per, tol))
+    return out
+
+
+def same_value(o: Point, a: Point) -> str | None:
+    """None if o's located values agree with AUTO's a, else why not."""
+    if a.ty in UNLOCATED:
+        return None
+    if not abs(o.par - a.par) <= a.tol * max(1.0, abs(a.par)):
+        return f"PAR {o.par:.10g} vs AUTO {a.par:.10g} (tol {a.tol:.2g})"
+    if a.period is not None and o.period is not None and \
+            not math.isclose(o.period, a.period, rel_tol=PERIOD_RTOL):
+        return f"period {o.period:.10g} vs AUTO {a.period:.10g}"
+    return None
+
+
+def compare_files(ours: Path | None, ref: Path) -> tuple[list[Point], set[int], list[str]]:
+    """AUTO's points of ref, the indices of those ours matches, and the differences."""
+    a = points(ref, True)
+    o = points(ours, False) if ours is not None and ours.exists() else []
+    matched: set[int] = set()
+    why = []
+    if not o:
+        return a, matched, [f"{ref.name}: no output file" if ours is None or not ours.exists()
+                            else f"{ref.name}: no special points"]
+    sm = difflib.SequenceMatcher(a=[p.key for p in a], b=[p.key for p in o], autojunk=False)
+    for tag, i1, i2, j1, j2 in sm.get_opcodes():
+        if tag == "equal":
+            for i, j in zip(range(i1, i2), range(j1, j2)):
+                bad = same_value(o[j], a[i])
+                if bad is None:
+                    matched.add(i)
+                else:
+                    why.append(f"{a[i].file} {a[i].ty}{a[i].lab} br {a[i].br}: {bad}")
+        else:
+            why.append(f"{a[i1].file if i1 < len(a) else o[j1].file}: AUTO "
+                       f"{[p.key for p in a[i1:i2]]} vs ours {[p.key for p in o[j1:j2]]}")
+    return a, matched, why
+
+
+def reference_files(demo: str) -> list[Path]:
+    ref = DEMOS / demo / "autoref"
+    return sorted(p for p in ref.rglob("*") if p.name.startswith("b.") or
+                  p.name in ("fort.7", "fort.7.gz"))
+
+
+def run_demo(demo: str, workdir: Path, timeout: float = 1800) -> Result:
+    """Copy the demo (without autoref) into workdir, run its script, compare."""
+    src = DEMOS / demo
+    work = workdir / demo
+    shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref"))
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1")
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run([sys.executable, "-m", "washer.auto", f"{demo}.auto"], cwd=work,
+                              env=env, stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                              timeout=timeout)
+        rc, log = proc.returncode, proc.stdout + proc.stderr
+    except subprocess.TimeoutExpired as exc:
+        rc, log = -1, f"timeout after {timeout} s\n{exc.stdout or ''}"
+    res = Result(demo, rc, time.perf_counter() - t0, log=log)
+    seen: dict = {}
+    for ref in reference_files(demo):
+        rel = ref.relative_to(src / "autoref")
+        ours = work / str(rel).removesuffix(".gz")
+        a, matched, why = compare_files(ours, ref)
+        res.problems += why
+        for i, p in enumerate(a):
+            # each point once per demo (merged and saved copies of a run repeat it)
+            k = (p.ty, round(p.par, 7), None if p.period is None else round(p.period, 5))
+            seen[k] = seen.get(k, False) or i in matched
+    res.auto_points = len(seen)
+    res.matched = sum(seen.values())
+    if rc != 0:
+        tail = [ln for ln in log.strip().splitlines() if ln.strip()][-3:]
+        res.problems.insert(0, f"script exit {rc}: {' | '.join(tail)}")
+    return res
+
+
+def all_demos() -> list[str]:
+    return sorted(p.name for p in DEMOS.iterdir() if (p / f"{p.name}.auto").exists())
+
+
+def main(argv: list[str]) -> int:
+    import tempfile
+    demos = argv or all_demos()
+    print("| demo | points matched / AUTO's | script | s | first difference |")
+    print("|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for d in demos:
+            r = run_demo(d, Path(tmp))
+            first = r.problems[0] if r.problems else ""
+            print(f"| {d} | {r.matched} / {r.auto_points} | "
+                  f"{'ok' if r.returncode == 0 else 'exit %d' % r.returncode} | "
+                  f"{r.seconds:.1f} | {first[:160].replace('|', '/')} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
