@@ -27,6 +27,7 @@ from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError,
                                    parse_override, read_constants)
 from washer.auto.files import AutoFileError, read_b, read_s
 from washer.cont.branch import Branch
+from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError, load_python_problem
 from washer.cont.runner import RunError, build, execute
 from washer.cont.sinks import FileSink, ScreenSink
@@ -41,13 +42,19 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
     washer.Params, or the shipped reference set) or NAME.py beside the file."""
     e = c["e"]
     if not e:
-        raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py beside the file) "
-                       "or e='washer'")
+        raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py, or AUTO's NAME.f90, "
+                       "NAME.f or NAME.c, beside the file) or e='washer'")
     if e.split(":")[0] == "washer":
         from washer.problems.washer import forced_start_params, washer_problem
         if e == "washer:forced" and c["IRS"] in (0, "0"):
             params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
         return washer_problem(e, params=params, source=c.source)
+    if not (Path(folder) / f"{e}.py").exists():
+        # AUTO's own user files: NAME.f90, NAME.f or NAME.c, compiled on first use.
+        from washer.cont.compiled import find_user_file, load_compiled_problem
+        path = find_user_file(e, folder) if "/" not in e and "\\" not in e else None
+        if path is not None:
+            return load_compiled_problem(path, c["NDIM"], name=e)
     return load_python_problem(e, folder, c["NDIM"])
 
 
@@ -141,7 +148,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         overrides = dict(parse_override(a) for a in argv[1:])
         res = run(argv[0], **overrides)
-    except (ConstantsError, AutoFileError, RunError, ProblemError) as exc:
+    except (ConstantsError, AutoFileError, RunError, ProblemError, CompileError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

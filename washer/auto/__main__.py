@@ -16,6 +16,7 @@ def main(argv: list[str] | None = None) -> int:
     if not argv:
         interact()
         return 0
+    from washer.auto import clui
     for path in argv:
         try:
             run_script(path)
@@ -28,6 +29,9 @@ def main(argv: list[str] | None = None) -> int:
         except KeyboardInterrupt:
             print("interrupted", file=sys.stderr)
             return 130
+    if clui._runner.refused:
+        print(f"error: {len(clui._runner.refused)} run(s) not done (see above)", file=sys.stderr)
+        return 1
     return 0
 
 

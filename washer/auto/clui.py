@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import glob
 import os
+import re
 import shutil
 import sys
 from pathlib import Path
@@ -36,6 +37,8 @@ SPECIAL_KEYS = ("e", "unames", "parnames", "homcont")
 NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
 #: File name of the unsaved output of a run (AUTO's units 7, 8, 9).
 FORT = ("fort.7", "fort.8", "fort.9")
+#: Engine messages that mean "this kind of run is not done here" (not a user error).
+REFUSED = re.compile(r"not implemented|no continued system|not supported", re.I)
 
 
 class AutoError(RuntimeError):
@@ -111,6 +114,7 @@ class Runner:
         self.constants = AutoConstants()
         self.solution = Solution(None)
         self._problems: dict = {}
+        self.refused: list[str] = []        # runs the engine declined
 
     def problem(self, e: str, ndim: int):
         """The equations named e in the current folder: NAME.py, else NAME.f90/.f/.c
@@ -180,6 +184,11 @@ def _configure(data=None, **kw) -> Solution:
         kw["e"] = data
     if "e" in kw:
         _check_equation(kw["e"])
+    if isinstance(data, (list, tuple)) and not isinstance(data, (Diagram, SolutionList)) or \
+            type(data).__name__ == "ndarray":
+        # numbers: a point or an orbit column-wise (AUTO's load(array))
+        resolved["s"] = Solution.from_array(data)
+        data = None
     if data is not None and hasattr(data, "load") and not isinstance(data, str):
         if resolved.get("c") is not None:
             kw["constants"] = resolved["c"]
@@ -213,6 +222,26 @@ def _check_equation(e) -> None:
     raise AutoError(f"No equations file found for: '{e}'")
 
 
+def _data_start(name: str, problem, wc):
+    """The record of a start from NAME.dat: rows 't U(1) ... U(NDIM)' (AUTO's dat=)."""
+    import numpy as np
+    from washer.auto.files import Record
+    path = Path(f"{name}.dat")
+    try:
+        rows = [[float(x.replace("D", "E").replace("d", "e")) for x in ln.split()]
+                for ln in path.read_text().splitlines() if ln.split()]
+    except (OSError, ValueError) as exc:
+        raise AutoError(f"{path}: cannot read the starting data ({exc})") from None
+    data = np.array(rows)
+    if data.ndim != 2 or data.shape[1] < 1 + problem.ndim or len(data) < 2:
+        raise AutoError(f"{path}: expected rows of t and {problem.ndim} values")
+    t = data[:, 0]
+    _, par = problem.start(max(wc["NPAR"], 36))
+    par[10] = t[-1] - t[0]
+    return Record(1, 1, 9, 1, 1, 1, problem.ndim, wc["IPS"], data[:, 1:1 + problem.ndim], par,
+                  t=(t - t[0]) / (t[-1] - t[0]), ntst=len(t) - 1, ncol=1)
+
+
 def _execute(sol: Solution) -> Diagram:
     """One run of the engine from the selected solution; its output files parsed back."""
     from washer.cont.runner import RunError, build, execute
@@ -225,14 +254,21 @@ def _execute(sol: Solution) -> Diagram:
         raise AutoError(f"Restart label IRS={c['IRS']} not found.")
     sv = c.get("sv") or ""
     try:
-        wc = c.washer(f"c.{e}")
+        wc = c.washer(f"run(e='{e}')")
         wc.set("sv", "")
         wc.set("s", "")
         problem = _runner.problem(e, wc["NDIM"])
         records = None
+        from_data = False
         if not sol.empty and c.get("IRS"):
             wc.set("IRS", sol.rec.lab)
             records = [sol.rec]
+        elif c.get("dat"):
+            # AUTO's dat='NAME': the start is the orbit in NAME.dat (columns t, U(1..NDIM)),
+            # PAR from STPNT, PAR(11) the orbit's time span.
+            records = [_data_start(c["dat"], problem, wc)]
+            wc.set("IRS", records[0].lab)
+            from_data = True
         else:
             wc.set("IRS", 0)
         if hasattr(problem, "set_icp"):
@@ -241,9 +277,22 @@ def _execute(sol: Solution) -> Diagram:
             except ConstantsError:
                 pass
         r, br, mode = build(wc, problem, records, name=e, records_source="the restart solution",
-                            mlab=sol._mlab if records else None,
-                            mbr=sol._mbr if records else None)
-    except (ConstantsError, RunError, ProblemError, CompileError) as exc:
+                            mlab=sol._mlab if records and not from_data else None,
+                            mbr=sol._mbr if records and not from_data else None)
+        if from_data:
+            r.first_label, r.label0 = True, (c.get("LAB") or 1) - 1   # a start, as IRS = 0
+            br = c.get("IBR") or 1
+    except RunError as exc:
+        if REFUSED.search(str(exc)):
+            # A run the engine does not do: said clearly, the script goes on (later
+            # commands that need its results fail with their own message).
+            print(f"error: {exc}", file=sys.stderr, flush=True)
+            _runner.refused.append(str(exc))
+            bd = Diagram()
+            bd.status = f"refused: {exc}"
+            return bd
+        raise AutoError(str(exc)) from None
+    except (ConstantsError, ProblemError, CompileError) as exc:
         raise AutoError(str(exc)) from None
     name = sv or ".washer-fort"
     files = FileSink(Path("."), name)
@@ -504,38 +553,62 @@ def quit():
     raise SystemExit(0)
 
 
+class Plot:
+    """What plot() returns: the picture is a PNG file (no window); savefig writes
+    another copy (any format matplotlib knows, from the file suffix)."""
+
+    def __init__(self, bd, path: Path):
+        self.bd, self.path = bd, path
+        self.draw(path)
+
+    def draw(self, path) -> None:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        for b in self.bd:
+            if not b.rows or len(b.rows[0].values) < 2:
+                continue
+            ax.plot([r.values[0] for r in b.rows], [r.values[1] for r in b.rows], "k-", lw=1)
+            for r in b.rows:
+                if r.lab and type_name(r.ty) not in ("", "RG"):
+                    ax.plot(r.values[0], r.values[1], "ro", ms=3)
+                    ax.annotate(f"{type_name(r.ty)}{r.lab}", (r.values[0], r.values[1]),
+                                fontsize=7)
+            if b.titles:
+                ax.set_xlabel(b.titles[0])
+                ax.set_ylabel(b.titles[1] if len(b.titles) > 1 else "")
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+
+    def savefig(self, path, **kw) -> None:
+        self.draw(path)
+
+    def config(self, *args, **kw) -> None:
+        """Plot options of AUTO's plotter: accepted, without effect on the PNG."""
+
+
 def plot(name=None, **kw):
-    """Draw a bifurcation diagram into a PNG file (no window): the diagram's first
-    column against its second for every branch, stable parts solid, labels marked.
-    Returns the PNG's path."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    """Draw a bifurcation diagram into a PNG file instead of a window: the first
+    column against the second for every branch, special points labelled. Returns a
+    Plot (savefig writes other copies)."""
     bd = name if isinstance(name, Diagram) else loadbd(name)
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    for b in bd:
-        if not b.rows or len(b.rows[0].values) < 2:
-            continue
-        x = [r.values[0] for r in b.rows]
-        y = [r.values[1] for r in b.rows]
-        ax.plot(x, y, "k-", lw=1)
-        for r in b.rows:
-            if r.lab and type_name(r.ty) not in ("", "RG"):
-                ax.plot(r.values[0], r.values[1], "ro", ms=3)
-                ax.annotate(f"{type_name(r.ty)}{r.lab}", (r.values[0], r.values[1]), fontsize=7)
-        if b.titles:
-            ax.set_xlabel(b.titles[0])
-            ax.set_ylabel(b.titles[1] if len(b.titles) > 1 else "")
     global _plots
     _plots += 1
-    out = Path(kw.get("file") or f"{name if isinstance(name, str) else 'plot'}-{_plots}.png")
-    fig.savefig(out, dpi=100)
-    plt.close(fig)
+    stem = name if isinstance(name, str) else "plot"
+    out = Path(f"{stem}-{_plots}.png")
+    p = Plot(bd, out)
     print(f"Plot written to {out}")
-    return out
+    return p
 
 
 _plots = 0
+
+
+def auto(script):
+    """Run another AUTO script (in its own namespace, from the current folder)."""
+    from washer.auto.script import run_script
+    run_script(script)
 
 
 def info(s):
@@ -551,5 +624,5 @@ COMMANDS = {
     "changeconstant": ch, "pr": pr, "pc": pr, "printconstant": pr, "sl": sl,
     "solutionget": sl, "dg": dg, "diagramget": dg, "df": df, "deletefort": df, "wait": wait,
     "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
-    "pl": plot, "p2": plot, "splabs": splabs, "info": info,
+    "pl": plot, "p2": plot, "splabs": splabs, "info": info, "auto": auto,
 }

@@ -46,6 +46,50 @@ def _parse_key(label):
     return m.group(1).upper(), (int(m.group(2)) if m.group(2) else None)
 
 
+class Parameters:
+    """PAR of a solution as AUTO's CLUI shows it: p['name'] or p['PAR(3)'] by name,
+    p(3) 1-based, p[2] 0-based, numpy array through np.asarray(p)."""
+
+    def __init__(self, values, parnames: dict | None = None):
+        self.values = np.asarray(values, dtype=float)
+        self.names = {v: int(k) for k, v in (parnames or {}).items()}
+
+    def index(self, key) -> int:
+        if isinstance(key, str):
+            if key in self.names:
+                return self.names[key] - 1
+            m = re.fullmatch(r"PAR\((\d+)\)", key.strip())
+            if m:
+                return int(m.group(1)) - 1
+            if key == "PERIOD":
+                return 10
+            raise KeyError(f"{key!r}: no such parameter (parnames: {sorted(self.names)})")
+        return int(key)
+
+    def __getitem__(self, key):
+        if isinstance(key, slice):
+            return self.values[key]
+        return float(self.values[self.index(key)])
+
+    def __setitem__(self, key, value):
+        self.values[self.index(key)] = value
+
+    def __call__(self, i):
+        return float(self.values[int(i) - 1])
+
+    def __len__(self):
+        return len(self.values)
+
+    def __iter__(self):
+        return iter(self.values)
+
+    def __array__(self, dtype=None, copy=None):
+        return self.values if dtype is None else self.values.astype(dtype)
+
+    def __repr__(self):
+        return f"Parameters({self.values.tolist()})"
+
+
 class Solution:
     """One labelled solution (AUTO's AUTOSolution): an s-record with the constants `c`
     (an AutoConstants: what a run restarted from it uses) and the b-file row `b`.
@@ -84,8 +128,27 @@ class Solution:
         return self.rec
 
     @property
-    def PAR(self) -> np.ndarray:
-        return np.asarray(self._need().par)
+    def PAR(self) -> Parameters:
+        return Parameters(self._need().par, (self.c or {}).get("parnames"))
+
+    @classmethod
+    def from_array(cls, data, c=None) -> "Solution":
+        """A solution from numbers (AUTO's load(array)): a point [x, y, ...], or an orbit
+        given column-wise [[t0..tn], [x0..xn], ...] (t rescaled to [0, 1], PAR(11) the
+        period, NTST = n, NCOL = 1)."""
+        arr = [np.asarray(a, dtype=float) for a in data]
+        if all(a.ndim == 0 for a in arr):
+            U = np.array([float(a) for a in arr])
+            rec = Record(1, 1, 9, 1, 1, 1, len(U), 1, U, np.zeros(36))
+            return cls(rec, c)
+        t = arr[0]
+        period = t[-1] - t[0]
+        tt = (t - t[0]) / period if period else t
+        U = np.column_stack(arr[1:])
+        par = np.zeros(36)
+        par[10] = period
+        rec = Record(1, 1, 9, 1, 1, 1, U.shape[1], 4, U, par, t=tt, ntst=len(t) - 1, ncol=1)
+        return cls(rec, c)
 
     @property
     def U(self) -> np.ndarray:
@@ -108,7 +171,8 @@ class Solution:
                       "Type number": rec.ty, "TY": type_name(rec.ty),
                       "Type name": type_name(rec.ty), "ISW": rec.isw, "NTST": rec.ntst,
                       "NCOL": rec.ncol, "IPS": rec.ips, "NDIM": rec.ndim_user,
-                      "PAR": self.PAR, "p": self.PAR, "U": self.U, "t": rec.t,
+                      "PAR": self.PAR, "p": self.PAR, "U": self.U,
+                      "t": rec.t if rec.t is not None else np.zeros(1),
                       "data": self, "Active ICP": list(rec.icp), "rldot": list(rec.rldot)}
             if k in simple:
                 return simple[k]
