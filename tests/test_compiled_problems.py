@@ -1,0 +1,145 @@
+"""AUTO user files in Fortran and C, compiled on the fly (washer.cont.compile, .compiled).
+
+Checked against independent references: the Python transcription of the same equations
+(tests/data/ab_demo/ab.py), central differences for the user's Jacobians, closed-form
+integrals for GETP's solution measures; the cache by file modification; compiler errors
+by the file and line they name.
+"""
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.cont.compile import CompileError, build_library, source_file, source_text
+from washer.cont.compiled import load_compiled_problem
+from washer.cont.problem import load_python_problem
+
+DATA = Path(__file__).parent / "data"
+AB_F90 = DATA / "auto_demos" / "ab" / "ab.f90"
+
+pytestmark = pytest.mark.skipif(shutil.which("gfortran") is None or shutil.which("gcc") is None,
+                                reason="gcc and gfortran are needed (Debian: gcc gfortran)")
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    d = tmp_path / "cache"
+    monkeypatch.setenv("WASHER_CACHE", str(d))
+    return d
+
+
+def _points(rng, k=20):
+    us = rng.normal(0, 0.5, (k, 2))
+    pars = np.zeros((k, 36))
+    pars[:, :3] = rng.uniform(0.05, 5.0, (k, 3))
+    return us, pars
+
+
+@pytest.mark.parametrize("source", [AB_F90, DATA / "compiled" / "ab.c"], ids=["fortran", "c"])
+def test_user_file_equals_python_transcription(source, cache, tmp_path):
+    p = load_compiled_problem(source, 2)
+    ref = load_python_problem("ab", DATA / "ab_demo", 2)
+    rng = np.random.default_rng(1)
+    us, pars = _points(rng)
+    np.testing.assert_allclose(p.func_many(us, pars), ref.func_many(us, pars), rtol=1e-14,
+                               atol=1e-15)
+    for u, par in zip(us[:3], pars[:3]):
+        np.testing.assert_allclose(p.func(u, par), ref.func(u, par), rtol=1e-14, atol=1e-15)
+    u, par = p.start(36)
+    u_ref, par_ref = ref.start(36)
+    np.testing.assert_array_equal(u, u_ref)
+    np.testing.assert_array_equal(par, par_ref)
+
+
+def test_user_jacobians_used_with_jac1(cache):
+    """JAC = 1: DFDU and DFDP from FUNC with IJAC = 2, against central differences."""
+    p = load_compiled_problem(DATA / "compiled" / "jac.f90", 2)
+    rng = np.random.default_rng(2)
+    us, pars = _points(rng, 5)
+    for u, par in zip(us, pars):
+        fd = p.with_jac(0).jacobian(u, par, [1, 2, 3])
+        analytic = p.with_jac(1).jacobian(u, par, [1, 2, 3])
+        np.testing.assert_allclose(analytic, fd, rtol=1e-7, atol=1e-8)
+        # the analytic one is exactly the closed form
+        expect_u = [[par[0] - 3 * u[0] ** 2, par[1]], [-1 - 2 * u[0] * u[1], par[2] - u[0] ** 2]]
+        np.testing.assert_allclose(analytic[:, :2], expect_u, rtol=1e-15)
+    batch = p.with_jac(1).dfdu_many(us, pars)
+    assert batch.shape == (5, 2, 2)
+    np.testing.assert_allclose(batch[0], p.with_jac(1).dfdu(us[0], pars[0]), rtol=1e-15)
+
+
+def test_getp_measures_of_an_orbit(cache):
+    """GETP in PVLS on u1 = sin 2 pi t, u2 = t over NTST = 10, NCOL = 4: AUTO's quadrature
+    (Newton-Cotes on each interval) against the closed forms."""
+    p = load_compiled_problem(DATA / "compiled" / "jac.f90", 2)
+    ntst, ncol = 10, 4
+    t = np.linspace(0, 1, ntst * ncol + 1)
+    U = np.column_stack([np.sin(2 * np.pi * t), t])
+    par = p.pvls(U, np.zeros(36), t=t, ntst=ntst, ncol=ncol)
+    assert par[20] == pytest.approx(math.sqrt(0.5), abs=1e-6)     # NRM: (int u1^2)^(1/2)
+    assert par[21] == pytest.approx(0.0, abs=1e-12)               # INT u1
+    assert par[22] == pytest.approx(1.0, abs=1e-15)               # MAX u1 (t = 1/4 is a node)
+    assert par[23] == pytest.approx(-1.0, abs=1e-15)              # MIN u1
+    assert (par[24], par[25]) == (0.0, 1.0)                       # BV0, BV1 of u2
+    assert par[26] == pytest.approx(0.25, abs=1e-15)              # MXT: t of the maximum
+    assert (par[27], par[28]) == (ntst, ncol)
+    # algebraic problems: GETP returns the component (AUTO's GETP for IPS <= 1)
+    par = p.pvls(np.array([-0.3, 0.7]), np.zeros(36))
+    assert par[20] == pytest.approx(0.3) and par[22] == pytest.approx(-0.3)
+
+
+def test_cache_reuses_and_rebuilds(cache, tmp_path):
+    src = tmp_path / "ab.f90"
+    shutil.copy(AB_F90, src)
+    lib1 = build_library([source_file(src)], "ab")
+    mtime = lib1.stat().st_mtime_ns
+    assert build_library([source_file(src)], "ab") == lib1          # from the cache
+    assert lib1.stat().st_mtime_ns == mtime
+    src.write_text(src.read_text().replace("F(1)=-U1", "F(1)=-2*U1"))
+    lib2 = build_library([source_file(src)], "ab")
+    assert lib2 != lib1 and lib2.exists()
+    # and the rebuilt equations are the edited ones
+    p = load_compiled_problem(src, 2)
+    par = np.zeros(36)
+    assert p.func(np.array([1.0, 0.0]), par)[0] == -2.0
+
+
+def test_compile_error_names_file_and_line(cache, tmp_path):
+    bad = tmp_path / "bad.f90"
+    bad.write_text(AB_F90.read_text().replace("E=EXP(U2)", "E=EXP(U2"))
+    line = next(i for i, s in enumerate(bad.read_text().splitlines(), 1) if "E=EXP(U2" in s)
+    with pytest.raises(CompileError) as err:
+        load_compiled_problem(bad, 2)
+    assert f"bad.f90:{line}" in str(err.value)
+    c_bad = tmp_path / "bad.c"
+    c_bad.write_text('#include "auto_f2c.h"\nint func(integer ndim) { return x; }\n')
+    with pytest.raises(CompileError) as err:
+        load_compiled_problem(c_bad, 2)
+    assert "bad.c:2" in str(err.value)
+
+
+def test_generated_sources_compile_too(cache):
+    """The compile step is not tied to user files: any C text, cached the same way."""
+    from cffi import FFI
+    lib = build_library([source_text("twice.c", "double twice(double x) { return 2 * x; }\n")],
+                        "twice")
+    ffi = FFI()
+    ffi.cdef("double twice(double x);")
+    assert ffi.dlopen(str(lib)).twice(21.0) == 42.0
+
+
+def test_fortran_and_c_runs_give_the_same_branch(cache, tmp_path):
+    """The ab demo's first run (c.ab.1) from the Fortran and the C file: same b-file rows."""
+    from washer.auto.files import read_b
+    from washer.run import run
+    rows = {}
+    for src in (AB_F90, DATA / "compiled" / "ab.c"):
+        d = tmp_path / src.suffix[1:]
+        d.mkdir()
+        shutil.copy(src, d / src.name)
+        shutil.copy(DATA / "auto_demos" / "ab" / "c.ab.1", d / "c.ab.1")
+        run(d / "c.ab.1", verbose=False, sv="out", e="ab")
+        rows[src.suffix] = [(r.pt, r.ty, r.lab, r.values) for b in read_b(d / "b.out") for r in b]
+    assert rows[".f90"] == rows[".c"] and len(rows[".c"]) > 10
