@@ -14,9 +14,9 @@ import pytest
 
 from auto_demo_compare import all_demos, run_demo
 
-#: Demos that take more than about 10 s here (AUTO's own time is in autoref/run.log).
-SLOW = {"ab", "pla", "tfc", "fnc", "r3b", "um3", "man", "spb", "pcl", "abcb", "brf",
-        "plp", "sspg", "um2", "bvp", "ops", "lcbp", "brc", "ph1"}
+#: Demos in the default run (a few seconds each, IPS 1 and 2, Fortran user files, dat=
+#: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
+FAST = {"frc", "lrz", "lor", "chu"}
 
 BVP = "boundary-value problems (IPS = 4) are not in the engine yet"
 MAPS = "maps (IPS = -1) are not in the engine yet"
@@ -43,7 +43,7 @@ def _params():
     out = []
     for d in all_demos():
         marks = []
-        if d in SLOW:
+        if d not in FAST:
             marks.append(pytest.mark.slow)
         if d in EXPECTED_FAIL:
             marks.append(pytest.mark.xfail(reason=EXPECTED_FAIL[d], strict=False))

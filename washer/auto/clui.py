@@ -223,22 +223,16 @@ def _check_equation(e) -> None:
 
 
 def _data_start(name: str, problem, wc):
-    """The record of a start from NAME.dat: rows 't U(1) ... U(NDIM)' (AUTO's dat=)."""
-    import numpy as np
-    from washer.auto.files import Record
-    path = Path(f"{name}.dat")
+    """The record of a start from NAME.dat (AUTO's dat=: rows 't U(1) ... U(NDIM)'):
+    PAR from STPNT, PAR(11) the data's time span, the rows as a mesh of NCOL = 1."""
+    from washer.auto.files import AutoFileError, Record, read_dat
     try:
-        rows = [[float(x.replace("D", "E").replace("d", "e")) for x in ln.split()]
-                for ln in path.read_text().splitlines() if ln.split()]
-    except (OSError, ValueError) as exc:
-        raise AutoError(f"{path}: cannot read the starting data ({exc})") from None
-    data = np.array(rows)
-    if data.ndim != 2 or data.shape[1] < 1 + problem.ndim or len(data) < 2:
-        raise AutoError(f"{path}: expected rows of t and {problem.ndim} values")
-    t = data[:, 0]
+        t, U = read_dat(Path(f"{name}.dat"), problem.ndim)
+    except AutoFileError as exc:
+        raise AutoError(str(exc)) from None
     _, par = problem.start(max(wc["NPAR"], 36))
     par[10] = t[-1] - t[0]
-    return Record(1, 1, 9, 1, 1, 1, problem.ndim, wc["IPS"], data[:, 1:1 + problem.ndim], par,
+    return Record(1, 1, 9, 1, 1, 1, problem.ndim, wc["IPS"], U, par,
                   t=(t - t[0]) / (t[-1] - t[0]), ntst=len(t) - 1, ncol=1)
 
 

@@ -213,6 +213,17 @@ class CompiledUser:
                                         _ffi.NULL)
             self.lib.washer_pvls(self.ndim, _dptr(u), _dptr(par))
 
+    def set_multipliers(self, mu) -> None:
+        """Floquet multipliers (or eigenvalues) for GETP's 'EIG' and 'STA' (None: none)."""
+        if mu is None:
+            self._eig = None
+            self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, 0, _ffi.NULL)
+            return
+        mu = np.asarray(mu, dtype=complex)
+        self._eig = np.ascontiguousarray(np.column_stack([mu.real, mu.imag]).ravel())
+        nins = int(np.sum(np.abs(mu) <= 1 + 1e-5))
+        self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, nins, _dptr(self._eig))
+
     def bcnd(self, par, nbc: int, u0, u1) -> np.ndarray:
         """AUTO's BCND: the NBC boundary conditions at u(0) = u0, u(1) = u1."""
         par = np.ascontiguousarray(par, dtype=float)
@@ -247,10 +258,18 @@ class CompiledProblem(Problem):
                          pvls=user.pvls if user.has["pvls"] else None)
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0) -> np.ndarray:
-        """PAR after the user's PVLS (a copy); t, ntst, ncol: the mesh of a BVP solution."""
+        """PAR after the user's PVLS (a copy). u: the state (NDIM,), or the node values
+        (NTPL, NDIM) of an orbit: a washer.cont.pvls.Orbit carries its mesh (t, ntst,
+        ncol) and multipliers (GETP's EIG, STA), else t, ntst, ncol say it."""
         par = np.array(par, dtype=float)
-        if self._pvls is not None:
-            self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+        if self._pvls is None:
+            return par
+        if getattr(u, "ntst", None):
+            t, ntst, ncol = u.t, u.ntst, u.ncol
+            mu = getattr(u, "multipliers", None)
+            self.user.set_multipliers(mu)
+            u = np.asarray(u).view(np.ndarray)
+        self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
         return par
 
     def set_icp(self, icp) -> None:
