@@ -255,7 +255,38 @@ class CompiledProblem(Problem):
         super().__init__(user.ndim, user.func, stpnt=user.stpnt if user.has["stpnt"] else None,
                          dfdu=user.dfdu, dfdp=user.dfdp, name=name,
                          dfdu_batch=user.dfdu_batch, func_batch=user.func_batch,
-                         pvls=user.pvls if user.has["pvls"] else None)
+                         pvls=user.pvls if user.has["pvls"] else None,
+                         bcnd=self._no_bcnd if user.has["bcnd"] else None,
+                         icnd=self._no_icnd if user.has["icnd"] else None)
+
+    # BCND and ICND need NBC / NINT, which the Problem passes to its methods: the
+    # methods below call the compiled routines; the callables above only mark them present.
+    @staticmethod
+    def _no_bcnd(u0, u1, par):
+        raise ProblemError("BCND is called through CompiledProblem.bcnd")
+
+    @staticmethod
+    def _no_icnd(u, uold, udot, upold, par):
+        raise ProblemError("ICND is called through CompiledProblem.icnd")
+
+    def bcnd(self, u0, u1, par, nbc: int) -> np.ndarray:
+        """AUTO's BCND: the (nbc,) boundary conditions at u(0) = u0, u(1) = u1."""
+        fb = self.user.bcnd(par, nbc, u0, u1)
+        if not np.all(np.isfinite(fb)):
+            raise ProblemError(f"{self.name}: BCND returned non-finite values")
+        return fb
+
+    def icnd(self, u, uold, udot, upold, par, nint: int) -> np.ndarray:
+        """AUTO's ICND at one mesh point: the (nint,) integrands."""
+        return self.icnd_many(*(np.atleast_2d(np.asarray(a, float))
+                                for a in (u, uold, udot, upold)), par, nint)[0]
+
+    def icnd_many(self, U, Uold, Udot, Upold, par, nint: int) -> np.ndarray:
+        """ICND at k mesh points in one foreign call: each argument (k, NDIM) -> (k, nint)."""
+        fi = self.user.icnd_batch(par, nint, U, Uold, Udot, Upold)
+        if not np.all(np.isfinite(fi)):
+            raise ProblemError(f"{self.name}: ICND returned non-finite values")
+        return fi
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0) -> np.ndarray:
         """PAR after the user's PVLS (a copy). u: the state (NDIM,), or the node values
