@@ -290,3 +290,74 @@ def test_critical_floquet_engine_is_the_forced_response_tr_point(params):
     assert got["crit_value"] == pytest.approx(ref["C_p_exact"], abs=1e-9)
     assert got["crit_averaged"] == pytest.approx(ref["C_p_averaged"], rel=1e-6)
     assert 0 < abs(got["crit_value"] - got["crit_averaged"]) < 1e-3 * got["crit_value"]
+
+
+# ------------------------------------------------------------------ result semantics
+
+def test_stable_without_joint_damping_is_an_answer(params):
+    """At Omega = 6 Hz, m_u = 0.25 kg the equilibrium is stable at C_p = 0 (every
+    eigenvalue in the left half plane: checked here directly) and the continuation finds
+    no Hopf point up to C_p = 3: the critical C_p is 0, status 'stable', not a failure."""
+    from washer.machine.model import Model
+    from washer.sweep.tasks import compute_point, critical
+    p = params.replace(Omega=6.0, m_u=0.25)
+    m = Model(p.replace(C_p=0.0))
+    assert m.eigenvalues(m.rotating_equilibrium()).real.max() < 0
+    got = critical(p, "C_p", 0.0, 3.0)
+    assert got["crit_status"] == "stable" and got["crit_value"] == 0.0
+    assert got["crit_n_hopf"] == 0.0
+    point = {"id": "x", "study": "s", "index": 0, "inputs": {}, "kinds": ["critical"],
+             "set": {"Omega": 6.0, "m_u": 0.25},
+             "options": {"critical": {"parameter": "C_p", "from": 0.0, "to": 3.0,
+                                      "engine": "continuation"}}}
+    base = {"values": dict(params.values), "tied": params.tied, "source": params.source}
+    row = compute_point(point, base)
+    assert row["status"] == "ok" and row["error"] == "" and row["crit_status"] == "stable"
+
+
+def test_unstable_over_the_range_is_an_answer(params):
+    """Searching C_p only in [0, 0.05] at the nominal point (critical 0.101): unstable
+    throughout, crit_value NaN, status 'unstable'."""
+    from washer.sweep.tasks import critical
+    got = critical(params, "C_p", 0.0, 0.05)
+    assert got["crit_status"] == "unstable" and np.isnan(got["crit_value"])
+
+
+def test_margin_fallback_follows_the_whirl_pair_and_counts_its_crossing(params):
+    """At Omega = 9 Hz, m_u = 0.25 kg the crossing (C_p ~ 1.5e-4) lies inside the engine's
+    first step over [0, 3]: the fallback roots the whirl pair's real part. Independent
+    check: the engine itself over [0, 0.01] (steps 200x smaller) finds the HB there, at
+    the same value to its location accuracy (~1e-8 relative of the range)."""
+    from washer.sweep.tasks import critical, whirl_pair
+    p = params.replace(Omega=9.0, m_u=0.25)
+    got = critical(p, "C_p", 0.0, 3.0)
+    assert got["crit_source"] == "margin" and got["crit_status"] == "hopf"
+    assert got["crit_n_hopf"] == 1.0
+    fine = critical(p, "C_p", 0.0, 0.01)
+    assert fine["crit_source"] == "HB"
+    assert got["crit_value"] == pytest.approx(fine["crit_value"], abs=1e-9)
+    assert got["crit_whirl"] == pytest.approx(fine["crit_whirl"], rel=1e-6)
+    # The pair followed is the forward whirl (Im just below 2 pi Omega), not the slow yaw.
+    lam = np.array([-0.0012 + 4.45j, 0.0002 + 52.7j, -0.137 + 58.6j])
+    assert whirl_pair(lam, 9.0) == lam[1]
+
+
+def test_units_are_in_the_parquet_schema(small_serial):
+    """Every output and input column with a unit carries it as field metadata."""
+    import pyarrow.parquet as pq
+    out, _ = small_serial
+    schema = pq.read_schema(out / "results.parquet")
+    unit = {f.name: (f.metadata or {}).get(b"unit", b"").decode() for f in schema}
+    assert unit["stab_margin"] == "1/s" and unit["crit_value"] == "N m s/rad"
+    assert unit["Omega"] == "Hz" and unit["m_u"] == "kg" and unit["resp_whirl_radius"] == "m"
+    assert unit["resp_tau_s"] == "s"
+
+
+def test_small_example_has_no_failed_points(small_serial):
+    """The shipped small example: every point answers (the corner stable without joint
+    damping included), so `python -m washer.sweep` exits 0 on it."""
+    _, df = small_serial
+    assert (df["status"] == "ok").all(), df.loc[df["status"] != "ok", "error"].tolist()
+    assert (df["crit_status"] == "stable").any()
+    stable = df[df["crit_status"] == "stable"]
+    assert (stable["crit_value"] == 0.0).all() and (stable["stab_margin"] < 0).all()

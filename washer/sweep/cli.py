@@ -5,8 +5,9 @@
                            [--progress | --no-progress]
     python -m washer.sweep plot DIR [--no-hopf]
 
-Exit status: 0 when every point is ok, 1 when some failed (they are in the
-table with their errors), 2 for a bad spec or arguments, 130 when interrupted
+Exit status: 0 when every point has its answers, 1 when some failed (they are
+in the table with their errors; a point stable without joint damping is an
+answer, critical C_p = 0, not a failure), 2 for a bad spec or arguments, 130 when interrupted
 (re-run the same command to resume).
 """
 from __future__ import annotations
@@ -72,6 +73,10 @@ def main(argv: list[str] | None = None) -> int:
     failed = df[df["status"] != "ok"]
     print(f"{len(df)} points ({len(failed)} failed) in {time.perf_counter() - t0:.1f} s; "
           f"table {out / 'results.parquet'}, maps in {out / 'plots'}")
+    if "crit_status" in df:
+        counts = df["crit_status"].value_counts()
+        print("  critical: " + ", ".join(f"{n} {k}" for k, n in counts.items())
+              + " (stable: stable over the whole search range)")
     for _, r in failed.head(5).iterrows():
         print(f"  failed {r['study']}[{r['index']}] {r['id']}: {r['error']}")
     if len(failed) > 5:

@@ -21,7 +21,7 @@ import pandas as pd
 from washer.sweep import tasks
 from washer.sweep.points import base_data, input_columns, make_points
 from washer.sweep.progress import make_progress
-from washer.sweep.results import ResultStore
+from washer.sweep.results import ResultStore, units_for
 from washer.sweep.spec import Spec, load_spec
 
 #: Batches per worker when the batch size is automatic: a few, so that a slow
@@ -53,7 +53,7 @@ def run(spec, client=None, *, out=None, serial: bool = False, n_workers: int | N
         spec = load_spec(spec)
     if out is None:
         out = Path("out/sweep") / Path(spec.source).name.removesuffix(".toml")
-    store = ResultStore(out)
+    store = ResultStore(out, units_for(spec))
     points = make_points(spec)
     ids = [p["id"] for p in points]
     store.prepare(spec.text, spec.source, ids)

@@ -10,7 +10,9 @@ For every study over two parameters, one figure per kind in DIR/plots/:
 
 each with the continuation's Hopf curve in the same two parameters overlaid
 (dashed red; `washer.sweep.hopf`, b-files in DIR/hopf/STUDY/), and failed
-points as grey crosses. Studies over one parameter give line plots; studies
+points as grey crosses. On critical maps the points stable over the whole
+search range (with C_p from 0: stable without joint damping, critical value 0)
+are white rings on their colour, those unstable over it red triangles. Studies over one parameter give line plots; studies
 over more than two are not drawn (the table has them).
 """
 from __future__ import annotations
@@ -128,6 +130,9 @@ def _plot_kind(folder, spec, st, kind, sub, curve, note) -> list[Path]:
         ax.set_ylim(yl, yh)
         ax.set_xlabel(_label(x))
         ax.set_ylabel(_label(y))
+        if kind == "critical" and "crit_status" in sub:
+            _mark_answers(ax, st, sub, x, y)
+            bad = sub[sub["crit_status"] == "failed"]
         if len(bad):
             ax.plot(bad[x], bad[y], "x", color="0.4", ms=5, label=f"failed ({len(bad)})")
         if ax.get_legend_handles_labels()[0]:
@@ -138,6 +143,23 @@ def _plot_kind(folder, spec, st, kind, sub, curve, note) -> list[Path]:
     if note:
         ax.text(0.01, 0.01, note[:90], transform=ax.transAxes, fontsize=6, color="0.4")
     return style.save(fig, folder / "plots" / f"{st.name}_{kind}", formats=("png",))
+
+
+def _mark_answers(ax, st, sub, x, y) -> None:
+    """Critical maps: the points stable over the whole search range (critical value at
+    most `from`; with C_p from 0, stable without joint damping) and those unstable over
+    it (more than `to` needed) are answers, marked as such."""
+    opt = st.options["critical"]
+    stable = sub[sub["crit_status"] == "stable"]
+    unstable = sub[sub["crit_status"] == "unstable"]
+    if len(stable):
+        what = ("stable without joint damping" if opt["parameter"] == "C_p" and opt["from"] == 0
+                else f"stable from {opt['parameter']} = {opt['from']:g}")
+        ax.plot(stable[x], stable[y], "o", mfc="none", mec="w", ms=6, mew=1.2,
+                label=f"{what} ({len(stable)})")
+    if len(unstable):
+        ax.plot(unstable[x], unstable[y], "^", color="tab:red", ms=5,
+                label=f"unstable up to {opt['parameter']} = {opt['to']:g} ({len(unstable)})")
 
 
 def _colour_map(fig, ax, st, ok, x, y, col, kind, label, spec) -> None:

@@ -10,6 +10,11 @@
 A sweep re-run with the same spec and folder reads the ids in the parts and
 computes only the points missing from them: a part is either complete or
 absent, so an interrupted sweep loses at most the batches in flight.
+
+Units live in the Parquet schema: every column with a unit carries the field
+metadata {"unit": ...} (SI, Omega in Hz; `washer.sweep.tasks.UNITS` for the
+outputs, the parameter layout for the inputs), e.g.
+pyarrow.parquet.read_schema(path).field("crit_value").metadata[b"unit"].
 """
 from __future__ import annotations
 
@@ -19,6 +24,8 @@ import os
 from pathlib import Path
 
 import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
 
 PARTS = "parts"
 RESULTS = "results.parquet"
@@ -27,9 +34,10 @@ RESULTS = "results.parquet"
 class ResultStore:
     """Reads and writes one sweep's folder."""
 
-    def __init__(self, folder):
+    def __init__(self, folder, units: dict | None = None):
         self.folder = Path(folder)
         self.parts = self.folder / PARTS
+        self.units = units or {}
 
     # -------------------------------------------------------------- writing
     def prepare(self, spec_text: str, source: str, ids: list[str]) -> None:
@@ -46,7 +54,7 @@ class ResultStore:
         name = f"part-{hashlib.sha256(ids.encode()).hexdigest()[:16]}.parquet"
         path = self.parts / name
         tmp = self.parts / f".{name}.{os.getpid()}.tmp"
-        pd.DataFrame(rows).to_parquet(tmp, index=False)
+        write_table(pd.DataFrame(rows), tmp, self.units)
         os.replace(tmp, path)
         return path
 
@@ -82,7 +90,7 @@ class ResultStore:
             first = [c for c in columns if c in df.columns]
             df = df[first + [c for c in df.columns if c not in first]]
         tmp = self.folder / f".{RESULTS}.{os.getpid()}.tmp"
-        df.to_parquet(tmp, index=False)
+        write_table(df, tmp, self.units)
         os.replace(tmp, self.folder / RESULTS)
         return df
 
@@ -91,6 +99,28 @@ class ResultStore:
 
     def spec_source(self) -> str:
         return json.loads((self.folder / "sweep.json").read_text())["spec"]
+
+
+def units_for(spec) -> dict:
+    """{column: unit} overrides of a spec's table: crit_value and crit_averaged in the
+    units of the studies' critical parameter (when they share one)."""
+    from washer.machine.layout import UNITS
+    pars = {st.options["critical"]["parameter"] for st in spec.studies
+            if "critical" in st.kinds}
+    if len(pars) != 1:
+        return {}
+    unit = UNITS.get(next(iter(pars)), "")
+    return {"crit_value": unit, "crit_averaged": unit}
+
+
+def write_table(df: pd.DataFrame, path: Path, units: dict | None = None) -> None:
+    """df as Parquet at path, each column's unit in its field metadata (`tasks.units_of`)."""
+    from washer.sweep.tasks import units_of
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    u = units_of(table.column_names, units)
+    fields = [f.with_metadata({"unit": u[f.name]}) if f.name in u else f for f in table.schema]
+    table = table.cast(pa.schema(fields, metadata=table.schema.metadata))
+    pq.write_table(table, path)
 
 
 def _atomic_write_text(path: Path, text: str) -> None:

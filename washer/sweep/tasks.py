@@ -20,16 +20,27 @@ stability  averaged (or frozen) rotating-frame equilibrium eps* (eqs 60-65) and
     stab_eps1..6         eps* (m, m, m, rad, rad, rad)
     stab_radius          hypot(eps1, eps2), m: the steady whirl radius of the
                          periodic response the equilibrium stands for
+    stab_status          "stable", "unstable" or "failed"
 critical   the critical value of one parameter at this point: the first Hopf
            point (HB) of a one-parameter continuation of the averaged equilibrium
            from `from` to `to` (the engine of washer.run, e='washer', with the
            point's parameter set injected: run(..., params=...)):
-    crit_value           the parameter at the HB (its units)
+    crit_status          the answer: "hopf" (a critical value in the range),
+                         "stable" (stable over the whole range: the critical value
+                         is at most `from`, and crit_value = `from`; with C_p from 0,
+                         stable without joint damping), "unstable" (unstable over the
+                         whole range: more than `to` is needed, crit_value NaN), or
+                         "failed" (no answer: the row's error says why)
+    crit_value           the parameter at the HB (its units), `from` when stable
     crit_whirl           the crossing frequency 2 pi / PAR(11), rad/s, rotating frame
-    crit_n_hopf          HB points found in [from, to]
-    crit_source          "HB" (the engine's first Hopf point) or "margin" (no HB
-                         before the engine's first step: the root of the margin,
-                         see _critical_fallback)
+    crit_n_hopf          stability crossings located in [from, to] (HB points, or
+                         the one root of the whirl pair's real part; 0 when stable
+                         or unstable throughout)
+    crit_source          how it was found: "HB" (the engine's Hopf point), "margin"
+                         (no HB before the engine's first step: the root of the
+                         whirl pair's real part, see _critical_fallback), "ends"
+                         (stable or unstable at both ends, no HB between),
+                         "floquet" (engine = "floquet")
 response   a time response (kernel DOPRI5) summarised over the last `window` s:
     resp_whirl_radius    mean of hypot(x, y) over the window, m (x, y: tub origin,
                          plane A; eps1, eps2 in the rotating frame: same radius)
@@ -43,6 +54,14 @@ response   a time response (kernel DOPRI5) summarised over the last `window` s:
                          signed (> 0: counter-clockwise), in the simulated frame
     resp_amp1, resp_amp2 their amplitudes, m
     resp_nfev            right-hand-side evaluations
+    resp_tau_s           the spin-up time constant used (s; the option `tau_s`, else
+                         the parameter set's), NaN at constant speed
+    resp_status          "ok" or "failed"
+
+A row's `status` is "ok" when every kind gave its answer (a point stable without
+joint damping is an answer, not a failure) and "failed" only when one could not
+(its message in `error`). Units of every column: `UNITS` (also written into the
+Parquet schema as field metadata, `washer.sweep.results`).
 """
 from __future__ import annotations
 
@@ -58,21 +77,36 @@ from washer.machine.params import Params
 
 #: Output columns per kind (every row of a kind has all of them; NaN on failure).
 OUTPUTS: dict[str, tuple[str, ...]] = {
-    "stability": ("stab_margin", "stab_whirl", "stab_whirl_ground", "stab_damping_ratio",
-                  "stab_eps1", "stab_eps2", "stab_eps3", "stab_eps4", "stab_eps5", "stab_eps6",
-                  "stab_radius"),
-    "critical": ("crit_value", "crit_whirl", "crit_n_hopf", "crit_source"),
-    "response": ("resp_whirl_radius", "resp_whirl_radius_min", "resp_whirl_radius_max",
-                 "resp_lift_max", "resp_tilt_max", "resp_freq1", "resp_amp1", "resp_freq2",
-                 "resp_amp2", "resp_nfev"),
+    "stability": ("stab_status", "stab_margin", "stab_whirl", "stab_whirl_ground",
+                  "stab_damping_ratio", "stab_eps1", "stab_eps2", "stab_eps3", "stab_eps4",
+                  "stab_eps5", "stab_eps6", "stab_radius"),
+    "critical": ("crit_status", "crit_value", "crit_whirl", "crit_n_hopf", "crit_source"),
+    "response": ("resp_status", "resp_whirl_radius", "resp_whirl_radius_min",
+                 "resp_whirl_radius_max", "resp_lift_max", "resp_tilt_max", "resp_freq1",
+                 "resp_amp1", "resp_freq2", "resp_amp2", "resp_nfev", "resp_tau_s"),
 }
+#: Per-kind status column of each kind ("failed" when the kind raised).
+STATUS = {"stability": "stab_status", "critical": "crit_status", "response": "resp_status"}
 #: Output columns holding text (empty when the kind failed); the others are floats (NaN).
-TEXT_OUTPUTS = {"crit_source"}
+TEXT_OUTPUTS = {"crit_source"} | set(STATUS.values())
+#: Units of the output columns ("" for dimensionless or text; crit_value has the units
+#: of the study's parameter: `units_of` fills it in).
+UNITS = {"stab_margin": "1/s", "stab_whirl": "rad/s", "stab_whirl_ground": "rad/s",
+         "stab_damping_ratio": "", "stab_eps1": "m", "stab_eps2": "m", "stab_eps3": "m",
+         "stab_eps4": "rad", "stab_eps5": "rad", "stab_eps6": "rad", "stab_radius": "m",
+         "crit_whirl": "rad/s", "crit_n_hopf": "", "crit_averaged": None,
+         "crit_multiplier_angle": "rad",
+         "resp_whirl_radius": "m", "resp_whirl_radius_min": "m", "resp_whirl_radius_max": "m",
+         "resp_lift_max": "m", "resp_tilt_max": "rad", "resp_freq1": "Hz", "resp_amp1": "m",
+         "resp_freq2": "Hz", "resp_amp2": "m", "resp_nfev": "", "resp_tau_s": "s",
+         "elapsed_s": "s"}
 
 
 def empty_outputs(kind: str) -> dict:
     """The kind's columns as they stand when it fails."""
-    return {c: "" if c in TEXT_OUTPUTS else math.nan for c in OUTPUTS[kind]}
+    out = {c: "" if c in TEXT_OUTPUTS else math.nan for c in OUTPUTS[kind]}
+    out[STATUS[kind]] = "failed"
+    return out
 
 
 #: Bins either side of the first spectral peak excluded when looking for the
@@ -96,7 +130,8 @@ def stability(params: Params, frame: str = "averaged") -> dict:
     out = {"stab_margin": float(lead.real), "stab_whirl": float(whirl),
            "stab_whirl_ground": float(abs(2 * math.pi * params["Omega"] - whirl)),
            "stab_damping_ratio": float(-lead.real / abs(lead)) if abs(lead) > 0 else math.nan,
-           "stab_radius": float(math.hypot(eps[0], eps[1]))}
+           "stab_radius": float(math.hypot(eps[0], eps[1])),
+           "stab_status": "stable" if lead.real < 0 else "unstable"}
     out.update({f"stab_eps{i + 1}": float(e) for i, e in enumerate(eps)})
     return out
 
@@ -165,7 +200,7 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
     hbs = [s for s in res.specials if s.ty == "HB"]
     if hbs:
         period = float(hbs[0].par[10])
-        return {"crit_value": float(hbs[0].par[idx - 1]),
+        return {"crit_status": "hopf", "crit_value": float(hbs[0].par[idx - 1]),
                 "crit_whirl": 2 * math.pi / period if period > 0 else math.nan,
                 "crit_n_hopf": float(len(hbs)), "crit_source": "HB"}
     return _critical_fallback(params, parameter, lo, hi, res.status)
@@ -182,6 +217,8 @@ def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> d
     the forced response within a bracket around it (Brent on |mu_c| - 1)."""
     from washer.machine import forced
     avg = critical(params, parameter, lo, hi, "continuation")
+    if avg["crit_status"] != "hopf":        # no crossing in the range: the same answer
+        return avg | {"crit_averaged": avg["crit_value"], "crit_multiplier_angle": math.nan}
     v = avg["crit_value"]
     half = FLOQUET_BRACKET * abs(v) + FLOQUET_ABS * (hi - lo)
     bracket = (max(v - half, lo), min(v + half, hi))
@@ -193,48 +230,86 @@ def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> d
                          f"[{bracket[0]:.6g}, {bracket[1]:.6g}] around the averaged "
                          f"{v:.6g}: {exc}") from None
     mu = forced.critical_pair(r.multipliers)
-    return {"crit_value": float(sp.value), "crit_whirl": avg["crit_whirl"],
+    return {"crit_status": "hopf", "crit_value": float(sp.value), "crit_whirl": avg["crit_whirl"],
             "crit_n_hopf": avg["crit_n_hopf"], "crit_source": "floquet",
             "crit_averaged": float(v), "crit_multiplier_angle": float(abs(np.angle(mu)))}
 
 
+def whirl_pair(lam: np.ndarray, Omega: float, near: float | None = None) -> complex:
+    """The whirl pair's member with Im > 0 among eigenvalues lam (rotating frame, 1/s):
+    the one whose Im is nearest `near` (rad/s; following a pair found before), else the
+    forward pendulum whirl, the largest Im below 2 pi Omega (a forward whirl at w_g in the
+    ground frame turns at 2 pi Omega - w_g in the rotating frame; the slow yaw mode, Im
+    ~4.5 rad/s and nearly undamped, is never it)."""
+    up = lam[lam.imag > 0]
+    if near is not None:
+        return complex(up[np.argmin(np.abs(up.imag - near))])
+    below = up[up.imag < 2 * math.pi * Omega]
+    return complex(below[np.argmax(below.imag)] if below.size else up[np.argmax(up.real)])
+
+
 def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
                        status: str) -> dict:
-    """No HB on the branch. If the equilibrium is unstable at lo and stable at hi,
-    the crossing lies before the engine's first step, where the engine does not
-    test for bifurcations (seen at Omega = 9 Hz, m_u = 0.25 kg: crossing at C_p
-    ~ 1.5e-4 with DS = 0.015): locate it on the stability margin by Brent's
-    method, and say so in crit_source. Otherwise raise, with the margins at the ends."""
-    def margin(v):
-        return stability(params.replace(**{parameter: v}))["stab_margin"]
+    """No HB on the branch. From the stability at the two ends:
+
+    - stable at both: the answer "stable" (crit_value = lo: with C_p from 0, stable
+      without joint damping), the engine having found no crossing between;
+    - unstable at both: the answer "unstable" (more than `hi` needed);
+    - unstable at lo, stable at hi: the crossing lies before the engine's first step,
+      where the engine does not test for bifurcations (seen at Omega = 9 Hz, m_u = 0.25
+      kg: crossing at C_p ~ 1.5e-4 with DS = 0.015): the root of the real part of the
+      whirl pair (`whirl_pair`, followed by its frequency from lo) by Brent's method;
+    - anything else (or a failed continuation) raises, with the margins at the ends."""
+    def eig(v):
+        m = Model(params.replace(**{parameter: v}))
+        return m.eigenvalues(m.rotating_equilibrium())
 
     try:
-        m_lo, m_hi = margin(lo), margin(hi)
+        lam_lo, lam_hi = eig(lo), eig(hi)
     except Exception as exc:  # noqa: BLE001 - only explains the failure
         raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]; "
                          f"equilibrium not found at the ends ({exc})") from None
-    if m_lo > NEUTRAL_MARGIN and m_hi < -NEUTRAL_MARGIN and status == "ok":
-        from scipy.optimize import brentq
-        v = brentq(margin, lo, hi, xtol=CRIT_XTOL * (hi - lo), rtol=1e-12)
-        s = stability(params.replace(**{parameter: v}))
-        return {"crit_value": float(v), "crit_whirl": s["stab_whirl"], "crit_n_hopf": 0.0,
-                "crit_source": "margin"}
+    m_lo, m_hi = float(lam_lo.real.max()), float(lam_hi.real.max())
+
     def state(m):
         return "neutral" if abs(m) <= NEUTRAL_MARGIN else "stable" if m < 0 else "unstable"
 
     ends = f"margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g}"
+    if status == "ok" and state(m_lo) == state(m_hi) in ("stable", "unstable"):
+        return {"crit_status": state(m_lo), "crit_value": float(lo) if m_lo < 0 else math.nan,
+                "crit_whirl": math.nan, "crit_n_hopf": 0.0, "crit_source": "ends"}
+    if state(m_lo) == "unstable" and state(m_hi) == "stable" and status == "ok":
+        from scipy.optimize import brentq
+        pair = whirl_pair(lam_lo, params["Omega"])
+        if pair.real <= NEUTRAL_MARGIN:
+            raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: "
+                             f"unstable at {lo:g} through a mode that is not the whirl "
+                             f"({ends})")
+        track = {"im": pair.imag}
+
+        def whirl_re(v):
+            z = whirl_pair(eig(v), params["Omega"], track["im"])
+            track["im"] = z.imag
+            return z.real
+
+        v = brentq(whirl_re, lo, hi, xtol=CRIT_XTOL * (hi - lo), rtol=1e-12)
+        whirl_re(v)
+        return {"crit_status": "hopf", "crit_value": float(v), "crit_whirl": track["im"],
+                "crit_n_hopf": 1.0, "crit_source": "margin"}
     why = f"continuation ended with status {status!r}; " if status != "ok" else ""
-    if state(m_lo) == state(m_hi) == "stable":
-        why += f"stable throughout ({ends})"
-    else:
-        why += f"{state(m_lo)} at {lo:g}, {state(m_hi)} at {hi:g} ({ends})"
+    why += f"{state(m_lo)} at {lo:g}, {state(m_hi)} at {hi:g} ({ends})"
     raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: {why}")
 
 
 def response(params: Params, system: str = "fixed", law: str = "spinup",
              frame: str = "averaged", t_end: float = 30.0, window: float = 10.0,
-             samples_per_s: float = 200.0, rtol: float = 1e-8, atol: float = 1e-10) -> dict:
-    """Time response from the paper's initial state, summarised (see module docstring)."""
+             samples_per_s: float = 200.0, rtol: float = 1e-8, atol: float = 1e-10,
+             tau_s: float = math.nan) -> dict:
+    """Time response from the paper's initial state, summarised (see module docstring).
+    tau_s (s): the spin-up time constant (eq 66); NaN: the parameter set's."""
+    if not math.isnan(tau_s):
+        params = params.replace(tau_s=tau_s)
+    spin = system == "fixed" and law == "spinup"
     m = Model(params)
     r = m.simulate(t_end, system=system, law=law, frame=frame, samples_per_s=samples_per_s,
                    rtol=rtol, atol=atol, progress=False)
@@ -242,7 +317,8 @@ def response(params: Params, system: str = "fixed", law: str = "spinup",
         raise PointError(f"response: integration stopped at t = {r.t[-1] if len(r.t) else 0:g} "
                          f"s: {r.status}")
     return summarise_response(r.t, r.y, m.static_equilibrium()[2], window) | {
-        "resp_nfev": float(r.stats["nfev"])}
+        "resp_nfev": float(r.stats["nfev"]), "resp_status": "ok",
+        "resp_tau_s": float(params["tau_s"]) if spin else math.nan}
 
 
 def summarise_response(t: np.ndarray, y: np.ndarray, z_static: float, window: float) -> dict:
@@ -306,10 +382,28 @@ def compute_point(point: dict, base: dict) -> dict:
             except Exception as exc:  # noqa: BLE001
                 msg = str(exc)
                 errors.append(msg if msg.startswith(kind) else f"{kind}: {type(exc).__name__}: {msg}")
+    # A kind that answered (even "stable throughout") is ok; only a fault fails the row.
     row["status"] = "failed" if errors else "ok"
     row["error"] = "; ".join(errors)
     row["elapsed_s"] = time.perf_counter() - t0
     return row
+
+
+def units_of(columns, parameter_units: dict | None = None) -> dict:
+    """{column: unit} for the columns of a results table: outputs from UNITS, swept and
+    fixed inputs from the parameter layout (SI, Omega in Hz), crit_value and
+    crit_averaged in the units of the critical parameter (parameter_units: {column:
+    unit} overrides, e.g. {"crit_value": "N m s/rad"})."""
+    from washer.machine.layout import UNITS as PARAM_UNITS
+    out = {}
+    for c in columns:
+        if parameter_units and c in parameter_units:
+            out[c] = parameter_units[c]
+        elif c in UNITS and UNITS[c] is not None:
+            out[c] = UNITS[c]
+        elif c in PARAM_UNITS:
+            out[c] = PARAM_UNITS[c]
+    return out
 
 
 def compute_batch(points: list[dict], base: dict) -> list[dict]:
