@@ -87,6 +87,7 @@ def compare(ours: list, ref: list, branch=True, uz_values=None) -> None:
 # ---------------------------------------------------------------------------
 # ab: for solution in ab("HB"): run(solution, c='ab.3')
 
+@pytest.mark.slow
 def test_ab_periodic_families(tmp_path_factory):
     """One family from each of the 7 HBs of the six p1-branches; each ends at the UZSTOP
     p1 = 0.25 or PERIOD = 1000, as in b.ab's periodic branches (in the same order)."""
@@ -156,6 +157,7 @@ def test_plp_periodic_families(plp, k, hb):
     compare(rows(plp / f"b.ps{k + 1}"), segments(rows(REF / "plp" / "b.plp"))[k])
 
 
+@pytest.mark.slow
 def test_plp_cycle_fold_locus(plp):
     """lpstart = run(plp('LP1'), c='plp.plp') generates starting data (ISW = 2 on IPS = 2:
     AUTO ends it with an EP to restart from); then run(lpstart) and DS='-': UZ at

@@ -1,4 +1,5 @@
 """Generated code is up to date and reproducible byte for byte."""
+import pytest
 from washer import codegen
 
 
@@ -10,6 +11,7 @@ def test_stamp_matches_current_inputs():
             f"{name} is stale: run `python -m washer.codegen`")
 
 
+@pytest.mark.slow
 def test_regeneration_is_byte_identical():
     files = codegen.generate()
     for name, text in files.items():

@@ -243,6 +243,7 @@ def duffing(c=0.1, beta=1.0, nu=1.5):
         dfdp=lambda t, u, F: np.array([0.0, np.cos(nu * t)]), nu=nu)
 
 
+@pytest.mark.slow
 def test_fold_of_duffing_response_is_passed_and_located():
     """Hardening Duffing above resonance: the response against forcing F is S-shaped.
     Pseudo-arclength passes both folds (LP), where a multiplier is +1; their F agree

@@ -9,6 +9,10 @@ import pytest
 from washer.paper import job as figures
 from washer.paper import analysis as an
 
+#: The paper's whole job (every AUTO run, the time responses, figures, report) takes about a
+#: minute on an idle machine: slow, run by the README's test command.
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):

@@ -147,6 +147,7 @@ def test_small_sweep_serial_results(small_serial):
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.slow
 def test_dask_results_identical_to_serial(small_serial, tmp_path):
     out, serial = small_serial
     dask = run(SMALL, out=tmp_path, n_workers=2, plot=False)
@@ -159,6 +160,7 @@ def _ids_in_parts(folder: Path) -> list[str]:
     return [i for f in ResultStore(folder).part_files() for i in pd.read_parquet(f)["id"]]
 
 
+@pytest.mark.slow
 def test_killed_sweep_resumes_with_every_point_once(tmp_path):
     out = tmp_path / "killed"
     cmd = [sys.executable, "-m", "washer.sweep", str(SMALL), "--out", str(out), "--workers", "2",
