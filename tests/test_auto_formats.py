@@ -228,3 +228,20 @@ def test_our_s_records_are_what_parseS_counts(tmp_path):
     np.testing.assert_allclose(back.U, rec.U, rtol=1e-10)
     np.testing.assert_allclose(back.udot, rec.udot, atol=1e-11)
     assert back.icp == [1, 2] and back.ty == -32 and back.lab == 7
+
+
+def test_row_formatting_is_fmt_e_value_by_value():
+    """The one-call formatting of whole rows and blocks (fmt_e_many, fmt_es_many) gives
+    the text of fmt_e / fmt_es value by value, including the values it hands back to
+    them: 3-digit exponents, zeros, signs, rounding at the last digit, NaN, infinities."""
+    import numpy as np
+    from washer.auto.files import fmt_e, fmt_e_many, fmt_es_many
+    rng = np.random.default_rng(7)
+    plain = np.r_[0.0, -0.0, 1.0, -1.0, 9.99999999995, 9.999999999949999, 1e-99, -1e-99,
+                  9.9e98, 0.5e-7, 123456.789, rng.standard_normal(50) * 10.0 ** rng.integers(
+                      -98, 98, 50)]
+    odd = np.r_[plain[:5], 1e-100, -3.2e150, 1.7976931348623157e308, np.nan, np.inf, -np.inf]
+    for vals in (plain, odd):
+        assert fmt_e_many(vals) == "".join(fmt_e(v) for v in vals)
+        assert fmt_es_many(vals, 14, 5) == "".join(fmt_es(v, 14, 5) for v in vals)
+        assert fmt_es_many(vals, 11, 4) == "".join(fmt_es(v, 11, 4) for v in vals)

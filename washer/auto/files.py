@@ -15,6 +15,7 @@ target untouched) and never truncate a protected file (the restart source).
 """
 from __future__ import annotations
 
+import functools
 import math
 import os
 import re
@@ -73,6 +74,37 @@ def fmt_es(x: float, width: int, digits: int) -> str:
     return text.rjust(width)
 
 
+#: A 2-digit exponent of C's %E, widened to AUTO's 3 digits (E-05 -> E-005).
+_E2 = re.compile(r"E([+-])(\d\d)(?!\d)")
+
+
+def _plain(v: np.ndarray) -> bool:
+    """Whether every value prints with a 2-digit exponent in C's %E: finite, zero or of
+    magnitude in [1e-99, 1e99) (the rest go value by value through fmt_e / fmt_es)."""
+    with np.errstate(invalid="ignore"):
+        a = np.abs(v)
+        return bool(np.all((a < 1e99) & ((a >= 1e-99) | (a == 0))))
+
+
+def fmt_e_many(values, width: int = 19, digits: int = 10) -> str:
+    """fmt_e of every value, concatenated: one %-format of the whole row and one
+    exponent substitution (the b- and s-files' bulk; the same text as fmt_e value by
+    value, which the tests check)."""
+    v = np.asarray(values, dtype=float).ravel()
+    if _plain(v):
+        text = (f"%{width - 1}.{digits}E" * len(v)) % tuple(v.tolist())
+        return _E2.sub(r"E\g<1>0\g<2>", text)
+    return "".join(fmt_e(x, width, digits) for x in v.tolist())
+
+
+def fmt_es_many(values, width: int, digits: int) -> str:
+    """fmt_es of every value, concatenated (C's %E is ESw.d for 2-digit exponents)."""
+    v = np.asarray(values, dtype=float).ravel()
+    if _plain(v):
+        return (f"%{width}.{digits}E" * len(v)) % tuple(v.tolist())
+    return "".join(fmt_es(x, width, digits) for x in v.tolist())
+
+
 def _fortran_float(token: str) -> float:
     """A real as AUTO writes it: 1.0E-07, 1.0D-07, 1.0-100 (ESw.d with a 3-digit exponent)."""
     try:
@@ -125,6 +157,7 @@ _TITLE_COLUMNS = ((r"PAR\(\d+\)", 4), (r"L2-NORM", 4), (r"U\(\d+\)", 6), (r"(MAX
 NAME_LENGTH = 13
 
 
+@functools.lru_cache(maxsize=1024)
 def column_title(title: str) -> str:
     """The 19-character b-file column title of HEADNG (the screen and d-file show its
     first 14 characters). A name is centred at column max(7 - (len - 1) // 2, 2)."""
@@ -146,7 +179,7 @@ def screen_heading(titles: list[str]) -> str:
 def screen_line(row: "Row") -> str:
     """A point in screen format (I4,I6,1X,A3,I5,ES14.5...) as the d-file repeats it; the
     b-file's signs of BR and PT are kept (the terminal shows absolute values)."""
-    vals = "".join(fmt_es(v, 14, 5) for v in row.values[:8])
+    vals = fmt_es_many(row.values[:8], 14, 5)
     return f"{row.br:4d}{row.pt:6d} {type_name(row.ty):>3}{row.lab:5d}{vals}"
 
 
@@ -226,21 +259,35 @@ class Record:
                 f"{ntpl:8d}{n + 1:6d}{nrow:8d}{self.ntst:5d}{self.ncol:5d}{npar:5d}{0:5d}"
                 f"{self.ndim_user:5d}{self.ips:5d}{0:5d}")
         lines = [head]
-        for j in range(ntpl):
-            vals = [t[j]] + list(U[j])
-            lines += _rows(vals[:7]) + _rows(vals[7:])
+        lines += _block_rows(np.column_stack([t, U]))      # t-blocks: t, U(1..NDIM)
         if has_dir:
             ud = np.asarray(self.udot, float).reshape(ntpl, n)
             lines.append("".join(f"{i:5d}" for i in self.icp[:self.nfpr]))
             lines += _rows(self.rldot)
-            for j in range(ntpl):
-                lines += _rows(list(ud[j]))
+            lines += _block_rows(ud)
         lines += _rows(list(self.par))
         return "\n".join(lines) + "\n"
 
 
 def _rows(vals) -> list[str]:
-    return ["    " + "".join(fmt_e(v) for v in vals[i:i + 7]) for i in range(0, len(vals), 7)]
+    """Values 7 a line (ES19.10E3 after 4 blanks), as AUTO's s-files."""
+    text = fmt_e_many(vals)
+    w = 7 * 19
+    return ["    " + text[i:i + w] for i in range(0, len(text), w)]
+
+
+def _block_rows(M: np.ndarray) -> list[str]:
+    """_rows of every row of M (k, m), in order: one format call for the whole block."""
+    M = np.asarray(M, dtype=float)
+    k, m = M.shape
+    if k == 0 or m == 0:
+        return []
+    text = fmt_e_many(M)
+    out = []
+    for j in range(k):
+        line = text[j * m * 19:(j + 1) * m * 19]
+        out += ["    " + line[i:i + 7 * 19] for i in range(0, len(line), 7 * 19)]
+    return out
 
 
 def prepare_output(path: Path, protect=()) -> Path | None:
@@ -434,7 +481,7 @@ class OutputFiles:
     def row(self, r: Row) -> None:
         """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
         the same point in screen format (unit 9), opening the point's block."""
-        vals = "".join(fmt_e(v) for v in r.values)
+        vals = fmt_e_many(r.values)
         self._append(self.b_path, self._pending_b + f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
         self._pending_b = ""
         bar = f"{D_BAR}\n" if self._d_points else ""
