@@ -32,33 +32,30 @@ def _directional(problem, x, p, dirs):
         D3 ~ [f(x+2hw) - 2f(x+hw) + 2f(x-hw) - f(x-2hw)] / (2h^3),
     each Richardson-extrapolated from h and 2h to O(h^4): (4 D(h) - D(2h)) / 3.
     Returns a list of (n,) arrays."""
-    pts = [x]
-    plan = []
-    for order, w in dirs:
-        h = FD2_STEP if order == 2 else FD3_STEP
-        if order == 2:
-            i = len(pts)
-            pts += [x + h * w, x - h * w, x + 2 * h * w, x - 2 * h * w]
-            plan.append((2, i, h))
-        else:
-            i = len(pts)
-            pts += [x + h * w, x - h * w, x + 2 * h * w, x - 2 * h * w,
-                    x + 4 * h * w, x - 4 * h * w]
-            plan.append((3, i, h))
-    F = problem.func_many(np.array(pts), p)
+    # Points x + (c h) w for all directions of one order at once (c = +-1, +-2, and
+    # +-4 for third derivatives): the same arithmetic as point by point.
+    x = np.asarray(x, dtype=float)
+    n = len(x)
+    orders = np.array([o for o, _ in dirs])
+    W = np.array([w for _, w in dirs], dtype=float).reshape(len(dirs), n)
+    W2, W3 = W[orders == 2], W[orders == 3]
+    h2, h3 = FD2_STEP, FD3_STEP
+    c2 = np.array([h2, -h2, 2 * h2, -2 * h2])
+    c3 = np.array([h3, -h3, 2 * h3, -2 * h3, 4 * h3, -4 * h3])
+    P2 = x + c2[None, :, None] * W2[:, None, :]             # (k2, 4, n)
+    P3 = x + c3[None, :, None] * W3[:, None, :]             # (k3, 6, n)
+    F = problem.func_many(np.concatenate([x[None, :], P2.reshape(-1, n), P3.reshape(-1, n)]), p)
     f0 = F[0]
-    out = []
-    for order, i, h in plan:
-        fp1, fm1, fp2, fm2 = F[i], F[i + 1], F[i + 2], F[i + 3]
-        if order == 2:
-            d_h = (fp1 - 2 * f0 + fm1) / h ** 2
-            d_2h = (fp2 - 2 * f0 + fm2) / (2 * h) ** 2
-        else:
-            fp4, fm4 = F[i + 4], F[i + 5]
-            d_h = (fp2 - 2 * fp1 + 2 * fm1 - fm2) / (2 * h ** 3)
-            d_2h = (fp4 - 2 * fp2 + 2 * fm2 - fm4) / (2 * (2 * h) ** 3)
-        out.append((4 * d_h - d_2h) / 3)
-    return out
+    F2 = F[1:1 + P2.shape[0] * 4].reshape(-1, 4, n)
+    F3 = F[1 + P2.shape[0] * 4:].reshape(-1, 6, n)
+    d_h = (F2[:, 0] - 2 * f0 + F2[:, 1]) / h2 ** 2
+    d_2h = (F2[:, 2] - 2 * f0 + F2[:, 3]) / (2 * h2) ** 2
+    D2 = (4 * d_h - d_2h) / 3
+    d_h = (F3[:, 2] - 2 * F3[:, 0] + 2 * F3[:, 1] - F3[:, 3]) / (2 * h3 ** 3)
+    d_2h = (F3[:, 4] - 2 * F3[:, 2] + 2 * F3[:, 3] - F3[:, 5]) / (2 * (2 * h3) ** 3)
+    D3 = (4 * d_h - d_2h) / 3
+    it2, it3 = iter(D2), iter(D3)
+    return [next(it2) if o == 2 else next(it3) for o in orders]
 
 
 def _bilinear(d2_sum, d2_diff):

@@ -270,12 +270,13 @@ class Problem:
         us[:] = u
         ps[:] = par
         kw = (k[:, None] * ws)                                               # (m, n)
-        for j, (a, b) in enumerate(signs):
-            us[:, :, j, :] += b * kw[None, :, :]
-            for s_ in range(n):
-                us[s_, :, j, s_] += a * h[s_]
-            for t, i in enumerate(par_indices):
-                ps[n + t, :, j, i - 1] += a * h[n + t]
+        # z + a h e_s + b k w, in that order of additions, for all s and signs at once
+        us += signs[None, None, :, 1, None] * kw[None, :, None, :]
+        idx = np.arange(n)
+        us[idx, :, :, idx] += signs[None, None, :, 0] * h[:n, None, None]
+        if q:
+            pidx = np.array([i - 1 for i in par_indices])
+            ps[n + np.arange(q), :, :, pidx] += signs[None, None, :, 0] * h[n:, None, None]
         F = self.func_many(us.reshape(-1, n), ps.reshape(-1, len(par))).reshape(ns, m, 4, n)
         num = F[:, :, 0] - F[:, :, 1] - F[:, :, 2] + F[:, :, 3]
         return num / (4 * h[:, None, None] * k[None, :, None])
