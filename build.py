@@ -1,4 +1,5 @@
-"""cffi builder of the compiled kernel `washer._kernel` (out-of-line API mode).
+"""cffi builders of the compiled kernel `washer._kernel` and of the continuation
+engine's linear algebra `washer._cont` (out-of-line API mode).
 
 Used by `pip install .` through setup.py (cffi_modules), or directly for an
 in-place development build: `python build.py`. `python -m build` in this folder
@@ -34,6 +35,21 @@ ffibuilder.set_source(
 )
 
 
+#: The continuation engine's compiled linear algebra (washer/cont/reduction.py).
+contbuilder = cffi.FFI()
+contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text())
+contbuilder.set_source(
+    "washer._cont",
+    '#include "cont.h"',
+    sources=["csrc/cont/reduce.cpp"],
+    include_dirs=["csrc/cont", EIGEN],
+    source_extension=".cpp",
+    extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],
+    extra_link_args=["-s"],
+    language="c++",
+)
+
+
 def _frontend() -> None:
     """`python -m build` started this file because the project folder comes first
     on sys.path: run the PyPA `build` frontend the user asked for instead."""
@@ -55,4 +71,7 @@ if __name__ == "__main__":
         _frontend()
     else:
         os.chdir(HERE)
-        ffibuilder.compile(verbose=True)
+        import sys
+        # `python build.py cont`: only the engine's module (the kernel takes minutes)
+        for builder in ([contbuilder] if sys.argv[1:] == ["cont"] else [ffibuilder, contbuilder]):
+            builder.compile(verbose=True)

@@ -28,5 +28,5 @@ class build_py_with_constants(build_py):
             shutil.copy2(f, dst / f.name)
 
 
-setup(cffi_modules=["build.py:ffibuilder"],
+setup(cffi_modules=["build.py:ffibuilder", "build.py:contbuilder"],
       cmdclass={"build_py": build_py_with_constants})

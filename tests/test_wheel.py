@@ -79,6 +79,8 @@ def test_wheel_has_every_subpackage_the_constants_and_a_stripped_kernel(built):
     assert shipped and shipped == in_wheel
     kernels = [n for n in info if n.startswith("washer/_kernel") and n.endswith(".so")]
     assert len(kernels) == 1 and info[kernels[0]] < MAX_KERNEL_BYTES, kernels
+    # the continuation engine's compiled linear algebra (washer.cont.reduction)
+    assert len([n for n in info if n.startswith("washer/_cont") and n.endswith(".so")]) == 1
     assert "washer/data/reference.toml" in info
     assert not [n for n in info if "__pycache__" in n or n.startswith("tests/")]
 

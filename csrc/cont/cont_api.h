@@ -1,0 +1,29 @@
+/* The continuation engine's compiled linear algebra (washer._cont). Plain C prototypes
+ * only: cffi's cdef() reads this file.
+ *
+ * The bordered collocation matrix of a boundary-value problem on NTST intervals of
+ * NCOL collocation points, NDIM components, NPAR free parameters (washer/cont/collocation.py):
+ *   unknowns  x = (U at the NTST*NCOL + 1 nodes, node-major, NDIM each; NPAR parameters),
+ *             nx = (NTST*NCOL + 1)*NDIM + NPAR;
+ *   rows      the NCOL*NDIM collocation equations of every interval (each touching the
+ *             NCOL + 1 nodes of its interval and the parameters), then NE = NDIM + NPAR
+ *             dense rows (boundary conditions, integral conditions, the border row).
+ *   blocks    (NTST, NCOL*NDIM, (NCOL+1)*NDIM) row-major: d(collocation_j)/d(U_j);
+ *   parcols   (NTST, NCOL*NDIM, NPAR): d(collocation_j)/d(parameters);
+ *   extra     (NE, nx): the dense rows.
+ * cont_bvp_factor eliminates (AUTO's CONPAR, REDUCE, DIMRGE): the interior nodes of
+ * every interval (condensation of parameters, partial pivoting within the interval's
+ * rows), then the interval end nodes 1..NTST-1 one after the other (partial pivoting
+ * within the two blocks of rows involved), then a dense LU of what is left in
+ * (U(0), U(1), parameters). It returns the determinant as sign and log|det| and the
+ * pair (P0, P1) (row-major NDIM x NDIM) with P0 U(0) + P1 U(1) = 0 for every solution of
+ * the collocation rows with the parameters held (the monodromy matrix is -P1^-1 P0).
+ * Return values: 0 success, 1 a zero pivot (exactly singular), 2 bad sizes.
+ */
+typedef struct cont_bvp cont_bvp;
+
+cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar);
+void cont_bvp_free(cont_bvp *f);
+int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
+                    const double *extra, double *sign_logdet, double *P0, double *P1);
+int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);

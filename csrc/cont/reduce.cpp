@@ -1,0 +1,320 @@
+// Structured LU of the bordered collocation matrix: AUTO-07p's condensation of
+// parameters (CONPAR), block reduction (REDUCE) and the final dense system (DIMRGE),
+// as one elimination in a fixed order with pivoting inside the blocks. Layout and
+// contract: cont_api.h. Every elimination step is a Gaussian step on the whole
+// matrix (rows of other blocks hold structural zeros in the pivot column), so the
+// determinant is the product of the pivots times the signs of the row and column
+// orders, which gives the BP test of cycles from the same factorisation.
+#include "cont.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <new>
+#include <vector>
+
+namespace {
+
+using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Sign of a permutation given as the list of original indices in the new order.
+double perm_sign(const std::vector<int> &p) {
+    std::vector<char> seen(p.size(), 0);
+    double s = 1.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+        if (seen[i]) continue;
+        size_t len = 0;
+        for (size_t j = i; !seen[j]; j = static_cast<size_t>(p[j])) {
+            seen[j] = 1;
+            ++len;
+        }
+        if (len % 2 == 0) s = -s;
+    }
+    return s;
+}
+
+}  // namespace
+
+struct cont_bvp {
+    int N, m, n, np, ne, K, nx, nc;   // NTST, NCOL, NDIM, NPAR, dense rows, interior, sizes
+    // Interval j (condensation): W[j] (m n x (m+1) n + np) eliminated in place (multipliers
+    // below the pivots in the interior columns n..n+K-1), row swaps piv1, the dense rows'
+    // multipliers E1 (ne x K).
+    std::vector<Mat> W, E1;
+    std::vector<std::vector<int>> piv1;
+    // Node k = 1..N-1 (reduction): T[k] (2n x 3n + np), columns (U_k, U_0, U_k+1, par),
+    // swaps piv2, dense-row multipliers E2 (ne x n). Index 0 unused.
+    std::vector<Mat> T, E2;
+    std::vector<std::vector<int>> piv2;
+    // The remaining (U_0, U_N, par) system.
+    Eigen::PartialPivLU<Mat> lu;
+};
+
+cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
+    if (ntst < 1 || ncol < 1 || ndim < 1 || npar < 0) return nullptr;
+    cont_bvp *f = new (std::nothrow) cont_bvp;
+    if (!f) return nullptr;
+    f->N = ntst;
+    f->m = ncol;
+    f->n = ndim;
+    f->np = npar;
+    f->ne = ndim + npar;
+    f->K = (ncol - 1) * ndim;
+    f->nc = ntst * ncol * ndim;
+    f->nx = (ntst * ncol + 1) * ndim + npar;
+    f->W.resize(ntst);
+    f->E1.resize(ntst);
+    f->piv1.resize(ntst);
+    f->T.resize(ntst);
+    f->E2.resize(ntst);
+    f->piv2.resize(ntst);
+    return f;
+}
+
+void cont_bvp_free(cont_bvp *f) { delete f; }
+
+int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
+                    const double *extra, double *sign_logdet, double *P0, double *P1) {
+    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+    const int mn = m * n, cw = (m + 1) * n + np;
+    Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
+    double sign = 1.0, logdet = 0.0;
+    bool singular = false;
+    std::vector<int> rows, cols;     // the elimination order, as original indices
+    rows.reserve(nx);
+    cols.reserve(nx);
+    auto pivot_step = [&](double p) {
+        if (p == 0.0) {
+            singular = true;
+            return;
+        }
+        if (p < 0) sign = -sign;
+        logdet += std::log(std::fabs(p));
+    };
+    // Global column of column w of interval j's work matrix.
+    auto gcol1 = [&](int j, int w) { return w < (m + 1) * n ? j * mn + w : nx - np + (w - (m + 1) * n); };
+
+    // ---- condensation of the interior nodes of every interval
+    Mat R;                      // the rows carried along the chain: (U_0, U_k, par)
+    std::vector<int> R_ids;
+    for (int j = 0; j < N; ++j) {
+        Mat &W = f->W[j];
+        W.resize(mn, cw);
+        W.leftCols((m + 1) * n) = Eigen::Map<const Mat>(blocks + (size_t)j * mn * (m + 1) * n, mn, (m + 1) * n);
+        if (np) W.rightCols(np) = Eigen::Map<const Mat>(parcols + (size_t)j * mn * np, mn, np);
+        Mat &E = f->E1[j];
+        E.setZero(ne, K);
+        std::vector<int> &piv = f->piv1[j];
+        piv.assign(K, 0);
+        std::vector<int> ids(mn);
+        for (int r = 0; r < mn; ++r) ids[r] = j * mn + r;
+        for (int t = 0; t < K; ++t) {
+            const int c = n + t;
+            int p = t;
+            for (int r = t + 1; r < mn; ++r)
+                if (std::fabs(W(r, c)) > std::fabs(W(p, c))) p = r;
+            piv[t] = p;
+            if (p != t) {
+                W.row(t).swap(W.row(p));
+                std::swap(ids[t], ids[p]);
+            }
+            const double d = W(t, c);
+            pivot_step(d);
+            rows.push_back(ids[t]);
+            cols.push_back(j * mn + c);
+            if (d == 0.0) continue;
+            for (int r = t + 1; r < mn; ++r) {
+                const double l = W(r, c) / d;
+                W(r, c) = l;
+                if (l == 0.0) continue;
+                for (int w = 0; w < cw; ++w)
+                    if (w < n || w > c) W(r, w) -= l * W(t, w);
+            }
+            const int gc = j * mn + c;
+            for (int e = 0; e < ne; ++e) {
+                const double l = Ex(e, gc) / d;
+                E(e, t) = l;
+                Ex(e, gc) = 0.0;
+                if (l == 0.0) continue;
+                for (int w = 0; w < cw; ++w)
+                    if (w < n || w > c) Ex(e, gcol1(j, w)) -= l * W(t, w);
+            }
+        }
+        // the n condensed rows of interval j: (U_j, U_j+1, par)
+        if (j == 0) {
+            R.resize(n, 2 * n + np);
+            R.leftCols(n) = W.block(K, 0, n, n);
+            R.middleCols(n, n) = W.block(K, n + K, n, n);
+            if (np) R.rightCols(np) = W.block(K, (m + 1) * n, n, np);
+            R_ids.assign(ids.begin() + K, ids.end());
+            continue;
+        }
+        // ---- reduction: eliminate U_j from R (U_0, U_j, par) and interval j's rows
+        Mat &T = f->T[j];
+        T.setZero(2 * n, 3 * n + np);
+        T.block(0, 0, n, n) = R.middleCols(n, n);               // U_j
+        T.block(0, n, n, n) = R.leftCols(n);                    // U_0
+        if (np) T.block(0, 3 * n, n, np) = R.rightCols(np);
+        T.block(n, 0, n, n) = W.block(K, 0, n, n);              // U_j
+        T.block(n, 2 * n, n, n) = W.block(K, n + K, n, n);      // U_j+1
+        if (np) T.block(n, 3 * n, n, np) = W.block(K, (m + 1) * n, n, np);
+        std::vector<int> tids(2 * n);
+        for (int r = 0; r < n; ++r) {
+            tids[r] = R_ids[r];
+            tids[n + r] = ids[K + r];
+        }
+        Mat &E2 = f->E2[j];
+        E2.setZero(ne, n);
+        std::vector<int> &piv2 = f->piv2[j];
+        piv2.assign(n, 0);
+        auto gcol2 = [&](int w) {
+            if (w < n) return j * mn + w;
+            if (w < 2 * n) return w - n;
+            if (w < 3 * n) return (j + 1) * mn + (w - 2 * n);
+            return nx - np + (w - 3 * n);
+        };
+        for (int t = 0; t < n; ++t) {
+            int p = t;
+            for (int r = t + 1; r < 2 * n; ++r)
+                if (std::fabs(T(r, t)) > std::fabs(T(p, t))) p = r;
+            piv2[t] = p;
+            if (p != t) {
+                T.row(t).swap(T.row(p));
+                std::swap(tids[t], tids[p]);
+            }
+            const double d = T(t, t);
+            pivot_step(d);
+            rows.push_back(tids[t]);
+            cols.push_back(j * mn + t);
+            if (d == 0.0) continue;
+            for (int r = t + 1; r < 2 * n; ++r) {
+                const double l = T(r, t) / d;
+                T(r, t) = l;
+                if (l == 0.0) continue;
+                for (int w = t + 1; w < 3 * n + np; ++w) T(r, w) -= l * T(t, w);
+            }
+            const int gc = j * mn + t;
+            for (int e = 0; e < ne; ++e) {
+                const double l = Ex(e, gc) / d;
+                E2(e, t) = l;
+                Ex(e, gc) = 0.0;
+                if (l == 0.0) continue;
+                for (int w = t + 1; w < 3 * n + np; ++w) Ex(e, gcol2(w)) -= l * T(t, w);
+            }
+        }
+        R.leftCols(n) = T.block(n, n, n, n);
+        R.middleCols(n, n) = T.block(n, 2 * n, n, n);
+        if (np) R.rightCols(np) = T.block(n, 3 * n, n, np);
+        R_ids.assign(tids.begin() + n, tids.end());
+    }
+    // R: P0 U_0 + P1 U_N + S par = ... (the collocation rows, reduced)
+    Eigen::Map<Mat>(P0, n, n) = R.leftCols(n);
+    Eigen::Map<Mat>(P1, n, n) = R.middleCols(n, n);
+    // ---- the remaining system in (U_0, U_N, par)
+    const int nd = 2 * n + np, gN = N * mn;
+    Mat D(nd, nd);
+    D.topRows(n) = R;
+    for (int e = 0; e < ne; ++e) {
+        for (int i = 0; i < n; ++i) {
+            D(n + e, i) = Ex(e, i);
+            D(n + e, n + i) = Ex(e, gN + i);
+        }
+        for (int i = 0; i < np; ++i) D(n + e, 2 * n + i) = Ex(e, nx - np + i);
+    }
+    for (int r = 0; r < n; ++r) rows.push_back(R_ids[r]);
+    for (int e = 0; e < ne; ++e) rows.push_back(f->nc + e);
+    for (int i = 0; i < n; ++i) cols.push_back(i);
+    for (int i = 0; i < n; ++i) cols.push_back(gN + i);
+    for (int i = 0; i < np; ++i) cols.push_back(nx - np + i);
+    f->lu.compute(D);
+    const Mat &U = f->lu.matrixLU();
+    for (int i = 0; i < nd; ++i) pivot_step(U(i, i));
+    sign *= f->lu.permutationP().determinant();
+    sign *= perm_sign(rows) * perm_sign(cols);
+    sign_logdet[0] = singular ? 0.0 : sign;
+    sign_logdet[1] = singular ? -INFINITY : logdet;
+    return singular ? 1 : 0;
+}
+
+int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x) {
+    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+    const int mn = m * n;
+    std::vector<double> rc(rhs, rhs + f->nc), re(rhs + f->nc, rhs + nx);
+    std::vector<std::vector<double>> t2(N);         // the reduction's right-hand sides
+    // forward: condensation
+    for (int j = 0; j < N; ++j) {
+        const Mat &W = f->W[j];
+        double *rb = rc.data() + (size_t)j * mn;
+        // The factor swapped whole rows (multipliers included, as LAPACK's getrf):
+        // all interchanges first, then the unit lower triangle.
+        for (int t = 0; t < K; ++t) {
+            const int p = f->piv1[j][t];
+            if (p != t) std::swap(rb[t], rb[p]);
+        }
+        for (int t = 0; t < K; ++t) {
+            const int c = n + t;
+            for (int r = t + 1; r < mn; ++r) rb[r] -= W(r, c) * rb[t];
+            for (int e = 0; e < ne; ++e) re[e] -= f->E1[j](e, t) * rb[t];
+        }
+    }
+    // forward: reduction
+    std::vector<double> tR(rc.begin() + K, rc.begin() + mn);
+    for (int j = 1; j < N; ++j) {
+        const Mat &T = f->T[j];
+        std::vector<double> &tv = t2[j];
+        tv.resize(2 * n);
+        for (int r = 0; r < n; ++r) {
+            tv[r] = tR[r];
+            tv[n + r] = rc[(size_t)j * mn + K + r];
+        }
+        for (int t = 0; t < n; ++t) {
+            const int p = f->piv2[j][t];
+            if (p != t) std::swap(tv[t], tv[p]);
+        }
+        for (int t = 0; t < n; ++t) {
+            for (int r = t + 1; r < 2 * n; ++r) tv[r] -= T(r, t) * tv[t];
+            for (int e = 0; e < ne; ++e) re[e] -= f->E2[j](e, t) * tv[t];
+        }
+        for (int r = 0; r < n; ++r) tR[r] = tv[n + r];
+    }
+    // the (U_0, U_N, par) system
+    const int nd = 2 * n + np, gN = N * mn;
+    Eigen::VectorXd d(nd);
+    for (int r = 0; r < n; ++r) d(r) = tR[r];
+    for (int e = 0; e < ne; ++e) d(n + e) = re[e];
+    Eigen::VectorXd z = f->lu.solve(d);
+    for (int i = 0; i < n; ++i) {
+        x[i] = z(i);
+        x[gN + i] = z(n + i);
+    }
+    for (int i = 0; i < np; ++i) x[nx - np + i] = z(2 * n + i);
+    const double *par = x + nx - np;
+    // back: the end nodes U_N-1 .. U_1
+    for (int j = N - 1; j >= 1; --j) {
+        const Mat &T = f->T[j];
+        const std::vector<double> &tv = t2[j];
+        const double *u0 = x, *u1 = x + (size_t)(j + 1) * mn;
+        double *uj = x + (size_t)j * mn;
+        for (int t = n - 1; t >= 0; --t) {
+            double s = tv[t];
+            for (int w = t + 1; w < n; ++w) s -= T(t, w) * uj[w];
+            for (int i = 0; i < n; ++i) s -= T(t, n + i) * u0[i] + T(t, 2 * n + i) * u1[i];
+            for (int i = 0; i < np; ++i) s -= T(t, 3 * n + i) * par[i];
+            uj[t] = s / T(t, t);
+        }
+    }
+    // back: the interior nodes of every interval
+    for (int j = 0; j < N; ++j) {
+        const Mat &W = f->W[j];
+        const double *rb = rc.data() + (size_t)j * mn;
+        const double *uL = x + (size_t)j * mn, *uR = x + (size_t)(j + 1) * mn;
+        double *uI = x + (size_t)j * mn + n;
+        for (int t = K - 1; t >= 0; --t) {
+            double s = rb[t];
+            for (int w = t + 1; w < K; ++w) s -= W(t, n + w) * uI[w];
+            for (int i = 0; i < n; ++i) s -= W(t, i) * uL[i] + W(t, n + K + i) * uR[i];
+            for (int i = 0; i < np; ++i) s -= W(t, (m + 1) * n + i) * par[i];
+            uI[t] = s / W(t, n + t);
+        }
+    }
+    return 0;
+}

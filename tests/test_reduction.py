@@ -1,0 +1,91 @@
+"""The compiled factorisation of bordered collocation matrices (washer.cont.reduction,
+AUTO's condensation of parameters and block reduction) against dense LAPACK on the
+assembled matrix: solves, the determinant (sign and log-magnitude: the BP test of
+cycles), and the Floquet pair against the null space of the collocation rows and
+against the Householder condensation of washer.cont.collocation."""
+import numpy as np
+import pytest
+
+from washer.cont import collocation as col
+from washer.cont import reduction
+
+pytestmark = pytest.mark.skipif(not reduction.available(),
+                                reason="washer._cont not built (python build.py cont)")
+
+
+def random_system(rng, N, m, n, npar):
+    mn = m * n
+    blocks = rng.standard_normal((N, mn, (m + 1) * n))
+    parcols = rng.standard_normal((N, mn, npar))
+    nx = (N * m + 1) * n + npar
+    extra = rng.standard_normal((n + npar, nx))
+    M = np.zeros((nx, nx))
+    for j in range(N):
+        M[j * mn:(j + 1) * mn, j * mn:j * mn + (m + 1) * n] = blocks[j]
+        M[j * mn:(j + 1) * mn, nx - npar:] = parcols[j]
+    M[N * mn:] = extra
+    return blocks, parcols, extra, M
+
+
+@pytest.mark.parametrize("N, m, n, npar", [(1, 1, 1, 0), (1, 3, 2, 2), (2, 1, 3, 1),
+                                           (7, 4, 3, 2), (12, 3, 2, 4), (5, 2, 4, 0)])
+def test_solve_and_determinant_match_dense_lapack(N, m, n, npar):
+    rng = np.random.default_rng(N * 100 + m * 10 + n)
+    blocks, parcols, extra, M = random_system(rng, N, m, n, npar)
+    f = reduction.BorderedCollocation(blocks, parcols, extra)
+    rhs = rng.standard_normal(len(M))
+    x = f.solve(rhs)
+    # Relative to the conditioning of random matrices: LU with pivoting inside blocks
+    # is backward stable enough for a residual at rounding level.
+    assert np.linalg.norm(M @ x - rhs) <= 1e-10 * np.linalg.norm(M, 1) * np.linalg.norm(x)
+    np.testing.assert_allclose(x, np.linalg.solve(M, rhs), rtol=1e-8, atol=1e-8)
+    sign, logdet = np.linalg.slogdet(M)
+    s2, l2 = f.sign_logdet()
+    assert s2 == sign
+    assert l2 == pytest.approx(logdet, rel=1e-10, abs=1e-9)
+
+
+def test_floquet_pair_annihilates_the_collocation_null_space():
+    rng = np.random.default_rng(3)
+    N, m, n, npar = 9, 4, 3, 2
+    blocks, parcols, extra, M = random_system(rng, N, m, n, npar)
+    f = reduction.BorderedCollocation(blocks, parcols, extra)
+    P0, P1 = f.floquet_pair()
+    C = M[:N * m * n, :(N * m + 1) * n]              # collocation rows, parameters held
+    _, s, Vt = np.linalg.svd(C)
+    null = Vt[-n:]                                    # n-dimensional null space
+    for v in null:
+        u0, u1 = v[:n], v[N * m * n:]
+        assert np.linalg.norm(P0 @ u0 + P1 @ u1) <= 1e-10 * np.linalg.norm(np.c_[P0, P1])
+    assert np.linalg.matrix_rank(np.c_[P0, P1]) == n
+
+
+def test_collocation_jacobian_against_superlu_and_householder_floquet():
+    """A Jacobian assembled by Collocation (a linear periodic system's blocks): the same
+    Newton step as the sparse LU, the same determinant, the same multipliers as the
+    Householder condensation of collocation.condense_blocks."""
+    from washer.cont.systems.periodic import SparseFactor
+    rng = np.random.default_rng(11)
+    n, N, m = 3, 20, 4
+    mesh = col.Mesh.uniform(N, m)
+    coll = col.Collocation(mesh, n)
+    A = np.array([[-0.1, 2.0, 0.0], [-2.0, -0.1, 0.3], [0.0, -0.3, -1.0]])
+    Ag = np.broadcast_to(A + 0.05 * rng.standard_normal((N, m, n, n)), (N, m, n, n))
+    T = 1.7
+    blocks = coll.local_blocks(T, Ag)
+    dpar = rng.standard_normal((2, N, m, n))
+    up_old = rng.standard_normal((mesh.n_nodes, n))
+    J = coll.jacobian(T, blocks, dpar, up_old)
+    border = rng.standard_normal(coll.n_x)
+    f = reduction.BorderedCollocation.from_jacobian(coll, J, border)
+    ref = SparseFactor(coll.bordered(J, border))
+    rhs = rng.standard_normal(coll.n_x)
+    np.testing.assert_allclose(f.solve(rhs), ref.solve(rhs), rtol=1e-9, atol=1e-11)
+    s_ref, l_ref = ref.sign_logdet()
+    s, l = f.sign_logdet()
+    assert s == s_ref and l == pytest.approx(l_ref, rel=1e-11)
+    mu = col.floquet_multipliers(*f.floquet_pair())
+    mu_ref = col.floquet_multipliers(*col.condense_blocks(blocks, n))
+    # the same set (a complex pair ties in AUTO's order by modulus: compare sorted)
+    key = lambda z: np.lexsort((z.imag, np.round(z.real, 8)))     # noqa: E731
+    np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)

@@ -1,0 +1,107 @@
+"""The bordered collocation matrix factorised the way AUTO-07p does it, compiled
+(csrc/cont/reduce.cpp, the module washer._cont): condensation of parameters (CONPAR),
+the reduction of the chain of intervals (REDUCE) and the remaining dense system in
+(U(0), U(1), parameters) (DIMRGE), one elimination that gives
+
+* solves of the Newton and tangent systems (any number of right-hand sides),
+* the determinant's sign and log-magnitude (the BP test of cycles),
+* the pair (P0, P1) with P0 U(0) + P1 U(1) = 0 on the collocation rows with the
+  parameters held: the Floquet multipliers are the eigenvalues of -P1^-1 P0
+  (collocation.floquet_multipliers), without a second condensation.
+
+The matrix layout is washer.cont.collocation.Collocation's: `BorderedCollocation.from_jacobian`
+takes its sparse Jacobian (the values are unpacked from the fixed sparsity pattern)
+and the border row. Without the compiled module (`available()` False) callers keep the
+sparse LU.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+try:
+    from washer._cont import ffi, lib
+except ImportError:                                      # not built: see build.py
+    ffi = lib = None
+
+
+def available() -> bool:
+    """Whether washer._cont is built (python build.py cont)."""
+    return lib is not None
+
+
+def _ptr(a: np.ndarray):
+    return ffi.cast("double *", ffi.from_buffer(a))
+
+
+class BorderedCollocation:
+    """A factorised bordered collocation matrix (the `Factor` contract: solve,
+    sign_logdet) with the Floquet pair.
+
+    blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM), parcols (NTST, NCOL*NDIM, NPAR), extra
+    (NDIM + NPAR, nx): see csrc/cont/cont_api.h. `singular` is True when a pivot was
+    exactly zero (the solves are then least squares on the assembled matrix, which
+    `dense` must give)."""
+
+    def __init__(self, blocks, parcols, extra, dense=None):
+        if lib is None:
+            raise RuntimeError("washer._cont is not built (python build.py cont)")
+        blocks = np.ascontiguousarray(blocks, dtype=float)
+        parcols = np.ascontiguousarray(parcols, dtype=float)
+        extra = np.ascontiguousarray(extra, dtype=float)
+        N, mn, w = blocks.shape
+        n = w - mn
+        m = mn // n
+        npar = parcols.shape[2]
+        self.shape = (N, m, n, npar)
+        self.nx = (N * m + 1) * n + npar
+        if (parcols.shape[:2] != (N, mn) or extra.shape != (n + npar, self.nx)
+                or mn != m * n):
+            raise ValueError(f"inconsistent shapes {blocks.shape}, {parcols.shape}, "
+                             f"{extra.shape}")
+        self._f = ffi.gc(lib.cont_bvp_new(N, m, n, npar), lib.cont_bvp_free)
+        sl = np.zeros(2)
+        self.P0 = np.zeros((n, n))
+        self.P1 = np.zeros((n, n))
+        rc = lib.cont_bvp_factor(self._f, _ptr(blocks), _ptr(parcols), _ptr(extra), _ptr(sl),
+                                 _ptr(self.P0), _ptr(self.P1))
+        self.singular = rc == 1
+        self._sl = (float(sl[0]), float(sl[1]))
+        self._dense = dense
+
+    @classmethod
+    def from_jacobian(cls, coll, J, border) -> "BorderedCollocation":
+        """From a Jacobian assembled by `coll.jacobian_general` (its CSC pattern) and
+        the border row (nx,)."""
+        m, n, N = coll.mesh.ncol, coll.ndim, coll.mesh.ntst
+        npar, nint = coll.npar, coll.nint
+        vals = np.empty(coll.nnz)
+        vals[coll._order] = J.data                       # back to assembly order
+        nb = coll._n_blk
+        blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
+        npc = N * m * n * npar
+        parcols = vals[nb:nb + npc].reshape(npar, N, m * n).transpose(1, 2, 0)
+        rows_int = vals[nb + npc + 2 * n:].reshape(nint, coll.n_x)
+        extra = np.zeros((n + npar, coll.n_x))
+        i = np.arange(n)
+        extra[i, i] = 1.0                                # u(0) - u(1)
+        extra[i, (coll.mesh.n_nodes - 1) * n + i] = -1.0
+        extra[n:n + nint] = rows_int
+        extra[n + nint] = border
+        return cls(blocks, parcols, extra, dense=lambda: coll.bordered(J, border))
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        rhs = np.ascontiguousarray(rhs, dtype=float)
+        if self.singular:
+            M = self._dense()
+            M = M.toarray() if hasattr(M, "toarray") else np.asarray(M)
+            return np.linalg.lstsq(M, rhs, rcond=None)[0]
+        x = np.empty(self.nx)
+        lib.cont_bvp_solve(self._f, _ptr(rhs), _ptr(x))
+        return x
+
+    def sign_logdet(self) -> tuple[float, float]:
+        return self._sl
+
+    def floquet_pair(self) -> tuple[np.ndarray, np.ndarray]:
+        """(P0, P1): P0 U(0) + P1 U(1) = 0 for the linearised collocation equations."""
+        return self.P0, self.P1
