@@ -74,10 +74,6 @@ def fmt_es(x: float, width: int, digits: int) -> str:
     return text.rjust(width)
 
 
-#: A 2-digit exponent of C's %E, widened to AUTO's 3 digits (E-05 -> E-005).
-_E2 = re.compile(r"E([+-])(\d\d)(?!\d)")
-
-
 def _plain(v: np.ndarray) -> bool:
     """Whether every value prints with a 2-digit exponent in C's %E: finite, zero or of
     magnitude in [1e-99, 1e99) (the rest go value by value through fmt_e / fmt_es)."""
@@ -93,7 +89,8 @@ def fmt_e_many(values, width: int = 19, digits: int = 10) -> str:
     v = np.asarray(values, dtype=float).ravel()
     if _plain(v):
         text = (f"%{width - 1}.{digits}E" * len(v)) % tuple(v.tolist())
-        return _E2.sub(r"E\g<1>0\g<2>", text)
+        # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3
+        return text.replace("E+", "E+0").replace("E-", "E-0")
     return "".join(fmt_e(x, width, digits) for x in v.tolist())
 
 
