@@ -90,8 +90,6 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
         if (p < 0) sign = -sign;
         logdet += std::log(std::fabs(p));
     };
-    // Global column of column w of interval j's work matrix.
-    auto gcol1 = [&](int j, int w) { return w < (m + 1) * n ? j * mn + w : nx - np + (w - (m + 1) * n); };
 
     // ---- condensation of the interior nodes of every interval
     Mat R;                      // the rows carried along the chain: (U_0, U_k, par)
@@ -122,12 +120,14 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             rows.push_back(ids[t]);
             cols.push_back(j * mn + c);
             if (d == 0.0) continue;
+            // the columns still to eliminate: U_j (0..n-1) and everything right of c
+            const int tail = (m + 1) * n - c - 1;
             for (int r = t + 1; r < mn; ++r) {
                 const double l = W(r, c) / d;
                 W(r, c) = l;
                 if (l == 0.0) continue;
-                for (int w = 0; w < cw; ++w)
-                    if (w < n || w > c) W(r, w) -= l * W(t, w);
+                W.row(r).head(n) -= l * W.row(t).head(n);
+                W.row(r).tail(cw - c - 1) -= l * W.row(t).tail(cw - c - 1);
             }
             const int gc = j * mn + c;
             for (int e = 0; e < ne; ++e) {
@@ -135,8 +135,9 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                 E(e, t) = l;
                 Ex(e, gc) = 0.0;
                 if (l == 0.0) continue;
-                for (int w = 0; w < cw; ++w)
-                    if (w < n || w > c) Ex(e, gcol1(j, w)) -= l * W(t, w);
+                Ex.row(e).segment(j * mn, n) -= l * W.row(t).head(n);
+                Ex.row(e).segment(gc + 1, tail) -= l * W.row(t).segment(c + 1, tail);
+                if (np) Ex.row(e).tail(np) -= l * W.row(t).tail(np);
             }
         }
         // the n condensed rows of interval j: (U_j, U_j+1, par)
@@ -166,12 +167,6 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
         E2.setZero(ne, n);
         std::vector<int> &piv2 = f->piv2[j];
         piv2.assign(n, 0);
-        auto gcol2 = [&](int w) {
-            if (w < n) return j * mn + w;
-            if (w < 2 * n) return w - n;
-            if (w < 3 * n) return (j + 1) * mn + (w - 2 * n);
-            return nx - np + (w - 3 * n);
-        };
         for (int t = 0; t < n; ++t) {
             int p = t;
             for (int r = t + 1; r < 2 * n; ++r)
@@ -186,11 +181,12 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             rows.push_back(tids[t]);
             cols.push_back(j * mn + t);
             if (d == 0.0) continue;
+            const int tw = 3 * n + np - t - 1;
             for (int r = t + 1; r < 2 * n; ++r) {
                 const double l = T(r, t) / d;
                 T(r, t) = l;
                 if (l == 0.0) continue;
-                for (int w = t + 1; w < 3 * n + np; ++w) T(r, w) -= l * T(t, w);
+                T.row(r).tail(tw) -= l * T.row(t).tail(tw);
             }
             const int gc = j * mn + t;
             for (int e = 0; e < ne; ++e) {
@@ -198,7 +194,10 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                 E2(e, t) = l;
                 Ex(e, gc) = 0.0;
                 if (l == 0.0) continue;
-                for (int w = t + 1; w < 3 * n + np; ++w) Ex(e, gcol2(w)) -= l * T(t, w);
+                Ex.row(e).segment(gc + 1, n - t - 1) -= l * T.row(t).segment(t + 1, n - t - 1);
+                Ex.row(e).segment(0, n) -= l * T.row(t).segment(n, n);
+                Ex.row(e).segment((j + 1) * mn, n) -= l * T.row(t).segment(2 * n, n);
+                if (np) Ex.row(e).tail(np) -= l * T.row(t).tail(np);
             }
         }
         R.leftCols(n) = T.block(n, n, n, n);
