@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from washer.cont import collocation as col
-from washer.cont import reduction
+from washer.cont import floquet, reduction
 
 pytestmark = pytest.mark.skipif(not reduction.available(),
                                 reason="washer._cont not built (python build.py cont)")
@@ -64,7 +64,7 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     """A Jacobian assembled by Collocation (a linear periodic system's blocks): the same
     Newton step as the sparse LU, the same determinant, the same multipliers as the
     Householder condensation of collocation.condense_blocks."""
-    from washer.cont.systems.periodic import SparseFactor
+    from washer.cont.linalg import SparseFactor
     rng = np.random.default_rng(11)
     n, N, m = 3, 20, 4
     mesh = col.Mesh.uniform(N, m)
@@ -84,8 +84,8 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     s_ref, l_ref = ref.sign_logdet()
     s, l = f.sign_logdet()
     assert s == s_ref and l == pytest.approx(l_ref, rel=1e-11)
-    mu = col.floquet_multipliers(*f.floquet_pair())
-    mu_ref = col.floquet_multipliers(*col.condense_blocks(blocks, n))
+    mu = floquet.pencil_multipliers(*f.floquet_pair())
+    mu_ref = floquet.pencil_multipliers(*col.condense_blocks(blocks, n))
     # the same set (a complex pair ties in AUTO's order by modulus: compare sorted)
     key = lambda z: np.lexsort((z.imag, np.round(z.real, 8)))     # noqa: E731
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)

@@ -7,7 +7,7 @@ the reduction of the chain of intervals (REDUCE) and the remaining dense system 
 * the determinant's sign and log-magnitude (the BP test of cycles),
 * the pair (P0, P1) with P0 U(0) + P1 U(1) = 0 on the collocation rows with the
   parameters held: the Floquet multipliers are the eigenvalues of -P1^-1 P0
-  (collocation.floquet_multipliers), without a second condensation.
+  (floquet.pencil_multipliers), without a second condensation.
 
 The matrix layout is washer.cont.collocation.Collocation's: `BorderedCollocation.from_jacobian`
 takes its sparse Jacobian (the values are unpacked from the fixed sparsity pattern)
