@@ -212,7 +212,8 @@ def test_our_s_records_are_what_parseS_counts(tmp_path):
     """parseS takes a record as a header of 12 or 16 integers and NROWPR lines whose
     numbers it counts; our records read back to the same values."""
     import numpy as np
-    from washer.auto.files import Record, read_s
+    from washer.auto.files import read_s
+    from washer.cont.branch import Record
     rec = Record(2, 140, -32, 7, 2, 2, 2, 1, np.array([0.57, 1.59, 0.7, 0.7, 3.1, 11.0]),
                  np.linspace(0.1, 1.1, 11), [1, 2], [0.039, -0.48], np.arange(6) / 7)
     out = OutputFiles(tmp_path, "x")
@@ -225,9 +226,9 @@ def test_our_s_records_are_what_parseS_counts(tmp_path):
     body = " ".join(lines[1:1 + h[8]]).split()
     assert len(body) == ntpl * nar + nfpr + nfpr + ntpl * (nar - 1) + npar
     back = read_s(tmp_path / "s.x")[1]
-    np.testing.assert_allclose(back.U, rec.U, rtol=1e-10)
+    np.testing.assert_allclose(back.u, rec.u, rtol=1e-10)         # the whole stored state
     np.testing.assert_allclose(back.udot, rec.udot, atol=1e-11)
-    assert back.icp == [1, 2] and back.ty == -32 and back.lab == 7
+    assert back.icp == [1, 2] and back.code == -32 and back.ty == "GH" and back.lab == 7
 
 
 def test_row_formatting_is_fmt_e_value_by_value():

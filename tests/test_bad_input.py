@@ -127,7 +127,7 @@ def test_corrupt_s_files_are_clear_errors(tmp_path, edit, line, message):
 def test_reference_s_file_reads_unchanged():
     """The checks accept AUTO's own file (6 records, HB at label 2)."""
     recs = read_s(S_EQ)
-    assert [r.lab for r in recs] == [1, 2, 3, 4, 5, 6] and recs[1].ty == 3
+    assert [r.lab for r in recs] == [1, 2, 3, 4, 5, 6] and recs[1].code == 3
     assert len(recs[1].U) == 2 and len(recs[1].par) == 11
 
 

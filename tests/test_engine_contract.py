@@ -5,12 +5,14 @@ import pickle
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.auto.constants import Constants, read_constants
 from washer.cont.problem import load_python_problem
 from washer.cont.runner import build, execute
+from washer.cont.runner import run as run_in_memory
 from washer.cont.settings import Settings
 from washer.cont.system import SYSTEMS, ContinuedSystem
 from washer.run import run
@@ -74,3 +76,54 @@ def test_sp_overrides_the_switches():
     c = Constants({"IPS": 1, "ISP": 2, "SP": ["LP0", "TR"], "NDIM": 3})
     s = Settings.from_constants(c)
     assert not s.detects("LP") and s.detects("TR") and s.detects("HB")
+
+
+def test_a_chain_of_runs_restarts_from_branches_in_memory(tmp_path):
+    """The Hopf curve of ab restarted from the equilibrium run's Branch, and from one of
+    its Records, is the curve restarted from the s-file the file-writing run wrote: the
+    same labelled points, PAR(1) and PAR(2) equal to the digit from the s-file in memory,
+    and to 1e-6 relative from the Branch (its start is the exact point, the s-file's
+    is rounded to 11 digits: located points move within the location tolerance,
+    EPSS = 1e-5 in arclength). The in-memory runs write nothing."""
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    two_par = dict(IRS="HB1", ICP=[1, 2], ISW=2, NMX=200, UZSTOP={2: 20.0})
+    eq_file = run(tmp_path / "c.ab", verbose=False, sv="eq")
+    hb_file = run(tmp_path / "c.ab", verbose=False, s="eq", sv="hb", **two_par)
+    written = sorted(p.name for p in tmp_path.iterdir())
+    c = read_constants(tmp_path / "c.ab")
+    problem = load_python_problem("ab", tmp_path, 2)
+    eq = run_in_memory(c, problem)
+    c2 = c.copy()
+    for k, v in two_par.items():
+        c2.set(k, v)
+    from_branch = run_in_memory(c2, problem, restart=eq)
+    c3 = c2.copy()
+    c3.set("IRS", 0)
+    from_record = run_in_memory(c3, problem, restart=eq("HB1"))
+    from_sfile = run_in_memory(c2, problem, restart=tmp_path / "s.eq")
+    key = lambda b: [(s.ty, s.br, f"{s.par[0]:.10E}", f"{s.par[1]:.10E}") for s in b.specials]
+    kind = lambda b: [(s.ty, s.br) for s in b.specials]
+    pars = lambda b: np.array([s.par[:2] for s in b.specials])
+    assert len(hb_file.specials) >= 2 and eq.status == hb_file.status == "ok"
+    assert key(eq) == key(eq_file) and key(from_sfile) == key(hb_file)
+    for other in (from_branch, from_record):
+        assert kind(other) == kind(hb_file)
+        np.testing.assert_allclose(pars(other), pars(hb_file), rtol=1e-6)
+    assert sorted(p.name for p in tmp_path.iterdir()) == written
+
+
+def test_the_engine_counts_its_work_and_the_d_file_shows_it(tmp_path):
+    """Every point evaluates the Jacobian at least once and every Newton iteration
+    evaluates the residual and factorises the bordered matrix: the counters bound
+    those from below, and the d-file's last block shows the run's totals."""
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    res = run(tmp_path / "c.ab", verbose=False, sv="eq")
+    n = res.counters
+    iterations = sum(1 for _ in res.rows)
+    assert n.jacobians >= len(res.rows) and n.residuals >= iterations
+    assert n.factorisations >= n.residuals
+    d = (tmp_path / "d.eq").read_text()
+    assert (f"Evaluations: residual {n.residuals}, Jacobian {n.jacobians}, factorisations "
+            f"{n.factorisations}") in d

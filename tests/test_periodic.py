@@ -25,7 +25,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from washer.auto.files import Record, read_s
+from washer.auto.files import read_s, record_text
+from washer.cont.branch import Record
 from washer.cont import collocation as col
 from washer.auto.codes import Code
 from washer.cont.problem import Problem
@@ -343,7 +344,7 @@ def test_period_doubling_switch_starts_the_doubled_branch():
 
 def test_autos_periodic_record_round_trips_byte_for_byte():
     """An AUTO-07p periodic record (lrz label 8: NTPL 141, direction stored) read and
-    written again by Record.text() is the same text."""
+    written again by record_text is the same text."""
     lines = (RECORDS / "s.lrz").read_text().splitlines(keepends=True)
     i = 0
     while True:
@@ -355,7 +356,7 @@ def test_autos_periodic_record_round_trips_byte_for_byte():
     rec = next(r for r in read_s(RECORDS / "s.lrz") if r.lab == 8)
     assert rec.U.shape == (141, 3) and rec.ntst == 35 and rec.ncol == 4
     assert rec.t[0] == 0 and rec.t[-1] == 1 and len(rec.t) == 141
-    assert rec.text() == original
+    assert record_text(rec) == original
 
 
 def test_our_solution_written_and_read_back(tmp_path):
@@ -372,7 +373,7 @@ def test_our_solution_written_and_read_back(tmp_path):
     rec = Record(1, 5, -4, 3, 2, 1, 2, 2, sol.u, sol.par, [1, 11], sol.rldot, sol.udot,
                  t=sol.t, ntst=sol.ntst, ncol=sol.ncol)
     path = tmp_path / "s.lw"
-    path.write_text(rec.text())
+    path.write_text(record_text(rec))
     back = read_s(path)[0]
     np.testing.assert_allclose(back.U, sol.u, rtol=1e-10, atol=1e-14)
     np.testing.assert_allclose(back.t, sol.t, rtol=1e-10, atol=1e-14)

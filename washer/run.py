@@ -29,7 +29,7 @@ from washer.auto.files import AutoFileError, read_b, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError, load_python_problem
-from washer.cont.runner import RunError, build, execute
+from washer.cont.runner import RunError, build, execute, restart_records
 from washer.cont.sinks import FileSink, ScreenSink
 
 #: What `run` returns: the run in memory (labelled points, every row, status),
@@ -59,14 +59,18 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
 
 
 def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,
-        sinks=None, **overrides) -> RunResult:
+        sinks=None, restart=None, files: bool = True, **overrides) -> RunResult:
     """Run a constants file (path) or a Constants object with overrides.
 
     problem: the equations (default: from e=, see resolve_problem); params: the
     washer's parameters for e='washer' (default: the shipped reference set);
-    sinks: extra sinks (washer.cont.sinks) besides the files and the screen.
-    Returns the run in memory (a washer.cont.branch.Branch: `.specials`,
-    `.rows`, `.status`, `r('HB1')`), with `.files` (the b./s./d. paths)."""
+    sinks: extra sinks (washer.cont.sinks) besides the files and the screen;
+    restart: what IRS is looked up in: a Branch (a previous run's result), a Record,
+    a list of Records or an s-file path (default: the s-file s.<s> beside the
+    constants file); files: write b./s./d. files (False: the run stays in memory,
+    nothing is written). Returns the run in memory (a washer.cont.branch.Branch:
+    `.specials`, `.rows`, `.status`, `.counters`, `r('HB1')`), with `.files` (the
+    b./s./d. paths, None when nothing was written)."""
     if isinstance(constants, Constants):
         c, path = constants.copy(), Path(constants.source)
     else:
@@ -89,13 +93,20 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     name = c["sv"] or default_name
     # Restarts read s.<s>, else s.NAME of the constants file (AUTO's load('NAME')):
     # sv names only what is written.
-    restart = folder / f"s.{c['s'] or default_name}"
+    restart_from, restart = restart, folder / f"s.{c['s'] or default_name}"
     if problem is None:
         problem = resolve_problem(c, folder, params)
     # The restart data is read whole before any output file is opened: the
     # default sv is the restart file's own name, and it must survive.
     records = None
-    if c["IRS"] not in (0, "0"):
+    protect = ()
+    if restart_from is not None:
+        records, source = restart_records(restart_from, c)
+        if isinstance(restart_from, (str, os.PathLike)):
+            protect = (Path(restart_from),)
+    elif c["IRS"] not in (0, "0"):
+        source = str(restart)
+        protect = (restart,)
         if not restart.exists():
             raise RunError(f"{c.source}: IRS={c['IRS']!r} needs the restart file {restart}, "
                            "which does not exist (set s='NAME' to read s.NAME)")
@@ -103,12 +114,15 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             records = read_s(restart)
         except AutoFileError as exc:
             raise RunError(str(exc)) from None
+    else:
+        source = str(restart)
     r, br, mode = build(c, problem, records, name=c["e"] or problem.name,
-                        records_source=str(restart))
-    files = FileSink(folder, name, protect=(restart,) if records else ())
-    all_sinks = [files] + ([ScreenSink()] if verbose else []) + list(sinks or [])
+                        records_source=source)
+    file_sink = FileSink(folder, name, protect=protect) if files else None
+    all_sinks = ([file_sink] if files else []) + ([ScreenSink()] if verbose else []) + \
+        list(sinks or [])
     result = execute(r, br, mode, all_sinks)
-    result.files = files.files
+    result.files = file_sink.files if files else None
     if verbose:
         print(f"{c['e'] or problem.name} ... done")
     return result

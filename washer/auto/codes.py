@@ -99,7 +99,7 @@ def has_type(code: int, name: str) -> bool:
     return type_name(code) == name
 
 
-def find(items, key, code=lambda r: r.ty, lab=lambda r: r.lab):
+def find(items, key, code=lambda r: r.code, lab=lambda r: r.lab):
     """AUTO's FINDLB over labelled items (s-records, points of a run in memory): an
     integer label, -n for the n-th item, or 'HB2' (the 2nd HB; 'RG1' the first NPR
     point). `code`/`lab` read an item's written type code and label. Raises

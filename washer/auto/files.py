@@ -19,12 +19,13 @@ import functools
 import math
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from washer.auto.codes import find, parse_label, split_code, type_name  # noqa: F401 (re-exported)
+from washer.auto.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
+from washer.cont.branch import Record
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47
@@ -190,80 +191,60 @@ class Row:
     values: list          # PAR(ICP(1)), norm, U(1..N2), PAR(ICP(2..))
 
 
-@dataclass
-class Record:
-    """One labelled solution (s-file record)."""
-    br: int
-    pt: int
-    ty: int
-    lab: int
-    nfpr: int
-    isw: int
-    ndim_user: int
-    ips: int
-    U: np.ndarray                     # stored (possibly extended) state
-    par: np.ndarray                   # PAR(1..NPAR)
-    icp: list = field(default_factory=list)
-    rldot: list = field(default_factory=list)
-    udot: np.ndarray | None = None
-    #: BVP records (NTPL > 1): the mesh times t (NTPL,) in [0, 1], U of shape
-    #: (NTPL, NDIM), udot (NTPL, NDIM) or flat, and the header's NTST, NCOL.
-    t: np.ndarray | None = None
-    ntst: int = 0
-    ncol: int = 0
+def record_text(rec: Record) -> str:
+    """The s-file text of a record (algebraic: WRTSP8; BVP: `_record_text_bvp`)."""
+    if np.ndim(rec.u) == 2:
+        return _record_text_bvp(rec)
+    return _record_text_algebraic(rec)
 
-    @property
-    def curve_type(self) -> int:
-        """AUTO's ITPST of the curve the point lies on, carried by its written code:
-        0 on ordinary branches, 2 fold, 3 Hopf, 5/7/8 loci of cycles."""
-        return split_code(self.ty)[1]
 
-    def text(self) -> str:
-        if np.ndim(self.U) == 2:
-            return self._text_bvp()
-        n = len(self.U)
-        npar = len(self.par)
-        has_dir = self.udot is not None
-        nrow = n // 7 + 1 + (npar + 6) // 7
-        if has_dir:
-            nrow += (self.nfpr + 19) // 20 + (self.nfpr + 6) // 7 + (n + 6) // 7
-        head = (f"{self.br:6d}{self.pt:6d}{self.ty:6d}{self.lab:6d}{self.nfpr:6d}{self.isw:6d}"
-                f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{0:5d}"
-                f"{self.ndim_user:5d}{self.ips:5d}{0:5d}")
-        lines = [head]
-        vals = [0.0] + list(self.U)
-        lines += _rows(vals[:7]) + _rows(vals[7:])
-        if has_dir:
-            lines.append("".join(f"{i:5d}" for i in self.icp[:self.nfpr]))
-            lines += _rows(self.rldot)
-            lines += _rows(list(self.udot))
-        lines += _rows(list(self.par))
-        return "\n".join(lines) + "\n"
+def _record_text_algebraic(rec: Record) -> str:
+    """An algebraic record as ae.f90:WRTSP8 writes it: t = 0 and the stored state, then
+    ICP, RLDOT and UDOT if the direction is stored, then PAR."""
+    n = len(rec.u)
+    npar = len(rec.par)
+    has_dir = rec.udot is not None
+    nrow = n // 7 + 1 + (npar + 6) // 7
+    if has_dir:
+        nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + (n + 6) // 7
+    head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
+            f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{0:5d}"
+            f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
+    lines = [head]
+    vals = [0.0] + list(rec.u)
+    lines += _rows(vals[:7]) + _rows(vals[7:])
+    if has_dir:
+        lines.append("".join(f"{i:5d}" for i in rec.icp[:rec.nfpr]))
+        lines += _rows(rec.rldot)
+        lines += _rows(list(rec.udot))
+    lines += _rows(list(rec.par))
+    return "\n".join(lines) + "\n"
 
-    def _text_bvp(self) -> str:
-        """A BVP/periodic record as bvp.f90:WRTBV8 writes it: NTPL blocks `t U(1..NDIM)`
-        (7 values a line), then ICP, RLDOT and NTPL blocks of UDOT (without t) if the
-        direction is stored, then PAR."""
-        U = np.asarray(self.U, float)
-        ntpl, n = U.shape
-        t = np.linspace(0, 1, ntpl) if self.t is None else np.asarray(self.t, float)
-        npar = len(self.par)
-        has_dir = self.udot is not None
-        nrow = (n // 7 + 1) * ntpl + (npar + 6) // 7
-        if has_dir:
-            nrow += (self.nfpr + 19) // 20 + (self.nfpr + 6) // 7 + ((n + 6) // 7) * ntpl
-        head = (f"{self.br:6d}{self.pt:6d}{self.ty:6d}{self.lab:6d}{self.nfpr:6d}{self.isw:6d}"
-                f"{ntpl:8d}{n + 1:6d}{nrow:8d}{self.ntst:5d}{self.ncol:5d}{npar:5d}{0:5d}"
-                f"{self.ndim_user:5d}{self.ips:5d}{0:5d}")
-        lines = [head]
-        lines += _block_rows(np.column_stack([t, U]))      # t-blocks: t, U(1..NDIM)
-        if has_dir:
-            ud = np.asarray(self.udot, float).reshape(ntpl, n)
-            lines.append("".join(f"{i:5d}" for i in self.icp[:self.nfpr]))
-            lines += _rows(self.rldot)
-            lines += _block_rows(ud)
-        lines += _rows(list(self.par))
-        return "\n".join(lines) + "\n"
+
+def _record_text_bvp(rec: Record) -> str:
+    """A BVP/periodic record as bvp.f90:WRTBV8 writes it: NTPL blocks `t U(1..NDIM)`
+    (7 values a line), then ICP, RLDOT and NTPL blocks of UDOT (without t) if the
+    direction is stored, then PAR."""
+    U = np.asarray(rec.u, float)
+    ntpl, n = U.shape
+    t = np.linspace(0, 1, ntpl) if rec.t is None else np.asarray(rec.t, float)
+    npar = len(rec.par)
+    has_dir = rec.udot is not None
+    nrow = (n // 7 + 1) * ntpl + (npar + 6) // 7
+    if has_dir:
+        nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + ((n + 6) // 7) * ntpl
+    head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
+            f"{ntpl:8d}{n + 1:6d}{nrow:8d}{rec.ntst:5d}{rec.ncol:5d}{npar:5d}{0:5d}"
+            f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
+    lines = [head]
+    lines += _block_rows(np.column_stack([t, U]))      # t-blocks: t, U(1..NDIM)
+    if has_dir:
+        ud = np.asarray(rec.udot, float).reshape(ntpl, n)
+        lines.append("".join(f"{i:5d}" for i in rec.icp[:rec.nfpr]))
+        lines += _rows(rec.rldot)
+        lines += _block_rows(ud)
+    lines += _rows(list(rec.par))
+    return "\n".join(lines) + "\n"
 
 
 def _rows(vals) -> list[str]:
@@ -506,7 +487,7 @@ class OutputFiles:
         self.diag("\n".join(lines))
 
     def record(self, rec: Record) -> None:
-        self._append(self.s_path, rec.text())
+        self._append(self.s_path, record_text(rec))
 
     def diag(self, text: str) -> None:
         self._append(self.d_path, text if text.endswith("\n") else text + "\n")
@@ -635,7 +616,7 @@ def find_record(records: list[Record], irs) -> Record:
     """AUTO's FINDLB on s-file records: a label number, -n for the n-th record, or
     'HB2' by type and count (codes.find). Raises LookupError naming what the file holds."""
     try:
-        return find(records, irs)
+        return find(records, irs, code=lambda r: r.code)
     except LookupError as exc:
         raise LookupError(f"IRS={irs!r}: {exc} in the restart file") from None
 

@@ -1,4 +1,4 @@
-"""Continuation results in memory: points, labelled points, branches.
+"""Continuation results in memory: points, records (b-rows with their s-record), branches.
 
 A `Branch` is what one run computed, independent of files: it can be saved to
 AUTO's b./s./d. files (`washer.cont.sinks`), restarted from (its labelled
@@ -12,7 +12,22 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from washer.auto.codes import find, split_code, type_name
-from washer.cont.system import Solution, Stability
+from washer.cont.system import Stability
+
+
+@dataclass
+class Counters:
+    """Work done on a branch, as scipy's solvers keep nfev/njev/nlu: evaluations of
+    the system's residual G(x) (each one evaluates f at every collocation point of a
+    BVP), of its Jacobian, and factorisations of the bordered Newton matrix."""
+    residuals: int = 0
+    jacobians: int = 0
+    factorisations: int = 0
+
+    def add(self, other: "Counters") -> None:
+        self.residuals += other.residuals
+        self.jacobians += other.jacobians
+        self.factorisations += other.factorisations
 
 
 @dataclass
@@ -38,50 +53,66 @@ class Point:
 
 
 @dataclass
-class Labelled:
-    """A point as AUTO writes it: b-row fields plus the s-record's content.
+class Record:
+    """One point of a run as AUTO writes it, in memory: the b-row and the s-record's
+    content. The engine's results (`Branch.rows`) and the records read from s-files
+    (`washer.auto.files.read_s`) are this one type, so either restarts a run.
 
     br, pt, lab : branch, point number (1-based, unsigned), label (0 = none).
-    code : the written type code (two-digit on ISW = 2 curves).
+    code : the written type code (two-digit on ISW = 2 curves); `ty` is its name.
+    nfpr, isw, ndim_user, ips : the s-record header's NFPR, ISW, user NDIM, IPS.
+    u : the stored state: (NSTATE,) for algebraic problems (extended on the loci:
+        2 NDIM + 1 on fold curves, 2 NDIM + 2 on Hopf curves) or (NTPL, n) mesh values
+        of a BVP; `U` is the user's part of it.
+    par : (NPAR,) PAR(1..NPAR), PAR(11) the period.
+    icp, rldot, udot : the free parameters, d PAR(icp)/ds and the state's direction
+        (udot None when no direction is stored).
+    t, ntst, ncol : the mesh times (NTPL,) and the mesh of a BVP record (None, 0, 0
+        for algebraic ones).
+    values : the b-row's values: PAR(ICP(1)), the columns, the other free parameters.
     stable : sign of PT (True -> written negative); None = not defined.
-    solution : the system's Solution (par, columns, stored state, direction).
-    info : extra results (first Lyapunov coefficient at HB, notes).
+    stability : eigenvalues or multipliers (washer.cont.system.Stability) or None.
+    info : extra results (first Lyapunov coefficient 'l1' at HB, its criticality).
     """
     br: int
     pt: int
     code: int
     lab: int
-    stable: bool | None
-    solution: Solution
+    nfpr: int
+    isw: int
+    ndim_user: int
+    ips: int
+    u: np.ndarray
+    par: np.ndarray
+    icp: list = field(default_factory=list)
+    rldot: list = field(default_factory=list)
+    udot: np.ndarray | None = None
+    t: np.ndarray | None = None
+    ntst: int = 0
+    ncol: int = 0
+    values: list = field(default_factory=list)
+    stable: bool | None = None
     stability: Stability | None = None
     info: dict = field(default_factory=dict)
-    free: tuple = ()
-    isw: int = 1
-    ips: int = 1
 
     @property
     def ty(self) -> str:
+        """The type's name: 'HB', 'UZ', 'GH', ... ('' for unlabelled points)."""
         return type_name(self.code)
 
     @property
     def curve_type(self) -> int:
-        """AUTO's ITPST of the curve the point lies on (0 on ordinary branches)."""
+        """AUTO's ITPST of the curve the point lies on, carried by its written code:
+        0 on ordinary branches, 2 fold, 3 Hopf, 5/7/8 loci of cycles."""
         return split_code(self.code)[1]
 
     @property
-    def par(self) -> np.ndarray:
-        return self.solution.par
-
-    @property
     def U(self) -> np.ndarray:
-        """The user's state (first NDIM stored unknowns of an algebraic point)."""
-        u = self.solution.u
-        n = self.solution.ndim_user or len(u)
+        """The user's state: the first NDIM stored values of an algebraic point, the
+        whole profile of a BVP."""
+        u = np.asarray(self.u)
+        n = self.ndim_user or len(u)
         return u[:n] if u.ndim == 1 else u
-
-    @property
-    def columns(self) -> list:
-        return self.solution.columns
 
     def __getitem__(self, key):
         return {"TY": self.ty, "LAB": self.lab, "BR": self.br, "PT": self.pt,
@@ -92,9 +123,10 @@ class Labelled:
 class Branch:
     """The points of one run, in the order written (all branches of the run,
     including those reached by branch switching), and its labelled points."""
-    rows: list = field(default_factory=list)        # every Labelled point (lab 0 included)
+    rows: list = field(default_factory=list)        # every Record (lab 0 included)
     status: str = "ok"
     elapsed: float = 0.0
+    counters: Counters = field(default_factory=Counters)    # summed over the branches
 
     @property
     def specials(self) -> list:

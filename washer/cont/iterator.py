@@ -22,11 +22,11 @@ plane <x - x_bp - ds d, d> = 0 (AUTO's STBIF) and writes it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.cont.branch import Point
+from washer.cont.branch import Counters, Point
 from washer.auto.codes import Code
 from washer.cont.events import first_zero
 from washer.cont.problem import ProblemError
@@ -89,12 +89,14 @@ class Step:
 class State:
     """Where a branch stands: the last accepted point, the next step size, how
     many points were written (AUTO's NTOT, for IAD), steps since the last
-    adaptation (IADS), and whether sign changes are detected yet."""
+    adaptation (IADS), whether sign changes are detected yet, and the work done
+    (`Counters`, from the start point's correction on)."""
     point: Point
     ds: float
     n_points: int = 1
     n_since_adapt: int = 0
     detect: bool = False
+    counters: Counters = field(default_factory=Counters)
 
 
 class Continuation:
@@ -120,8 +122,22 @@ class Continuation:
         self.uz = list(settings.UZR)
         self.tests = list(system.active_tests())
         self.state: State | None = None
+        self.counters = Counters()
         self.failure = "No convergence with minimum step size"
         self._located_J = None
+
+    # ------------------------------------------------------- counted calls
+    def _residual(self, x):
+        self.counters.residuals += 1
+        return self.sys.residual(x)
+
+    def _jacobian(self, x, frozen: bool = False):
+        self.counters.jacobians += 1
+        return self.sys.jacobian(x, frozen_second=True) if frozen else self.sys.jacobian(x)
+
+    def _factor(self, J, border):
+        self.counters.factorisations += 1
+        return self.sys.factor(J, border)
 
     # ------------------------------------------------------------ corrector
     def correct(self, x_pred, x_ref, t_ref, ds, plane: bool | None = None):
@@ -135,7 +151,7 @@ class Continuation:
         row_plane = sysm.border(t_ref) if plane else None
         for it in range(1, s.ITNW + 1):
             try:
-                G = sysm.residual(x)
+                G = self._residual(x)
                 refactor = factor is None or not plane or it <= max(s.NWTN, 1)
                 if refactor:
                     # Loci whose Jacobians hold second derivatives of f keep those
@@ -144,8 +160,7 @@ class Continuation:
                     # residual and the first-derivative blocks exact, so the point
                     # converged to is the same; the blocks are refreshed at every
                     # converged point (evaluate), where tangent and tests need them.
-                    J = sysm.jacobian(x, frozen_second=True) if \
-                        sysm.freezes_second_derivatives else sysm.jacobian(x)
+                    J = self._jacobian(x, frozen=sysm.freezes_second_derivatives)
             except ProblemError as exc:
                 # A trial point outside the equations' domain: a failed step.
                 raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
@@ -154,12 +169,12 @@ class Continuation:
             if plane:
                 c = row_plane @ (x - x_ref) - ds
                 if refactor:
-                    factor = sysm.factor(J, row_plane)
+                    factor = self._factor(J, row_plane)
             else:
                 d = x - x_ref
                 row = 2 * sysm.border(d) / abs(ds)
                 c = (row @ d) / 2 - abs(ds)
-                factor = sysm.factor(J, row)
+                factor = self._factor(J, row)
             with np.errstate(all="ignore"):
                 dx = factor.solve(-np.append(G, c))
             if not np.all(np.isfinite(dx)):
@@ -195,8 +210,8 @@ class Continuation:
             e = np.linalg.svd(J0)[2][-1]
         for _ in range(START_ITERATIONS):
             try:
-                G = self.sys.residual(x)
-                J = self.sys.jacobian(x)
+                G = self._residual(x)
+                J = self._jacobian(x)
             except ProblemError as exc:
                 raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
             if not np.all(np.isfinite(G)):
@@ -204,7 +219,7 @@ class Continuation:
             if np.max(np.abs(G)) == 0:
                 return x
             with np.errstate(all="ignore"):
-                dx = self.sys.factor(J, e).solve(np.r_[-G, 0.0])
+                dx = self._factor(J, e).solve(np.r_[-G, 0.0])
             if not np.all(np.isfinite(dx)):
                 raise ConvergenceError("singular Jacobian at the start point")
             x = x + dx
@@ -219,7 +234,7 @@ class Continuation:
         secant just taken); also the factorisation of [J; border(ref)], whose
         determinant is AUTO's BP test."""
         sysm = self.sys
-        factor = sysm.factor(J, sysm.border(ref))
+        factor = self._factor(J, sysm.border(ref))
         e = np.zeros(len(ref))
         e[-1] = 1.0
         with np.errstate(all="ignore"):
@@ -238,7 +253,7 @@ class Continuation:
         else:
             e = np.zeros(len(x))
             e[-1] = 1.0
-            t = self.sys.factor(J, e).solve(e)
+            t = self._factor(J, e).solve(e)
         t = t / math.sqrt(self.sys.inner(t, t))
         return orient(t, len(t) - 1, self.s.EPSL, x[-1])
 
@@ -246,12 +261,12 @@ class Continuation:
     def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
         """A converged point: tangent, stability and the test values `keys`
         (all active tests and UZ values when None)."""
-        J = self.sys.jacobian(x)
+        J = self._jacobian(x)
         if tangent is None:
             t, factor = self.tangent(J, ref)
         else:
             t = tangent
-            factor = self.sys.factor(J, self.sys.border(t))
+            factor = self._factor(J, self.sys.border(t))
         stab = self.sys.stability(x, J)
         pt = Point(np.array(x), t, stab, {}, ds, it)
         pt.tests = self._tests(pt, J, factor, keys)
@@ -311,9 +326,9 @@ class Continuation:
         point's Jacobian is evaluated once."""
         cached = self._located_J
         if cached is None or cached[0] is not sp or not np.array_equal(cached[1], sp.x):
-            cached = self._located_J = (sp, sp.x.copy(), self.sys.jacobian(sp.x))
+            cached = self._located_J = (sp, sp.x.copy(), self._jacobian(sp.x))
         J = cached[2]
-        sp.tests = self._tests(sp, J, self.sys.factor(J, self.sys.border(sp.tangent)), None)
+        sp.tests = self._tests(sp, J, self._factor(J, self.sys.border(sp.tangent)), None)
 
     def _trial(self, prev: Point, s_, key):
         pt = self._step(prev, s_, keys=[key])
@@ -338,12 +353,12 @@ class Continuation:
         # (RSPTBV): at a Hopf start the collocation system is singular in the period.
         correct = self.mode != "switch" and sysm.arclength == "sphere"
         x0 = self.correct_start(self.x0) if correct else self.x0
-        J0 = sysm.jacobian(x0)
+        J0 = self._jacobian(x0)
         t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
         t0 = t0 / math.sqrt(sysm.inner(t0, t0))
         start = self.evaluate(x0, t0, tangent=t0)
         sysm.update(start.x, start.tangent)
-        self.state = State(start, self.ds)
+        self.state = State(start, self.ds, counters=self.counters)
         yield Step("start", start)
         st = self.state
         if self.mode == "switch":

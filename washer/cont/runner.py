@@ -19,7 +19,7 @@ import numpy as np
 
 from washer.auto.codes import Code, curve_code, type_name
 from washer.cont import start
-from washer.cont.branch import Branch, Labelled, Point
+from washer.cont.branch import Branch, Point, Record
 from washer.cont.iterator import Continuation, ConvergenceError
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings
@@ -55,7 +55,7 @@ class _Executor:
         for sink in self.sinks:
             getattr(sink, what)(*args)
 
-    def labelled(self, br, pt, point: Point, base: int, stable, label: bool, info=None) -> Labelled:
+    def labelled(self, br, pt, point: Point, base: int, stable, label: bool, info=None) -> Record:
         sysm, s = self.run.system, self.s
         lab = 0
         if label:
@@ -63,10 +63,12 @@ class _Executor:
             lab = self.label
         sol = sysm.solution(point.x, point.tangent)
         values = [float(point.x[-1])] + list(sol.columns) + [float(sol.par[i - 1]) for i in s.ICP[1:]]
-        out = Labelled(br=br, pt=pt, code=curve_code(base, sysm.curve_type), lab=lab,
-                       stable=stable, solution=sol, stability=point.stability, info=info or {},
-                       free=tuple(sysm.free), isw=s.ISW, ips=s.IPS)
-        out.values = values
+        out = Record(br=br, pt=pt, code=curve_code(base, sysm.curve_type), lab=lab,
+                     nfpr=len(sysm.free), isw=s.ISW, ndim_user=sol.ndim_user, ips=s.IPS,
+                     u=np.asarray(sol.u), par=np.asarray(sol.par), icp=list(sysm.free),
+                     rldot=list(sol.rldot), udot=sol.udot, t=sol.t, ntst=sol.ntst,
+                     ncol=sol.ncol, values=values, stable=stable, stability=point.stability,
+                     info=info or {})
         self.run.branch.rows.append(out)
         self.emit("point", out, point)
         return out
@@ -81,7 +83,14 @@ class _Executor:
         return info
 
     def branch(self, br: int, it: Continuation, first_label: bool) -> None:
-        """Follow one branch to its end, writing through the sinks."""
+        """Follow one branch to its end, writing through the sinks; the branch's work
+        is added to the run's counters."""
+        try:
+            self._follow(br, it, first_label)
+        finally:
+            self.run.branch.counters.add(it.counters)
+
+    def _follow(self, br: int, it: Continuation, first_label: bool) -> None:
         s, sysm = self.s, self.run.system
         self.emit("branch_start", br)
         pt = 0
@@ -208,3 +217,36 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     run.branch.elapsed = time.perf_counter() - t0
     ex.emit("end", status, run.branch.elapsed)
     return run.branch
+
+
+def restart_records(restart, c) -> tuple[list, str]:
+    """The records a run may restart from, and how messages name them: a Branch (its
+    labelled points), one Record (IRS = 0 then means that record), a list of Records,
+    or the path of an s-file."""
+    if restart is None:
+        return [], "the restart file"
+    if isinstance(restart, Branch):
+        return list(restart.specials), "the restart branch"
+    if isinstance(restart, Record):
+        if c["IRS"] in (0, "0"):
+            c.set("IRS", -1, "<restart record>")        # FINDLB: the first record
+        return [restart], "the restart record"
+    if isinstance(restart, (list, tuple)):
+        return list(restart), "the restart records"
+    from washer.auto.files import AutoFileError, read_s
+    try:
+        return read_s(restart), str(restart)
+    except AutoFileError as exc:
+        raise RunError(str(exc)) from None
+
+
+def run(c, problem, restart=None, sinks=(), name: str = "") -> Branch:
+    """One run in memory: constants `c` (washer.auto.constants.Constants) and the
+    equations `problem` (washer.cont.problem.Problem), restarting at c['IRS'] from
+    `restart` (a Branch, a Record, a list of Records or an s-file path), through
+    `sinks` (none needed: nothing is written unless a sink writes it). Returns the
+    Branch (rows, labelled points `specials`, status, counters)."""
+    c = c.copy()
+    records, source = restart_records(restart, c)
+    r, br, mode = build(c, problem, records, name=name or problem.name, records_source=source)
+    return execute(r, br, mode, sinks)

@@ -6,7 +6,7 @@ Each sink receives
 
     begin(run)                  the run is set up (constants, settings, system)
     branch_start(br)            a new branch (numbered br) begins
-    point(lab, point)           a written point (washer.cont.branch.Labelled)
+    point(lab, point)           a written point (washer.cont.branch.Record)
     note(br, pt, text)          a diagnostic line ("NOTE:Retrying step" ...)
     end(status, elapsed)        the run is over (status "ok" or a reason)
 
@@ -15,12 +15,9 @@ File writing follows AUTO's io.f90 (STHD, WRLINE, WRTSP8, PRINTEIG) through
 """
 from __future__ import annotations
 
-import dataclasses
 import sys
 
-import numpy as np
-
-from washer.auto.files import OutputFiles, Record, Row, fmt_es, screen_heading
+from washer.auto.files import OutputFiles, Row, fmt_es, screen_heading
 from washer.auto.codes import type_name
 
 
@@ -32,19 +29,6 @@ def _row(lab) -> Row:
     return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
 
 
-def _record(lab) -> Record:
-    sol = lab.solution
-    kw = dict(br=lab.br, pt=lab.pt, ty=lab.code, lab=lab.lab, nfpr=len(lab.free), isw=lab.isw,
-              ndim_user=sol.ndim_user, ips=lab.ips, U=np.asarray(sol.u), par=np.asarray(sol.par),
-              icp=list(lab.free), rldot=list(sol.rldot), udot=sol.udot)
-    # BVP records also carry the mesh (t, NTST, NCOL) where the Record supports it.
-    names = {f.name for f in dataclasses.fields(Record)}
-    for key, val in (("t", sol.t), ("ntst", sol.ntst), ("ncol", sol.ncol)):
-        if key in names and val is not None:
-            kw[key] = val
-    return Record(**kw)
-
-
 class FileSink:
     """AUTO's b., s. and d. files of one run, written point by point; an
     s-record is written before its b-row, so a b-file label always has its
@@ -54,6 +38,7 @@ class FileSink:
         self.files = OutputFiles(folder, name, protect=protect)
 
     def begin(self, run) -> None:
+        self.run = run
         s, c, sysm = run.settings, run.constants, run.system
         curve = sysm.curve_type
         self.files.header(c, sysm.n_eq if s.IPS in (0, 1) else s.NDIM, s.NPAR, run.titles, curve,
@@ -65,7 +50,7 @@ class FileSink:
 
     def point(self, lab, point) -> None:
         if lab.lab:
-            self.files.record(_record(lab))
+            self.files.record(lab)
         self.files.row(_row(lab))
         st = lab.stability
         if st is not None and st.kind == "eigenvalues":
@@ -83,7 +68,10 @@ class FileSink:
         self.files.diag(f"{br:4d}{pt:6d} {text}")
 
     def end(self, status: str, elapsed: float) -> None:
-        self.files.diag(f"\n{'=' * 47}\n\n Total Time {elapsed:12.3E}")
+        n = self.run.branch.counters
+        self.files.diag(f"\n{'=' * 47}\n\n Evaluations: residual {n.residuals}, Jacobian "
+                        f"{n.jacobians}, factorisations {n.factorisations}\n"
+                        f"\n Total Time {elapsed:12.3E}")
         self.files.close()
 
 

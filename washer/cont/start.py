@@ -65,7 +65,7 @@ def start_values(c, s: Settings, problem, rec) -> tuple[np.ndarray, np.ndarray]:
     """(u, par): the record's stored state and PAR (or the problem's stpnt), with the
     constants' PAR and U overrides applied. par has at least NPAR entries."""
     if rec is not None:
-        u = np.array(rec.U, dtype=float)
+        u = np.array(rec.u, dtype=float)
         par = np.zeros(max(s.NPAR, len(rec.par)))
         par[:len(rec.par)] = rec.par
     else:
@@ -94,8 +94,8 @@ def start_kind(rec) -> str:
     carries the curve: a UZ on a Hopf curve is -34)."""
     if rec is None:
         return ""
-    base, curve = split_code(rec.ty)
-    if curve in (2, 3) and np.ndim(rec.U) == 1:
+    base, curve = split_code(rec.code)
+    if curve in (2, 3) and np.ndim(rec.u) == 1:
         return {2: "LP-curve", 3: "HB-curve"}[curve]
     return type_name(base)
 
@@ -108,7 +108,7 @@ def system_for(c, s: Settings, problem, u, par, rec):
     if s.ISW == -1 and kind not in ("BP", "PD"):
         raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
                          f"{kind or 'a regular point'} (IRS={irs!r})")
-    if s.IPS == 2 and rec is not None and np.asarray(rec.U).ndim == 1 and kind != "HB":
+    if s.IPS == 2 and rec is not None and np.ndim(rec.u) == 1 and kind != "HB":
         raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
                          f"solution, got {kind or 'a regular point'} of an algebraic branch "
                          f"(IRS={irs!r})")
@@ -142,7 +142,7 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         return c["IBR"]
     if rec is None or s.ISW < 0:
         return mbr + 1
-    if (abs(rec.ty) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
+    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
         return rec.lab
     return abs(rec.br)
 

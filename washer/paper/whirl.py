@@ -82,10 +82,10 @@ class _Profiles:
         mu = np.asarray(st.values) if st is not None else np.array([1.0])
         # The trivial multiplier (closest to 1) says nothing about stability.
         nontrivial = np.delete(mu, np.argmin(np.abs(mu - 1))) if len(mu) > 1 else mu
-        t = np.asarray(lab.solution.t)            # mesh times in [0, 1]
+        t = np.asarray(lab.t)            # mesh times in [0, 1]
         r_mean = float(np.sum(0.5 * (r[1:] + r[:-1]) * np.diff(t)) / (t[-1] - t[0]))
         tilt = np.arccos(np.clip(np.cos(U[:, 3]) * np.cos(U[:, 4]), -1.0, 1.0)).max()
-        self.rows.append((lab.values[0], lab.solution.par[10], r.min(), r.max(),
+        self.rows.append((lab.values[0], lab.par[10], r.min(), r.max(),
                           U[:, 2].min(), U[:, 2].max(), np.abs(nontrivial).max(),
                           bool(lab.stable), r_mean, tilt, lab.ty))
 

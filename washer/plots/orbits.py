@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.files import read_s, type_name
+from washer.auto.files import read_s
 
 
 def find_label(records, label: int):
@@ -47,7 +47,7 @@ def save_orbit(path: Path, label: int, out: Path | None = None, components=None,
     rec = find_label(read_s(path), label)
     fig, (ax_t, ax_p) = style.figure(1, 2, figsize=(10, 4))
     plot_orbit(ax_t, ax_p, rec, components, phase)
-    ty = type_name(rec.ty)
+    ty = rec.ty
     fig.suptitle(f"{Path(path).name} label {label}{' ' + ty if ty else ''}: PAR(11) = "
                  f"{rec.par[10]:.6g}")
     stem = out or Path(path).parent / (Path(path).name.replace(".", "_") + f"_orbit{label}")
