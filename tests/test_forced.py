@@ -99,11 +99,11 @@ def engine_route(system: ForcedSystem, u0, p):
                      f"DS = {0.2 * p}, DSMAX = {p}, UZSTOP = {{1: {p}}}\n")
         res = run(c, verbose=False, problem=Problem(n + 2, func, stpnt, name="forced"))
     uz = res("UZ1")
-    U = np.asarray(uz.solution.u)
+    U = np.asarray(uz.u)
     t0 = math.atan2(U[0, n], U[0, n + 1]) / nu
     u = solve_ivp(lambda t, v: system.f(t, v, p), (t0, 0.0), U[0, :n], method="DOP853",
                   rtol=RTOL_REF, atol=ATOL_REF).y[:, -1] if t0 else U[0, :n]
-    return u, _without_oscillator(uz.stability.values, uz.solution.par[10])
+    return u, _without_oscillator(uz.stability.values, uz.par[10])
 
 
 def _without_oscillator(mu, T):
@@ -164,11 +164,11 @@ def test_forced_linear_oscillator_from_a_user_file_matches_closed_form(tmp_path)
         shutil.copy(f, tmp_path)
     res = run(tmp_path / "c.flin", verbose=False)
     uz = res("UZ1")
-    par = uz.solution.par
+    par = uz.par
     F0, zeta, w0, nu = par[:4]
     assert F0 == pytest.approx(0.7, abs=1e-12)
     A, B, mu_exact = linear_oscillator_exact(zeta, w0, F0, nu)
-    U = np.asarray(uz.solution.u)
+    U = np.asarray(uz.u)
     t = np.arctan2(U[:, 2], U[:, 3]) / nu
     v = A * np.cos(nu * t) + B * np.sin(nu * t)
     w = nu * (B * np.cos(nu * t) - A * np.sin(nu * t))
@@ -503,8 +503,8 @@ def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critica
     assert engine_run.status == "ok"
     assert [r.ty for r in engine_run.specials if r.ty] == ["EP", "TR", "UZ"]
     tr = engine_run("TR1")
-    assert abs(tr.solution.par[0] - critical["C_p_exact"]) < 1e-9
-    mu_a, T = np.asarray(tr.stability.values), tr.solution.par[10]
+    assert abs(tr.par[0] - critical["C_p_exact"]) < 1e-9
+    mu_a, T = np.asarray(tr.stability.values), tr.par[10]
     assert abs(mu_a[0] - 1) < 1e-9 and np.abs(mu_a - np.exp(-2 * T)).min() < 1e-9
     mu = _without_oscillator(mu_a, T)
     D = np.abs(mu[:, None] - critical["multipliers"][None, :])
@@ -520,15 +520,15 @@ def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, e
     below the TR point and stable above it up to C_p = 0.5, and the period stays 1/Omega
     on every point (the oscillator fixes it; Newton's EPSU = 1e-8 bounds its drift)."""
     rows = engine_run.rows
-    cp = np.array([r.solution.par[0] for r in rows])
+    cp = np.array([r.par[0] for r in rows])
     assert cp[0] == 0.0 and cp[-1] == pytest.approx(0.5, abs=1e-9)
     start = forced.periodic_response(params.replace(C_p=0.0))
-    assert np.abs(np.asarray(rows[0].solution.u)[0, :12] - start.u0).max() < 1e-9
+    assert np.abs(np.asarray(rows[0].u)[0, :12] - start.u0).max() < 1e-9
     stable = np.array([bool(r.stable) for r in rows])
     below, above = cp < critical["C_p_exact"] - 1e-6, cp > critical["C_p_exact"] + 1e-6
     assert below.sum() >= 3 and above.sum() >= 3
     assert not stable[below].any() and stable[above].all()
-    assert max(abs(r.solution.par[10] - 1 / params["Omega"]) for r in rows) < 1e-9
+    assert max(abs(r.par[10] - 1 / params["Omega"]) for r in rows) < 1e-9
 
 
 def test_forced_problem_is_the_kernel_rhs_at_the_oscillator_angle(params):

@@ -74,7 +74,7 @@ class _Profiles:
         pass
 
     def point(self, lab, point):
-        U = np.asarray(lab.solution.u)
+        U = np.asarray(lab.u)
         if U.ndim != 2:
             return
         r = np.hypot(U[:, 0], U[:, 1])
