@@ -22,7 +22,8 @@ from pathlib import Path
 import numpy as np
 
 from washer.auto.codes import split_code, type_name as _type_name
-from washer.auto.files import AutoFileError, Record, Row, _read_record, _read_text, fmt_e
+from washer.auto.files import (AutoFileError, Record, Row, _read_record, _read_text, fmt_e,
+                               record_text)
 
 
 def type_name(code: int) -> str:
@@ -113,7 +114,7 @@ class Solution:
         new = _copy.copy(self)
         if self.rec is not None:
             new.rec = _copy.copy(self.rec)
-            for k, v in (("br", br), ("pt", pt), ("ty", ty), ("lab", lab)):
+            for k, v in (("br", br), ("pt", pt), ("code", ty), ("lab", lab)):
                 if v is not None:
                     setattr(new.rec, k, v)
         return new
@@ -152,7 +153,7 @@ class Solution:
 
     @property
     def U(self) -> np.ndarray:
-        return np.asarray(self._need().U)
+        return np.asarray(self._need().u)
 
     @property
     def t(self):
@@ -167,9 +168,9 @@ class Solution:
         if isinstance(key, str):
             k = key.strip()
             simple = {"LAB": rec.lab, "Label": rec.lab, "BR": rec.br, "Branch number": rec.br,
-                      "PT": rec.pt, "Point number": rec.pt, "TY number": rec.ty,
-                      "Type number": rec.ty, "TY": type_name(rec.ty),
-                      "Type name": type_name(rec.ty), "ISW": rec.isw, "NTST": rec.ntst,
+                      "PT": rec.pt, "Point number": rec.pt, "TY number": rec.code,
+                      "Type number": rec.code, "TY": rec.ty,
+                      "Type name": rec.ty, "ISW": rec.isw, "NTST": rec.ntst,
                       "NCOL": rec.ncol, "IPS": rec.ips, "NDIM": rec.ndim_user,
                       "PAR": self.PAR, "p": self.PAR, "U": self.U,
                       "t": rec.t if rec.t is not None else np.zeros(1),
@@ -183,13 +184,13 @@ class Solution:
                 return float(rec.par[10])
             m = re.fullmatch(r"U\((\d+)\)", k)
             if m:
-                U = np.asarray(rec.U)
+                U = np.asarray(rec.u)
                 return U[..., int(m.group(1)) - 1] if U.ndim == 2 else float(U[int(m.group(1)) - 1])
             pn, un = self._names("parnames"), self._names("unames")
             if k in pn:
                 return float(rec.par[pn[k] - 1])
             if k in un:
-                U = np.asarray(rec.U)
+                U = np.asarray(rec.u)
                 return U[..., un[k] - 1] if U.ndim == 2 else float(U[un[k] - 1])
             if self.row is not None and k in self.titles:
                 return self.row.values[self.titles.index(k)]
@@ -214,14 +215,14 @@ class Solution:
         if self.rec is None:
             return "<Solution without data>"
         r = self.rec
-        return (f"<Solution BR={r.br} PT={r.pt} TY={type_name(r.ty)} LAB={r.lab}>")
+        return (f"<Solution BR={r.br} PT={r.pt} TY={r.ty} LAB={r.lab}>")
 
     def __str__(self) -> str:
         if self.rec is None:
             return "Solution without data"
         r = self.rec
         lines = [f"  BR    PT  TY  LAB  ISW  NTST  NCOL",
-                 f"{r.br:4d}{r.pt:6d}  {type_name(r.ty):>2}{r.lab:5d}{r.isw:5d}{r.ntst:6d}{r.ncol:6d}"]
+                 f"{r.br:4d}{r.pt:6d}  {r.ty:>2}{r.lab:5d}{r.isw:5d}{r.ntst:6d}{r.ncol:6d}"]
         pars = ", ".join(f"PAR({i + 1})={v:.6g}" for i, v in enumerate(r.par[:12]))
         lines.append(pars)
         return "\n".join(lines)
@@ -254,10 +255,10 @@ class Solution:
         """The s-record: header rewritten from the fields, body as read."""
         r = self._need()
         if not self.raw:
-            return r.text()
+            return record_text(r)
         head = self.raw[0].split()
         h = [int(x) for x in head]
-        h[0], h[1], h[2], h[3] = abs(r.br), (abs(r.pt) - 1) % 9999 + 1, r.ty, r.lab
+        h[0], h[1], h[2], h[3] = abs(r.br), (abs(r.pt) - 1) % 9999 + 1, r.code, r.lab
         fmt = [6, 6, 6, 6, 6, 6, 8, 6, 8] + [5] * (len(h) - 9)
         line = "".join(f"{v:{w}d}" for v, w in zip(h, fmt))
         return "\n".join([line] + self.raw[1:]) + "\n"
@@ -284,7 +285,7 @@ class SolutionList(list):
                     return s
             raise KeyError(f"Label {label} not found (labels: {self.getLabels()})")
         name, n = key
-        hits = [s for s in self if _match_type(name, s.rec.ty)]
+        hits = [s for s in self if _match_type(name, s.rec.code)]
         if n is None:
             return SolutionList(hits)
         if n > len(hits):
@@ -333,7 +334,7 @@ def _selects(s: Solution, key, _lst) -> bool:
     k = _parse_key(key)
     if isinstance(k, int):
         return s.rec.lab == k
-    return _match_type(k[0], s.rec.ty) and k[1] is None
+    return _match_type(k[0], s.rec.code) and k[1] is None
 
 
 class Branch:
@@ -565,7 +566,7 @@ def _branch_of_solutions(sols, c) -> Branch:
     b = Branch(c=c)
     for i, s in enumerate(sols):
         r = s.rec
-        b.rows.append(Row(r.br, r.pt, r.ty, r.lab, []))
+        b.rows.append(Row(r.br, r.pt, r.code, r.lab, []))
         b.solutions[i] = s
     b.header = []
     return b
