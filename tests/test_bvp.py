@@ -217,3 +217,70 @@ def test_tim_demo(tmp_path):
     ref = auto_rows("tim", "b.tim")
     assert [(s.ty, s.br) for s in r.specials] == [(t, b) for t, b, _ in ref]
     assert r.specials[-1].par[0] == pytest.approx(ref[-1][2], abs=10 * c["EPSL"])
+
+
+def test_fsh_demo(tmp_path):
+    """fsh: a travelling wave of Fisher's equation as a connecting orbit (the saddle's
+    eigenvector in PAR(12..14), stpnt setting PAR at t = 0 and reading it at later t);
+    continued in the period to 200, then in the wave speed with an integral phase
+    condition added at the restart (NINT = 1)."""
+    d = demo(tmp_path, "fsh")
+    c = read_constants(d / "c.fsh")
+    r1 = run(d / "c.fsh", e="fsh", sv="f0", verbose=False)
+    r2 = run(d / "c.fsh", e="fsh", s="f0", IRS=r1("UZ4").lab, ICP=[2, 11, 12, 13, 14], NINT=1,
+             DS=-c["DS"], UZR={2: [1.0, 2.0, 3.0, 5.0, 10.0]}, UZSTOP={2: 0.0}, A0=-0.1,
+             sv="fsh", verbose=False)
+    assert r1.status == r2.status == "ok"
+    compare(ours((r1, 11)), auto_rows("fsh", "b.0"), tolerance(c), uz_targets=(200.0,))
+    compare(ours((r2, 2)), auto_rows("fsh", "b.fsh"), tolerance(c))
+
+
+def test_spb_demo_first_runs(tmp_path):
+    """spb: a singularly perturbed BVP continued in rl to 1, then in eps down to 1e-5
+    (UZ at each decade, AUTO's within EPSS of ours)."""
+    d = demo(tmp_path, "spb")
+    c = read_constants(d / "c.spb.1")
+    r0 = run(d / "c.spb.0", e="spb", sv="s0", verbose=False)
+    r1 = run(d / "c.spb.1", e="spb", s="s0", IRS=r0.specials[-1].lab, sv="s1", verbose=False)
+    assert r0.status == r1.status == "ok"
+    compare(ours((r0, 3)), auto_rows("spb", "b.0"), tolerance(c))
+    compare(ours((r1, 2)), auto_rows("spb", "b.1"), tolerance(c))
+
+
+@pytest.mark.slow
+def test_spb_demo_continuation_in_gamma(tmp_path):
+    """spb, runs 3 and 4: NTST = 200, NPR = 1 (every point labelled, the restart's first
+    one too, as AUTO), then 700 steps in gamma with DSMAX = 1000 to the UZSTOP -2.2."""
+    d = demo(tmp_path, "spb")
+    c3 = read_constants(d / "c.spb.3")
+    r0 = run(d / "c.spb.0", e="spb", sv="s0", verbose=False)
+    run(d / "c.spb.1", e="spb", s="s0", IRS=r0.specials[-1].lab, sv="s1", verbose=False)
+    r2 = run(d / "c.spb.2", e="spb", s="s1", IRS="UZ2", sv="s2", verbose=False)
+    r3 = run(d / "c.spb.3", e="spb", s="s2", IRS=r2.specials[-1].lab, sv="s3", verbose=False)
+    assert r2.status == r3.status == "ok"
+    ref = [r for r in branch_rows(DATA / "spb" / "autoref" / "b.2") if r.lab]
+    # Run 3: NPR = 1 labels every one of its 15 points, the first (the restart) included.
+    assert [s.ty for s in r2.specials] == [type_name(r.ty) for r in ref[:15]]
+    assert r3.specials[-1].ty == "UZ" and type_name(ref[-1].ty) == "UZ"
+    assert abs(r3.specials[-1].par[0] - ref[-1].values[0]) <= tolerance(c3)
+
+
+def test_um2_demo(tmp_path):
+    """um2: orbits between two circles (NBC = 3, the period free): the outer radius to
+    0.6, eps down to 0.1, then the start angle theta from 0.25 round to the UZSTOP 1.25
+    with NPR = 1."""
+    d = demo(tmp_path, "um2")
+    c = read_constants(d / "c.um2")
+    r1 = run(d / "c.um2", e="um2", sv="u1", verbose=False)
+    r2 = run(d / "c.um2", e="um2", s="u1", IRS=r1.specials[-1].lab, ICP=["eps", "Period"],
+             DS=-c["DS"], DSMAX=1.0, UZSTOP={"eps": 0.1}, sv="u2", verbose=False)
+    r3 = run(d / "c.um2", e="um2", s="u2", IRS=r2.specials[-1].lab, ICP=["theta", "Period"],
+             NPR=1, DS=c["DS"], DSMIN=1e-5, DSMAX=1.0, UZSTOP={"theta": [1.25, -0.75]},
+             sv="u3", verbose=False)
+    assert r1.status == r2.status == r3.status == "ok"
+    compare(ours((r1, 11)), auto_rows("um2", "b.1"), tolerance(c, DSMAX=10.0))
+    compare(ours((r2, 2)), auto_rows("um2", "b.2"), tolerance(c, DSMAX=1.0))
+    # Every point of the last run is labelled (NPR = 1); the run ends at theta = 1.25.
+    last = [r for r in ours((r3, 1)) if r[0] != ""]
+    ref = [r for r in auto_rows("um2", "b.3") if r[0] != ""]
+    compare(last, ref, tolerance(c, DSMAX=1.0), uz_targets=(1.25,))

@@ -381,6 +381,30 @@ class Problem:
                                                       p.POSITIONAL_OR_KEYWORD)]
         return len(positional) >= 3 or any(p.kind == p.VAR_POSITIONAL for p in params)
 
+    def start_profile(self, par, times) -> np.ndarray:
+        """AUTO's STPNUB: stpnt(u, par, t) at every time of `times` in turn, with one
+        PAR array throughout (an stpnt that sets PAR at t = 0 and reads it later, as
+        fsh's, sees its own values). Returns the states, shape (len(times), ndim);
+        `par` is changed in place."""
+        if self._stpnt is None:
+            raise ProblemError(f"{self.name}: no stpnt(u, par) to start from (IRS = 0)")
+        rows = []
+        for t in times:
+            u = np.zeros(self.ndim)
+            try:
+                if self.stpnt_has_time:
+                    self._stpnt(u, par, float(t))
+                else:
+                    self._stpnt(u, par)
+            except Exception as exc:
+                raise ProblemError(f"{self.name}: stpnt(u, par, t) failed at t = {t}: "
+                                   f"{type(exc).__name__}: {exc}") from exc
+            rows.append(u)
+        U = np.array(rows)
+        if not np.all(np.isfinite(U)):
+            raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values in u")
+        return U
+
     def start(self, npar: int, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """AUTO's STPNT: the starting state (ndim,) and parameters (npar,); a stpnt
         with the time argument is called at `t` (in [0, 1])."""

@@ -106,8 +106,11 @@ class _Executor:
             pt += 1
             p = step.point
             if step.kind == "start":
-                self.labelled(br, pt, p, Code.EP if first_label else Code.NONE, _stable(p),
-                              first_label)
+                # A restart's first point is an NPR output when NPR divides its number
+                # (NPR = 1: AUTO's STPLAE/STPLBV label PT 1 of a restart, spb's runs).
+                npr = not first_label and s.NPR > 0 and pt % s.NPR == 0
+                code = Code.EP if first_label else (Code.RG if npr else Code.NONE)
+                self.labelled(br, pt, p, code, _stable(p), first_label or npr)
                 continue
             if step.kind == "special":
                 base = step.code

@@ -123,8 +123,7 @@ class BoundaryValueProblem:
         are the start data's: stpnt's at t = 0 with the constants' PAR overrides)."""
         s = self.settings
         self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
-        npar = len(self.par)
-        U = np.array([self.problem.start(npar, tj)[0] for tj in self.mesh.node_times()])
+        U = self.problem.start_profile(self.par.copy(), self.mesh.node_times())
         self._begin(U, None)
 
     def _from_record(self, rec) -> None:
