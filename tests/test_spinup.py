@@ -26,3 +26,20 @@ def test_yaw_curve_linear_stiffness_and_fold(params):
     assert abs(slope) < 0.05 * c.k_lin
     assert np.all(np.diff(np.abs(c.Q)) > 0)
     assert sp.slow_tau_s(params, c) * c.M_max >= 2 * sp.spin_torque(params.replace(tau_s=1.0)).T_peak
+
+
+def test_twist_curve_tips_where_the_yaw_curve_folds_and_rises_without_imbalance(params):
+    """Two computations of where the twisted tub tips: `yaw_curve` continues in the moment
+    until the curve folds, `twist_curve` prescribes the twist and watches the smallest
+    stiffness eigenvalue cross zero (interpolated on its grid of 0.025 rad: the crossing
+    within 0.01 rad, the moment within 0.2 N m). Without the imbalance the moment needed
+    keeps rising past the symmetric tub's tilt pitchfork (it is not a fold)."""
+    from washer.paper import spinup as sp
+    fold = sp.yaw_curve(params)
+    tw = sp.twist_curve(params, gamma_end=-0.8, n=33)
+    assert abs(tw.gamma_tip - fold.gamma_max) < 0.01
+    assert abs(abs(tw.Q_tip) - fold.M_max) < 0.2
+    sym = sp.twist_curve(params.replace(m_u=0.0), gamma_end=-1.2, n=49)
+    assert np.all(np.diff(np.abs(sym.Q)) > 0)
+    assert np.isfinite(sym.gamma_tip) and abs(sym.Q_tip) > fold.M_max
+    assert sym.stiffness[-1] < 0 < sym.stiffness[0]

@@ -194,6 +194,17 @@ def orbit(r, t_from: float, rel: float = 0.1) -> Orbit:
                  float(rad[h:].max() / rad[:h].max()), float(f[1] - f[0]))
 
 
+def yaw_mode(model) -> tuple[float, float]:
+    """(frequency (Hz), real part (1/s)) of the slow yaw mode of the averaged frame's
+    equilibrium: the complex pair whose eigenvector is mostly gamma (eps6). Yaw is axial,
+    so its frequency is the same seen from the ground."""
+    eps = model.rotating_equilibrium()
+    lam, V = np.linalg.eig(model.jac_rot(np.r_[eps, np.zeros(6)])[0])
+    share = np.abs(V[5]) ** 2 / np.sum(np.abs(V[:6]) ** 2, axis=0)
+    i = int(np.argmax(np.where(lam.imag > 0, share, -1.0)))
+    return float(lam[i].imag / (2 * np.pi)), float(lam[i].real)
+
+
 #: Mean height above the static one that counts as "O_b higher" (m): 30 times the
 #: 0.3 mm the stable spin moves it (eps3 - z at C_p = 0.15).
 RISE_MIN = 0.010

@@ -220,6 +220,28 @@ def plot_fig4(ax, res: dict) -> None:
     ax.legend(loc="best", fontsize=8)
 
 
+def plot_fig4_error(ax, res: dict) -> None:
+    """Exact minus averaged critical C_p against Omega (absolute, left axis) and relative to
+    the exact value (right axis): the difference Fig 4's overlay exists to show and cannot."""
+    f4 = res["fig4"]
+    om, ex, av = f4["Omega"], f4["C_p_exact"], f4["C_p_averaged"]
+    ok = np.isfinite(ex) & np.isfinite(av)
+    ax.plot(om[ok], (ex - av)[ok], "k.-", lw=1.2, label="exact - averaged")
+    ax.axhline(0.0, color="0.5", lw=0.6)
+    ax.set_xlabel(r"$\Omega$ (Hz)")
+    ax.set_ylabel(r"$\Delta C_p$ (N m s/rad)")
+    rel = ok & (np.abs(ex) > 1e-9)
+    if rel.any():
+        tx = ax.twinx()
+        tx.plot(om[rel], 100 * ((ex - av) / ex)[rel], "C3.--", lw=0.9,
+                label="relative to exact (right)")
+        tx.set_ylabel("relative difference (%)", color="C3")
+        tx.tick_params(axis="y", colors="C3")
+        tx.grid(False)
+    ax.set_title("(b) exact minus averaged", loc="left", fontsize=9)
+    ax.legend(loc="upper right", fontsize=7)
+
+
 def _jsonable(x):
     if isinstance(x, dict):
         return {k: _jsonable(v) for k, v in x.items()}
@@ -240,17 +262,12 @@ def write(out: Path, res: dict) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     (out / "forced.json").write_text(json.dumps(_jsonable(res), indent=1))
     (out / "forced.md").write_text(markdown(res))
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(5, 3.5))
+    from washer.plots import style
+    fig, (ax, bx) = style.figure(1, 2, figsize=(10, 3.8))
     plot_fig4(ax, res)
-    fig.tight_layout()
-    paths = []
-    for ext in ("png", "pdf"):
-        paths.append(out / f"fig4_exact.{ext}")
-        fig.savefig(paths[-1], dpi=150)
-    plt.close(fig)
+    ax.set_title("(a) critical $C_p$: exact, averaged, frozen", loc="left", fontsize=9)
+    plot_fig4_error(bx, res)
+    paths = style.save(fig, out / "fig4_exact")
     return [out / "forced.json", out / "forced.md"] + paths
 
 

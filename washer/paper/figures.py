@@ -20,13 +20,18 @@ FRAME_STYLE = {"averaged": dict(color="C0", lw=1.6, label="averaged over the fra
                "frozen": dict(color="0.45", lw=1.2, ls="--", label=r"frozen at $\tau_0 = 0$")}
 
 
+#: Plain names of the special points the figures mark (AUTO's codes are jargon there).
+SPECIAL_NAMES = {"HB": "Hopf", "LP": "fold", "GH": "generalised Hopf",
+                 "BT": "Bogdanov-Takens", "ZH": "zero-Hopf"}
+
+
 def _mark_specials(ax, curve, x_of, y_of, kinds=("HB", "LP", "GH", "BT", "ZH")):
     for t, i, _ in curve.specials:
         if t in kinds:
             ax.plot(x_of[i], y_of[i], "*" if t == "HB" else "o", color="C3", ms=8 if t == "HB" else 5,
                     zorder=5)
-            ax.annotate(t, (x_of[i], y_of[i]), textcoords="offset points", xytext=(4, 4),
-                        fontsize=8, color="C3")
+            ax.annotate(SPECIAL_NAMES.get(t, t), (x_of[i], y_of[i]), textcoords="offset points",
+                        xytext=(4, 4), fontsize=8, color="C3")
 
 
 def fig3(curves: dict, stem: Path) -> list[Path]:
@@ -116,20 +121,48 @@ EPS_LABELS = [r"$\varepsilon_1$ (m)", r"$\varepsilon_2$ (m)", r"$\varepsilon_3$ 
               r"$\varepsilon_4$ (rad)", r"$\varepsilon_5$ (rad)", r"$\varepsilon_6$ (rad)"]
 
 
+#: Window of the envelopes of Figs 8-9 (s): several periods of the ~9.4 Hz rotating-frame
+#: oscillation, short against the seconds over which the envelope moves.
+ENVELOPE_WINDOW = 0.5
+
+
+def envelope(t, y, window: float = ENVELOPE_WINDOW):
+    """(t (m,), lower (m,), upper (m,)): min and max of y over consecutive windows of
+    `window` s, at each window's centre (a last window with less than half the samples of
+    the others is left out)."""
+    edges = np.arange(t[0], t[-1] + window, window)
+    k = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, len(edges) - 1)
+    lo = np.full(len(edges), np.nan)
+    hi = np.full(len(edges), np.nan)
+    np.fmin.at(lo, k, y)
+    np.fmax.at(hi, k, y)
+    count = np.bincount(k, minlength=len(edges))
+    keep = count >= 0.5 * np.median(count[count > 0])     # no partial window at the end
+    return (edges + window / 2)[keep], lo[keep], hi[keep]
+
+
 def fig_rotating(responses: dict, eq: dict, title: str, stem: Path) -> list[Path]:
-    """Figs 8-9: the six rotating-frame components against time, both frames,
-    with each frame's equilibrium as a thin line."""
+    """Figs 8-9: the six rotating-frame components against time as envelopes (min and max
+    over ENVELOPE_WINDOW s: the ~9.4 Hz oscillation as a band would hide the other frame),
+    averaged frame filled, frozen frame outlined, each frame's equilibrium a thin line."""
     fig, axes = style.figure(3, 2, figsize=(10, 7.5), sharex=True)
     for i, ax in enumerate(axes.T.ravel()):
         for frame, r in responses.items():
-            st = dict(FRAME_STYLE[frame], lw=0.9)
-            ax.plot(r.t, r.y[:, i], **st)
+            st = FRAME_STYLE[frame]
+            tm, lo, hi = envelope(r.t, r.y[:, i])
+            if frame == "averaged":
+                ax.fill_between(tm, lo, hi, color=st["color"], alpha=0.35, lw=0,
+                                label=f"{st['label']} (envelope)")
+            else:
+                ax.plot(tm, lo, color=st["color"], lw=0.9, ls=st.get("ls", "-"),
+                        label=f"{st['label']} (envelope)")
+                ax.plot(tm, hi, color=st["color"], lw=0.9, ls=st.get("ls", "-"))
             ax.axhline(eq[frame][i], color=st["color"], lw=0.6, ls=":")
         ax.set_ylabel(EPS_LABELS[i])
     for ax in axes[-1]:
         ax.set_xlabel("t (s)")
     axes[0, 0].legend(fontsize=7)
-    fig.suptitle(title)
+    fig.suptitle(title + f"  (min-max over {ENVELOPE_WINDOW:g} s windows)")
     return style.save(fig, stem)
 
 
@@ -188,23 +221,43 @@ def fig_yaw(study: dict, paper: dict, stem: Path, t_show: float = 10.0) -> list[
     axes[1].set_xlabel("t (s)")
     axes[1].set_ylabel("z (mm)")
     axes[1].set_title("(b) height of $O_b$")
-    c = study["curve"]
-    axes[2].plot(np.abs(c.gamma), np.abs(c.Q), "k-", lw=1.4, label="static curve (at rest)")
+    c, tw = study["curve"], study.get("twist")
+    axes[2].plot(np.abs(c.gamma), np.abs(c.Q), "k-", lw=1.4,
+                 label="at rest, imbalance on +x (ends where the tub tips)")
     axes[2].plot(abs(c.gamma_max), c.M_max, "ko", ms=5)
-    axes[2].annotate(f"fold: {c.M_max:.1f} N m", (abs(c.gamma_max), c.M_max),
-                     textcoords="offset points", xytext=(-60, 8), fontsize=8)
+    axes[2].annotate(f"tips: {c.M_max:.1f} N m", (abs(c.gamma_max), c.M_max),
+                     textcoords="offset points", xytext=(-70, 8), fontsize=8)
+    reach = max(y.gamma_peak for y in paper_yaw(study))
+    if tw is not None:
+        up = tw.stiffness > 0
+        axes[2].plot(np.abs(tw.gamma[up]), np.abs(tw.Q[up]), "-", color="0.45", lw=1.0,
+                     label="no imbalance: moment to hold the twist")
+        axes[2].plot(np.abs(tw.gamma[~up]), np.abs(tw.Q[~up]), ":", color="0.45", lw=1.0,
+                     label="  ... past its tilt pitchfork (tub unstable)")
+        axes[2].plot(abs(tw.gamma_tip), abs(tw.Q_tip), "o", mfc="w", mec="0.3", ms=5)
+        axes[2].axvspan(tw.gamma_into_tub, max(reach, abs(tw.gamma[-1])) * 1.02, color="C3",
+                        alpha=0.08, label=f"rods would pass through the tub (> {tw.gamma_into_tub:.2f} rad)")
+    for y, name in zip(paper_yaw(study), ("Fig 10", "Fig 11")):
+        axes[2].axvline(y.gamma_peak, color="0.6", lw=0.6, ls="-.")
+    axes[2].plot([], [], "-.", color="0.6", lw=0.6, label="twist reached, Figs 10-11 (paper)")
     g = np.linspace(0, abs(c.gamma_max), 10)
     axes[2].plot(g, c.k_lin * g, ":", color="0.4", label=f"linearised, {c.k_lin:.1f} N m/rad")
     for st, color in ((study["torque"], "C3"), (study["torque_slow"], "C2")):
         axes[2].axhline(st.T_peak, color=color, lw=1.0, ls="--",
                         label=f"peak spin-up torque, $\\tau_s$ = {st.tau_s:g} s: {st.T_peak:.1f} N m")
+    axes[2].set_xlim(0, max(reach, abs(c.gamma_max)) * 1.05)
     axes[2].set_ylim(0, study["torque"].T_peak * 1.15)
     axes[2].set_xlabel(r"$|\gamma|$ (rad)")
     axes[2].set_ylabel("yaw moment (N m)")
-    axes[2].set_title("(c) suspension's yaw moment vs spin-up torque")
-    axes[2].legend(fontsize=7, loc="center right")
-    fig.suptitle("Why the tub lifts in Figs 10-11: the spin-up torque twists it beyond what the rods hold")
+    axes[2].set_title("(c) yaw moment at rest vs spin-up torque")
+    axes[2].legend(fontsize=6, loc="center right")
+    fig.suptitle("Why the tub lifts in Figs 10-11: the spin-up torque twists it past the point where it tips")
     return style.save(fig, stem)
+
+
+def paper_yaw(study: dict) -> list:
+    """The yaw responses of the paper's spin-ups (Figs 10, 11) in a spin-up study."""
+    return [study["paper"][f] for f in ("fig10", "fig11")]
 
 
 def fig_long(long: dict, stem: Path, t_paper: float) -> list[Path]:

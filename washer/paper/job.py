@@ -67,6 +67,7 @@ def time_responses(params, quick: bool, progress=print) -> dict:
         r = simulate(model, t_end, system="fixed", law="spinup", samples_per_s=500.0,
                      progress=False)
         out[fig] = dict(C_p=cp, response=r, orbit=an.orbit(r, SPECTRUM_FROM),
+                        yaw_mode=an.yaw_mode(model), Omega=float(params["Omega"]),
                         z_static=float(model.static_equilibrium()[2]),
                         yaw=sp.yaw_response(r, 3 * params["tau_s"]))
     out["spinup"] = spinup_study(params, out, progress)
@@ -89,9 +90,15 @@ def spinup_study(params, resp: dict, progress=print) -> dict:
                      progress=False)
         slow[fig] = dict(response=r, orbit=an.orbit(r, SPECTRUM_FROM),
                          yaw=sp.yaw_response(r, 3 * tau))
-    return dict(curve=curve, torque=sp.spin_torque(params),
+    paper = {fig: resp[fig]["yaw"] for fig in ("fig10", "fig11")}
+    # The symmetric tub's twist curve, followed past its tilt pitchfork out to the twist
+    # the paper's spin-ups reach (the curve in Q above stops where the tub tips).
+    reach = max(y.gamma_peak for y in paper.values())
+    twist = sp.twist_curve(params.replace(m_u=0.0), gamma_end=-max(1.2, 1.05 * reach),
+                           n=max(49, int(60 * reach)))
+    return dict(curve=curve, twist=twist, torque=sp.spin_torque(params),
                 torque_slow=sp.spin_torque(params.replace(tau_s=tau)), tau_slow=tau, slow=slow,
-                paper={fig: resp[fig]["yaw"] for fig in ("fig10", "fig11")})
+                paper=paper)
 
 
 def long_whirl(params, progress=print) -> dict:

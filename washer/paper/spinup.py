@@ -12,9 +12,11 @@ peaks at t = 0:
 hold the tub in yaw like a quadrifilar pendulum: `yaw_curve` computes the
 static moment-angle curve of the model at rest (Omega = 0) under an applied yaw
 moment Q (the generalised force conjugate to gamma, eq 45's moment about the
-tub's z axis), continued in Q from 0 until it folds: the largest yaw moment
-the suspension can hold. Beyond it the tub turns until the rods lie almost
-flat, which raises it (the 350-400 mm of Figs 10-11).
+tub's z axis), continued in Q from 0 until it folds: where the twisted tub, pushed
+sideways by the imbalance, tips over (an imperfect pitchfork; `twist_curve` follows
+the symmetric tub's moment past its own tilt pitchfork, near the twist where the rods
+turn tangent to the tub). Beyond it the tub turns until the rods lie almost flat,
+which raises it (the 350-400 mm of Figs 10-11).
 """
 from __future__ import annotations
 
@@ -30,7 +32,7 @@ from washer.machine.model import Model
 #: Dynamic amplification allowed for in the slow spin-up: a load applied as a step
 #: (eq 66's torque jumps to its peak at t = 0) drives an undamped linear oscillator
 #: to at most twice its static deflection, so T_peak <= M_max / 2 keeps even the
-#: overshoot below the largest moment the suspension holds.
+#: overshoot below the moment at which the twisted tub tips.
 STEP_AMPLIFICATION = 2.0
 #: Finite-difference step of the yaw-curve Jacobian (m, rad): sqrt(machine eps)
 #: relative to the O(1) coordinates.
@@ -69,7 +71,10 @@ class YawCurve:
     Q: applied yaw moment (n,) N m (negative: the sign of the spin-up reaction);
     gamma (n,) rad, z (n,) m: the tub's yaw and height there; k_lin: linearised
     yaw stiffness -dQ/dgamma at Q = 0 from the static Jacobian (N m/rad);
-    M_max: |Q| where the curve folds (the largest moment held, N m), gamma_max,
+    M_max: |Q| where the curve folds (N m): the twisted tub, pushed sideways by the
+    imbalance at rest, tips there (an imperfect pitchfork: without the imbalance the
+    moment keeps rising and the tub loses tilt stability at a pitchfork instead, see
+    `twist_curve`); gamma_max,
     z_max: yaw and height at the fold."""
     Q: np.ndarray
     gamma: np.ndarray
@@ -148,3 +153,74 @@ def yaw_response(r, t_max: float) -> YawResponse:
     g, z, t = r.y[sel, 5], r.y[sel, 2], r.t[sel]
     i, k = int(np.argmax(np.abs(g))), int(np.argmax(z))
     return YawResponse(float(abs(g[i])), float(t[i]), float(z[k] - z[0]), float(t[k]), t_max)
+
+
+@dataclass
+class TwistCurve:
+    """The yaw moment needed to hold the tub at rest at a prescribed twist, and whether
+    it stays upright there.
+
+    gamma (n,) rad (the sign of the spin-up reaction); Q (n,) N m: the applied yaw moment
+    holding it (the other five coordinates in equilibrium); z (n,) m; stiffness (n,)
+    1/s^2: the smallest eigenvalue of -d(acc)/dq at fixed Q (> 0: the twisted tub is
+    stable, < 0: it tips); gamma_tip, Q_tip: where that eigenvalue crosses zero (nan if it
+    does not); gamma_into_tub: the twist beyond which the rods, seen from above, head into
+    the tub (arccos(R_O / R_P): the rod leaves its lower joint inwards)."""
+    gamma: np.ndarray
+    Q: np.ndarray
+    z: np.ndarray
+    stiffness: np.ndarray
+    gamma_tip: float
+    Q_tip: float
+    gamma_into_tub: float
+
+
+def twist_curve(params, gamma_end: float = -1.2, n: int = 49) -> TwistCurve:
+    """Q(gamma) at rest (Omega = 0) from gamma = 0 to gamma_end: Newton on the six
+    accelerations in (x, y, z, alpha, beta, Q) at each prescribed gamma (continued from the
+    last), forward-difference Jacobian. Unlike `yaw_curve` (continuation in Q, which stops
+    where the curve folds), the twist is the coordinate, so the moment is followed past
+    the point where the tub tips: without the imbalance that point is a pitchfork of the
+    symmetric tub (its tilt stiffness vanishes), with it a fold (the imperfect pitchfork)."""
+    m = Model(params)
+    q = np.asarray(m.static_equilibrium(), dtype=float).copy()
+    P = params.replace(Omega=0.0).vector()
+    z6, e6 = np.zeros(6), np.eye(6)[5]
+
+    def acc(qq, Q):
+        M, f = kernel.mass_forces(qq, z6, 0.0, 0.0, 0.0, P)
+        return np.linalg.solve(M, f + e6 * Q)
+
+    G, Qs, Z, S = [], [], [], []
+    Q = 0.0
+    for g in np.linspace(0.0, gamma_end, n):
+        x = np.r_[q[:5], Q]
+        for _ in range(30):
+            qq = np.r_[x[:5], g]
+            r = acc(qq, x[5])
+            if np.abs(r).max() < 1e-10:
+                break
+            J = np.empty((6, 6))
+            for k in range(6):
+                dx = np.zeros(6)
+                dx[k] = FD_STEP
+                qd = np.r_[(x + dx)[:5], g]
+                J[:, k] = (acc(qd, (x + dx)[5]) - r) / FD_STEP
+            x = x - np.linalg.solve(J, r)
+        q, Q = np.r_[x[:5], g], x[5]
+        A = np.column_stack([(acc(q + FD_STEP * e, Q) - acc(q, Q)) / FD_STEP for e in np.eye(6)])
+        G.append(g)
+        Qs.append(Q)
+        Z.append(q[2])
+        S.append(float(np.min(np.linalg.eigvals(-A).real)))
+    G, Qs, Z, S = map(np.array, (G, Qs, Z, S))
+    tip = np.flatnonzero((S[:-1] > 0) & (S[1:] <= 0))
+    if tip.size:
+        i = tip[0]
+        f = S[i] / (S[i] - S[i + 1])
+        g_tip, Q_tip = G[i] + f * (G[i + 1] - G[i]), Qs[i] + f * (Qs[i + 1] - Qs[i])
+    else:
+        g_tip = Q_tip = np.nan
+    up, lo = params.upper_joints(), params.lower_joints()
+    into = float(np.arccos(np.hypot(*lo[0, :2]) / np.hypot(*up[0, :2])))
+    return TwistCurve(G, Qs, Z, S, float(g_tip), float(Q_tip), into)
