@@ -165,8 +165,12 @@ class Collocation:
     u(0) - u(1), then the NINT integral conditions (the phase condition first).
     """
 
-    def __init__(self, mesh: Mesh, ndim: int, nint: int = 1):
+    def __init__(self, mesh: Mesh, ndim: int, nint: int = 1, general_bc: bool = False):
         self.mesh, self.ndim, self.nint = mesh, ndim, nint
+        #: general_bc: the NDIM boundary conditions are any functions of (u(0), u(1),
+        #: parameters) (the loci of period doublings and tori: v(0) + v(1) = 0, rotated
+        #: copies), with dense blocks; else u(0) - u(1) with the fixed +-1 pattern.
+        self.general_bc = general_bc
         self.npar = nint + 1
         m, n, N = mesh.ncol, ndim, mesh.ntst
         self.WT, self.WP = lagrange_weights(m)
@@ -190,8 +194,15 @@ class Collocation:
         rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), npar)
         cols_par = np.repeat(self.n_u + np.arange(npar), N * m * n)
         pr = self.n_coll + np.arange(n)
-        rows_bc = np.concatenate([pr, pr])
-        cols_bc = np.concatenate([np.arange(n), (self.mesh.n_nodes - 1) * n + np.arange(n)])
+        last = (self.mesh.n_nodes - 1) * n
+        if self.general_bc:
+            # rows: every BC; columns: u(0), u(1), then the parameters (row-major blocks)
+            bcols = np.r_[np.arange(n), last + np.arange(n), self.n_u + np.arange(npar)]
+            rows_bc = np.repeat(pr, len(bcols))
+            cols_bc = np.tile(bcols, n)
+        else:
+            rows_bc = np.concatenate([pr, pr])
+            cols_bc = np.concatenate([np.arange(n), last + np.arange(n)])
         rows_int = np.repeat(self.n_coll + n + np.arange(nint), self.n_x)
         cols_int = np.tile(np.arange(self.n_x), nint)
         rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
@@ -229,13 +240,15 @@ class Collocation:
         """int_0^1 of the piecewise polynomial with node values g (n_nodes,)."""
         return float(self.w_node @ g)
 
-    def residual_general(self, U: np.ndarray, F: np.ndarray, integrals) -> np.ndarray:
+    def residual_general(self, U: np.ndarray, F: np.ndarray, integrals, bc=None) -> np.ndarray:
         """The (N,) residual of U' = F on the mesh: F the right-hand side at the Gauss
         points (NTST, NCOL, NDIM), already scaled (T f for periodic orbits);
-        `integrals` the NINT integral conditions' values."""
+        `integrals` the NINT integral conditions' values; `bc` the NDIM boundary
+        conditions' values (default u(0) - u(1), periodicity)."""
         loc = U[self.local]                                  # (N, m+1, n)
         coll = np.einsum("kc,jkn->jcn", self.WP, loc) - self.mesh.dtm[:, None, None] * F
-        return np.concatenate([coll.ravel(), U[0] - U[-1], np.atleast_1d(integrals)])
+        bc = U[0] - U[-1] if bc is None else np.asarray(bc, float)
+        return np.concatenate([coll.ravel(), bc, np.atleast_1d(integrals)])
 
     def residual(self, U: np.ndarray, T: float, fg: np.ndarray, U_old: np.ndarray,
                  up_old: np.ndarray) -> np.ndarray:
@@ -257,17 +270,24 @@ class Collocation:
         return blk.reshape(N, m * n, (m + 1) * n)
 
     def jacobian_general(self, blocks: np.ndarray, dF_par: np.ndarray, int_u: np.ndarray,
-                         int_par: np.ndarray) -> sp.csc_matrix:
+                         int_par: np.ndarray, bc_jac=None) -> sp.csc_matrix:
         """The sparse (N, N + 1) Jacobian. blocks: from `local_blocks`; dF_par: the
         derivatives of the (scaled) right-hand side at the Gauss points with respect to
         the free parameters, (NPAR, NTST, NCOL, NDIM); int_u: the derivatives of the
         integrands with respect to u at the nodes, (NINT, n_nodes, NDIM) (weighted here
         by the quadrature); int_par: the integral conditions' parameter derivatives,
-        (NINT, NPAR)."""
+        (NINT, NPAR); bc_jac (general_bc only): (B0, B1, Bpar), the boundary
+        conditions' derivatives with respect to u(0), u(1) (NDIM, NDIM) and the free
+        parameters (NDIM, NPAR)."""
         dpar = -self.mesh.dtm[None, :, None, None] * dF_par
         rows_int = np.concatenate([(self.w_node[None, :, None] * int_u).reshape(self.nint, -1),
                                    np.asarray(int_par, float).reshape(self.nint, -1)], axis=1)
-        vals = np.concatenate([blocks.ravel(), dpar.ravel(), self._bc_vals, rows_int.ravel()])
+        if self.general_bc:
+            B0, B1, Bp = bc_jac
+            bc_vals = np.concatenate([B0, B1, Bp], axis=1).ravel()
+        else:
+            bc_vals = self._bc_vals
+        vals = np.concatenate([blocks.ravel(), dpar.ravel(), bc_vals, rows_int.ravel()])
         return sp.csc_matrix((vals[self._order], self._indices, self._indptr),
                              shape=(self.n_eq, self.n_x))
 
@@ -294,6 +314,28 @@ class Collocation:
 
 
 # --------------------------------------------------------------------------- Floquet
+
+def fundamental_solution(blocks: np.ndarray, ndim: int) -> np.ndarray:
+    """The discrete fundamental solution of a linear collocation system v' = T A(t) v
+    (blocks from `Collocation.local_blocks` with NDIM = ndim): Phi (n_nodes, ndim, ndim)
+    with v(node k) = Phi[k] v(0) for every solution of the collocation equations; Phi[-1]
+    is the monodromy matrix whose eigenvalues are the Floquet multipliers (the same
+    discrete problem as `condense_blocks`, solved forward interval by interval: each
+    interval's collocation equations give its NCOL later nodes from its first one).
+    Forward propagation loses accuracy on strongly unstable orbits (|mu| >> 1); it
+    serves the eigenfunctions of the loci, where the critical multipliers are on the
+    unit circle."""
+    N, mn, _ = blocks.shape
+    n = ndim
+    m = mn // n
+    Phi = np.empty((N * m + 1, n, n))
+    Phi[0] = np.eye(n)
+    for j in range(N):
+        B0, Br = blocks[j][:, :n], blocks[j][:, n:]
+        nxt = -np.linalg.solve(Br, B0 @ Phi[j * m])                 # (m n, n)
+        Phi[j * m + 1:(j + 1) * m + 1] = nxt.reshape(m, n, n)
+    return Phi
+
 
 def condense_blocks(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]:
     """AUTO's condensation of parameters (CONPAR) and reduction (REDUCE), for the

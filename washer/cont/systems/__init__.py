@@ -6,6 +6,7 @@ fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
 hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
 periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
 cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
+cycle_loci   the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR)
 bvp          the collocation base of periodic orbits and their loci (registers nothing)
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching
 maps         fixed points of maps (IPS = -1; FNDS), PD switching, fold/PD/NS loci

@@ -1,0 +1,154 @@
+"""Loci of period doublings and torus bifurcations of cycles (IPS = 2, ISW = 2 from PD /
+TR labels) against closed forms, and the washer's torus locus in (Omega, C_p) against
+the one-parameter locations of washer.forced.
+
+tests/data/mobius/mobius.py is a cycle (the unit circle, period 1) whose transverse
+Floquet multipliers are -exp((a +- sqrt(b)) T) exactly (its docstring derives them);
+scipy's integration of the variational equation confirms them in
+test_mobius_multipliers_closed_form. Hence, with T = 1:
+* PD where a + sqrt(b) = 0 or a - sqrt(b) = 0: the PD locus is b = a^2, and its 1:2
+  resonance (both transverse multipliers at -1) is (a, b) = (0, 0);
+* TR where a = 0 (b < 0), with torus angle theta = pi - sqrt(-b): the TR locus is a = 0,
+  its 1:3 resonance at sqrt(-b) = pi/3 (b = -pi^2/9), 1:4 at sqrt(-b) = pi/2 (b = -pi^2/4).
+The cycle does not depend on (a, b), so the located values are exact up to the location
+tolerance EPSS (1 + sqrt|DS DSMAX|) in arclength (the tangent is unit in the weighted
+norm, so each coordinate moves by at most that) and the collocation error of the
+variational equation, h^(2 NCOL) superconvergent at the mesh points (measured 2e-12 at
+NTST = 20, NCOL = 4; 1e-9 allowed).
+"""
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from washer.auto.constants import read_constants
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+COLLOCATION = 1e-9
+
+
+def located_tol(cfile: Path) -> float:
+    c = read_constants(cfile)
+    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+
+
+@pytest.fixture(scope="module")
+def mobius(tmp_path_factory):
+    d = tmp_path_factory.mktemp("mobius")
+    for f in (DATA / "mobius").iterdir():
+        shutil.copy(f, d)
+    return d
+
+
+def labelled(res, name):
+    return [r for r in res.rows if r.lab and r.ty == name]
+
+
+def test_mobius_multipliers_closed_form():
+    """The test problem itself: the monodromy matrix by scipy's integration of the
+    variational equation against 1, exp(-2 T), -exp((a +- sqrt(b)) T)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("mobius", DATA / "mobius" / "mobius.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    for a, b in ((-0.5, -1.0), (-0.1, 0.02), (-0.3, 0.09)):
+        par, u = np.zeros(12), np.zeros(4)
+        mod.stpnt(u, par, 0.0)
+        par[0], par[1] = a, b
+        T = 2 * math.pi / par[2]
+
+        def rhs(t, Y):
+            x, P = Y[:4], Y[4:].reshape(4, 4)
+            h = 1e-6
+            A = np.column_stack([(mod.func(x + h * e, par) - mod.func(x - h * e, par)) / (2 * h)
+                                 for e in np.eye(4)])
+            return np.r_[mod.func(x, par), (A @ P).ravel()]
+        sol = solve_ivp(rhs, (0, T), np.r_[u, np.eye(4).ravel()], rtol=1e-11, atol=1e-12)
+        mu = np.sort_complex(np.linalg.eigvals(sol.y[4:, -1].reshape(4, 4)))
+        lam = a + np.array([1, -1]) * np.sqrt(complex(b))
+        want = np.sort_complex(np.r_[1, math.exp(-2 * T), -np.exp(lam * T)])
+        assert mu == pytest.approx(want, abs=1e-7)
+
+
+@pytest.fixture(scope="module")
+def tr_locus(mobius):
+    one = run(mobius / "c.mobius.tr", verbose=False, sv="tr")
+    assert one.status == "ok"
+    loc = run(mobius / "c.mobius.trloc", verbose=False, sv="trloc", s="tr")
+    assert loc.status == "ok"
+    return one, loc
+
+
+def test_mobius_tr_point(tr_locus, mobius):
+    one, _ = tr_locus
+    (tr,) = labelled(one, "TR")
+    assert tr.values[0] == pytest.approx(0.0, abs=located_tol(mobius / "c.mobius.tr"))
+    # PAR(12), the torus angle the TR record carries: pi - sqrt(-b) T = pi - 1
+    assert tr.par[11] == pytest.approx(math.pi - 1, abs=1e-6)
+
+
+def test_mobius_tr_locus_resonances(tr_locus, mobius):
+    """ICP = [b, a] from TR1 towards smaller b: a stays 0; R3 (-87) at b = -pi^2/9, R4
+    (-88) at b = -pi^2/4, then the UZSTOP b = -3 (-84); PAR(12) = pi - sqrt(-b) all along."""
+    _, loc = tr_locus
+    tol = located_tol(mobius / "c.mobius.trloc")
+    lab = [r for r in loc.rows if r.lab]
+    assert [r.code for r in lab] == [-87, -88, -84]
+    assert lab[0].values[0] == pytest.approx(-math.pi ** 2 / 9, abs=tol)
+    assert lab[1].values[0] == pytest.approx(-math.pi ** 2 / 4, abs=tol)
+    for r in loc.rows:
+        b, a = r.values[0], r.values[-1]
+        assert a == pytest.approx(0.0, abs=COLLOCATION)
+        assert r.par[11] == pytest.approx(math.pi - math.sqrt(-b), abs=COLLOCATION)
+
+
+def test_mobius_pd_locus(mobius):
+    """PD at a = -sqrt(0.25); its locus in (a, b) passes the 1:2 resonance R2 (-76) at
+    (0, 0) and follows b = a^2 on both sides, up to the UZSTOP a = 0.3 (-74)."""
+    one = run(mobius / "c.mobius.pd", verbose=False, sv="pd")
+    assert one.status == "ok"
+    (pd,) = labelled(one, "PD")
+    assert pd.values[0] == pytest.approx(-0.5, abs=located_tol(mobius / "c.mobius.pd"))
+    loc = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdloc", s="pd")
+    assert loc.status == "ok"
+    lab = [r for r in loc.rows if r.lab]
+    assert [r.code for r in lab] == [-76, -74]
+    tol = located_tol(mobius / "c.mobius.pdloc")
+    assert lab[0].values[0] == pytest.approx(0.0, abs=tol)
+    assert lab[0].values[-1] == pytest.approx(0.0, abs=tol)
+    for r in loc.rows:
+        a, b = r.values[0], r.values[-1]
+        assert b == pytest.approx(a * a, abs=COLLOCATION)
+
+
+@pytest.mark.slow
+def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
+    """The washer's exact stability boundary continued directly as a TR locus in
+    (Omega, C_p) (auto_constants/c.washer.forced.tr, from the TR of c.washer.forced)
+    against washer.forced.critical_cp, an independent route (Newton shooting of the
+    forced response with an adaptive integrator at 1e-10, then Brent on |mu| - 1 in C_p)
+    at the locus's UZ points Omega = 11 and 12 Hz: the same C_p to 1e-8 (collocation at
+    NTST = 20 is superconvergent, ~1e-11 here; the shooting's own integration error is of
+    that size too)."""
+    from washer import forced
+    from washer.auto_washer import _reference_params
+    root = Path(__file__).parent.parent / "auto_constants"
+    for name in ("c.washer.forced", "c.washer.forced.tr"):
+        shutil.copy(root / name, tmp_path)
+    one = run(tmp_path / "c.washer.forced", verbose=False, sv="forced",
+              UZSTOP={"C_p": [0.0, 0.12]})
+    assert one.status == "ok"
+    loc = run(tmp_path / "c.washer.forced.tr", verbose=False, sv="trloc", s="forced",
+              PAR={}, UZR={"Omega": [11.0]})
+    assert loc.status == "ok"
+    uz = [r for r in loc.rows if r.lab]
+    assert [r.ty for r in uz] == ["UZ", "UZ"]
+    params = _reference_params()
+    for r in uz:
+        omega, cp = r.values[0], r.values[-1]
+        want = forced.critical_cp(params.replace(Omega=omega))["C_p_exact"]
+        assert cp == pytest.approx(want, abs=1e-8)
