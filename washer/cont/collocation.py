@@ -431,3 +431,18 @@ def evaluate(mesh: Mesh, U: np.ndarray, t) -> np.ndarray:
     W = interpolation_weights(m, z)                                   # (len(t), m+1)
     idx = j[:, None] * m + np.arange(m + 1)[None, :]
     return np.einsum("tk,tk...->t...", W, U[idx])
+
+
+def profile_from_data(t: np.ndarray, U: np.ndarray, ntst: int, ncol: int,
+                      periodic: bool = True) -> tuple[Mesh, np.ndarray, float]:
+    """A start profile from time-column data (AUTO's STPNUB with dat='NAME'): the rows
+    t (m,), U (m, NDIM) become a piecewise-linear profile on the data's own mesh (time
+    rescaled to [0, 1] by the period t[-1] - t[0]), which ADAPT2 moves onto a mesh of
+    NTST intervals adapted to it (NEWMSH) with NCOL nodes each (INTERP).
+    Returns (mesh, profile (NTST*NCOL + 1, NDIM), period)."""
+    t = np.asarray(t, float)
+    period = float(t[-1] - t[0])
+    data_mesh = Mesh((t - t[0]) / period, 1)
+    data_mesh.tm[-1] = 1.0
+    tm = new_mesh(data_mesh, np.asarray(U, float), ntst, periodic=periodic)
+    return Mesh(tm, ncol), interpolate(data_mesh, np.asarray(U, float), tm, ncol), period
