@@ -170,3 +170,48 @@ def accept(code: int, prev, cur, ndim: int) -> bool:
             return False
         return prev.stability.n_stable != cur.stability.n_stable
     return True
+
+
+# ---------------------------------------------------------------- tests on the loci
+#: The torus angles of the strong resonances on a TR locus: (base code, angle). AUTO's
+#: FNSPBV tests theta (theta - pi/2) (theta - 2 pi/3) (theta - pi) and types the located
+#: zero by NINT(6 theta / pi) (TPSPBV); here each factor is its own test, so each zero is
+#: located and typed by the factor that vanishes.
+RESONANCES = ((int(Code.R1), 0.0), (int(Code.R4), math.pi / 2), (int(Code.R3), 2 * math.pi / 3),
+              (int(Code.R2), math.pi))
+#: FNSPBV's window for the 1:2 resonance on PD loci: mu_2 within this of -1.
+R2_WINDOW = 5e-2
+
+
+def torus_resonance_tests(theta: float, codes) -> dict:
+    """{R1, R4, R3, R2: theta - angle} for the requested codes (TR loci)."""
+    return {code: float(theta - angle) for code, angle in RESONANCES if code in codes}
+
+
+def sort_on_pd_locus(mu) -> np.ndarray:
+    """FNSPBV's order on a PD locus: the multiplier nearest 1, the one nearest -1, then
+    the others by distance from the unit circle."""
+    mu = np.asarray(mu, complex)
+    i1 = int(np.argmin(np.abs(mu - 1)))
+    rest = np.delete(mu, i1)
+    i2 = int(np.argmin(np.abs(rest + 1)))
+    others = np.delete(rest, i2)
+    others = others[np.argsort(np.abs(np.abs(others) - 1), kind="stable")]
+    return np.r_[mu[i1], rest[i2], others]
+
+
+def resonance_12_test(mu, epss: float) -> float | None:
+    """The 1:2 resonance on a PD locus (FNSPBV with ITPST = 7): |mu_3| - 1 where mu
+    (sorted by `sort_on_pd_locus`) has mu_2 within R2_WINDOW of -1 and mu_3 real (to
+    sqrt(sqrt(EPSS))) and negative; else undefined."""
+    if len(mu) < 3:
+        return None
+    if abs(mu[2].imag) < math.sqrt(math.sqrt(epss)) and mu[2].real < 0 \
+            and abs(mu[1] + 1) < R2_WINDOW:
+        return float(abs(mu[2]) - 1)
+    return None
+
+
+def stable_count(mu) -> int:
+    """Multipliers with |mu| <= 1 + STABLE_TOL (every one counted, AUTO's NINS1 on loci)."""
+    return int(np.sum(np.abs(np.asarray(mu)) <= 1 + STABLE_TOL))

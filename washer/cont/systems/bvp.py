@@ -31,6 +31,9 @@ from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.problem import FD_STEP
 from washer.cont.system import Solution
 
+#: Relative step of the mixed second differences of f (eps^(1/4)).
+H2 = 1e-4
+
 
 class VectorField:
     """f, f_u, f_p of a washer.cont.problem.Problem at many points at once: a thin
@@ -60,6 +63,35 @@ class VectorField:
         pp[index - 1] += h
         pm[index - 1] -= h
         return (self.f(U, pp) - self.f(U, pm)) / (2 * h)
+
+    def fuu_v(self, U: np.ndarray, V: np.ndarray, par: np.ndarray) -> np.ndarray:
+        """The matrices d/du (f_u(u) v) at the rows of U, V (k, NDIM) -> (k, NDIM, NDIM)
+        ([:, row, column]): mixed central differences of f, one batched call of 4 NDIM k
+        points, steps ~ eps^(1/4) (error ~1e-8 relative)."""
+        k, n = U.shape
+        vmax = np.maximum(np.max(np.abs(V), axis=1, keepdims=True), 1e-300)
+        hk = H2 * (1 + np.max(np.abs(U), axis=1, keepdims=True)) / vmax      # k v small
+        h = H2 * (1 + np.abs(U))                                             # (k, n)
+        E = np.eye(n)[None] * h[:, :, None]                                  # (k, n, n)
+        kv = (hk * V)[:, None, :]
+        pts = np.concatenate([U[:, None] + E + kv, U[:, None] + E - kv,
+                              U[:, None] - E + kv, U[:, None] - E - kv], axis=1)
+        F = self.f(pts.reshape(-1, n), par).reshape(k, 4, n, n)
+        d = (F[:, 0] - F[:, 1] - F[:, 2] + F[:, 3]) / (4 * h[:, :, None] * hk[:, :, None])
+        return np.transpose(d, (0, 2, 1))
+
+    def fup_v(self, U: np.ndarray, V: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
+        """d/dp (f_u(u) v) for p = PAR(index) at the rows of U, V -> (k, NDIM), by mixed
+        central differences of f (two batched calls)."""
+        vmax = np.maximum(np.max(np.abs(V), axis=1, keepdims=True), 1e-300)
+        hk = H2 * (1 + np.max(np.abs(U), axis=1, keepdims=True)) / vmax
+        hp = H2 * (1 + abs(par[index - 1]))
+        out = []
+        for sgn in (1, -1):
+            pp = np.array(par, float)
+            pp[index - 1] += sgn * hp
+            out.append(self.f(U + hk * V, pp) - self.f(U - hk * V, pp))
+        return (out[0] - out[1]) / (4 * hp * hk)
 
 
 def stored_profile(rec, ndim: int, n_keep: int | None = None):
@@ -97,6 +129,9 @@ class CollocationBVP:
     arclength = "plane"
     freezes_second_derivatives = False
     nint = 1
+    #: True: the boundary conditions are the subclass's own (`Collocation` general_bc:
+    #: dense blocks in u(0), u(1) and the parameters), else periodicity u(0) = u(1).
+    general_bc = False
 
     # ------------------------------------------------------------------ set-up
     @property
@@ -105,7 +140,8 @@ class CollocationBVP:
 
     def set_mesh(self, mesh: col.Mesh) -> None:
         self.mesh = mesh
-        self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint)
+        self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint,
+                                    general_bc=self.general_bc)
         self.n_eq = self.coll.n_eq
         thu = self.settings.theta_u(self.ndim)
         th = np.r_[thu, np.ones(self.n_comp - self.ndim)]

@@ -33,8 +33,6 @@ from washer.auto.codes import Code
 from washer.cont.system import Solution, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 
-#: Relative step of the mixed second differences (eps^(1/4)).
-H2 = 1e-4
 #: The normalisation constant c of int <v, v> + beta^2 = c.
 NORM = 1.0
 
@@ -95,29 +93,6 @@ class CycleFoldLocus(CollocationBVP):
         par[10], par[self.p2 - 1], par[self.p1 - 1] = x[-4], x[-3], x[-1]
         return W[:, :self.n], W[:, self.n:], par, float(x[-2])
 
-    def _second(self, ug, vg, par, index=None):
-        """Mixed second differences at the Gauss points: f_uu v (k, n, n) when index is
-        None, else f_up v (k, n) for p = PAR(index); one batched call of f."""
-        k, n = ug.shape
-        vmax = np.maximum(np.max(np.abs(vg), axis=1, keepdims=True), 1e-300)
-        hk = H2 * (1 + np.max(np.abs(ug), axis=1, keepdims=True)) / vmax     # k v small
-        if index is None:
-            h = H2 * (1 + np.abs(ug))                                      # (k, n)
-            E = np.eye(n)[None] * h[:, :, None]                            # (k, n, n)
-            kv = (hk * vg)[:, None, :]
-            pts = np.concatenate([ug[:, None] + E + kv, ug[:, None] + E - kv,
-                                  ug[:, None] - E + kv, ug[:, None] - E - kv], axis=1)
-            F = self.field.f(pts.reshape(-1, n), par).reshape(k, 4, n, n)
-            d = (F[:, 0] - F[:, 1] - F[:, 2] + F[:, 3]) / (4 * h[:, :, None] * hk[:, :, None])
-            return np.transpose(d, (0, 2, 1))                              # [:, row, col i]
-        hp = H2 * (1 + abs(par[index - 1]))
-        out = []
-        for sp_ in (1, -1):
-            pp = par.copy()
-            pp[index - 1] += sp_ * hp
-            out.append(self.field.f(ug + hk * vg, pp) - self.field.f(ug - hk * vg, pp))
-        return (out[0] - out[1]) / (4 * hp * hk)
-
     # ------------------------------------------------------------------ contract
     def _at_gauss(self, x):
         """What the residual and the Jacobian both need: the unknowns unpacked, the
@@ -144,7 +119,7 @@ class CycleFoldLocus(CollocationBVP):
     def jacobian(self, x):
         u, v, par, beta, W, T, ug, vg, fg, A = self._at_gauss(x)
         n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
-        Buv = self._second(ug, vg, par)                                    # f_uu v
+        Buv = self.field.fuu_v(ug, vg, par)                                # f_uu v
         k = len(ug)
         D = np.zeros((k, 2 * n, 2 * n))
         D[:, :n, :n] = T * A
@@ -156,7 +131,7 @@ class CycleFoldLocus(CollocationBVP):
         dF[0] = np.c_[fg, Av - (beta / T ** 2) * fg]                      # d/dT
         for slot, idx in ((1, self.p2), (3, self.p1)):
             fp = self.field.fp(ug, par, idx)
-            dF[slot] = np.c_[T * fp, T * self._second(ug, vg, par, idx) + (beta / T) * fp]
+            dF[slot] = np.c_[T * fp, T * self.field.fup_v(ug, vg, par, idx) + (beta / T) * fp]
         dF[2] = np.c_[np.zeros_like(fg), fg / T]                          # d/dbeta
         nn = len(u)
         int_u = np.zeros((3, nn, 2 * n))

@@ -49,63 +49,28 @@ import numpy as np
 
 from washer.auto.codes import Code
 from washer.cont import collocation as col
+from washer.cont import floquet
 from washer.cont.system import Solution, register
-from washer.cont.systems.periodic import STABLE_TOL, SparseFactor, VectorField
+from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 
-#: Relative step of the mixed second differences (eps^(1/4)).
-H2 = 1e-4
 #: The fixed norm of the eigenfunction, int <v, v> (+ <w, w>) = NORM.
 NORM = 1.0
-#: The torus angles of the strong resonances: (base code, angle).
-RESONANCES = ((int(Code.R1), 0.0), (int(Code.R4), math.pi / 2), (int(Code.R3), 2 * math.pi / 3),
-              (int(Code.R2), math.pi))
-#: AUTO's window for the 1:2 resonance on PD loci (FNSPBV): mu_2 within this of -1,
-#: mu_3 real to sqrt(sqrt(EPSS)).
-R2_WINDOW = 5e-2
 
 
-def second_uu(field: VectorField, ug: np.ndarray, vg: np.ndarray, par: np.ndarray) -> np.ndarray:
-    """f_uu[v] at the rows of ug (k, n): the matrices d/du (f_u v), shape (k, n, n), by
-    mixed central differences of f, one batched call of 4 n k points."""
-    k, n = ug.shape
-    vmax = np.maximum(np.max(np.abs(vg), axis=1, keepdims=True), 1e-300)
-    hk = H2 * (1 + np.max(np.abs(ug), axis=1, keepdims=True)) / vmax
-    h = H2 * (1 + np.abs(ug))                                              # (k, n)
-    E = np.eye(n)[None] * h[:, :, None]                                    # (k, n, n)
-    kv = (hk * vg)[:, None, :]
-    pts = np.concatenate([ug[:, None] + E + kv, ug[:, None] + E - kv,
-                          ug[:, None] - E + kv, ug[:, None] - E - kv], axis=1)
-    F = field.f(pts.reshape(-1, n), par).reshape(k, 4, n, n)
-    d = (F[:, 0] - F[:, 1] - F[:, 2] + F[:, 3]) / (4 * h[:, :, None] * hk[:, :, None])
-    return np.transpose(d, (0, 2, 1))                                      # [:, row, col]
-
-
-def second_up(field: VectorField, ug: np.ndarray, vg: np.ndarray, par: np.ndarray,
-              index: int) -> np.ndarray:
-    """f_up[v] = d/dp (f_u v) for p = PAR(index) at the rows of ug, shape (k, n)."""
-    vmax = np.maximum(np.max(np.abs(vg), axis=1, keepdims=True), 1e-300)
-    hk = H2 * (1 + np.max(np.abs(ug), axis=1, keepdims=True)) / vmax
-    hp = H2 * (1 + abs(par[index - 1]))
-    out = []
-    for sgn in (1, -1):
-        pp = np.array(par, float)
-        pp[index - 1] += sgn * hp
-        out.append(field.f(ug + hk * vg, pp) - field.f(ug - hk * vg, pp))
-    return (out[0] - out[1]) / (4 * hp * hk)
-
-
-class _CycleLocus:
+class _CycleLocus(CollocationBVP):
     """What the PD and TR loci share; subclasses set `copies` (m), `curve_type`, the
     angle slot and the boundary conditions."""
-    arclength = "plane"
     copies = 2
     curve_type = 7
     has_theta = False
+    general_bc = True
 
     def __init__(self, data):
         s = data.settings
         self.settings, self.problem = s, data.problem
-        self.n = s.NDIM
+        self.n = self.ndim = s.NDIM
+        self.n_comp = self.copies * s.NDIM
+        self.nint = self.copies
         icp = list(s.ICP)
         others = [i for i in icp[1:] if i not in (11, 12)]
         name = "period doubling" if self.curve_type == 7 else "torus bifurcation"
@@ -128,33 +93,19 @@ class _CycleLocus:
         self._from_record(rec)
 
     # ------------------------------------------------------------------ set-up
-    def _set_mesh(self, mesh: col.Mesh) -> None:
-        m, n = self.copies, self.n
-        self.mesh = mesh
-        self.coll = col.Collocation(mesh, m * n, nint=m, general_bc=True)
-        self.n_eq = self.coll.n_eq
-        thu = self.settings.theta_u(n)
-        s = self.settings
-        self.weights = np.r_[np.kron(self.coll.w_node, np.r_[thu, np.ones((m - 1) * n)]),
-                             [s.theta_par(i) for i in self.xpar]]
+    def tail_weights(self) -> np.ndarray:
+        return np.array([self.settings.theta_par(i) for i in self.xpar])
 
     def _from_record(self, rec) -> None:
         s, n = self.settings, self.n
-        U_r = np.asarray(rec.U, float)[:, :n]
-        mesh_r = col.Mesh(np.asarray(rec.t, float)[::rec.ncol].copy(), rec.ncol)
-        if (rec.ntst, rec.ncol) == (s.NTST, s.NCOL):
-            mesh, U = mesh_r, U_r.copy()
-        else:
-            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST), s.NCOL)
-            U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
-        self._set_mesh(mesh)
-        T = self.par[10]
+        mesh_r, U_r, _ = stored_profile(rec, n)
+        mesh, (U,) = onto_mesh(mesh_r, [U_r], s.NTST, s.NCOL, n)
+        self.set_mesh(mesh)
         Phi = self.fundamental(U, self.par)
         mu, vec = np.linalg.eig(Phi[-1])
         V = self._eigenfunction(Phi, mu, vec)                  # (n_nodes, (m - 1) n)
         V *= math.sqrt(NORM / self.coll.integral(np.sum(V * V, axis=1)))
-        self.U_old = U.copy()
-        self.up_old = T * self.field.f(U, self.par)
+        self.set_phase_reference(U, self.par)
         self.V_old = V.copy()
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), [self.par[i - 1] for i in self.xpar]], None)
@@ -211,11 +162,11 @@ class _CycleLocus:
         for cp in range(1, m):
             sl = slice(cp * n, (cp + 1) * n)
             vg = Wg[:, sl]
-            D[:, sl, :n] = T * second_uu(self.field, ug, vg, par)
+            D[:, sl, :n] = T * self.field.fuu_v(ug, vg, par)
             D[:, sl, sl] = T * A
             dF[0, :, sl] = np.einsum("kij,kj->ki", A, vg)
             for idx in (self.p2, self.p1):
-                dF[slots[idx], :, sl] = T * second_up(self.field, ug, vg, par, idx)
+                dF[slots[idx], :, sl] = T * self.field.fup_v(ug, vg, par, idx)
         blocks = self.coll.local_blocks(1.0, D.reshape(N, c, m * n, m * n))
         int_u = np.zeros((m, len(W), m * n))
         int_u[0, :, :n] = self.up_old
@@ -224,23 +175,11 @@ class _CycleLocus:
                                           int_u, np.zeros((m, len(self.xpar))),
                                           self._bc_jac(W[0], par))
 
-    def factor(self, J, border):
-        return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
-
-    def inner(self, a, b) -> float:
-        return float(np.dot(a, self.weights * b))
-
-    def border(self, t):
-        return self.weights * np.asarray(t, float)
-
     def params(self, x):
         W, par = self.unpack(x)
         if getattr(self.problem, "has_pvls", False):
             par = self.problem.pvls(W[:, :self.n], par)
         return par
-
-    def start(self):
-        return self._start
 
     def stability(self, x, J=None):
         """No stability on ISW = 2 curves (AUTO writes PT > 0 there)."""
@@ -257,56 +196,24 @@ class _CycleLocus:
 
     def update(self, x, tangent) -> None:
         W, par = self.unpack(x)
-        n = self.n
-        self.U_old = W[:, :n].copy()
-        self.up_old = par[10] * self.field.f(self.U_old, par)
-        self.V_old = W[:, n:].copy()
+        self.set_phase_reference(W, par)
+        self.V_old = W[:, self.n:].copy()
         self.par = par
 
-    def wants_remesh(self, n_points: int) -> bool:
-        iad = self.settings.IAD
-        return iad > 0 and n_points % iad == 0
-
     def remesh(self, x, *vectors):
-        """ADAPT on the orbit u (same NTST, NCOL); the eigenfunction is interpolated."""
-        W = self.coll.profile(x)
+        """ADAPT on the orbit u (the base), the eigenfunction reference moved too."""
         old = self.mesh
-        tm = col.new_mesh(old, W[:, :self.n], old.ntst, periodic=True)
-        npar = len(self.xpar)
-        mn = self.copies * self.n
-
-        def move(vec):
-            vec = np.asarray(vec, float)
-            Wv = vec[:self.coll.n_u].reshape(-1, mn)
-            return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), vec[-npar:]]
-        out = [move(x)] + [move(v) for v in vectors]
-        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
-        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
-        self.V_old = col.interpolate(old, self.V_old, tm, old.ncol)
-        self._set_mesh(col.Mesh(tm, old.ncol))
-        return tuple(out)
-
-    def column_titles(self) -> list:
-        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
-        un = self.unames
-        return ["L2-NORM"] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
-                              for i in range(1, n2 + 1)]
+        out = super().remesh(x, *vectors)
+        self.V_old = col.interpolate(old, self.V_old, self.mesh.tm, old.ncol)
+        return out
 
     def solution(self, x, tangent) -> Solution:
-        W, par = self.unpack(x)
-        u = W[:, :self.n]
-        w = self.coll.w_node
-        thu = self.settings.theta_u(self.n)
-        n2 = max(0, min(self.n, 7 - len(self.settings.ICP)))
-        cols = [math.sqrt(w @ (u ** 2 @ thu))] + [float(np.max(u[:, i])) for i in range(n2)]
-        udot = rldot = None
-        if tangent is not None:
-            udot = self.coll.profile(tangent).copy()
-            t_par = dict(zip(self.xpar, tangent[self.coll.n_u:]))
-            rldot = [float(t_par[i]) for i in self.free]
-        return Solution(par=np.r_[self.params(x), NORM], columns=cols, u=W.copy(),
-                        t=self.mesh.node_times(), udot=udot, rldot=rldot or [],
-                        ntst=self.mesh.ntst, ncol=self.mesh.ncol, ndim_user=self.n)
+        """b-row columns of u; the record stores W = (u, v[, w]) and PAR with the
+        eigenfunction's norm appended (AUTO's internal PAR(NPAR), NPARI = 1)."""
+        def rldot(t):
+            t_par = dict(zip(self.xpar, t[self.coll.n_u:]))
+            return [float(t_par[i]) for i in self.free]
+        return self.bvp_solution(x, tangent, np.r_[self.params(x), NORM], rldot)
 
     def directions(self, x, tangent, code) -> list:
         return []
@@ -354,13 +261,8 @@ class PeriodDoublingLocus(_CycleLocus):
         """The orbit's Floquet multipliers in FNSPBV's order on PD loci: the one nearest 1,
         the one nearest -1, then by distance from the unit circle."""
         W, par = self.unpack(x)
-        mu = np.linalg.eigvals(self.fundamental(W[:, :self.n], par)[-1])
-        i1 = int(np.argmin(np.abs(mu - 1)))
-        rest = np.delete(mu, i1)
-        i2 = int(np.argmin(np.abs(rest + 1)))
-        others = np.delete(rest, i2)
-        others = others[np.argsort(np.abs(np.abs(others) - 1), kind="stable")]
-        return np.r_[mu[i1], rest[i2], others]
+        return floquet.sort_on_pd_locus(
+            np.linalg.eigvals(self.fundamental(W[:, :self.n], par)[-1]))
 
     def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
         codes = self.active_tests() if codes is None else [int(c) for c in codes]
@@ -368,12 +270,8 @@ class PeriodDoublingLocus(_CycleLocus):
         if Code.LPC in codes:
             out[int(Code.LPC)] = self._lp(tangent)
         if Code.R2 in codes:
-            mu = self.multipliers(x)
-            r2 = None
-            if (abs(mu[2].imag) < math.sqrt(math.sqrt(self.settings.EPSS)) and mu[2].real < 0
-                    and abs(mu[1] + 1) < R2_WINDOW):
-                r2 = float(abs(mu[2]) - 1)
-            out[int(Code.R2)] = r2
+            out[int(Code.R2)] = floquet.resonance_12_test(self.multipliers(x),
+                                                          self.settings.EPSS)
         return out
 
     def accept(self, code, prev, cur) -> bool:
@@ -381,8 +279,8 @@ class PeriodDoublingLocus(_CycleLocus):
         -1 and the trivial one counted as AUTO does) changes (FNSPBV)."""
         if code != Code.R2:
             return True
-        count = lambda p: int(np.sum(np.abs(self.multipliers(p.x)) <= 1 + STABLE_TOL))
-        return count(prev) != count(cur)
+        return floquet.stable_count(self.multipliers(prev.x)) != \
+            floquet.stable_count(self.multipliers(cur.x))
 
 
 @register(2, 2, "TR")
@@ -446,7 +344,7 @@ class TorusLocus(_CycleLocus):
     def active_tests(self) -> list:
         out = super().active_tests()
         if self.settings.detects("TR") and self.n > 2:
-            out += [code for code, _ in RESONANCES]
+            out += [code for code, _ in floquet.RESONANCES]
         return out
 
     def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
@@ -454,8 +352,5 @@ class TorusLocus(_CycleLocus):
         out = {}
         if Code.LPC in codes:
             out[int(Code.LPC)] = self._lp(tangent)
-        theta = float(x[self.coll.n_u + 1])
-        for code, angle in RESONANCES:
-            if code in codes:
-                out[code] = theta - angle
+        out.update(floquet.torus_resonance_tests(float(x[self.coll.n_u + 1]), codes))
         return out
