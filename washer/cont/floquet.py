@@ -11,9 +11,14 @@ The tests, with the sign conventions of AUTO:
 * LP of cycles: the PAR(ICP(1))-component of the unit tangent.
 * BP of cycles: a determinant of the bordered Jacobian reduced to the boundary
   unknowns, supplied by the system (it depends on the discretisation).
-* PD: |mu_2| - 1 where TPSPBV classes mu_2 as real and < -0.5, else undefined.
-* TR: |mu_2| - 1 where TPSPBV classes mu_2 as complex (|Im| > sqrt(EPSS)), else
-  undefined. This is the only torus test of the engine.
+* PD and TR: ONE test, AUTO's FNSPBV: |mu_2| - 1 wherever TPSPBV classes mu_2 as a
+  period doubling (real, < -0.5) or a torus (|Im| > sqrt(EPSS)) of a kind being
+  detected, else undefined; its key is SPB, and the located zero is typed by TPSPBV at
+  the located point (`spb_code`). One function for both matters where a complex pair
+  meets the negative real axis and one of the pair crosses -1 within a step: the
+  previous point is of torus type inside the circle, the next of PD type outside;
+  separate PD and TR functions each see only one end of the step and miss the PD.
+  This is the only torus test of the engine.
 PD and TR are accepted only where the stable count changed (FNSPBV), and undefined
 while the multipliers are inaccurate or NDIM <= 2 (a planar orbit has one nontrivial
 multiplier, real and positive).
@@ -37,6 +42,9 @@ INACCURATE = 5e-2
 ACCURATE = 1e-2
 #: The note a Stability carries while the multipliers are inaccurate.
 INACCURATE_NOTE = "Multiplier inaccurate"
+#: The key of the combined test of period doublings and tori (FNSPBV's one function);
+#: a located zero is written as PD or TR by `spb_code`.
+SPB = int(Code.PD)
 
 
 def sort_multipliers(mu) -> np.ndarray:
@@ -120,17 +128,30 @@ def active_tests(settings, ndim: int) -> list:
         out.append(int(Code.LPC))
     if settings.detects("BP"):
         out.append(int(Code.BPC))
-    if ndim > 2:
-        if settings.detects("PD"):
-            out.append(int(Code.PD))
-        if settings.detects("TR"):
-            out.append(int(Code.TR))
+    if ndim > 2 and (settings.detects("PD") or settings.detects("TR")):
+        out.append(SPB)
     return out
 
 
+def spb_kinds(settings) -> tuple:
+    """The kinds (Code.PD, Code.TR) the combined test reports under `settings`."""
+    return tuple(int(c) for c, name in ((Code.PD, "PD"), (Code.TR, "TR"))
+                 if settings.detects(name))
+
+
+def spb_code(key, stability: Stability | None, epss: float):
+    """The written base code of a located zero of test `key`: for SPB, PD or TR as TPSPBV
+    classes the multipliers at the located point; any other key is its own code."""
+    if key != SPB or stability is None:
+        return key
+    kind, _ = classify(stability.values, epss)
+    return kind or key
+
+
 def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
-                   bp: Callable[[], float | None] | None = None) -> dict:
-    """{Code.LPC, Code.BPC, Code.PD, Code.TR: value or None} for the requested codes.
+                   bp: Callable[[], float | None] | None = None,
+                   kinds: tuple = (int(Code.PD), int(Code.TR))) -> dict:
+    """{Code.LPC, Code.BPC, SPB: value or None} for the requested codes.
 
     tangent : the unit tangent (its last component is PAR(ICP(1))-dot) or None.
     st : the point's Stability (sorted multipliers) or None.
@@ -139,6 +160,8 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
         is inaccurate, long orbits near a homoclinic one, the reduced determinant is
         roundoff: lrz's grows to 1e46 and flips sign at T ~ 300 and 850; AUTO keeps
         testing there and its value happens not to flip; BP of cycles is not reported).
+    kinds : the kinds of the combined test being detected (`spb_kinds`): at a point of
+        another kind it is undefined (AUTO's CHECKSP sets ITP = 0, so no D).
     """
     codes = [int(c) for c in codes]
     out = {}
@@ -147,25 +170,20 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
     if Code.BPC in codes:
         out[int(Code.BPC)] = None if (tangent is None or inaccurate(st) or bp is None) \
             else bp()
-    if Code.PD in codes or Code.TR in codes:
-        pd = tr = None
+    if SPB in codes:
+        d = None
         if ndim > 2 and st is not None and not inaccurate(st):
-            kind, d = classify(st.values, epss)
-            if kind == Code.PD:
-                pd = d
-            elif kind == Code.TR:
-                tr = d
-        if Code.PD in codes:
-            out[int(Code.PD)] = pd
-        if Code.TR in codes:
-            out[int(Code.TR)] = tr
+            kind, val = classify(st.values, epss)
+            if kind in kinds:
+                d = val
+        out[SPB] = d
     return out
 
 
 def accept(code: int, prev, cur, ndim: int) -> bool:
-    """PD/TR only if the stable count changed (FNSPBV: NINS1 == NINS -> no point), never
-    for NDIM <= 2. LP/BP of cycles and UZ always."""
-    if code in (Code.PD, Code.TR):
+    """PD/TR (the combined test SPB) only if the stable count changed (FNSPBV: NINS1 ==
+    NINS -> no point), never for NDIM <= 2. LP/BP of cycles and UZ always."""
+    if code in (SPB, Code.TR):
         if ndim <= 2 or prev.stability is None or cur.stability is None:
             return False
         return prev.stability.n_stable != cur.stability.n_stable

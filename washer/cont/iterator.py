@@ -423,7 +423,7 @@ class Continuation:
             sysm.update(sp.x, sp.tangent)
             st.point = sp
             st.n_points += 1
-            code = Code.UZ if isinstance(key, tuple) else key
+            code = Code.UZ if isinstance(key, tuple) else sysm.located_code(key, sp)
             yield Step("special", sp, prev=current, code=int(code), key=key)
             return
         yield from self._accept(nxt, current)

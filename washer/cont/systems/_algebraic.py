@@ -33,6 +33,10 @@ class AlgebraicSystem:
     def update(self, x, tangent) -> None:
         """Nothing moves with the branch by default."""
 
+    def located_code(self, key, point) -> int:
+        """The base code a located zero of test `key` is written with: the key itself."""
+        return key
+
     def info(self, x, code) -> dict:
         """No extra results by default."""
         return {}

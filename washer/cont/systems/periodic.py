@@ -289,7 +289,11 @@ class PeriodicOrbits(CollocationBVP):
             except RuntimeError:
                 return None
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
-                                      self.ndim, bp)
+                                      self.ndim, bp, floquet.spb_kinds(self.settings))
+
+    def located_code(self, key, point) -> int:
+        """PD or TR for a zero of the combined test, as TPSPBV types the located point."""
+        return floquet.spb_code(key, point.stability, self.settings.EPSS)
 
     def accept(self, code: int, prev, cur) -> bool:
         return floquet.accept(code, prev, cur, self.ndim)
