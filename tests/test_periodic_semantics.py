@@ -43,3 +43,57 @@ def test_pd_after_a_complex_pair_meets_the_real_axis_within_one_step(tmp_path):
     assert [r.ty for r in lab] == ["EP", "PD", "UZ"]
     assert lab[1].values[0] == pytest.approx(0.01, abs=located_tol(d / "c.mobius.spb"))
     assert lab[1].stability.values[1] == pytest.approx(-1.0, abs=1e-6)
+
+
+def test_branch_point_of_cycles_leaves_along_the_secant_and_switches_exactly(tmp_path):
+    """The pitchfork of cycles of tests/data/cyclepf at a = -sqrt(b) = -0.5: located
+    (BP, to the location tolerance); the direction stored at the BP and taken from it is
+    AUTO's, the secant from the previous point (CONTBV), so the run goes on along the
+    primary cycle (z = 0 at every later point: U(3), U(4) never move) to the UZSTOP;
+    ISW = -1 from BP1 follows the secondary family, z = sqrt(lambda) (1, sqrt b) /
+    sqrt(1 + b) up to sign, lambda = a + sqrt(b): at the UZ a = -0.2, |max U(3)| or
+    |min| = sqrt(0.3 / 1.25) to the collocation error (z is constant in t: exact)."""
+    d = folder(tmp_path, "cyclepf")
+    res = run(d / "c.cyclepf", verbose=False, sv="pf")
+    assert res.status == "ok"
+    lab = [r for r in res.rows if r.lab]
+    assert [r.ty for r in lab] == ["EP", "BP", "UZ"]
+    bp = lab[1]
+    assert bp.values[0] == pytest.approx(-0.5, abs=located_tol(d / "c.cyclepf"))
+    rows = res.rows
+    k = rows.index(bp)
+    sec = rows[k].solution
+    prev = rows[k - 1].solution
+    # the stored direction is the unit secant: no motion of the orbit, PAR(1)-dot 1
+    assert sec.rldot[0] == pytest.approx(1.0, abs=1e-12)
+    assert np.max(np.abs(sec.udot)) == pytest.approx(0.0, abs=1e-9)
+    assert bp.values[0] > prev.par[0]
+    for r in rows[k:]:
+        assert np.max(np.abs(r.solution.u[:, 2:])) < 1e-12
+    sw = run(d / "c.cyclepf.sw", verbose=False, sv="sw", s="pf")
+    assert sw.status == "ok"
+    uz = [r for r in sw.rows if r.lab and r.ty == "UZ"]
+    assert [round(r.values[0], 9) for r in uz] == [-0.2]
+    z = uz[0].solution.u[:, 2:]
+    lam = -0.2 + 0.5
+    assert np.max(np.abs(z[:, 0])) == pytest.approx(math.sqrt(lam / 1.25), abs=1e-8)
+    assert np.ptp(z, axis=0) == pytest.approx([0, 0], abs=1e-8)
+
+
+def test_a_branch_point_passed_with_negative_ds_keeps_the_direction(tmp_path):
+    """x' = mu x - x^3 from mu = 1 with DS < 0: the BP at mu = 0 (exact) is passed and the
+    trivial branch goes on to the UZSTOP mu = -1, as in AUTO. The secant kept at a
+    located point is divided by the signed arclength of the step (it was the bare
+    difference, so with DS < 0 the run turned back at the BP to mu = 1.5)."""
+    (tmp_path / "pf.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([par[0] * u[0] - u[0] ** 3])\n"
+        "def stpnt(u, par):\n    u[0] = 0.0\n    par[0] = 1.0\n")
+    (tmp_path / "c.pf").write_text(
+        "e = 'pf'\nNDIM = 1, IPS = 1, IRS = 0, ILP = 1\nICP = [1]\nNMX = 30, MXBF = 0\n"
+        "DS = -0.1, DSMIN = 0.001, DSMAX = 0.2\nUZSTOP = {1: [-1.0, 1.5]}\n")
+    res = run(tmp_path / "c.pf", verbose=False, sv="pf")
+    lab = [(r.ty, r.values[0]) for r in res.rows if r.lab]
+    assert [t for t, _ in lab] == ["EP", "BP", "UZ"]
+    assert lab[1][1] == pytest.approx(0.0, abs=located_tol(tmp_path / "c.pf"))
+    assert lab[2][1] == pytest.approx(-1.0)

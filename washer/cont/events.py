@@ -188,7 +188,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
 
 
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
-               curve_type: int = 0):
+               curve_type: int = 0, secant: bool = False):
     """The earliest accepted zero between the points prev and cur (a step of arclength
     ds): (point, key, keys of other tests vanishing at the same point) or None. A zero
     that cannot be located is left (`note` says so, AUTO's "Possible special point")
@@ -200,6 +200,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     refresh(point) -> None: all test values at a located point, at its tangent.
     inner(a, b): the system's inner product (the BP's secant is made unit in it).
     note(text): a d-file note.
+    secant: leave every located point along the secant from prev (AUTO's CONTBV on
+        BVPs: UDOTPS = (UPS - UOLDPS) / DSOLD after every point), not only branch points.
 
     Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
     two Hopf loci crossing) are one special point: its type is the first in AUTO's
@@ -248,11 +250,15 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     best = min([key] + same, key=_priority)
     if best != key:
         same = [k for k in same if k != best] + [key]
-    if best == Code.BP:
+    if best in (Code.BP, Code.BPC) or secant:
         # At a branch point G_x has a two-dimensional null space: the bordered
-        # tangent solve is singular there. The branch's direction is the secant
-        # from the previous point (AUTO stores it too).
-        sec = sp.x - prev.x
+        # tangent solve is singular there, and its solution may point along the other
+        # branch (cosine 4e-4 with the branch's direction was measured at a BP of
+        # cycles). The branch's direction is the secant from the previous point (AUTO
+        # stores it too, and on BVPs takes it at every point). Divided by the signed
+        # arclength of the located step (x_sp = x_prev + s t), so that the tangent keeps
+        # the branch's orientation for negative DS too.
+        sec = (sp.x - prev.x) / span
         sp.tangent = sec / math.sqrt(inner(sec, sec))
         refresh(sp)
     return sp, best, same

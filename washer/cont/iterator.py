@@ -319,7 +319,8 @@ class Continuation:
         return first_zero(prev, cur, ds, self.s, trial=lambda s_, key: self._trial(prev, s_, key),
                           accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
                           note=lambda text: self._pending.append(Step("note", text=text)),
-                          curve_type=self.sys.curve_type)
+                          curve_type=self.sys.curve_type,
+                          secant=self.sys.arclength == "plane")
 
     def _refresh(self, sp: Point) -> None:
         """All test values at a located point, at its (possibly replaced) tangent; the
