@@ -134,8 +134,8 @@ def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
     at the locus's UZ points Omega = 11 and 12 Hz: the same C_p to 1e-8 (collocation at
     NTST = 20 is superconvergent, ~1e-11 here; the shooting's own integration error is of
     that size too)."""
-    from washer import forced
-    from washer.auto_washer import _reference_params
+    from washer.machine import forced
+    from washer.problems.washer import _reference_params
     root = Path(__file__).parent.parent / "auto_constants"
     for name in ("c.washer.forced", "c.washer.forced.tr"):
         shutil.copy(root / name, tmp_path)
