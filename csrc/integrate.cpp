@@ -5,7 +5,10 @@
 // Hairer's 4th-order dense output (Hairer, Norsett & Wanner, Solving ODEs I,
 // 2nd ed., sec II.5 and II.6; coefficients as in their code DOPRI5).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <csignal>
+#include <mutex>
 
 #include "dynamics.hpp"
 #include "washer.h"
@@ -37,6 +40,63 @@ constexpr double E1 = 71.0 / 57600, E3 = -71.0 / 16695, E4 = 71.0 / 1920,
 constexpr double D1 = -12715105075.0 / 11282082432.0, D3 = 87487479700.0 / 32700410799.0,
                  D4 = -10690763975.0 / 1880347072.0, D5 = 701980252875.0 / 199316789632.0,
                  D6 = -1453857185.0 / 822651844.0, D7 = 69997945.0 / 29380423.0;
+
+// ------------------------------------------------------------------ interrupts
+// One process-wide flag, checked between steps: a kernel call must never keep a
+// process that the user interrupts (Ctrl-C) busy for longer than a step.
+std::atomic<int> g_interrupt{0};
+
+// SIGINT is observed only while an integration runs: the first one to start installs
+// a handler that sets the flag and passes the signal on to the handler installed
+// before (Python's, which raises KeyboardInterrupt once the call returns); the last
+// one to finish puts the previous handler back. SIG_DFL and SIG_IGN are left alone.
+std::mutex g_guard_mutex;
+int g_guard_depth = 0;
+bool g_installed = false;
+struct sigaction g_previous;
+
+void on_sigint(int sig, siginfo_t *info, void *ctx) {
+    g_interrupt.store(1, std::memory_order_relaxed);
+    if (g_previous.sa_flags & SA_SIGINFO) {
+        if (g_previous.sa_sigaction) g_previous.sa_sigaction(sig, info, ctx);
+    } else if (g_previous.sa_handler != SIG_DFL && g_previous.sa_handler != SIG_IGN &&
+               g_previous.sa_handler != nullptr) {
+        g_previous.sa_handler(sig);
+    }
+}
+
+class SigintGuard {
+  public:
+    SigintGuard() {
+        std::lock_guard<std::mutex> lock(g_guard_mutex);
+        if (g_guard_depth++ > 0) return;
+        g_interrupt.store(0, std::memory_order_relaxed);
+        struct sigaction prev;
+        if (sigaction(SIGINT, nullptr, &prev) != 0) return;
+        const bool has_handler = (prev.sa_flags & SA_SIGINFO)
+            ? prev.sa_sigaction != nullptr
+            : (prev.sa_handler != SIG_DFL && prev.sa_handler != SIG_IGN);
+        if (!has_handler) return;
+        g_previous = prev;
+        struct sigaction mine = {};
+        mine.sa_sigaction = on_sigint;
+        mine.sa_flags = SA_SIGINFO | (prev.sa_flags & SA_ONSTACK);
+        sigemptyset(&mine.sa_mask);
+        g_installed = sigaction(SIGINT, &mine, nullptr) == 0;
+    }
+    ~SigintGuard() {
+        std::lock_guard<std::mutex> lock(g_guard_mutex);
+        if (--g_guard_depth > 0 || !g_installed) return;
+        // Put the previous handler back unless someone replaced ours meanwhile.
+        struct sigaction now;
+        if (sigaction(SIGINT, nullptr, &now) == 0 && (now.sa_flags & SA_SIGINFO) &&
+            now.sa_sigaction == on_sigint)
+            sigaction(SIGINT, &g_previous, nullptr);
+        g_installed = false;
+    }
+    SigintGuard(const SigintGuard &) = delete;
+    SigintGuard &operator=(const SigintGuard &) = delete;
+};
 
 // Integrates y' = f(t, y), y of length N, from t with outputs at tout (see washer_integrate).
 template <int N, class Rhs>
@@ -80,6 +140,7 @@ int dopri5(Rhs &&f, double t, Eigen::Matrix<double, N, 1> y, double rtol, double
     }
     bool last_rejected = false;
     while (k_out < nout) {
+        if (g_interrupt.load(std::memory_order_relaxed)) return finish(WASHER_EINTERRUPTED);
         if (max_steps > 0 && nacc + nrej >= max_steps) return finish(WASHER_EMAX_STEPS);
         h = std::min(h, t_end - t);
         if (h < 1e-14 * std::max(1.0, std::fabs(t))) return finish(WASHER_ESTEP_TOO_SMALL);
@@ -133,16 +194,27 @@ int dopri5(Rhs &&f, double t, Eigen::Matrix<double, N, 1> y, double rtol, double
 }  // namespace
 }  // namespace washer
 
+extern "C" void washer_request_interrupt(void) {
+    washer::g_interrupt.store(1, std::memory_order_relaxed);
+}
+
+extern "C" int washer_interrupt_pending(void) {
+    return washer::g_interrupt.load(std::memory_order_relaxed);
+}
+
 extern "C" int washer_integrate(int system, int mode, double t0, const double *y0,
                                 const double *P, double rtol, double atol, int nout,
                                 const double *tout, double *yout, double *h_io, long max_steps,
                                 long *stats) {
     using namespace washer;
     if (nout < 0 || !(rtol > 0) || !(atol > 0)) return WASHER_EBAD_ARGUMENT;
+    // A NaN or infinite output time would never be reached: refused before any step.
+    if (!all_finite(y0, 12) || !std::isfinite(t0) || !all_finite(tout, nout))
+        return WASHER_ENONFINITE_INPUT;
     for (int k = 1; k < nout; ++k)
         if (!(tout[k] >= tout[k - 1])) return WASHER_EBAD_ARGUMENT;
-    if (!all_finite(y0, 12) || !std::isfinite(t0)) return WASHER_ENONFINITE_INPUT;
     const Eigen::Map<const Vec12> y(y0);
+    const SigintGuard guard;
     if (system == 0)
         return dopri5<12>([&](double t, const Vec12 &u, Vec12 &du) {
             return rhs_fixed(t, u.data(), P, mode, du.data());
@@ -171,12 +243,13 @@ extern "C" int washer_flow_variational(int law, double t0, double t1, const doub
     using namespace washer;
     constexpr int NA = 12 + 144 + 12;
     using VecA = Eigen::Matrix<double, NA, 1>;
-    if (!(rtol > 0) || !(atol > 0) || !(t1 >= t0)) return WASHER_EBAD_ARGUMENT;
     if (!all_finite(u0, 12) || !std::isfinite(t0) || !std::isfinite(t1))
         return WASHER_ENONFINITE_INPUT;
+    if (!(rtol > 0) || !(atol > 0) || !(t1 >= t0)) return WASHER_EBAD_ARGUMENT;
     Eigen::Matrix<double, WASHER_N_DIFF, 1> w = Eigen::Matrix<double, WASHER_N_DIFF, 1>::Zero();
     if (dir) w = Eigen::Map<const Eigen::Matrix<double, WASHER_N_DIFF, 1>>(dir);
     const bool with_p = dir != nullptr;
+    const SigintGuard guard;
     VecA y = VecA::Zero();
     y.head<12>() = Eigen::Map<const Vec12>(u0);
     Eigen::Map<Mat12>(y.data() + 12).setIdentity();

@@ -250,7 +250,8 @@ const char *washer_error_message(int code) {
         case WASHER_ENONFINITE_OUTPUT: return "the model produced a non-finite value";
         case WASHER_ESTEP_TOO_SMALL: return "integrator step size fell below its minimum";
         case WASHER_EMAX_STEPS: return "integrator reached its step limit";
-        case WASHER_EBAD_ARGUMENT: return "invalid argument (law, frame, tau_s or sizes)";
+        case WASHER_EBAD_ARGUMENT: return "invalid argument (law, frame, tau_s, sizes or decreasing times)";
+        case WASHER_EINTERRUPTED: return "interrupted (Ctrl-C)";
         default: return "unknown error";
     }
 }

@@ -42,11 +42,21 @@ int washer_rhs_rot_batch(int n, const double *xi, const double *P, int pstride, 
 int washer_jac_rot_batch(int n, const double *xi, const double *P, int pstride, int frame,
                          double *J, double *Jp, int *nfail);
 
+/* Interrupting long work. Integrations check a process-wide flag between steps
+ * and return WASHER_EINTERRUPTED when it is set. While one runs, SIGINT (Ctrl-C)
+ * sets the flag and is passed on to the handler installed before (Python's, which
+ * raises KeyboardInterrupt when the call returns); with no handler (SIG_DFL,
+ * SIG_IGN) SIGINT keeps its usual effect. washer_request_interrupt sets the flag
+ * from any thread; each integration started while none runs clears it. */
+void washer_request_interrupt(void);
+int washer_interrupt_pending(void);
+
 /* Adaptive Dormand-Prince 5(4) integration with dense output.
  * system: 0 ground frame (mode = law), 1 rotating frame (mode = frame).
  * Integrates from t0 with state y0 (12) and writes y(tout[k]) into yout + 12 k,
- * for nout increasing times tout[k] >= t0. *h_io: initial step in (<= 0: automatic),
- * last accepted step out. stats[0..3] += evaluations, accepted, rejected steps;
+ * for nout finite, non-decreasing times tout[k] (those <= t0 get y0); a NaN or
+ * infinite time is WASHER_ENONFINITE_INPUT, a decreasing one WASHER_EBAD_ARGUMENT.
+ * *h_io: initial step in (<= 0: automatic), last accepted step out. stats[0..3] += evaluations, accepted, rejected steps;
  * stats[4] = number of outputs written. max_steps <= 0: no limit. */
 int washer_integrate(int system, int mode, double t0, const double *y0, const double *P,
                      double rtol, double atol, int nout, const double *tout, double *yout,

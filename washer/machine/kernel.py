@@ -61,9 +61,22 @@ def _ptr(a: np.ndarray):
     return ffi.cast("double *", ffi.from_buffer(a)) if a is not None else ffi.NULL
 
 
+#: The kernel's code for an integration stopped by Ctrl-C (csrc/washer.h).
+EINTERRUPTED = 7
+
+
 def _call(rc: int, where: str) -> None:
+    if rc == EINTERRUPTED:
+        raise KeyboardInterrupt(f"{where}: interrupted")
     if rc:
         raise KernelError(rc, where)
+
+
+def request_interrupt() -> None:
+    """Stop every integration running in the kernel (from any thread) after its
+    current step; each raises KeyboardInterrupt in its caller. Ctrl-C does this
+    by itself while an integration runs."""
+    lib.washer_request_interrupt()
 
 
 def _law(law: str) -> int:
@@ -192,6 +205,8 @@ def integrate(system: str, mode: str, t0: float, y0, P, tout, rtol: float, atol:
 
     system: "fixed" (mode = speed law) or "rotating" (mode = frame).
     Returns (Y (len(tout), 12), last step size, stats dict with nfev/naccept/nreject).
+    tout must be finite and non-decreasing (KernelError otherwise, before any step);
+    Ctrl-C stops the integration after the current step with KeyboardInterrupt.
     On failure raises KernelError carrying the outputs written so far in `.partial`.
     """
     if system == "fixed":
@@ -207,6 +222,8 @@ def integrate(system: str, mode: str, t0: float, y0, P, tout, rtol: float, atol:
     rc = lib.washer_integrate(sys_code, mode_code, t0, _ptr(_in(y0, 12, "y0")), _ptr(_params(P)),
                               rtol, atol, tout.size, _ptr(tout), _ptr(Y), h, max_steps, stats)
     info = {"nfev": stats[0], "naccept": stats[1], "nreject": stats[2], "nout": stats[4]}
+    if rc == EINTERRUPTED:
+        raise KeyboardInterrupt(f"integrate ({system}, {mode}): interrupted")
     if rc:
         err = KernelError(rc, f"integrate ({system}, {mode})")
         err.partial = (tout[:stats[4]], Y[:stats[4]], info)

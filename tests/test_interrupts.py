@@ -1,0 +1,118 @@
+"""Ctrl-C stops every long computation within a second and reaches the caller as
+KeyboardInterrupt; inputs that would never let an integration end are refused first."""
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import washer
+from washer import kernel
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _env():
+    return dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1")
+
+
+def interrupt_after_ready(code: str, *, ready: str = "ready", timeout: float = 60.0,
+                          cwd=None, args=None):
+    """Run `code` (or `args`) in a child with Python's own SIGINT handler; once it prints
+    `ready`, send SIGINT and measure how long it takes to exit. Returns
+    (seconds from SIGINT to exit, return code, stdout, stderr)."""
+    cmd = args or [sys.executable, "-c",
+                   "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
+                   + code]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=_env(), cwd=cwd)
+    out_lines = []
+    t_start = time.monotonic()
+    while True:
+        line = proc.stdout.readline()
+        if not line:
+            proc.wait()
+            raise AssertionError(f"the child ended before '{ready}': {proc.stderr.read()}")
+        out_lines.append(line)
+        if ready in line:
+            break
+        if time.monotonic() - t_start > timeout:
+            proc.kill()
+            raise AssertionError("the child never got ready")
+    time.sleep(0.5)                    # inside the long call now
+    proc.send_signal(signal.SIGINT)
+    t0 = time.monotonic()
+    try:
+        out, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, err = proc.communicate()
+        raise AssertionError(f"Ctrl-C did not stop the child within 30 s: {err[-2000:]}")
+    return time.monotonic() - t0, proc.returncode, "".join(out_lines) + out, err
+
+
+@pytest.mark.parametrize("tout", [[np.nan], [0.0, np.inf], [np.inf], [0.0, 1.0, np.nan]])
+def test_integrator_refuses_times_it_could_never_reach(model, tout):
+    y0 = np.r_[model.static_equilibrium(), np.zeros(6)]
+    t0 = time.monotonic()
+    with pytest.raises(kernel.KernelError, match="non-finite"):
+        kernel.integrate("fixed", "constant", 0.0, y0, model.P, tout, 1e-8, 1e-10)
+    assert time.monotonic() - t0 < 1.0
+
+
+def test_integrator_refuses_decreasing_times(model):
+    y0 = np.r_[model.static_equilibrium(), np.zeros(6)]
+    with pytest.raises(kernel.KernelError, match="decreasing times"):
+        kernel.integrate("fixed", "constant", 0.0, y0, model.P, [1.0, 0.5], 1e-8, 1e-10)
+
+
+def test_flow_refuses_a_nan_end_time(model):
+    y0 = np.r_[model.static_equilibrium(), np.zeros(6)]
+    with pytest.raises(kernel.KernelError, match="non-finite"):
+        kernel.flow_variational(0.0, np.nan, y0, model.P)
+
+
+_LONG_INTEGRATION = """
+import numpy as np, washer
+from washer import kernel
+m = washer.Model(washer.load_params())
+y0 = np.r_[m.static_equilibrium(), np.zeros(6)]
+print("ready", flush=True)
+try:
+    {call}
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    raise
+"""
+
+
+@pytest.mark.parametrize("call", [
+    'kernel.integrate("fixed", "constant", 0.0, y0, m.P, [1e9], 1e-10, 1e-12)',
+    'kernel.flow_variational(0.0, 1e9, y0, m.P)',
+])
+def test_ctrl_c_stops_a_long_kernel_integration_within_a_second(call):
+    # Without the kernel's check between steps, this integration runs for hours and
+    # SIGINT waits for it (Python handles signals only between bytecodes).
+    dt, rc, out, err = interrupt_after_ready(_LONG_INTEGRATION.format(call=call))
+    assert "KeyboardInterrupt" in out, err
+    assert rc != 0 and "KeyboardInterrupt" in err
+    assert dt < 1.0, f"took {dt:.2f} s after SIGINT"
+
+
+def test_request_interrupt_from_another_thread(model):
+    y0 = np.r_[model.static_equilibrium(), np.zeros(6)]
+    timer = threading.Timer(0.3, kernel.request_interrupt)
+    timer.start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        kernel.integrate("fixed", "constant", 0.0, y0, model.P, [1e9], 1e-10, 1e-12)
+    assert time.monotonic() - t0 < 1.3
+    timer.join()
+    # The flag does not outlive the call it stopped: the next integration runs.
+    Y, _, _ = kernel.integrate("fixed", "constant", 0.0, y0, model.P, [0.01], 1e-8, 1e-10)
+    assert np.all(np.isfinite(Y))
