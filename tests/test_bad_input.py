@@ -106,7 +106,7 @@ def _corrupt(tmp_path, edit) -> Path:
 
 
 @pytest.mark.parametrize("edit,line,message", [
-    (lambda L: L[:-2], 36, "announces NROWPR = 6 lines, only 4 follow: the file is truncated"),
+    (lambda L: L[:5], 1, "announces NROWPR = 6 lines, only 4 follow"),   # the only record
     (lambda L: ["   garbage in the header\n"] + L[1:], 1, "expected an s-file record header"),
     (lambda L: [L[0].replace("    0\n", "    0    7\n")] + L[1:], 1, "this one has 17"),
     (lambda L: [L[0], L[1].replace("E+000", "E+0x0", 1)] + L[2:], 2,
@@ -122,6 +122,17 @@ def test_corrupt_s_files_are_clear_errors(tmp_path, edit, line, message):
         read_s(p)
     assert str(err.value).startswith(f"{p}:{line}:"), str(err.value)
     assert message in str(err.value)
+
+
+def test_truncated_last_record_leaves_the_others_readable(tmp_path):
+    """A killed writer may cut the last record short: the intact ones are read, the
+    damaged one is named (file, line, what is missing), never silently dropped."""
+    recs = read_s(_corrupt(tmp_path, lambda L: L[:-2]))
+    assert [r.lab for r in recs] == [1, 2, 3, 4, 5]
+    assert len(recs.damaged) == 1
+    assert recs.damaged[0].startswith(f"{tmp_path / 's.eq'}:36:")
+    assert "only 4 follow: the file is truncated" in recs.damaged[0]
+    assert recs[1].where == f"{tmp_path / 's.eq'}:8"            # header + NROWPR = 6 lines
 
 
 def test_reference_s_file_reads_unchanged():
@@ -205,9 +216,71 @@ def test_command_line_refuses_paths_and_corrupt_restarts(tmp_path, capsys):
     assert "is a name" in capsys.readouterr().err
     assert not (tmp_path.parent / "b.escape").exists()
     _corrupt(tmp_path, lambda L: L[:-2])                        # tmp_path / s.eq, truncated
-    assert main([str(c), "IRS=2", "s=eq", "sv=again"]) == 2
+    # The labels before the damaged record still restart, with a note naming it.
+    assert main([str(c), "IRS=2", "s=eq", "sv=again", "NMX=3"]) == 0
     err = capsys.readouterr().err
-    assert "s.eq:36:" in err and "truncated" in err
+    assert "s.eq:36:" in err and "truncated" in err and "records before it are used" in err
+    # The damaged one is refused, and the message says why it is missing.
+    assert main([str(c), "IRS=6", "s=eq", "sv=again"]) == 2
+    err = capsys.readouterr().err
+    assert "IRS=6" in err and "s.eq:36:" in err and "truncated" in err
+
+
+def test_restart_from_a_record_without_a_positive_period(tmp_path):
+    """PAR(11) of a periodic record is its period: NaN, 0 or negative cannot start a run."""
+    from washer.auto.files import find_record
+    src = DATA / "auto_reference" / "periodic" / "records" / "s.ab"
+    recs = read_s(src)
+    rec = next(r for r in recs if r.lab == 18)
+    assert rec.ntst > 0 and rec.par[10] > 0
+    for bad in (float("nan"), 0.0, -2.0):
+        rec.par[10] = bad
+        p = tmp_path / "s.bad"
+        p.write_text("".join(r.text() for r in recs))
+        with pytest.raises(LookupError, match=r"PAR\(11\) \(the period\) is") as err:
+            find_record(read_s(p), 18)
+        assert str(err.value).startswith(f"{p}:")
+    assert find_record(read_s(src), 18).lab == 18          # the unedited record starts
+
+
+@pytest.mark.parametrize("stmt,message", [
+    ("STOP = [3]", "STOP entries are a point type and an optional count"),
+    ("SP = ['LP0', 2]", "SP entries are a point type"),
+    ("UZR = {1: 'a'}", r"UZR\[1\] expects a number, got 'a'"),
+    ("UZR = {1: [0.1, 'b']}", r"UZR\[1\] expects a number, got 'b'"),
+    ("PAR = {1: 'x'}", r"PAR\[1\] expects a number, got 'x'"),
+    ("PAR = {2: 1e999}", r"PAR\[2\] expects a finite number"),
+    ("THL = {1: 'w'}", r"THL\[1\] expects a number"),
+    ("THL = {1: -1}", r"THL\[1\] = -1: weights of the arclength norm are >= 0"),
+    ("THU = {2: -0.5}", r"THU\[2\] = -0.5: weights"),
+])
+def test_mistyped_lists_and_dicts_name_file_and_line(tmp_path, stmt, message):
+    with pytest.raises(ConstantsError, match=message) as err:
+        read_constants(_c(tmp_path, f"NDIM = 2\n\n{stmt}\n"))
+    assert str(err.value).startswith(f"{tmp_path / 'c.x'}:3:")
+
+
+def test_duplicate_icp_entries_are_refused(tmp_path):
+    c = read_constants(_c(tmp_path, "NDIM = 2\nparnames = {1: 'a'}\nICP = [1, 'a']\n"))
+    with pytest.raises(ConstantsError, match=r"names PAR\(1\) twice \(1 and 'a'\)") as err:
+        c.icp()
+    assert str(err.value).startswith(f"{tmp_path / 'c.x'}:3:")
+
+
+@pytest.mark.parametrize("stmt,message", [
+    ("THL = {12: 1.0}", r"THL weight on index 12: expected an index in 1..NPAR=11"),
+    ("THU = {3: 1.0}", r"THU weight on index 3: expected an index in 1..NDIM=2"),
+    ("IPS = 2\nNTST = 0", r"NTST = 0: IPS = 2 solves on a mesh of NTST intervals"),
+])
+def test_weights_on_indices_that_do_not_exist(tmp_path, stmt, message):
+    from washer.run import RunError, run
+    from washer.cont.settings import SettingsError
+    c = _ab(tmp_path)
+    c.write_text(c.read_text() + stmt + "\n")
+    lines = c.read_text().splitlines()
+    with pytest.raises((SettingsError, RunError), match=message) as err:
+        run(c, verbose=False)
+    assert str(err.value).startswith(f"{c}:{len(lines)}:")
 
 
 def test_run_failing_before_its_first_point_leaves_a_readable_b_file(tmp_path):

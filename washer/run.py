@@ -47,7 +47,13 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
     if e.split(":")[0] == "washer":
         from washer.problems.washer import forced_start_params, washer_problem
         if e == "washer:forced" and c["IRS"] in (0, "0"):
-            params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
+            from washer.params import ParameterError
+            try:
+                params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
+            except ParameterError as exc:
+                # The values come from the constants file, not from the parameter set.
+                detail = str(exc).split(": ", 1)[-1]
+                raise RunError(f"{c.given.get('PAR', c.source)}: PAR: {detail}") from None
         return washer_problem(e, params=params, source=c.source)
     if not (Path(folder) / f"{e}.py").exists():
         # AUTO's own user files: NAME.f90, NAME.f or NAME.c, compiled on first use.
@@ -114,6 +120,8 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             records = read_s(restart)
         except AutoFileError as exc:
             raise RunError(str(exc)) from None
+        for what in records.damaged:
+            print(f"note: {what}; the records before it are used", file=sys.stderr)
     else:
         source = str(restart)
     r, br, mode = build(c, problem, records, name=c["e"] or problem.name,

@@ -52,6 +52,12 @@ FINITE_KEYS = ("DS", "DSMIN", "DSMAX", "EPSL", "EPSU", "EPSS")
 LOWER_BOUNDS = {"DSMIN": (0.0, False), "DSMAX": (0.0, True), "EPSL": (0.0, False),
                 "EPSU": (0.0, False), "EPSS": (0.0, False), "NDIM": (1, False),
                 "NPAR": (1, False), "NMX": (0, False), "NPR": (0, False)}
+#: Dictionaries whose values are numbers: {index or name: value (or list of values)}.
+NUMBER_DICTS = ("PAR", "U", "THL", "THU", "UZR", "UZSTOP")
+#: Weights: a negative one would make the arclength norm indefinite.
+WEIGHT_KEYS = ("THL", "THU")
+#: SP and STOP entries: a point type, then an optional count ('HB3', 'LP0', 'BP').
+_TYPE_ENTRY = re.compile(r"[A-Za-z]{2}\d*")
 
 
 class ConstantsError(ValueError):
@@ -214,12 +220,38 @@ def check_value(key: str, value, where: str):
     elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
         if not isinstance(value, list):
             raise ConstantsError(f"{where}: {key} expects a list")
+        if key in ("SP", "STOP"):
+            for entry in value:
+                if not isinstance(entry, str) or not _TYPE_ENTRY.fullmatch(entry):
+                    raise ConstantsError(
+                        f"{where}: {key} entries are a point type and an optional count "
+                        f"in quotes, like {key}=['HB3'] (the 3rd Hopf point) or ['LP0'], "
+                        f"got {entry!r}")
     else:   # dicts
-        if isinstance(value, list) and key in ("THL", "THU", "UZR", "UZSTOP", "U", "PAR"):
+        if isinstance(value, list) and key in NUMBER_DICTS:
             value = dict(value) if all(isinstance(v, list) and len(v) == 2 for v in value) else value
         if not isinstance(value, dict):
             raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
+        if key in NUMBER_DICTS:
+            _check_number_dict(key, value, where)
     return value
+
+
+def _check_number_dict(key: str, value: dict, where: str) -> None:
+    """PAR, U, THL, THU, UZR, UZSTOP: index (or name) -> finite number (UZR, UZSTOP:
+    or a list of them); THL/THU weights >= 0."""
+    for k, v in value.items():
+        if isinstance(k, bool) or not isinstance(k, (int, str)):
+            raise ConstantsError(f"{where}: {key} keys are indices or names, got {k!r}")
+        vals = v if isinstance(v, list) and key in ("UZR", "UZSTOP") else [v]
+        for x in vals:
+            if isinstance(x, bool) or not isinstance(x, (int, float)):
+                raise ConstantsError(f"{where}: {key}[{k!r}] expects a number, got {x!r}")
+            if not math.isfinite(x):
+                raise ConstantsError(f"{where}: {key}[{k!r}] expects a finite number, got {x!r}")
+            if key in WEIGHT_KEYS and x < 0:
+                raise ConstantsError(f"{where}: {key}[{k!r}] = {x!r}: weights of the "
+                                     "arclength norm are >= 0 (0 leaves the unknown out)")
 
 
 def _check_bound(key: str, value, where: str) -> None:
@@ -306,10 +338,17 @@ class Constants(dict):
     def icp(self) -> list[int]:
         """ICP as 1-based PAR indices (names resolved); every entry >= 1."""
         out = [self.par_index(k) for k in self["ICP"]]
+        where = self.given.get('ICP', self.source)
         for k, i in zip(self["ICP"], out):
             if i < 1:
-                raise ConstantsError(f"{self.given.get('ICP', self.source)}: ICP entry {k!r} is "
+                raise ConstantsError(f"{where}: ICP entry {k!r} is "
                                      f"PAR({i}): continuation parameters are PAR(1), PAR(2), ...")
+        seen: dict[int, object] = {}
+        for k, i in zip(self["ICP"], out):
+            if i in seen:
+                raise ConstantsError(f"{where}: ICP = {self['ICP']} names PAR({i}) twice "
+                                     f"({seen[i]!r} and {k!r}): each free parameter once")
+            seen[i] = k
         return out
 
     def with_default_names(self, parnames: dict | None = None,

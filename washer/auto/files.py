@@ -543,15 +543,44 @@ def read_s(path: Path) -> list[Record]:
     """
     path = Path(path)
     lines = _read_text(path, "an AUTO s-file").splitlines()
-    out, i = [], 0
+    out, i = Records(), 0
     while i < len(lines):
         if not lines[i].split():
             i += 1
             continue
-        rec, nrowpr = _read_record(path, lines, i)
+        try:
+            rec, nrowpr = _read_record(path, lines, i)
+        except AutoFileError as exc:
+            # The last record of a file whose writer was killed may be cut short:
+            # the records before it are intact and stay usable; what is lost is named.
+            if out and _is_last_record(lines, i):
+                out.damaged.append(str(exc))
+                break
+            raise
+        out.header_lines[id(rec)] = f"{path}:{i + 1}"
         out.append(rec)
         i += 1 + nrowpr
     return out
+
+
+class Records(list):
+    """The records of an s-file; `.damaged` names a trailing record that could not
+    be read (cut short by a killed writer), which is left out; `.header_lines` gives
+    each record's "file:line" (by id) for messages."""
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.damaged: list[str] = []
+        self.header_lines: dict[int, str] = {}
+
+
+def _is_last_record(lines: list[str], i: int) -> bool:
+    """No other record header (a line of 12 or 16 integers) after line i."""
+    for line in lines[i + 1:]:
+        f = line.split()
+        if len(f) in (12, 16) and all(x.lstrip("-").isdigit() for x in f):
+            return False
+    return True
 
 
 def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
@@ -616,9 +645,20 @@ def find_record(records: list[Record], irs) -> Record:
     """AUTO's FINDLB on s-file records: a label number, -n for the n-th record, or
     'HB2' by type and count (codes.find). Raises LookupError naming what the file holds."""
     try:
-        return find(records, irs, code=lambda r: r.code)
+        rec = find(records, irs, code=lambda r: r.code)
     except LookupError as exc:
-        raise LookupError(f"IRS={irs!r}: {exc} in the restart file") from None
+        damaged = getattr(records, "damaged", [])
+        extra = f" (a damaged record at the end was left out: {damaged[0]})" if damaged else ""
+        raise LookupError(f"IRS={irs!r}: {exc} in the restart file{extra}") from None
+    if rec.ntst > 0 and len(rec.par) >= 11 and rec.ips in (2, -2, 12, 4):
+        period = float(rec.par[10])
+        if not (math.isfinite(period) and period > 0):
+            lines = getattr(records, "header_lines", {})
+            where = lines.get(id(rec), "the restart file")
+            raise LookupError(f"{where}: IRS={irs!r}: the record's PAR(11) (the period) is "
+                              f"{period!r}: expected a positive period; this record cannot "
+                              "start a run")
+    return rec
 
 
 def read_dat(path: Path, ndim: int) -> tuple[np.ndarray, np.ndarray]:

@@ -158,6 +158,11 @@ class Settings:
         if c["ITNW"] < 1 or c["ITMX"] < 1 and c["ITMX"] != 0:
             raise SettingsError(f"{src}: ITNW = {c['ITNW']}, ITMX = {c['ITMX']}: expected "
                                 "ITNW >= 1 and ITMX >= 0")
+        if (abs(c["IPS"]) in (2, 4, 7, 9) or c["IPS"] >= 12) and c["NTST"] < 1:
+            # Periodic orbits and boundary value problems live on NTST mesh intervals.
+            where = getattr(c, "given", {}).get("NTST", src)
+            raise SettingsError(f"{where}: NTST = {c['NTST']}: IPS = {c['IPS']} solves on a "
+                                "mesh of NTST intervals: expected NTST >= 1")
         icp = tuple(c.icp())
         for i in icp:
             if i < 1:
@@ -176,6 +181,13 @@ class Settings:
         if ips in (2, 12) and "THL" not in getattr(c, "given", {}):
             thl = {11: 0.0}
         thu = {c.u_index(k): float(v) for k, v in c["THU"].items()}
+        for key, weights, top, what in (("THL", thl, npar, "NPAR"),
+                                        ("THU", thu, c["NDIM"], "NDIM")):
+            for i in weights:
+                if not 1 <= i <= top:
+                    where = getattr(c, "given", {}).get(key, src)
+                    raise SettingsError(f"{where}: {key} weight on index {i}: expected an index "
+                                        f"in 1..{what}={top}")
         uz = [(abs(i), v, i < 0) for i, v in c.par_values("UZR")]
         uz += [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
         for i, _, _ in uz:
