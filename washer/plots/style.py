@@ -5,6 +5,8 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 
+from washer.atomic import save_figure
+
 RC = {"figure.figsize": (6.4, 4.0), "font.size": 10, "axes.grid": True, "grid.alpha": 0.3,
       "lines.linewidth": 1.0, "savefig.dpi": 150, "legend.frameon": False}
 
@@ -22,7 +24,7 @@ def save(fig, stem: Path, formats=("png", "pdf")) -> list[Path]:
     with plt.rc_context(RC):
         for ext in formats:
             p = stem.with_suffix("." + ext)
-            fig.savefig(p)
+            save_figure(fig, p)          # never through a planted link, never half-written
             paths.append(p)
     plt.close(fig)
     return paths

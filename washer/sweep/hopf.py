@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from washer.atomic import write_text
 from washer.machine.params import Params
 from washer.sweep.tasks import critical_constants
 
@@ -74,7 +75,7 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     for cont, (c0, c1), other, (o0, o1) in ((x, (x0, x1), y, (y0, y1)), (y, (y0, y1), x, (x0, x1))):
         for ov in (0.5 * (o0 + o1), o0, o1):
             p = params.replace(**{other: max(ov, 0.0)})
-            start.write_text(critical_constants(cont, max(c0, 0.0), c1))
+            write_text(start, critical_constants(cont, max(c0, 0.0), c1))
             res = run(start, verbose=False, params=p, sv="start")
             tried.append(f"{cont} in [{max(c0, 0):g}, {c1:g}] at {other} = {ov:g}")
             if any(s.ty == "HB" for s in res.specials):
@@ -85,7 +86,7 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     else:
         raise HopfCurveError("no Hopf point on " + "; ".join(tried))
     c = folder / "c.hopf"
-    c.write_text(HOPF_CONSTANTS.format(
+    write_text(c, HOPF_CONSTANTS.format(
         x=x, y=y, parnames=repr(dict(PAR_NAMES)), nmx=20 * HOPF_STEPS,
         thx=1.0 / (x1 - x0) ** 2, thy=1.0 / (y1 - y0) ** 2, kappa=KAPPA_WEIGHT,
         ds=0.2 / HOPF_STEPS, dsmin=1e-5, dsmax=1.0 / HOPF_STEPS,

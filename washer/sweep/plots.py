@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from washer.atomic import write_text
 from washer.sweep.results import ResultStore
 from washer.sweep.spec import Spec, Study, parse_spec
 
@@ -84,8 +85,8 @@ def study_hopf_curve(spec: Spec, st: Study, folder: Path):
         branches, note = [], f"no continuation curve: {exc}"
         log.info("study %s: %s", st.name, note)
     where.mkdir(parents=True, exist_ok=True)
-    cache.write_text(json.dumps({"key": key, "note": note,
-                                 "branches": [b.tolist() for b in branches]}))
+    write_text(cache, json.dumps({"key": key, "note": note,
+                                  "branches": [b.tolist() for b in branches]}))
     return (branches or None), note
 
 

@@ -2,8 +2,7 @@
 
     DIR/spec.toml            the spec as run (its text)
     DIR/sweep.json           where the spec came from, the point ids in order
-    DIR/parts/part-*.parquet one file per finished batch (atomic: written to a
-                             temporary name, then renamed)
+    DIR/parts/part-*.parquet one file per finished batch (atomic: washer.atomic)
     DIR/results.parquet      every point of the spec exactly once, in spec order
                              (consolidated from the parts)
 
@@ -20,12 +19,13 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 from pathlib import Path
 
 import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
+
+from washer.atomic import atomic_file, write_text
 
 PARTS = "parts"
 RESULTS = "results.parquet"
@@ -43,8 +43,8 @@ class ResultStore:
     def prepare(self, spec_text: str, source: str, ids: list[str]) -> None:
         """Create the folder and record the spec and its point ids."""
         self.parts.mkdir(parents=True, exist_ok=True)
-        _atomic_write_text(self.folder / "spec.toml", spec_text)
-        _atomic_write_text(self.folder / "sweep.json", json.dumps(
+        write_text(self.folder / "spec.toml", spec_text)
+        write_text(self.folder / "sweep.json", json.dumps(
             {"spec": str(Path(source).resolve()) if source and not source.startswith("<")
              else source, "n_points": len(ids), "ids": ids}, indent=1))
 
@@ -53,9 +53,8 @@ class ResultStore:
         ids = "".join(r["id"] for r in rows)
         name = f"part-{hashlib.sha256(ids.encode()).hexdigest()[:16]}.parquet"
         path = self.parts / name
-        tmp = self.parts / f".{name}.{os.getpid()}.tmp"
-        write_table(pd.DataFrame(rows), tmp, self.units)
-        os.replace(tmp, path)
+        with atomic_file(path) as fh:
+            write_table(pd.DataFrame(rows), fh, self.units)
         return path
 
     # -------------------------------------------------------------- reading
@@ -89,9 +88,8 @@ class ResultStore:
         if columns:
             first = [c for c in columns if c in df.columns]
             df = df[first + [c for c in df.columns if c not in first]]
-        tmp = self.folder / f".{RESULTS}.{os.getpid()}.tmp"
-        write_table(df, tmp, self.units)
-        os.replace(tmp, self.folder / RESULTS)
+        with atomic_file(self.folder / RESULTS) as fh:
+            write_table(df, fh, self.units)
         return df
 
     def results(self) -> pd.DataFrame:
@@ -113,8 +111,8 @@ def units_for(spec) -> dict:
     return {"crit_value": unit, "crit_averaged": unit}
 
 
-def write_table(df: pd.DataFrame, path: Path, units: dict | None = None) -> None:
-    """df as Parquet at path, each column's unit in its field metadata (`tasks.units_of`)."""
+def write_table(df: pd.DataFrame, path, units: dict | None = None) -> None:
+    """df as Parquet at path (or into a binary file object), each column's unit in its field metadata (`tasks.units_of`)."""
     from washer.sweep.tasks import units_of
     table = pa.Table.from_pandas(df, preserve_index=False)
     u = units_of(table.column_names, units)
@@ -122,8 +120,3 @@ def write_table(df: pd.DataFrame, path: Path, units: dict | None = None) -> None
     table = table.cast(pa.schema(fields, metadata=table.schema.metadata))
     pq.write_table(table, path)
 
-
-def _atomic_write_text(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
