@@ -116,3 +116,81 @@ def test_request_interrupt_from_another_thread(model):
     # The flag does not outlive the call it stopped: the next integration runs.
     Y, _, _ = kernel.integrate("fixed", "constant", 0.0, y0, model.P, [0.01], 1e-8, 1e-10)
     assert np.all(np.isfinite(Y))
+
+
+# ------------------------------------------------------------------ the engine
+DATA = Path(__file__).parent / "data"
+
+
+def _ab(tmp_path):
+    import shutil
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    return tmp_path / "c.ab"
+
+
+class _CtrlCAtPoint:
+    """A sink that plays the user pressing Ctrl-C when the n-th point arrives."""
+
+    def __init__(self, n):
+        self.n, self.seen = n, 0
+
+    def begin(self, run):
+        pass
+
+    def branch_start(self, br):
+        pass
+
+    def point(self, lab, point):
+        self.seen += 1
+        if self.seen == self.n:
+            raise KeyboardInterrupt
+
+    def note(self, *a):
+        pass
+
+    def end(self, status, elapsed):
+        pass
+
+
+def test_run_raises_keyboard_interrupt_after_writing_the_files(tmp_path):
+    """From Python, Ctrl-C is an exception, never a result a loop carries on with."""
+    from washer.run import load, run
+    c = _ab(tmp_path)
+    with pytest.raises(KeyboardInterrupt) as err:
+        run(c, verbose=False, sinks=[_CtrlCAtPoint(30)])
+    assert "interrupted" in str(err.value)
+    partial = err.value.branch
+    rows = [r for b in load(tmp_path / "b.ab") for r in b]
+    assert len(rows) == len(partial.rows) >= 29       # every point so far is in the file
+    labels = [r.lab for r in rows if r.lab]
+    assert [r.lab for r in load(tmp_path / "s.ab")] == labels
+    # A loop over runs stops at the interrupt instead of starting the next one.
+    started = []
+    with pytest.raises(KeyboardInterrupt):
+        for k in range(3):
+            started.append(k)
+            run(c, verbose=False, sinks=[_CtrlCAtPoint(5)], sv=f"loop{k}")
+    assert started == [0]
+
+
+def test_run_command_exits_130_on_ctrl_c(tmp_path, capsys):
+    from washer.run import main
+    import washer.cont.sinks as sinks
+    c = _ab(tmp_path)
+    real = sinks.ScreenSink.point
+    calls = []
+
+    def point(self, lab, pt):
+        calls.append(1)
+        if len(calls) == 20:
+            raise KeyboardInterrupt
+        return real(self, lab, pt)
+
+    sinks.ScreenSink.point = point
+    try:
+        assert main([str(c)]) == 130
+    finally:
+        sinks.ScreenSink.point = real
+    err = capsys.readouterr().err
+    assert "interrupted" in err and "Saved as" not in err

@@ -10,6 +10,9 @@ defaults to NAME) beside the constants file, printing AUTO's table of labelled
 points. Constants given on the command line override the file (ICP=[1,2],
 IRS=HB1, DS=-0.01, sv=hb).
 
+Exit status: 0 done, 1 the run stopped early (its points are kept), 2 bad input,
+75 another run is writing the same b/s/d files (it is named), 130 interrupted.
+
 From Python, runs chain like an AUTO script (c.ab and ab.py: AUTO's `ab` demo, as in
 the repository's tests/data/ab/):
     from washer.run import run, load
@@ -19,6 +22,7 @@ the repository's tests/data/ab/):
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -31,6 +35,10 @@ from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError, load_python_problem
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.cont.sinks import FileSink, ScreenSink
+from washer.locks import LockedError, output_lock
+
+#: Exit status when another run is writing the same output names (EX_TEMPFAIL: try later).
+EXIT_LOCKED = 75
 
 #: What `run` returns: the run in memory (labelled points, every row, status),
 #: with `.files` naming the b./s./d. files written.
@@ -76,7 +84,10 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     constants file); files: write b./s./d. files (False: the run stays in memory,
     nothing is written). Returns the run in memory (a washer.cont.branch.Branch:
     `.specials`, `.rows`, `.status`, `.counters`, `r('HB1')`), with `.files` (the
-    b./s./d. paths, None when nothing was written)."""
+    b./s./d. paths, None when nothing was written).
+    Ctrl-C raises KeyboardInterrupt once the files hold every point computed so
+    far (the partial run is its `.branch`); another run writing the same b/s/d
+    names in the folder raises washer.locks.LockedError before anything is written."""
     if isinstance(constants, Constants):
         c, path = constants.copy(), Path(constants.source)
     else:
@@ -126,10 +137,15 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
         source = str(restart)
     r, br, mode = build(c, problem, records, name=c["e"] or problem.name,
                         records_source=source)
-    file_sink = FileSink(folder, name, protect=protect) if files else None
-    all_sinks = ([file_sink] if files else []) + ([ScreenSink()] if verbose else []) + \
-        list(sinks or [])
-    result = execute(r, br, mode, all_sinks)
+    # One run at a time writes b/s/d.<sv> in a folder (a second one would interleave
+    # its rows with ours): the lock is taken before any of them is opened.
+    lock = output_lock(folder, name, what=f"b.{name}, s.{name}, d.{name}") if files \
+        else contextlib.nullcontext()
+    with lock:
+        file_sink = FileSink(folder, name, protect=protect) if files else None
+        all_sinks = ([file_sink] if files else []) + ([ScreenSink()] if verbose else []) + \
+            list(sinks or [])
+        result = execute(r, br, mode, all_sinks)
     result.files = file_sink.files if files else None
     if verbose:
         print(f"{c['e'] or problem.name} ... done")
@@ -170,11 +186,14 @@ def main(argv: list[str] | None = None) -> int:
     try:
         overrides = dict(parse_override(a) for a in argv[1:])
         res = run(argv[0], **overrides)
+    except LockedError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_LOCKED
     except (ConstantsError, AutoFileError, RunError, ProblemError, CompileError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        print(f"interrupted{': ' + str(exc) if str(exc) else ''}", file=sys.stderr)
         return 130
     except Exception as exc:        # noqa: BLE001 - a defect: say so, without a traceback
         print(f"error: {argv[0]}: the run failed unexpectedly: {type(exc).__name__}: {exc} "

@@ -187,7 +187,7 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     ex = _Executor(run, sinks, run.constants)
     ex.label = run.label0
     ex.emit("begin", run)
-    status = "ok"
+    status, interrupted = "ok", False
     # Trial points of Newton and location may overflow (exp of a diverging
     # iterate): the step is then retried smaller; the warnings are noise.
     err = np.seterr(over="ignore", invalid="ignore", divide="ignore")
@@ -212,6 +212,7 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
         status = run.branch.status
     except KeyboardInterrupt:
         status = "interrupted (Ctrl-C): the points computed so far are written"
+        interrupted = True
     except (ConvergenceError, ProblemError, FloatingPointError, np.linalg.LinAlgError) as exc:
         status = f"stopped: {exc}"
     finally:
@@ -219,6 +220,12 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     run.branch.status = status
     run.branch.elapsed = time.perf_counter() - t0
     ex.emit("end", status, run.branch.elapsed)
+    if interrupted:
+        # The sinks are closed (every point so far is in the files): the interrupt
+        # goes on to the caller, never a result a loop around the run carries on with.
+        exc = KeyboardInterrupt(status)
+        exc.branch = run.branch
+        raise exc
     return run.branch
 
 

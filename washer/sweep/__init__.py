@@ -13,7 +13,8 @@ stable ids), tasks (the per-point computations, plain functions of plain
 data), execute (serial or Dask), results (part files, consolidation, resume),
 progress, hopf (the continuation's Hopf curve over a map), plots.
 """
-from washer.sweep.execute import SweepInterrupted, run
+from washer.sweep.execute import SpecChangedWarning, SweepInterrupted, run
 from washer.sweep.spec import Spec, SpecError, load_spec, parse_spec
 
-__all__ = ["run", "load_spec", "parse_spec", "Spec", "SpecError", "SweepInterrupted"]
+__all__ = ["run", "load_spec", "parse_spec", "Spec", "SpecError", "SweepInterrupted",
+           "SpecChangedWarning"]

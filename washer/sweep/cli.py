@@ -2,20 +2,27 @@
 
     python -m washer.sweep SPEC.toml [--out DIR] [--scheduler tcp://HOST:PORT | --serial]
                            [--workers N] [--batch-size N] [--retry-failed] [--no-plot]
-                           [--progress | --no-progress]
+                           [--progress | --no-progress] [--allow-large]
     python -m washer.sweep plot DIR [--no-hopf]
 
 Exit status: 0 when every point has its answers, 1 when some failed (they are
 in the table with their errors; a point stable without joint damping is an
-answer, critical C_p = 0, not a failure), 2 for a bad spec or arguments, 130 when interrupted
-(re-run the same command to resume).
+answer, critical C_p = 0, not a failure), 2 for a bad spec or arguments (an
+unusable --out, a sweep far larger than usual without --allow-large), 3 when no
+Dask scheduler answers at --scheduler, 75 when another sweep is writing into
+--out, 130 when interrupted (re-run the same command to resume).
 """
 from __future__ import annotations
 
 import argparse
+import logging
 import sys
 import time
+import warnings
 from pathlib import Path
+
+EXIT_SCHEDULER = 3
+EXIT_LOCKED = 75
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -40,36 +47,67 @@ def main(argv: list[str] | None = None) -> int:
                     help="recompute the points recorded as failed")
     ap.add_argument("--no-plot", action="store_true", help="skip the maps at the end")
     bar = ap.add_mutually_exclusive_group()
-    bar.add_argument("--progress", dest="progress", action="store_true", default=None)
+    bar.add_argument("--progress", dest="progress", action="store_true", default=True,
+                     help="a progress bar on stderr (the default, on a terminal or not)")
     bar.add_argument("--no-progress", dest="progress", action="store_false")
+    ap.add_argument("--allow-large", action="store_true",
+                    help="run a sweep whose estimated memory or time is far above the usual")
     args = ap.parse_args(argv)
 
-    from washer.sweep import SpecError, SweepInterrupted, load_spec, run
-    try:
-        spec = load_spec(args.spec)
-    except SpecError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+    from washer.atomic import OutputError, check_folder
+    from washer.locks import LockedError
+    from washer.sizes import SizeError
+    from washer.sweep import SpecChangedWarning, SpecError, SweepInterrupted, load_spec, run
+    from washer.sweep.execute import SchedulerError, check_address
     if args.workers is not None and args.workers < 1 or \
             args.batch_size is not None and args.batch_size < 1:
         print("error: --workers and --batch-size must be >= 1", file=sys.stderr)
         return 2
     out = args.out or Path("out/sweep") / args.spec.name.removesuffix(".toml")
-    client = None
-    if args.scheduler:
-        from distributed import Client
-        client = Client(args.scheduler)
+    try:
+        spec = load_spec(args.spec)
+        if args.scheduler:
+            check_address(args.scheduler)
+        check_folder(out)
+    except (SpecError, OutputError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except SchedulerError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_SCHEDULER
+    # What the sweep says on the way (the dashboard's address, a replaced spec) is one
+    # plain line each on stderr.
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    logger = logging.getLogger("washer.sweep")
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
     t0 = time.perf_counter()
     try:
-        df = run(spec, client, out=out, serial=args.serial, n_workers=args.workers,
-                 batch_size=args.batch_size, progress=args.progress, plot=not args.no_plot,
-                 retry_failed=args.retry_failed)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", SpecChangedWarning)
+            try:
+                df = run(spec, args.scheduler, out=out, serial=args.serial,
+                         n_workers=args.workers, batch_size=args.batch_size,
+                         progress=args.progress, plot=not args.no_plot,
+                         retry_failed=args.retry_failed, allow_large=args.allow_large)
+            finally:
+                for w in caught:
+                    print(f"warning: {w.message}", file=sys.stderr)
     except SweepInterrupted as exc:
         print(f"\n{exc}", file=sys.stderr)
         return 130
+    except (SizeError, OutputError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except SchedulerError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_SCHEDULER
+    except LockedError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_LOCKED
     finally:
-        if client is not None:
-            client.close()
+        logger.removeHandler(handler)
     failed = df[df["status"] != "ok"]
     print(f"{len(df)} points ({len(failed)} failed) in {time.perf_counter() - t0:.1f} s; "
           f"table {out / 'results.parquet'}, maps in {out / 'plots'}")

@@ -1,12 +1,17 @@
 """Progress of a sweep: points done, failures, rate, time left.
 
 An injected object (as diffrax's progress meters): `NoProgress` in tests and
-libraries, `TextProgress` on a terminal (one line on stderr, redrawn).
+libraries, `TqdmProgress` (tqdm's own bar on stderr) on the command line. Off a
+terminal (a log file, CI) the bar is still written, redrawn at most every
+`LOG_INTERVAL` seconds so that a log is not flooded.
 """
 from __future__ import annotations
 
 import sys
 import time
+
+#: Seconds between redraws when stderr is not a terminal.
+LOG_INTERVAL = 10.0
 
 
 class NoProgress:
@@ -20,51 +25,44 @@ class NoProgress:
         self.done += ok + failed
         self.new += ok + failed
         self.failed += failed
-        self.draw()
-
-    @property
-    def rate(self) -> float:
-        """Points per second computed in this run."""
-        dt = time.perf_counter() - self.t0
-        return self.new / dt if dt > 0 else 0.0
-
-    def line(self) -> str:
-        rate = self.rate
-        left = (self.total - self.done) / rate if rate > 0 else float("nan")
-        return (f"{self.done}/{self.total} points, {self.failed} failed, {rate:.1f} points/s, "
-                f"{time.perf_counter() - self.t0:.0f} s elapsed" +
-                (f", ~{left:.0f} s left" if left == left and self.done < self.total else ""))
-
-    def draw(self) -> None:
-        pass
 
     def close(self) -> None:
         pass
 
 
-class TextProgress(NoProgress):
-    """A one-line bar on `stream` (stderr): [#####     ] 12/40 points, 1 failed, 3.2 points/s."""
-
-    WIDTH = 30
+class TqdmProgress(NoProgress):
+    """tqdm's bar: points done of the total (resumed points count as done from the
+    start), the rate of this run, time left, and the failures so far."""
 
     def __init__(self, total: int, done: int = 0, stream=None):
         super().__init__(total, done)
-        self.stream = stream or sys.stderr
-        self.draw()
+        from tqdm import tqdm
+        stream = stream or sys.stderr
+        tty = hasattr(stream, "isatty") and stream.isatty()
+        self.bar = tqdm(total=total, initial=done, file=stream, unit="point",
+                        desc="sweep", dynamic_ncols=tty, ncols=None if tty else 100,
+                        mininterval=0.1 if tty else LOG_INTERVAL, smoothing=0.1)
+        self.bar.set_postfix(failed=0, refresh=False)
 
-    def draw(self) -> None:
-        frac = self.done / self.total if self.total else 1.0
-        bar = "#" * int(self.WIDTH * frac)
-        self.stream.write(f"\r[{bar:<{self.WIDTH}}] {self.line()}   ")
-        self.stream.flush()
+    def update(self, ok: int, failed: int) -> None:
+        super().update(ok, failed)
+        if failed:
+            self.bar.set_postfix(failed=self.failed, refresh=False)
+        self.bar.update(ok + failed)
 
     def close(self) -> None:
-        self.stream.write("\n")
-        self.stream.flush()
+        self.bar.close()
 
 
 def make_progress(total: int, done: int, enabled: bool | None):
-    """TextProgress when enabled (None: when stderr is a terminal), else NoProgress."""
+    """TqdmProgress when enabled (None: when stderr is a terminal), else NoProgress.
+    Without tqdm installed (it is a dependency; a stripped install may lack it) there
+    is no bar, never an error."""
     if enabled is None:
         enabled = sys.stderr.isatty()
-    return TextProgress(total, done) if enabled else NoProgress(total, done)
+    if enabled:
+        try:
+            return TqdmProgress(total, done)
+        except ImportError:
+            pass
+    return NoProgress(total, done)

@@ -142,11 +142,13 @@ class _Where:
 
 def load_spec(path, overrides: dict | None = None) -> Spec:
     """Read and validate a spec file. `overrides` replace top-level keys (e.g. batch_size)."""
+    from washer.auto.constants import decode_text
     path = Path(path)
     try:
-        text = path.read_text()
+        data = path.read_bytes()
     except OSError as exc:
         raise SpecError(f"{path}: cannot read the spec: {exc.strerror}") from None
+    text = decode_text(data, str(path), "a sweep spec (TOML, UTF-8)", SpecError)
     return parse_spec(text, str(path), base_dir=path.parent, overrides=overrides)
 
 
