@@ -132,7 +132,7 @@ def test_truncated_last_record_leaves_the_others_readable(tmp_path):
     assert len(recs.damaged) == 1
     assert recs.damaged[0].startswith(f"{tmp_path / 's.eq'}:36:")
     assert "only 4 follow: the file is truncated" in recs.damaged[0]
-    assert recs[1].where == f"{tmp_path / 's.eq'}:8"            # header + NROWPR = 6 lines
+    assert recs.header_lines[id(recs[1])] == f"{tmp_path / 's.eq'}:8"   # header + 6 lines
 
 
 def test_reference_s_file_reads_unchanged():
@@ -228,7 +228,7 @@ def test_command_line_refuses_paths_and_corrupt_restarts(tmp_path, capsys):
 
 def test_restart_from_a_record_without_a_positive_period(tmp_path):
     """PAR(11) of a periodic record is its period: NaN, 0 or negative cannot start a run."""
-    from washer.auto.files import find_record
+    from washer.auto.files import find_record, record_text
     src = DATA / "auto_reference" / "periodic" / "records" / "s.ab"
     recs = read_s(src)
     rec = next(r for r in recs if r.lab == 18)
@@ -236,7 +236,7 @@ def test_restart_from_a_record_without_a_positive_period(tmp_path):
     for bad in (float("nan"), 0.0, -2.0):
         rec.par[10] = bad
         p = tmp_path / "s.bad"
-        p.write_text("".join(r.text() for r in recs))
+        p.write_text("".join(record_text(r) for r in recs))
         with pytest.raises(LookupError, match=r"PAR\(11\) \(the period\) is") as err:
             find_record(read_s(p), 18)
         assert str(err.value).startswith(f"{p}:")

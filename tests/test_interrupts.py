@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import washer
-from washer import kernel
+from washer.machine import kernel
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -79,7 +79,7 @@ def test_flow_refuses_a_nan_end_time(model):
 
 _LONG_INTEGRATION = """
 import numpy as np, washer
-from washer import kernel
+from washer.machine import kernel
 m = washer.Model(washer.load_params())
 y0 = np.r_[m.static_equilibrium(), np.zeros(6)]
 print("ready", flush=True)
