@@ -187,6 +187,7 @@ def test_nep_demo(tmp_path):
     assert r("BP1").par[0] == pytest.approx(math.pi ** 2 / 2, abs=1e-8)
 
 
+@pytest.mark.slow
 def test_obv_demo(tmp_path):
     """obv: continuation of an optimality system (NBC = 6, NINT = 5: eight free
     parameters), three BPs; the switched branch; restarts with other free parameters
@@ -219,6 +220,7 @@ def test_tim_demo(tmp_path):
     assert r.specials[-1].par[0] == pytest.approx(ref[-1][2], abs=10 * c["EPSL"])
 
 
+@pytest.mark.slow
 def test_fsh_demo(tmp_path):
     """fsh: a travelling wave of Fisher's equation as a connecting orbit (the saddle's
     eigenvector in PAR(12..14), stpnt setting PAR at t = 0 and reading it at later t);

@@ -263,13 +263,15 @@ class BoundaryValueProblem:
             Up[:, l] += h
             Um[:, l] -= h
             Ju[:, :, l] = ((self._ic_nodes(Up, par) - self._ic_nodes(Um, par)) / (2 * h[:, None])).T
+        # Parameter columns by forward differences from the unperturbed integrands, as
+        # AUTO's ICNI (one sweep of the mesh per parameter instead of two).
         Jp = np.empty((self.nint, self.nfpr))
+        base = self.w_node @ self._ic_nodes(U, par)
         for k, i in enumerate(self._order):
             h = FD_REL * (1 + abs(par[i - 1]))
-            pp, pm = par.copy(), par.copy()
+            pp = par.copy()
             pp[i - 1] += h
-            pm[i - 1] -= h
-            Jp[:, k] = self.w_node @ (self._ic_nodes(U, pp) - self._ic_nodes(U, pm)) / (2 * h)
+            Jp[:, k] = (self.w_node @ self._ic_nodes(U, pp) - base) / h
         return Ju, Jp
 
     def factor(self, J, border):
