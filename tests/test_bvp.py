@@ -286,3 +286,67 @@ def test_um2_demo(tmp_path):
     last = [r for r in ours((r3, 1)) if r[0] != ""]
     ref = [r for r in auto_rows("um2", "b.3") if r[0] != ""]
     compare(last, ref, tolerance(c, DSMAX=1.0), uz_targets=(1.25,))
+
+
+def test_int_demo_fold_locus(tmp_path):
+    """int: the LP of a BVP with a boundary and an integral condition, then its locus in
+    (p1, p2) as AUTO's script runs it: a generating run from the LP (five points, the
+    null vector's norm free, ending at an EP of the locus, code 59, on a new branch),
+    restarted to follow the locus: AUTO's UZ p1 = 3 (code -54) at p2 = 7.90922 is ours
+    within the tolerance. The null vector is scaled to int |v|^2 = 1 here (AUTO grows it
+    from 0, to 6.6e-3 in its generating run), so the arclength, and with it where
+    NMX = 40 ends the locus, differ: AUTO's EP is at p1 = 1.37, ours beyond UZ p1 = 1."""
+    d = demo(tmp_path, "int")
+    c = read_constants(d / "c.int")
+    tol = tolerance(c)
+    r1 = run(d / "c.int", e="int", sv="int", verbose=False)
+    compare(ours((r1, 1)), auto_rows("int", "b.int"), tol, uz_targets=(1.0, 3.0))
+    gen = run(d / "c.int", e="int", s="int", IRS=r1("LP1").lab, ICP=[1, 2], ISW=2, sv="gen",
+              verbose=False)
+    assert [(s.code, s.br, s.lab) for s in gen.specials] == [(59, 2, 8)]
+    assert gen.specials[0].par[0] == pytest.approx(r1("LP1").par[0], abs=tol)
+    lp = run(d / "c.int", e="int", s="gen", IRS=8, ICP=[1, 2], ISW=2, sv="lp", verbose=False)
+    assert lp.status == "ok"
+    ref = [r for r in branch_rows(DATA / "int" / "autoref" / "b.lp") if r.lab]
+    got = [s for s in lp.specials]
+    assert (got[0].code, got[0].br) == (ref[0].ty, ref[0].br) == (-54, 2)
+    assert abs(got[0].par[1] - ref[0].values[-1]) <= tol       # p2 at the UZ p1 = 3
+    assert (got[-1].code, got[-1].br) == (ref[-1].ty, ref[-1].br) == (59, 2)
+
+
+BRATU_A = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], -par[0] * np.exp(u[0])])
+def stpnt(u, par, t=0.0):
+    par[:2] = 0.0
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u0[0] - par[1], u1[0] - par[1]])
+'''
+
+
+def test_fold_locus_closed_form(tmp_path):
+    """u'' + lam e^u = 0, u(0) = u(1) = a: with w = u - a this is Bratu's problem in
+    lam e^a, so its folds lie on lam e^a = lam_c, exactly in the discretised problem
+    too (the collocation commutes with the shift); lam_c the LP of the a = 0 branch,
+    within the discretisation of Bratu's 3.5138307191. Every point of the locus, both
+    ways from the LP to the UZSTOPs a = -1 and 1, satisfies it to 1e-9."""
+    (tmp_path / "bra.py").write_text(BRATU_A)
+    (tmp_path / "c.bra").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=10, NCOL=4, "
+                                    "ILP=1, ISP=2, NMX=100, DS=0.1, DSMAX=0.5, EPSS=1e-6, "
+                                    "UZSTOP={1: -1.0}, NPAR=2\n")
+    r1 = run(tmp_path / "c.bra", e="bra", sv="bra", verbose=False)
+    lam_c = r1("LP1").par[0]
+    assert lam_c == pytest.approx(3.5138307191, abs=1e-7)
+    gen = run(tmp_path / "c.bra", e="bra", s="bra", IRS="LP1", ICP=[1, 2], ISW=2, sv="gen",
+              verbose=False)
+    ends = set()
+    for ds in (0.1, -0.1):
+        r = run(tmp_path / "c.bra", e="bra", s="gen", IRS=gen.specials[-1].lab, ICP=[1, 2],
+                ISW=2, DS=ds, UZSTOP={2: [-1.0, 1.0]}, NMX=200, sv="lp", verbose=False)
+        assert r.status == "ok" and r.specials[-1].ty == "UZ"
+        ends.add(round(r.specials[-1].par[1]))
+        for row in r.rows:
+            assert row.par[0] * math.exp(row.par[1]) == pytest.approx(lam_c, abs=1e-9)
+    assert ends == {-1, 1}

@@ -97,6 +97,8 @@ def start_kind(rec) -> str:
     base, curve = split_code(rec.code)
     if curve in (2, 3) and np.ndim(rec.u) == 1:
         return {2: "LP-curve", 3: "HB-curve"}[curve]
+    if curve == 5 and rec.ips == 4:
+        return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
     return type_name(base)
 
 
@@ -129,7 +131,9 @@ def system_for(c, s: Settings, problem, u, par, rec):
     except (ValueError, ProblemError, np.linalg.LinAlgError) as exc:
         raise RunError(f"{c.source}: cannot start from {kind or 'this point'}: {exc}") \
             from None
-    return system, s, kind
+    # A system may run under AUTO's internal redefinitions of the constants (the fold
+    # locus of a BVP: NDIM, NBC, NINT doubled; its generating run NMX = 5, ILP = ISP = 0).
+    return system, getattr(system, "run_settings", s), kind
 
 
 def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = None) -> int:

@@ -37,6 +37,7 @@ parameters) and normalised (the role of FNBPBV's det(reduced)/det(P1)). No stabi
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,7 +46,8 @@ import scipy.sparse.linalg as spla
 from washer.auto.codes import Code
 from washer.cont import collocation as col
 from washer.cont.pvls import Orbit
-from washer.cont.system import Solution, register
+from washer.cont.problem import Problem
+from washer.cont.system import Solution, StartData, register
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.systems.bvp import VectorField
 
@@ -65,6 +67,7 @@ class BoundaryValueProblem:
         s = data.settings
         self.settings, self.problem = s, data.problem
         self.ndim = n = s.NDIM
+        self.ndm = getattr(self, "ndm", n)          # AUTO's NDM: the user's NDIM
         self.nbc, self.nint = s.NBC, s.NINT
         nfpr = self.nbc + self.nint - n + 1
         if nfpr < 1:
@@ -74,7 +77,10 @@ class BoundaryValueProblem:
             raise ValueError(f"NBC + NINT - NDIM + 1 = {nfpr} free parameters, but ICP = "
                              f"{list(s.ICP)} names {len(s.ICP)}")
         self.nfpr = nfpr
-        self.free = list(s.ICP[:nfpr])
+        # The free parameters: the first NFPR of ICP, unless a subclass set its own
+        # (the generating run of a fold locus frees the null vector's norm instead of
+        # ICP(2), which stays written).
+        self.free = list(getattr(self, "_free", None) or s.ICP[:nfpr])
         self._order = self.free[1:] + self.free[:1]      # x's parameter slots
         self.field = VectorField(self.problem, n)
         self.par = np.zeros(max(s.NPAR, max(s.ICP)))
@@ -390,8 +396,9 @@ class BoundaryValueProblem:
 
     # ------------------------------------------------------------------ output
     def measure(self, U) -> float:
-        """The b-file's second column by IPLT (STPLBV), as for periodic orbits."""
-        n, iplt = self.ndim, self.settings.IPLT
+        """The b-file's second column by IPLT (STPLBV), as for periodic orbits, over the
+        user's components (NDM)."""
+        n, iplt = self.ndm, self.settings.IPLT
         w = self.w_node
         iab = abs(iplt)
         if iplt > 0 and iab <= n:
@@ -403,14 +410,14 @@ class BoundaryValueProblem:
         if 2 * n < iplt <= 3 * n:
             return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
         thu = self.settings.theta_u(n)
-        return float(math.sqrt(w @ (U ** 2 @ thu)))
+        return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
 
     def n2(self) -> int:
         nicp = len(self.settings.ICP)
-        return 0 if nicp > 7 else max(0, min(self.ndim, 7 - nicp))
+        return 0 if nicp > 7 else max(0, min(self.ndm, 7 - nicp))
 
     def column_titles(self) -> list:
-        n, iplt = self.ndim, self.settings.IPLT
+        n, iplt = self.ndm, self.settings.IPLT
         iab = abs(iplt)
         if iplt > 0 and iab <= n:
             first = f"MAX U({iab})"
@@ -437,7 +444,7 @@ class BoundaryValueProblem:
             rldot = [float(tangent[slot[i]]) for i in self.free]
         return Solution(par=par, columns=cols, u=U.copy(), t=self.mesh.node_times(),
                         udot=udot, rldot=rldot, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
-                        ndim_user=self.ndim)
+                        ndim_user=self.ndm)
 
     # ------------------------------------------------------------------ BP, switching
     def _schur(self, J, border):
@@ -486,4 +493,131 @@ class BoundaryValueProblem:
 register(4, 1, "*")(BoundaryValueProblem)
 register(4, -1, "BP")(BoundaryValueProblem)
 
-__all__ = ["BoundaryValueProblem"]
+
+# --------------------------------------------------------------------------- fold loci
+
+#: Relative step of the directional differences f_u v, b_u v, g_u v of the fold locus:
+#: central differences whose truncation (~1e-8 relative) and rounding (~1e-12) both
+#: stay far below the location tolerance, and which the Newton matrix (differences of
+#: these, step 1e-7) sees as smooth.
+DIR_STEP = 1e-4
+
+
+def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Problem:
+    """The extended BVP of a fold of a BVP (AUTO's FNBL, BCBL, ICBL) as a problem in
+    W = (u, v), NDIM = 2n:
+
+        u' = f(u, p),               v' = f_u(u, p) v
+        b(u(0), u(1), p) = 0,       b_u0 v(0) + b_u1 v(1) = 0
+        int g(u, ...) dt = 0,       int g_u v dt = 0,       int |v|^2 dt - PAR(norm) = 0
+
+    (v the null vector of the linearised BVP: NBC' = 2 NBC, NINT' = 2 NINT + 1). f_u v
+    is the user's dfdu times v where JAC allows, else a central difference along v."""
+    exact = problem._dfdu is not None and problem.jac != 0
+
+    def steps(u, v):
+        return DIR_STEP * (1 + np.max(np.abs(u), axis=1)) / \
+            np.maximum(np.max(np.abs(v), axis=1), 1e-300)
+
+    def func_batch(W, pars):
+        W = np.asarray(W, float)
+        u, v = W[:, :n], W[:, n:]
+        f0 = problem.func_many(u, pars)
+        if exact:
+            fv = np.einsum("kij,kj->ki", problem.dfdu_many(u, pars), v)
+        else:
+            h = steps(u, v)[:, None]
+            F = problem.func_many(np.vstack([u + h * v, u - h * v]), np.vstack([pars, pars]))
+            fv = (F[:len(u)] - F[len(u):]) / (2 * h)
+        return np.hstack([f0, fv])
+
+    def func(W, par):
+        return func_batch(np.asarray(W, float)[None, :], np.asarray(par, float)[None, :])[0]
+
+    def bcnd(W0, W1, par):
+        u0, v0, u1, v1 = W0[:n], W0[n:], W1[:n], W1[n:]
+        b = problem.bcnd(u0, u1, par, nbc)
+        h = DIR_STEP * (1 + max(np.max(np.abs(u0)), np.max(np.abs(u1)))) / \
+            max(np.max(np.abs(v0)), np.max(np.abs(v1)), 1e-300)
+        bv = (problem.bcnd(u0 + h * v0, u1 + h * v1, par, nbc)
+              - problem.bcnd(u0 - h * v0, u1 - h * v1, par, nbc)) / (2 * h)
+        return np.r_[b, bv]
+
+    def icnd(W, Wold, Wdot, Wpold, par):
+        batch = np.ndim(W) == 2
+        args = [np.asarray(a, float).T if batch else np.asarray(a, float)[None, :]
+                for a in (W, Wold, Wdot, Wpold)]
+        Wk, Wo, Wd, Wp = args
+        u, v = Wk[:, :n], Wk[:, n:]
+        parts = []
+        if nint:
+            rest = (Wo[:, :n], Wd[:, :n], Wp[:, :n])
+            g = problem.icnd_many(u, *rest, par, nint)
+            h = steps(u, v)[:, None]
+            gv = (problem.icnd_many(u + h * v, *rest, par, nint)
+                  - problem.icnd_many(u - h * v, *rest, par, nint)) / (2 * h)
+            parts += [g, gv]
+        parts.append((np.sum(v * v, axis=1) - par[norm_index - 1])[:, None])
+        out = np.hstack(parts)
+        return out.T if batch else out[0]
+
+    return Problem(2 * n, func, func_batch=func_batch, name=problem.name, npar=problem.npar,
+                   pvls=problem._pvls, parnames=problem.parnames, unames=problem.unames,
+                   jac=0, bcnd=bcnd if nbc else None, icnd=icnd)
+
+
+@register(4, 2, "LP")
+@register(4, 2, "LP-curve")
+class BVPFoldLocus(BoundaryValueProblem):
+    """The fold locus of a BVP in two parameters (ISW = 2 from an LP of code 5): the
+    BVP `fold_problem` in W = (u, v) continued in PAR(ICP(1)), PAR(ICP(2)), with
+    PAR(NPAR + 1) (AUTO's internal PAR(NPAR)) holding int |v|^2 dt.
+
+    As AUTO (AUTOBVP with ISW = -2), a start at the LP itself is a generating run: the
+    null vector v (found here directly, the null vector of the BVP's Jacobian at the
+    LP, scaled to int |v|^2 = 1) grows in norm with PAR(ICP(2)) fixed, ILP = ISP = 0,
+    NMX = 5; restarting from its end point (a record of this curve) continues the
+    locus in the user's ICP. Only problems with one free parameter on their branch
+    (NBC + NINT - NDIM + 1 = 1) are handled."""
+    curve_type = 5
+
+    def __init__(self, data):
+        s = data.settings
+        n = s.NDIM
+        if s.NBC + s.NINT - n + 1 != 1:
+            raise ValueError(f"fold loci of BVPs with NBC + NINT - NDIM + 1 = "
+                             f"{s.NBC + s.NINT - n + 1} free parameters on their branch are "
+                             "not supported yet (1 is)")
+        if len(s.ICP) < 2:
+            raise ValueError("ISW = 2 continues the fold locus in two parameters: ICP needs "
+                             f"two entries, got {list(s.ICP)}")
+        norm = s.NPAR + 1
+        generating = data.kind == "LP"
+        if generating:
+            self._free = [s.ICP[0], norm]
+        # AUTO's generating run has ISW = -2 internally: its branch number is new.
+        over = dict(NMX=5, ILP=0, ISP=0, ISW=-2) if generating else {}
+        s2 = s.with_(NDIM=2 * n, NBC=2 * s.NBC, NINT=2 * s.NINT + 1, NPAR=norm, **over)
+        self.run_settings = s2
+        par = np.zeros(norm)
+        p = np.asarray(data.par, float)
+        par[:min(len(p), norm)] = p[:norm]
+        ext = fold_problem(data.problem, n, s.NBC, s.NINT, norm)
+        rec = data.record
+        if generating:
+            base = BoundaryValueProblem(StartData(data.problem, s.with_(ISW=1, ICP=s.ICP[:1]),
+                                                  data.u, data.par, rec, "", data.unames))
+            x0 = base._start[0]
+            z = base.null_vector(base.jacobian(x0), np.zeros(base.n_x))
+            U = base.unpack(x0)[0]
+            V = z[:base.n_u].reshape(-1, n)
+            V = V / math.sqrt(base.w_node @ np.sum(V * V, axis=1))
+            par[norm - 1] = 1.0
+            rec = SimpleNamespace(U=np.hstack([U, V]), t=base.mesh.node_times(),
+                                  ntst=base.mesh.ntst, ncol=base.mesh.ncol, udot=None,
+                                  rldot=[], icp=[])
+        self.ndm = n
+        super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
+
+
+__all__ = ["BoundaryValueProblem", "BVPFoldLocus", "fold_problem"]
