@@ -95,3 +95,49 @@ def test_a_branch_point_passed_with_negative_ds_keeps_the_direction(tmp_path):
     assert [t for t, _ in lab] == ["EP", "BP", "UZ"]
     assert lab[1][1] == pytest.approx(0.0, abs=located_tol(tmp_path / "c.pf"))
     assert lab[2][1] == pytest.approx(-1.0)
+
+
+def test_lor_demo_starts_from_data_and_doubles_twice(tmp_path):
+    """AUTO-07p's demo lor as its script runs it, constants unchanged: the periodic branch
+    starts from lor.dat (dat='lor': t, u1, u2, u3 rows of one period at PAR(1) = 280;
+    the period PAR(11) = 0.4332 from the time column), then ISW = -1 at PD1 and at the
+    next PD. Against AUTO's b.lor: the labelled rows' types and branches in order, and
+    PAR(1) and PERIOD of the period doublings at 1e-5 relative (the same discrete problem;
+    EPSS = 1e-4 decides the rest); the UZ stops are exactly PAR(1) = 200 here (AUTO's
+    loose 199.9999902 comes from its own EPSS)."""
+    from b_rows import branch_rows
+    from washer.auto.files import type_name
+    d = folder(tmp_path, "lor")
+    ours = []
+    for cf, s in (("c.lor.1", None), ("c.lor.2", "lor1"), ("c.lor.3", "lor2")):
+        kw = {"s": s} if s else {}
+        res = run(d / cf, verbose=False, sv=f"lor{cf[-1]}", e="lor", **kw)
+        assert res.status == "ok", (cf, res.status)
+        ours += [r for r in res.rows if r.lab]
+    ref = [r for r in branch_rows(d / "b.lor") if r.lab]
+    assert [(r.ty, abs(r.br)) for r in ours] == [(type_name(r.ty), abs(r.br)) for r in ref] == [
+        ("EP", 1), ("PD", 1), ("UZ", 1), ("PD", 2), ("UZ", 2), ("PD", 3), ("UZ", 3)]
+    assert ours[0].values[-1] == pytest.approx(1.4334 - 1.0002, rel=1e-12)
+    for o, r in zip(ours, ref):
+        if o.ty == "PD":
+            assert o.values[0] == pytest.approx(r.values[0], rel=1e-5)
+            assert o.values[-1] == pytest.approx(r.values[-1], rel=1e-5)
+        if o.ty == "UZ":
+            assert o.values[0] == pytest.approx(200.0, rel=1e-12)
+
+
+def test_bad_data_files_are_named_with_line_and_expectation(tmp_path):
+    """dat='NAME' errors name the file, the line and what was expected there."""
+    from washer.cont.runner import RunError
+    d = folder(tmp_path, "lor")
+    with pytest.raises(RunError, match=r"nothere\.dat"):
+        run(d / "c.lor.1", verbose=False, e="lor", dat="nothere", sv="x")
+    lines = (d / "lor.dat").read_text().splitlines()
+    lines[4] = "0.1 2.0 x"
+    (d / "bad.dat").write_text("\n".join(lines) + "\n")
+    with pytest.raises(RunError, match=r"bad\.dat:5: expected 4 numbers"):
+        run(d / "c.lor.1", verbose=False, e="lor", dat="bad", sv="x")
+    lines[4] = "0.1 2.0 x 3"
+    (d / "bad.dat").write_text("\n".join(lines) + "\n")
+    with pytest.raises(RunError, match=r"bad\.dat:5: expected numbers"):
+        run(d / "c.lor.1", verbose=False, e="lor", dat="bad", sv="x")

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
                                    parse_override, read_constants)
-from washer.auto.files import AutoFileError, read_b, read_s
+from washer.auto.files import AutoFileError, read_b, read_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError, load_python_problem
@@ -135,8 +135,15 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             print(f"note: {what}; the records before it are used", file=sys.stderr)
     else:
         source = str(restart)
+    data = None
+    if c["dat"] and c["IRS"] in (0, "0"):
+        # AUTO's dat='NAME': the start orbit from NAME.dat beside the constants file.
+        try:
+            data = read_dat(folder / f"{c['dat']}.dat", problem.ndim)
+        except AutoFileError as exc:
+            raise RunError(f"{c.source}: dat='{c['dat']}': {exc}") from None
     r, br, mode = build(c, problem, records, name=c["e"] or problem.name,
-                        records_source=source)
+                        records_source=source, data=data)
     # One run at a time writes b/s/d.<sv> in a folder (a second one would interleave
     # its rows with ours): the lock is taken before any of them is opened.
     lock = output_lock(folder, name, what=f"b.{name}, s.{name}, d.{name}") if files \

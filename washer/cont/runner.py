@@ -159,16 +159,17 @@ def _stable(p: Point) -> bool | None:
 
 
 def build(c, problem, records=None, name: str = "", records_source: str = "the restart file",
-          mlab: int | None = None, mbr: int | None = None) -> tuple[Run, int, str]:
+          mlab: int | None = None, mbr: int | None = None, data=None) -> tuple[Run, int, str]:
     """Resolve constants + problem + restart records into a Run (system and
     settings), the branch number and the start mode (`washer.cont.start`).
     records_source names the s-file in messages. mlab, mbr: the largest label and
     branch number of the data the restart record came from (default: of `records`;
-    AUTO's CLUI passes them with a single solution). Raises RunError."""
+    AUTO's CLUI passes them with a single solution). data: (t, U) of dat='NAME' (the
+    start of a BVP with IRS = 0). Raises RunError."""
     s, problem = start.settings_for(c, problem)
     rec = start.restart_record(c, problem, records, records_source)
-    u, par = start.start_values(c, s, problem, rec)
-    system, s, kind = start.system_for(c, s, problem, u, par, rec)
+    u, par = start.start_values(c, s, problem, rec, data)
+    system, s, kind = start.system_for(c, s, problem, u, par, rec, data)
     # Numbering continues the restart file's only when restarting from it.
     known = records if rec is not None else []
     br = start.branch_number(c, s, rec, kind, known, mbr=mbr if rec is not None else None)

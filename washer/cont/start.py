@@ -61,9 +61,11 @@ def restart_record(c, problem, records, records_source: str = "the restart file"
     return rec
 
 
-def start_values(c, s: Settings, problem, rec) -> tuple[np.ndarray, np.ndarray]:
+def start_values(c, s: Settings, problem, rec, data=None) -> tuple[np.ndarray, np.ndarray]:
     """(u, par): the record's stored state and PAR (or the problem's stpnt), with the
-    constants' PAR and U overrides applied. par has at least NPAR entries."""
+    constants' PAR and U overrides applied. par has at least NPAR entries. With start
+    data (t, U) of dat='NAME', PAR(11) is the data's period t[-1] - t[0] where stpnt
+    leaves it unset (AUTO's STPNUB sets PAR(11), then calls STPNT, then the overrides)."""
     if rec is not None:
         u = np.array(rec.u, dtype=float)
         par = np.zeros(max(s.NPAR, len(rec.par)))
@@ -72,6 +74,8 @@ def start_values(c, s: Settings, problem, rec) -> tuple[np.ndarray, np.ndarray]:
         u, par = problem.start(s.NPAR)
     if len(par) < s.NPAR:
         par = np.r_[par, np.zeros(s.NPAR - len(par))]
+    if data is not None and rec is None and len(par) > 10 and par[10] == 0:
+        par[10] = float(data[0][-1] - data[0][0])
     for k, v in c["PAR"].items():
         i = c.par_index(k)
         if not 1 <= i <= len(par):
@@ -102,7 +106,7 @@ def start_kind(rec) -> str:
     return type_name(base)
 
 
-def system_for(c, s: Settings, problem, u, par, rec):
+def system_for(c, s: Settings, problem, u, par, rec, data=None):
     """The continued system of the start (registry key (IPS, ISW, start kind)) and the
     settings it runs with (restarting a point of a curve continues the curve)."""
     irs = c["IRS"]
@@ -127,7 +131,8 @@ def system_for(c, s: Settings, problem, u, par, rec):
         raise RunError(f"{c.source}: {exc.args[0]}") from None
     names = {int(k): v for k, v in c["unames"].items()}
     try:
-        system = ctor(StartData(problem, s, u, par, rec, kind, names))
+        system = ctor(StartData(problem, s, u, par, rec, kind, names,
+                                data if rec is None else None))
     except (ValueError, ProblemError, np.linalg.LinAlgError) as exc:
         raise RunError(f"{c.source}: cannot start from {kind or 'this point'}: {exc}") \
             from None

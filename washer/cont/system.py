@@ -186,6 +186,8 @@ class StartData:
     record : the s-file record restarted from (washer.auto.files.Record) or None.
     kind : the start kind, AUTO's type name of the record ('EP', 'HB', 'LP',
         'BP', 'PD', ...; '' for a regular point or IRS = 0).
+    data : (t (m,), U (m, NDIM)) time-column start data of dat='NAME' (AUTO's STPNUB
+        reading fort.3) for a BVP started with IRS = 0, else None.
     """
     problem: object
     settings: object
@@ -194,6 +196,7 @@ class StartData:
     record: object = None
     kind: str = ""
     unames: dict = field(default_factory=dict)     # {U index: name} for column titles
+    data: tuple | None = None
 
 
 #: (IPS, ISW, start kind) -> constructor(StartData) -> ContinuedSystem. '*' matches

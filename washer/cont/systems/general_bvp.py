@@ -90,7 +90,9 @@ class BoundaryValueProblem:
         self.kind = (data.kind or "").upper()
         self.n_points = 0
         rec = data.record
-        if rec is None:
+        if rec is None and getattr(data, "data", None) is not None:
+            self._from_data(*data.data)
+        elif rec is None:
             self._from_stpnt()
         elif np.ndim(rec.U) == 2 and len(rec.U) > 1:
             self._from_record(rec)
@@ -130,6 +132,14 @@ class BoundaryValueProblem:
         s = self.settings
         self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
         U = self.problem.start_profile(self.par.copy(), self.mesh.node_times())
+        self._begin(U, None)
+
+    def _from_data(self, t, U) -> None:
+        """STPNUB with dat='NAME': the data file's profile, time rescaled to [0, 1],
+        moved onto an adapted mesh of NTST intervals (`collocation.profile_from_data`)."""
+        s = self.settings
+        mesh, U, _ = col.profile_from_data(t, U, s.NTST, s.NCOL, periodic=False)
+        self._set_mesh(mesh)
         self._begin(U, None)
 
     def _from_record(self, rec) -> None:

@@ -87,6 +87,8 @@ class PeriodicOrbits(CollocationBVP):
         rec = data.record
         if rec is not None and np.ndim(rec.U) == 2 and len(rec.U) > 1:
             self._from_orbit(rec)
+        elif rec is None and getattr(data, "data", None) is not None:
+            self._from_data(*data.data)
         elif rec is None and self.kind != "HB":
             self._from_stpnt(np.asarray(data.u, float)[:self.ndim])
         else:
@@ -145,6 +147,19 @@ class PeriodicOrbits(CollocationBVP):
             raise ValueError("IPS=2 with IRS=0 needs stpnt(u, par, t) giving a periodic orbit at "
                              "the mesh times t in [0, 1] (AUTO's STPNT with T); this stpnt gives "
                              "a constant: restart from an HB label instead (IRS='HB1')")
+        self.set_phase_reference(U, self.par)
+        self._start = (self._x(U, self.par), None)
+        self.start_kind = ""
+
+    def _from_data(self, t: np.ndarray, U: np.ndarray) -> None:
+        """IRS = 0 with dat='NAME' (AUTO's STPNUB reading fort.3): the orbit of the data
+        file, time rescaled to [0, 1] by its period t[-1] - t[0] (PAR(11), set by the
+        start), moved onto an adapted mesh of NTST intervals (`collocation.
+        profile_from_data`, AUTO's ADAPT2 of the piecewise-linear data). No direction:
+        the iterator computes one."""
+        s = self.settings
+        mesh, U, _ = col.profile_from_data(t, U, s.NTST, s.NCOL, periodic=True)
+        self.set_mesh(mesh)
         self.set_phase_reference(U, self.par)
         self._start = (self._x(U, self.par), None)
         self.start_kind = ""
