@@ -363,3 +363,25 @@ def test_small_example_has_no_failed_points(small_serial):
     assert (df["crit_status"] == "stable").any()
     stable = df[df["crit_status"] == "stable"]
     assert (stable["crit_value"] == 0.0).all() and (stable["stab_margin"] < 0).all()
+
+
+def test_clearance_based_critical_value(params):
+    """With a clearance the critical kind adds the damping at which the whirl reaches it:
+    below the critical value by ((clearance - r0) / a)^2 (normal form), NaN when the forced
+    response's own offset r0 already exceeds the clearance; r0 is the averaged
+    equilibrium's offset (checked against the stability kind's radius)."""
+    from washer.machine.model import Model
+    from washer.sweep.tasks import critical_with_clearance, stability
+    got = critical_with_clearance(params, "C_p", 0.0, 3.0, "continuation", 0.03)
+    a = got["crit_whirl_growth"]
+    r0 = stability(params.replace(C_p=got["crit_value"]))["stab_radius"]
+    assert got["crit_clearance_value"] == pytest.approx(
+        got["crit_value"] - ((0.03 - r0) / a) ** 2, rel=1e-12)
+    assert 0 < got["crit_value"] - got["crit_clearance_value"] < 0.01 * got["crit_value"]
+    small = critical_with_clearance(params, "C_p", 0.0, 3.0, "continuation", 0.5 * r0)
+    assert np.isnan(small["crit_clearance_value"])
+    # Just above the clearance value the linearised whirl is small; at it, the whirl's
+    # amplitude a sqrt(crit - value) plus r0 is the clearance by construction: the check
+    # of a against the exact invariant circles is tests/test_torus.py's slow test.
+    assert not np.isfinite(critical_with_clearance(params, "C_p", 0.0, 3.0,
+                                                   "continuation")["crit_clearance_value"])

@@ -323,7 +323,9 @@ def continue_circle(fmap, first: Circle, stop: float, *, second: Circle | None =
 
     Secant predictor; corrector: Newton on [G; <z - z_pred, secant>] with the phase
     condition's reference moved to the last circle; steps halve on failure down to ds_min
-    and grow 1.5x after an easy success (<= 3 iterations) up to ds_max. The last point is
+    and grow 1.5x after an easy success (<= 3 iterations) up to ds_max; fmap may raise
+    ValueError or RuntimeError where it is not defined (a parameter out of range): that
+    step is halved too. The last point is
     put exactly on p = stop (a Newton with p fixed). Normal moduli at every circle.
     progress(circle) is called after each one."""
     t0 = time.perf_counter()
@@ -365,8 +367,8 @@ def continue_circle(fmap, first: Circle, stop: float, *, second: Circle | None =
                 return float((w * t) @ (zz - zp)), w * t
         try:
             zn, DF, res, it = newton(eq, zp, extra, tol)
-        except (CircleError, np.linalg.LinAlgError, ArithmeticError, RuntimeError):
-            h /= 2
+        except (CircleError, np.linalg.LinAlgError, ArithmeticError, RuntimeError, ValueError):
+            h /= 2      # no convergence, or a Newton iterate outside fmap's domain
             if h < ds_min:
                 status = "step too small"
                 break

@@ -12,7 +12,9 @@ each with the continuation's Hopf curve in the same two parameters overlaid
 (dashed red; `washer.sweep.hopf`, b-files in DIR/hopf/STUDY/), and failed
 points as grey crosses. On critical maps the points stable over the whole
 search range (with C_p from 0: stable without joint damping, critical value 0)
-are white rings on their colour, those unstable over it red triangles. Studies over one parameter give line plots; studies
+are white rings on their colour, those unstable over it red triangles; with
+the option `clearance`, a dashed line where the whirl at the study's value just
+reaches the clearance (crit_clearance_value = that value). Studies over one parameter give line plots; studies
 over more than two are not drawn (the table has them).
 """
 from __future__ import annotations
@@ -202,6 +204,15 @@ def _colour_map(fig, ax, st, ok, x, y, col, kind, label, spec) -> None:
         if kind == "critical" and piv.shape[0] > 1 and piv.shape[1] > 1:
             ax.contour(X, Y, piv.to_numpy(float), levels=8, colors="w", linewidths=0.5,
                        alpha=0.6)
+            clear = st.options["critical"].get("clearance", float("nan"))
+            if levels and "crit_clearance_value" in ok and np.isfinite(clear):
+                cv = ok.pivot_table(index=y, columns=x, values="crit_clearance_value")
+                cv = cv.reindex(index=piv.index, columns=piv.columns).to_numpy(float)
+                if np.isfinite(cv).sum() >= 4 and np.nanmin(cv) < levels[0] < np.nanmax(cv):
+                    ax.contour(X, Y, cv, levels=levels, colors="k", linewidths=1.2,
+                               linestyles="--")
+                    ax.plot([], [], "k--", label=f"whirl reaches the {1e3 * clear:g} mm "
+                            "clearance")
     else:
         m = ax.scatter(ok[x], ok[y], c=ok[col].to_numpy(float), s=18, norm=norm, cmap=cmap)
         if levels and len(ok) >= 4:

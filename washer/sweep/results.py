@@ -108,7 +108,8 @@ def units_for(spec) -> dict:
     if len(pars) != 1:
         return {}
     unit = UNITS.get(next(iter(pars)), "")
-    return {"crit_value": unit, "crit_averaged": unit}
+    return {"crit_value": unit, "crit_averaged": unit, "crit_clearance_value": unit,
+            "crit_whirl_growth": f"m/({unit})^0.5" if unit else "m"}
 
 
 def write_table(df: pd.DataFrame, path, units: dict | None = None) -> None:

@@ -21,6 +21,7 @@ kind of computation, its options::
     parameter = "C_p"
     from = 0.0
     to = 3.0
+    clearance = 0.03            # m (optional): also the damping that keeps the whirl within it
     [study.response]
     system = "fixed"
     law = "spinup"
@@ -48,7 +49,10 @@ SAMPLES = ("grid", "random", "lhs")
 KIND_OPTIONS: dict[str, dict[str, tuple]] = {
     "stability": {"frame": ("averaged", ("averaged", "frozen"))},
     "critical": {"parameter": ("C_p", str), "from": (0.0, float), "to": (None, float),
-                 "engine": ("continuation", ("continuation", "floquet"))},
+                 "engine": ("continuation", ("continuation", "floquet")),
+                 # clearance to the cabinet (m): adds the damping that keeps the whirl
+                 # within it (crit_clearance_value); NaN: not asked
+                 "clearance": (math.nan, float)},
     "response": {"system": ("fixed", ("fixed", "rotating")),
                  "law": ("spinup", ("spinup", "constant")),
                  "frame": ("averaged", ("averaged", "frozen")),

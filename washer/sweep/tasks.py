@@ -36,6 +36,15 @@ critical   the critical value of one parameter at this point: the first Hopf
     crit_n_hopf          stability crossings located in [from, to] (HB points, or
                          the one root of the whirl pair's real part; 0 when stable
                          or unstable throughout)
+    crit_whirl_growth    a in: the whirl's amplitude grows as a sqrt(critical - value)
+                         below the critical value (m per sqrt of the parameter's unit;
+                         Hopf normal form, `whirl_growth`); with option `clearance`
+    crit_clearance_value the value at which the whirl's largest offset from the axis
+                         reaches the option `clearance` (m): critical -+ ((clearance -
+                         r0) / a)^2 (on the whirl's side), r0 the forced response's offset; NaN when r0 alone
+                         exceeds the clearance or without the option; equal to
+                         crit_value where stable throughout. Near the Hopf point only
+                         (the normal form): for clearances of a few centimetres
     crit_source          how it was found: "HB" (the engine's Hopf point), "margin"
                          (no HB before the engine's first step: the root of the
                          whirl pair's real part, see _critical_fallback), "ends"
@@ -80,7 +89,8 @@ OUTPUTS: dict[str, tuple[str, ...]] = {
     "stability": ("stab_status", "stab_margin", "stab_whirl", "stab_whirl_ground",
                   "stab_damping_ratio", "stab_eps1", "stab_eps2", "stab_eps3", "stab_eps4",
                   "stab_eps5", "stab_eps6", "stab_radius"),
-    "critical": ("crit_status", "crit_value", "crit_whirl", "crit_n_hopf", "crit_source"),
+    "critical": ("crit_status", "crit_value", "crit_whirl", "crit_n_hopf", "crit_source",
+                 "crit_whirl_growth", "crit_clearance_value"),
     "response": ("resp_status", "resp_whirl_radius", "resp_whirl_radius_min",
                  "resp_whirl_radius_max", "resp_lift_max", "resp_tilt_max", "resp_freq1",
                  "resp_amp1", "resp_freq2", "resp_amp2", "resp_nfev", "resp_tau_s"),
@@ -95,6 +105,7 @@ UNITS = {"stab_margin": "1/s", "stab_whirl": "rad/s", "stab_whirl_ground": "rad/
          "stab_damping_ratio": "", "stab_eps1": "m", "stab_eps2": "m", "stab_eps3": "m",
          "stab_eps4": "rad", "stab_eps5": "rad", "stab_eps6": "rad", "stab_radius": "m",
          "crit_whirl": "rad/s", "crit_n_hopf": "", "crit_averaged": None,
+         "crit_clearance_value": None, "crit_whirl_growth": None,
          "crit_multiplier_angle": "rad",
          "resp_whirl_radius": "m", "resp_whirl_radius_min": "m", "resp_whirl_radius_max": "m",
          "resp_lift_max": "m", "resp_tilt_max": "rad", "resp_freq1": "Hz", "resp_amp1": "m",
@@ -301,6 +312,55 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
     raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: {why}")
 
 
+#: Relative step of the central difference of the critical eigenvalue in the parameter
+#: (smooth; truncation ~h^2, round-off ~1e-13/h).
+GROWTH_REL_STEP = 1e-5
+
+
+def whirl_growth(params: Params, parameter: str, value: float) -> tuple[float, float, float]:
+    """(a, r0, slope): the whirl born at the averaged Hopf point `parameter` = value grows as
+    a sqrt(|parameter - value|) (m per sqrt of the parameter's unit) about the forced
+    response's offset r0 = hypot(eps1, eps2) (m).
+
+    From the Hopf normal form z' = (mu + i w) z + c1 |z|^2 z on the centre manifold
+    x = x* + z q + conj(z q) (Kuznetsov's normalisation: |q| = 1, <p, q> = 1, l1 = Re c1 /
+    w, `washer.cont.normal_form.first_lyapunov`): the cycle has |z|^2 = -mu / (l1 w),
+    mu = dRe(lambda)/dp (p - value); the tub's offset eps1 + i eps2 = z (q1 + i q2) +
+    conj(z) (conj(q1) + i conj(q2)) turns on a circle of radius |z| times the larger of
+    the two (the other is the small opposite-turning part); slope = dRe(lambda)/dp (< 0:
+    stable above the critical value, the whirl below it). a is nan where l1 >= 0 (a
+    subcritical point: no small stable whirl)."""
+    from washer.cont.normal_form import first_lyapunov
+    from washer.machine.layout import PAR_NAMES
+    from washer.problems.washer import washer_problem
+    q = params.replace(**{parameter: value})
+    m = Model(q)
+    eps = m.rotating_equilibrium()
+    x = np.r_[eps, np.zeros(6)]
+    A = m.jac_rot(x)[0]
+    lam, V = np.linalg.eig(A)
+    i = int(np.argmin(np.abs(lam.real) + 1e3 * (lam.imag <= 0)))
+    w = float(lam[i].imag)
+    par = np.zeros(17)
+    for k, name in PAR_NAMES.items():
+        par[k - 1] = q[name]
+    l1 = first_lyapunov(washer_problem("washer", q), x, par, w, A)
+    h = GROWTH_REL_STEP * max(abs(value), 1e-3)
+
+    def re_lam(v):
+        mm = Model(params.replace(**{parameter: v}))
+        lm = mm.eigenvalues(mm.rotating_equilibrium(guess=eps))
+        return float(lm[np.argmin(np.abs(lm - lam[i]))].real)
+
+    d = (re_lam(value + h) - re_lam(max(value - h, 0.0))) / (value + h - max(value - h, 0.0))
+    v = V[:, i] / np.linalg.norm(V[:, i])
+    circ = max(abs(v[0] + 1j * v[1]), abs(np.conj(v[0]) + 1j * np.conj(v[1])))
+    r0 = float(np.hypot(eps[0], eps[1]))
+    if not l1 < 0:
+        return float("nan"), r0, float(d)
+    return float(circ * np.sqrt(abs(d) / (abs(l1) * w))), r0, float(d)
+
+
 def response(params: Params, system: str = "fixed", law: str = "spinup",
              frame: str = "averaged", t_end: float = 30.0, window: float = 10.0,
              samples_per_s: float = 200.0, rtol: float = 1e-8, atol: float = 1e-10,
@@ -356,8 +416,31 @@ def dominant_frequencies(t: np.ndarray, s: np.ndarray):
     return (float(f[k1]), float(A[k1])), (float(f[k2]), float(A[k2]))
 
 
+def critical_with_clearance(params: Params, parameter: str, lo: float, hi: float,
+                            engine: str, clearance: float = math.nan) -> dict:
+    """`critical`, plus the clearance-based critical value when a clearance (m) is given."""
+    out = critical(params, parameter, lo, hi, engine)
+    out.setdefault("crit_whirl_growth", math.nan)
+    out.setdefault("crit_clearance_value", math.nan)
+    if math.isnan(clearance):
+        return out
+    if out["crit_status"] == "stable":
+        out["crit_clearance_value"] = out["crit_value"]
+    elif out["crit_status"] == "hopf":
+        at = out.get("crit_averaged", out["crit_value"])
+        a, r0, slope = whirl_growth(params, parameter, at)
+        out["crit_whirl_growth"] = a
+        if clearance > r0 and np.isfinite(a):
+            # The whirl lives on the unstable side: below the critical value when the
+            # margin falls as the parameter grows (C_p: less damping), else above.
+            side = -1.0 if slope < 0 else 1.0
+            out["crit_clearance_value"] = out["crit_value"] + side * ((clearance - r0) / a) ** 2
+    return out
+
+
 KINDS = {"stability": lambda p, o: stability(p, **o),
-         "critical": lambda p, o: critical(p, o["parameter"], o["from"], o["to"], o["engine"]),
+         "critical": lambda p, o: critical_with_clearance(
+             p, o["parameter"], o["from"], o["to"], o["engine"], o.get("clearance", math.nan)),
          "response": lambda p, o: response(p, **o)}
 
 
