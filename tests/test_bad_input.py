@@ -310,3 +310,28 @@ def test_icp_by_washer_name_without_parnames(tmp_path):
     header = [l for l in (tmp_path / "b.names").read_text().splitlines() if l.startswith("   0")]
     assert header[-3].endswith(" 'm_u'") and "Active continuation parameter" in header[-3]
     assert header[-1].split()[4] == "m_u"                # the first column's title
+
+
+def test_huge_mesh_is_refused_with_its_estimate(tmp_path, capsys):
+    """NTST = 100000 on the forced washer (NDIM 14) would need ~14 GB: refused at once."""
+    import time
+    from washer.run import main
+    shutil.copy(Path(__file__).resolve().parents[1] / "auto_constants" / "c.washer.forced",
+                tmp_path)
+    t0 = time.monotonic()
+    assert main([str(tmp_path / "c.washer.forced"), "NTST=100000"]) == 2
+    assert time.monotonic() - t0 < 10
+    err = capsys.readouterr().err
+    assert "NTST = 100000, NCOL = 4, NDIM = 14: needs about 14.1 GB of memory" in err
+    assert "--allow-large" in err and not (tmp_path / "b.washer.forced").exists()
+
+
+def test_forced_par_values_are_named_by_the_constants_file(tmp_path):
+    from washer.run import RunError, run
+    c = tmp_path / "c.washer.forced"
+    text = (Path(__file__).resolve().parents[1] / "auto_constants" / "c.washer.forced").read_text()
+    c.write_text(text + "PAR = {'m_u': -1.0}\n")
+    with pytest.raises(RunError, match=r"PAR: m_u = -1.0: expected a value >= 0") as err:
+        run(c, verbose=False)
+    assert str(err.value).startswith(f"{c}:{len(c.read_text().splitlines())}:")
+    assert "reference.toml" not in str(err.value)

@@ -35,7 +35,9 @@ from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError, load_python_problem
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.cont.sinks import FileSink, ScreenSink
+from washer import sizes
 from washer.locks import LockedError, output_lock
+from washer.sizes import SizeError
 
 #: Exit status when another run is writing the same output names (EX_TEMPFAIL: try later).
 EXIT_LOCKED = 75
@@ -55,7 +57,7 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
     if e.split(":")[0] == "washer":
         from washer.problems.washer import forced_start_params, washer_problem
         if e == "washer:forced" and c["IRS"] in (0, "0"):
-            from washer.params import ParameterError
+            from washer.machine.params import ParameterError
             try:
                 params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
             except ParameterError as exc:
@@ -73,7 +75,8 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
 
 
 def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,
-        sinks=None, restart=None, files: bool = True, **overrides) -> RunResult:
+        sinks=None, restart=None, files: bool = True, allow_large: bool = False,
+        **overrides) -> RunResult:
     """Run a constants file (path) or a Constants object with overrides.
 
     problem: the equations (default: from e=, see resolve_problem); params: the
@@ -113,6 +116,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     restart_from, restart = restart, folder / f"s.{c['s'] or default_name}"
     if problem is None:
         problem = resolve_problem(c, folder, params)
+    _check_size(c, problem, allow_large)
     # The restart data is read whole before any output file is opened: the
     # default sv is the restart file's own name, and it must survive.
     records = None
@@ -159,6 +163,19 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     return result
 
 
+def _check_size(c: Constants, problem: Problem, allow: bool) -> None:
+    """A mesh problem's Newton matrices estimated from NTST, NCOL and NDIM before the
+    run starts (NTST = 100000 would end in a MemoryError minutes later)."""
+    ips = c["IPS"]
+    if not (abs(ips) in (2, 4, 7, 9) or ips >= 12):
+        return
+    ndim = getattr(problem, "ndim", None) or c["NDIM"]
+    nbytes = sizes.collocation_bytes(c["NTST"], c["NCOL"], ndim)
+    sizes.check(f"{c.given.get('NTST', c.source)}: NTST = {c['NTST']}, NCOL = {c['NCOL']}, "
+                f"NDIM = {ndim}", nbytes=nbytes, allow=allow,
+                how="pass --allow-large (run(..., allow_large=True)), or lower NTST")
+
+
 def load(path):
     """Read an AUTO b- or s-file (ours or AUTO-07p's)."""
     p = Path(path)
@@ -190,13 +207,15 @@ def main(argv: list[str] | None = None) -> int:
         return 0 if argv else 2
     if argv[0] == "--copy-examples":
         return _copy_examples(argv[1:])
+    allow_large = "--allow-large" in argv[1:]
     try:
-        overrides = dict(parse_override(a) for a in argv[1:])
-        res = run(argv[0], **overrides)
+        overrides = dict(parse_override(a) for a in argv[1:] if a != "--allow-large")
+        res = run(argv[0], allow_large=allow_large, **overrides)
     except LockedError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return EXIT_LOCKED
-    except (ConstantsError, AutoFileError, RunError, ProblemError, CompileError) as exc:
+    except (ConstantsError, AutoFileError, RunError, ProblemError, CompileError,
+            SizeError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from washer.auto.constants import DEFAULTS, Constants, ConstantsError, read_constants
 from washer.auto.diagram import Diagram, Solution, SolutionList, read_solutions, type_name
+from washer.atomic import save_figure
 
 #: Constants a constants file resets to "default" when it does not set them (parseC's
 #: list); the special keys e, unames, parnames survive a new constants file.
@@ -572,7 +573,7 @@ class Plot:
             if b.titles:
                 ax.set_xlabel(b.titles[0])
                 ax.set_ylabel(b.titles[1] if len(b.titles) > 1 else "")
-        fig.savefig(path, dpi=100)
+        save_figure(fig, path, dpi=100)
         plt.close(fig)
 
     def savefig(self, path, **kw) -> None:

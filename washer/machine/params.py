@@ -249,11 +249,14 @@ def _tie(vals: dict) -> None:
 
 def load_params(path: str | Path | None = None) -> Params:
     """Read and validate a TOML parameter file (default: the shipped reference set)."""
+    from washer.auto.constants import decode_text
     path = Path(path) if path is not None else default_params_path()
     try:
-        text = path.read_text()
+        data = path.read_bytes()
     except OSError as exc:
         raise ParameterError(f"{path}: cannot read parameter file ({exc.strerror})") from None
+    # TOML is UTF-8: a Latin-1 byte (an editor's 'é' in a comment) is named, not a traceback.
+    text = decode_text(data, str(path), "a parameter file (TOML, UTF-8)", ParameterError)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 from washer.machine import forced, kernel
 from washer.machine.model import Model
 from washer.machine.params import load_params
+from washer.atomic import write_text
 
 #: Points on the exact Fig 4 curve (lower end to 15 Hz); --quick uses N_CURVE_QUICK.
 N_CURVE, N_CURVE_QUICK = 23, 6
@@ -260,8 +261,8 @@ def write(out: Path, res: dict) -> list[Path]:
     """OUT/forced.json, OUT/forced.md and OUT/fig4_exact.png/.pdf from `compute`'s results."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "forced.json").write_text(json.dumps(_jsonable(res), indent=1))
-    (out / "forced.md").write_text(markdown(res))
+    write_text(out / "forced.json", json.dumps(_jsonable(res), indent=1))
+    write_text(out / "forced.md", markdown(res))
     from washer.plots import style
     fig, (ax, bx) = style.figure(1, 2, figsize=(10, 3.8))
     plot_fig4(ax, res)

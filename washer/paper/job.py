@@ -25,6 +25,7 @@ from washer.paper.runs import FRAMES, run_all
 from washer.machine.params import load_params
 from washer.paper.setups import SETUPS
 from washer.machine.responses import simulate
+from washer.atomic import write_text
 
 #: Figs 8-9 duration in quick mode (s); otherwise the paper's setups
 #: (`washer.paper.setups.SETUPS`: C_p, durations, the trajectory windows of Figs 10c/11c).
@@ -182,7 +183,7 @@ def write_summary(path: Path, m: dict, resp: dict) -> None:
                              z_static=L["z_static"], z_end=rise.z_end, dz_last=rise.dz_last,
                              t_level=rise.t_level, radius_end=float(rise.radius[-1]),
                              window_z=rise.z.tolist(), window_radius=rise.radius.tolist())
-    path.write_text(json.dumps(out, indent=1, default=float))
+    write_text(path, json.dumps(out, indent=1, default=float))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -190,7 +191,22 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--quick", action="store_true", help="coarser steps, shorter Figs 8-9")
     ap.add_argument("--out", type=Path, default=Path("out/paper"), help="output folder")
     args = ap.parse_args(argv)
+    from washer.atomic import OutputError, check_folder
+    from washer.locks import LockedError, output_lock
+    try:
+        check_folder(args.out)          # before hours of work, not after
+        with output_lock(args.out, "paper", what=f"the reproduction in {args.out}"):
+            return _main(args)
+    except OutputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except LockedError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 75
 
+
+def _main(args) -> int:
+    """The job of `main`, with args.out checked and locked."""
     import matplotlib
     matplotlib.use("Agg")
     from washer.paper import report

@@ -17,6 +17,7 @@ from washer.machine import kernel
 from washer.paper.analysis import PAPER, RANGES, RISE_MIN, RISE_STEP
 from washer.machine.params import default_params_path
 from washer.paper.setups import SETUPS
+from washer.atomic import write_text
 
 #: A number matches the paper when within this relative difference.
 MATCH_REL = 0.02
@@ -378,7 +379,7 @@ def write_incomplete(out: Path, failed: dict, log, mode: str, timing: dict) -> P
                 [(k, f"{v:.2f}", log.status[k]) for k, v in log.seconds.items()]) + "\n"]
     out.mkdir(parents=True, exist_ok=True)
     path = out / "report.md"
-    path.write_text("\n".join(L))
+    write_text(path, "\n".join(L))
     return path
 
 
@@ -473,5 +474,5 @@ def write(out: Path, params, m: dict, resp: dict, figs: dict, log, mode: str, ti
              "(section 3.2.1); Figs 10-11 from the static equilibrium at rest (section 3.2.2). "
              "Data: `data/*.npz`, `data/*.csv`.\n")
     path = out / "report.md"
-    path.write_text("\n".join(L))
+    write_text(path, "\n".join(L))
     return path

@@ -7,7 +7,9 @@ AUTO's `DS='-'` (as AUTO-07p scripts do), saved as `<name>.bwd`.
 """
 from __future__ import annotations
 
+import os
 import shutil
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -123,12 +125,37 @@ def run_all(out: Path, quick: bool = False, progress=print) -> tuple[dict, dict,
     if not CONSTANTS_DIR.is_dir():
         raise FileNotFoundError(f"{CONSTANTS_DIR}: the constants files are not there; run "
                                 "from a source checkout (pip install -e .)")
-    folder = out / "auto"
-    folder.mkdir(parents=True, exist_ok=True)
-    for old in list(folder.glob("[bsd].*")):
-        old.unlink()          # AUTO appends to nothing: start each reproduction clean
-    for c in sorted(CONSTANTS_DIR.glob("c.washer*")):
-        shutil.copy(c, folder / c.name)
+    final = out / "auto"
+    final.mkdir(parents=True, exist_ok=True)
+    # The runs write into a fresh folder beside the previous results, which stay
+    # untouched until every run is over: an interrupt or a crash loses nothing.
+    folder = Path(tempfile.mkdtemp(prefix=".auto.new-", dir=out))
+    try:
+        for c in sorted(CONSTANTS_DIR.glob("c.washer*")):
+            shutil.copy(c, folder / c.name)
+        curves, results, log = _run_all_in(folder, quick, progress)
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
+    _replace_files(folder, final)
+    return curves, results, log
+
+
+def _replace_files(new: Path, final: Path) -> None:
+    """Move every file of `new` into `final` (each replaces its namesake in one step),
+    remove the b/s/d files of `final` the new runs did not write, then `new`."""
+    names = set()
+    for f in sorted(new.iterdir()):
+        os.replace(f, final / f.name)
+        names.add(f.name)
+    for old in final.glob("[bsd].*"):
+        if old.name not in names:
+            old.unlink()
+    new.rmdir()
+
+
+def _run_all_in(folder: Path, quick: bool, progress) -> tuple[dict, dict, "RunLog"]:
+    """The runs of run_all, in `folder`."""
     log = RunLog()
     curves, results = {}, {}
     for frame, (_, suffix) in FRAMES.items():

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.machine.model import Model
+from washer.atomic import save_figure
 
 #: Length (s) of the simulation judged against the C_p = 0 orbit, and the window
 #: at its end over which the envelope is taken (10 s = ~90 whirl periods). The
@@ -221,7 +222,7 @@ def plot(fam: WhirlFamily, cmp: dict, stem: Path) -> list[Path]:
     out = []
     for ext in ("png", "pdf"):
         p = Path(f"{stem}.{ext}")
-        fig.savefig(p, dpi=150)
+        save_figure(fig, p, dpi=150)
         out.append(p)
     plt.close(fig)
     return out
