@@ -1,5 +1,5 @@
-"""What a periodic-orbit run finds and how it goes on, on problems whose answers are
-known in closed form (tests/data/mobius, rotor, cyclepf; their docstrings derive them)
+"""What a run finds and how it goes on (periodic orbits above all), on problems whose
+answers are known in closed form (tests/data/mobius, rotor, cyclepf; their docstrings derive them)
 and on AUTO-07p's lor demo (AUTO's own b-file, constants unchanged).
 
 Location tolerance of a special point: EPSS (1 + sqrt|DS DSMAX|) in arclength (the
@@ -141,3 +141,31 @@ def test_bad_data_files_are_named_with_line_and_expectation(tmp_path):
     (d / "bad.dat").write_text("\n".join(lines) + "\n")
     with pytest.raises(RunError, match=r"bad\.dat:5: expected numbers"):
         run(d / "c.lor.1", verbose=False, e="lor", dat="bad", sv="x")
+
+
+def test_stop_counts_start_afresh_on_every_switched_branch(tmp_path):
+    """x' = mu x + x^3 - x^5 from mu = -1 on x = 0: a BP at mu = 0, and MXBF switching
+    follows the secondary branch mu = x^4 - x^2 both ways, each with its one fold at
+    mu = -1/4 (x^2 = 1/2). STOP = ['LP2'] counts per branch, as AUTO's INITSTOPCNTS at
+    every branch: neither direction reaches a second LP, so both run to the window
+    mu = 1 (EP) (counted over the run, the second direction stopped at its LP)."""
+    (tmp_path / "qp.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([par[0] * u[0] + u[0] ** 3 - u[0] ** 5])\n"
+        "def stpnt(u, par):\n    u[0] = 0.0\n    par[0] = -1.0\n")
+    (tmp_path / "c.qp").write_text(
+        "e = 'qp'\nNDIM = 1, IPS = 1, IRS = 0, ILP = 1\nICP = [1]\nNMX = 200, MXBF = 5\n"
+        "DS = 0.05, DSMIN = 0.001, DSMAX = 0.05\nRL0 = -1.0, RL1 = 1.0\nSTOP = ['LP2']\n")
+    res = run(tmp_path / "c.qp", verbose=False, sv="qp")
+    segs = [[]]
+    for r in res.rows:
+        if r.pt == 1 and segs[-1]:
+            segs.append([])
+        if r.lab:
+            segs[-1].append((r.ty, r.values[0]))
+    assert [[t for t, _ in seg] for seg in segs] == [["EP", "BP", "EP"], ["LP", "EP"],
+                                                    ["LP", "EP"]]
+    tol = located_tol(tmp_path / "c.qp")
+    for seg in segs[1:]:
+        assert seg[0][1] == pytest.approx(-0.25, abs=tol)
+        assert seg[1][1] > 1.0

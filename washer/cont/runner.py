@@ -84,7 +84,9 @@ class _Executor:
 
     def branch(self, br: int, it: Continuation, first_label: bool) -> None:
         """Follow one branch to its end, writing through the sinks; the branch's work
-        is added to the run's counters."""
+        is added to the run's counters. STOP and SP counts start afresh on every branch
+        (AUTO's INITSTOPCNTS at each computed branch, each MXBF switch included)."""
+        self.counts = {}
         try:
             self._follow(br, it, first_label)
         finally:
