@@ -169,3 +169,41 @@ def test_stop_counts_start_afresh_on_every_switched_branch(tmp_path):
     for seg in segs[1:]:
         assert seg[0][1] == pytest.approx(-0.25, abs=tol)
         assert seg[1][1] > 1.0
+
+
+def test_pvls_receives_the_orbit_with_autos_getp_helpers(tmp_path):
+    """On IPS = 2, pvls(u, par) gets a washer.cont.pvls.Orbit: the node values with the
+    mesh, the period and GETP's helpers. On mobius's cycle (cos 2 pi t, sin 2 pi t, 0, 0)
+    the integrals are known: NRM(1)^2 = 1/2, INT(1) = 0, MAX(2) = 1 (a node at t = 1/4),
+    BV0/BV1 equal (to the collocation error of the orbit at NTST = 20: its radius is
+    1 - 2.5e-9; 1e-8 allowed); the transverse multipliers have |mu| = exp(a T), so a UZR value
+    exp(-0.2) on the PAR that pvls fills with |mu_2| is found at a = -0.2."""
+    d = folder(tmp_path, "mobius")
+    src = (d / "mobius.py").read_text() + '''
+
+def pvls(u, par):
+    par[12] = u.norm(1) ** 2
+    par[13] = u.integral(1)
+    par[14] = u.max(2)
+    par[15] = u.bv1(3) - u.bv0(3)
+    par[16] = abs(u.multipliers[1])
+    par[17] = u.n_stable
+    par[18] = u.period
+'''
+    (d / "mobpv.py").write_text(src)
+    c = (d / "c.mobius.tr").read_text().replace("e = 'mobius'", "e = 'mobpv'")
+    c = c.replace("NPAR = 12", "NPAR = 19").replace("UZSTOP = {1: 0.3}",
+                                                    "UZR = {17: 0.8187307530779818}\nUZSTOP = {1: 0.3}")
+    (d / "c.mobpv").write_text(c)
+    res = run(d / "c.mobpv", verbose=False, sv="pv")
+    assert res.status == "ok"
+    for r in res.rows:
+        assert r.par[12] == pytest.approx(0.5, abs=1e-8)
+        assert r.par[13] == pytest.approx(0.0, abs=1e-8)
+        assert r.par[14] == pytest.approx(1.0, abs=1e-8)
+        assert r.par[15] == 0.0
+        assert r.par[16] == pytest.approx(math.exp(r.values[0]), rel=1e-7)
+        assert r.par[18] == pytest.approx(1.0, abs=1e-10)
+    uz = [r for r in res.rows if r.ty == "UZ"]
+    assert uz[0].values[0] == pytest.approx(-0.2, abs=located_tol(d / "c.mobpv"))
+    assert uz[0].par[17] == 4             # all inside: 1, exp(-2), the pair at exp(-0.2)

@@ -51,6 +51,7 @@ import scipy.sparse as sp
 
 from washer.cont import collocation as col
 from washer.cont import floquet
+from washer.cont.pvls import Orbit
 from washer.auto.codes import Code
 from washer.cont.system import Solution, Stability, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
@@ -237,10 +238,18 @@ class PeriodicOrbits(CollocationBVP):
 
     def params(self, x: np.ndarray) -> np.ndarray:
         """Full PAR at x: the free parameters (PAR(11) the period) and the user's pvls
-        applied to the profile (NTPL, NDIM)."""
+        applied to the orbit: a `washer.cont.pvls.Orbit`, the node values (NTPL, NDIM)
+        with the mesh, the period and AUTO's GETP helpers (norm, integral, max, min,
+        bv0, bv1, the multipliers and the stable count, computed on first use; None
+        with ISP = 0)."""
         U, par = self.unpack(x)
         if getattr(self.problem, "has_pvls", False):
-            par = self.problem.pvls(U, par)
+            def multipliers():
+                st = self.stability(x) if self.settings.ISP != 0 else None
+                return None if st is None else st.values
+            orbit = Orbit.of(U, self.mesh.node_times(), self.coll.w_node, self.period(par),
+                             self.mesh.ntst, self.mesh.ncol, multipliers)
+            par = self.problem.pvls(orbit, par)
         return par
 
     def update(self, x: np.ndarray, tangent: np.ndarray) -> None:
