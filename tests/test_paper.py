@@ -38,8 +38,10 @@ def curves(quick):
 def test_report_and_figures_are_written(quick):
     report = (quick / "report.md").read_text()
     images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", report)
-    # Figs 3-11, the spin-up's yaw, Fig 11 run long, the exact (Floquet) Fig 4 curve
-    assert len(images) == 13
+    # Figs 3-11, the spin-up's yaw, Fig 11 run long, the exact (Floquet) Fig 4 curve, the
+    # exact whirl, the clearance criterion, the mechanism
+    assert len(images) == 16
+    assert "exact_whirl.png" in images and "mechanism.png" in images
     assert "fig4_exact.png" in images and "whirl_orbits.png" in images
     # The whirl section: the orbit at C_p = 0 against the long Fig 9 run, judged.
     row = next(l for l in report.splitlines() if l.startswith("| orbit at C_p = 0"))

@@ -48,6 +48,9 @@ TWO_PI = 2.0 * np.pi
 #: and rotation number, and the normal multipliers need it: at K = 8 or 12 unresolved
 #: modes still pass for normal ones near C_p = 0.
 N_NODES = 33
+#: Largest pseudo-arclength step (scaled state norm; the family spans ~1 from the TR
+#: point to C_p = 0).
+DS_MAX = 0.08
 #: Radius (m, offset of the tub) of the first circle, born at the TR point.
 FIRST_AMPLITUDE = 0.004
 #: Integration tolerances of the map: those of the forced response (`washer.machine.forced`).
@@ -225,7 +228,7 @@ def measure(params: Params, name: str, b: Birth, br: ic.CircleBranch) -> ExactWh
 
 
 def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int = N_NODES,
-                ds: float = 0.02, ds_max: float = 0.08, max_points: int = 80,
+                ds: float = 0.02, ds_max: float = DS_MAX, max_points: int = 80,
                 progress=None) -> ExactWhirl:
     """The invariant circles of the T/2 map from the TR point in `name` (default C_p) to
     `name` = stop, with rotation numbers and normal multipliers (`ExactWhirl`).

@@ -296,6 +296,19 @@ def _main(args) -> int:
     env = whirl.simulated_envelope(params, whirl.T_LONG_QUICK if args.quick else whirl.T_LONG)
     whirl_cmp = whirl.compare(fam, env)
     whirl_files = whirl.plot(fam, whirl_cmp, d / "whirl_orbits")
+    # Beyond the paper: the exact whirl (no averaging) beside the averaged orbits, the
+    # damping a clearance needs, the mechanism, and the estimates' weight.
+    print("Beyond the paper: exact whirl, clearance, mechanism, sensitivity:")
+    from washer.paper import exact_whirl, mechanism, sensitivity
+    say = lambda m: print(m, flush=True)
+    t3 = time.perf_counter()
+    ex = exact_whirl.compute(params, averaged=fam, quick=args.quick, progress=say)
+    mech = mechanism.compute(params, progress=say)
+    sens = sensitivity.compute(params, progress=say)
+    beyond_files = (exact_whirl.plot(ex, d / "exact_whirl")
+                    + exact_whirl.plot_clearance(ex, d / "clearance")
+                    + mechanism.plot(mech, d / "mechanism"))
+    t_beyond = time.perf_counter() - t3
     wall = time.perf_counter() - t0
     write_summary(d / "measurements.json", meas, resp)
     path = report.write(d, params, meas, resp, figs, log, mode=mode,
@@ -305,10 +318,16 @@ def _main(args) -> int:
         fh.write("\n" + exact_stability.markdown(exact)
                  + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
                  f"(computed in {t_exact:.1f} s: `python -m washer.paper.exact_stability` reruns it)\n")
+        fh.write("\n" + exact_whirl.markdown(ex, "exact_whirl.png") + "\n")
+        fh.write("\n" + exact_whirl.clearance_markdown(ex, "clearance.png") + "\n")
+        fh.write("\n" + mechanism.markdown(mech, "mechanism.png") + "\n")
+        fh.write("\n" + sensitivity.markdown(sens)
+                 + f"\n(these four sections computed in {t_beyond:.1f} s)\n")
     for k, paths in figs.items():
         print(f"  {k}: " + ", ".join(p.name for p in paths))
     print("  forced: " + ", ".join(p.name for p in exact_files))
     print("  whirl: " + ", ".join(p.name for p in whirl_files))
+    print("  beyond: " + ", ".join(p.name for p in beyond_files))
     print(f"Report: {path}")
     print(f"Wall time ({mode} mode): {time.perf_counter() - t0:.1f} s "
           f"(AUTO runs {t_auto:.1f} s, time responses {t_sim:.1f} s)")
