@@ -207,3 +207,28 @@ def pvls(u, par):
     uz = [r for r in res.rows if r.ty == "UZ"]
     assert uz[0].values[0] == pytest.approx(-0.2, abs=located_tol(d / "c.mobpv"))
     assert uz[0].par[17] == 4             # all inside: 1, exp(-2), the pair at exp(-0.2)
+
+
+def test_rotations_have_the_exact_period(tmp_path):
+    """tests/data/rotor: U(1) = theta grows by 2 pi per period (AUTO's rotations: NRTN = 1
+    from the start profile, u(0) - u(1) + 2 pi NRTN = 0 in the boundary conditions).
+    Continued in a from 0 (without rotations the start is not a solution and Newton
+    diverges): the period 2 pi / sqrt(1 - a^2) at the UZ points a = 0.3, 0.6 and the
+    stop 0.9 to 1e-8 relative (measured 2.5e-10 at 0.9, where the rotation is most
+    uneven), the profile on the invariant curve v = 1 + a sin(theta) to 1e-5 (measured
+    5e-6 at 0.9: nodes inside the intervals converge as h^(NCOL + 1)), theta(1) -
+    theta(0) = 2 pi. AUTO-07p on the same problem: UZ at a = 0.30000000201,
+    0.60000059822, 0.90000000024, periods 6.5865678882, 7.8539860387, 14.414615697."""
+    d = folder(tmp_path, "rotor")
+    res = run(d / "c.rotor", verbose=False, sv="rot")
+    assert res.status == "ok"
+    lab = [r for r in res.rows if r.lab]
+    assert [r.ty for r in lab] == ["EP", "UZ", "UZ", "UZ"]
+    tol = located_tol(d / "c.rotor")
+    for r, a_want in zip(lab[1:], (0.3, 0.6, 0.9)):
+        a = r.values[0]
+        assert a == pytest.approx(a_want, abs=tol)
+        assert r.values[-1] == pytest.approx(2 * math.pi / math.sqrt(1 - a * a), rel=1e-8)
+        u = np.asarray(r.u)
+        assert u[-1, 0] - u[0, 0] == pytest.approx(2 * math.pi, abs=1e-12)
+        assert np.max(np.abs(u[:, 1] - (1 + a * np.sin(u[:, 0])))) < 1e-5

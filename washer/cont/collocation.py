@@ -251,12 +251,14 @@ class Collocation:
         return np.concatenate([coll.ravel(), bc, np.atleast_1d(integrals)])
 
     def residual(self, U: np.ndarray, T: float, fg: np.ndarray, U_old: np.ndarray,
-                 up_old: np.ndarray) -> np.ndarray:
+                 up_old: np.ndarray, bc_offset: np.ndarray | None = None) -> np.ndarray:
         """The periodic orbit's (N,) residual (NINT = 1). U: profile; T: the period; fg: f
         at the Gauss points (NTST, NCOL, NDIM); U_old, up_old: the reference profile and
-        its time derivative T_old f(U_old) at the nodes (AUTO's UOLDPS, UPOLDP)."""
+        its time derivative T_old f(U_old) at the nodes (AUTO's UOLDPS, UPOLDP);
+        bc_offset (NDIM,): added to u(0) - u(1) (2 pi NRTN of rotations, BCPS)."""
         phase = self.w_node @ np.sum((U - U_old) * up_old, axis=1)
-        return self.residual_general(U, T * fg, [phase])
+        bc = None if bc_offset is None else U[0] - U[-1] + bc_offset
+        return self.residual_general(U, T * fg, [phase], bc)
 
     def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
         """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,

@@ -150,6 +150,25 @@ class CollocationBVP:
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
 
+    #: AUTO's NRTN (SETRTN): for each component of u, the number of turns of 2 pi it
+    #: makes over one period (u(1) - u(0) = 2 pi NRTN: an angle of a pendulum-like
+    #: system that rotates); None when no component rotates.
+    nrtn = None
+
+    def set_rotations(self, U: np.ndarray) -> None:
+        """AUTO's SETRTN on the start profile: NRTN = NINT((u(1) - u(0)) / 2 pi)."""
+        k = np.rint((U[-1, :self.ndim] - U[0, :self.ndim]) / (2 * math.pi)).astype(int)
+        self.nrtn = k if np.any(k) else None
+
+    def bc_offset(self) -> np.ndarray | None:
+        """What the rotations add to W(0) - W(1) (BCPS, BCPL, BCPD, BCTR): 2 pi NRTN on
+        the components of u, 0 on the loci's others; None without rotations."""
+        if self.nrtn is None:
+            return None
+        off = np.zeros(self.n_comp)
+        off[:self.ndim] = 2 * math.pi * self.nrtn
+        return off
+
     def period(self, par) -> float:
         """The period T scaling u' = T f(u) (PAR(11))."""
         return float(par[10])

@@ -81,6 +81,7 @@ class CycleFoldLocus(CollocationBVP):
         scale = math.sqrt(NORM / (self.coll.integral(np.sum(V * V, axis=1)) + beta ** 2))
         V, beta = V * scale, beta * scale
         self.set_phase_reference(U, self.par)
+        self.set_rotations(U)
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), T, self.par[self.p2 - 1], beta, self.par[self.p1 - 1]],
                        None)
@@ -114,7 +115,8 @@ class CycleFoldLocus(CollocationBVP):
         ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1),
                 w @ np.sum(v * self.up_old, axis=1),
                 w @ np.sum(v * v, axis=1) + beta ** 2 - NORM]
-        return self.coll.residual_general(W, F, ints)
+        off = self.bc_offset()
+        return self.coll.residual_general(W, F, ints, None if off is None else W[0] - W[-1] + off)
 
     def jacobian(self, x):
         u, v, par, beta, W, T, ug, vg, fg, A = self._at_gauss(x)

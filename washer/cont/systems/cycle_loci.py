@@ -106,6 +106,7 @@ class _CycleLocus(CollocationBVP):
         V = self._eigenfunction(Phi, mu, vec)                  # (n_nodes, (m - 1) n)
         V *= math.sqrt(NORM / self.coll.integral(np.sum(V * V, axis=1)))
         self.set_phase_reference(U, self.par)
+        self.set_rotations(U)
         self.V_old = V.copy()
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), [self.par[i - 1] for i in self.xpar]], None)
@@ -235,7 +236,8 @@ class PeriodDoublingLocus(_CycleLocus):
 
     def _bc(self, W0, W1, par):
         n = self.n
-        return np.r_[W0[:n] - W1[:n], W0[n:] + W1[n:]]
+        off = self.bc_offset()
+        return np.r_[W0[:n] - W1[:n] + (0 if off is None else off[:n]), W0[n:] + W1[n:]]
 
     def _bc_jac(self, W0, par):
         n = self.n
@@ -308,7 +310,9 @@ class TorusLocus(_CycleLocus):
         n = self.n
         c, s = math.cos(par[11]), math.sin(par[11])
         v0, w0, v1, w1 = W0[n:2 * n], W0[2 * n:], W1[n:2 * n], W1[2 * n:]
-        return np.r_[W0[:n] - W1[:n], v1 - c * v0 + s * w0, w1 - c * w0 - s * v0]
+        off = self.bc_offset()
+        return np.r_[W0[:n] - W1[:n] + (0 if off is None else off[:n]), v1 - c * v0 + s * w0,
+                     w1 - c * w0 - s * v0]
 
     def _bc_jac(self, W0, par):
         n = self.n

@@ -149,6 +149,7 @@ class PeriodicOrbits(CollocationBVP):
                              "the mesh times t in [0, 1] (AUTO's STPNT with T); this stpnt gives "
                              "a constant: restart from an HB label instead (IRS='HB1')")
         self.set_phase_reference(U, self.par)
+        self.set_rotations(U)
         self._start = (self._x(U, self.par), None)
         self.start_kind = ""
 
@@ -162,6 +163,7 @@ class PeriodicOrbits(CollocationBVP):
         mesh, U, _ = col.profile_from_data(t, U, s.NTST, s.NCOL, periodic=True)
         self.set_mesh(mesh)
         self.set_phase_reference(U, self.par)
+        self.set_rotations(U)
         self._start = (self._x(U, self.par), None)
         self.start_kind = ""
 
@@ -172,14 +174,17 @@ class PeriodicOrbits(CollocationBVP):
         rldot = list(getattr(rec, "rldot", []) or [])
         if self.isw == -1 and self.kind == "PD":
             # PDBLE: the orbit traversed twice, period doubled, mesh halved and repeated
+            # (the second pass continues from the first's end, so rotating components
+            # go on turning: u(1/2 + t/2) = u(1) + u(t) - u(0))
             self.par[10] *= 2
             tm = mesh_r.tm
             mesh_r = col.Mesh(np.r_[0.5 * tm[:-1], 0.5 + 0.5 * tm], mesh_r.ncol)
-            U_r = np.r_[U_r[:-1], U_r]
-            ud_r = None if ud_r is None else np.r_[ud_r[:-1], ud_r]
+            U_r = np.r_[U_r[:-1], U_r[-1] + U_r - U_r[0]]
+            ud_r = None if ud_r is None else np.r_[ud_r[:-1], ud_r[-1] + ud_r - ud_r[0]]
         mesh, (U, ud) = onto_mesh(mesh_r, [U_r, ud_r], s.NTST, s.NCOL, self.ndim)
         self.set_mesh(mesh)
         self.set_phase_reference(U, self.par)
+        self.set_rotations(U)
         x0 = self._x(U, self.par)
         old = None
         if ud is not None and len(rldot) >= 2:
@@ -218,7 +223,8 @@ class PeriodicOrbits(CollocationBVP):
         U, par = self.unpack(x)
         ug = self.coll.at_gauss(U).reshape(-1, self.ndim)
         fg = self.field.f(ug, par).reshape(self.mesh.ntst, self.mesh.ncol, self.ndim)
-        return self.coll.residual(U, self.period(par), fg, self.U_old, self.up_old)
+        return self.coll.residual(U, self.period(par), fg, self.U_old, self.up_old,
+                                  self.bc_offset())
 
     def jacobian(self, x: np.ndarray) -> sp.csc_matrix:
         U, par = self.unpack(x)
