@@ -315,6 +315,10 @@ def test_stable_without_joint_damping_is_an_answer(params):
     base = {"values": dict(params.values), "tied": params.tied, "source": params.source}
     row = compute_point(point, base)
     assert row["status"] == "ok" and row["error"] == "" and row["crit_status"] == "stable"
+    # Without an imbalance the whirl pair is undamped at C_p = 0 (neutral to round-off)
+    # and stable for any joint damping: critical C_p = 0 too.
+    free = critical(params.replace(m_u=0.0), "C_p", 0.0, 3.0)
+    assert free["crit_status"] == "stable" and free["crit_value"] == 0.0
 
 
 def test_unstable_over_the_range_is_an_answer(params):

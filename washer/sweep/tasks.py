@@ -26,9 +26,10 @@ critical   the critical value of one parameter at this point: the first Hopf
            from `from` to `to` (the engine of washer.run, e='washer', with the
            point's parameter set injected: run(..., params=...)):
     crit_status          the answer: "hopf" (a critical value in the range),
-                         "stable" (stable over the whole range: the critical value
-                         is at most `from`, and crit_value = `from`; with C_p from 0,
-                         stable without joint damping), "unstable" (unstable over the
+                         "stable" (stable over the whole range, or neutral at `from`
+                         and stable above: the critical value is at most `from`, and
+                         crit_value = `from`; with C_p from 0, stable without joint
+                         damping), "unstable" (unstable over the
                          whole range: more than `to` is needed, crit_value NaN), or
                          "failed" (no answer: the row's error says why)
     crit_value           the parameter at the HB (its units), `from` when stable
@@ -264,7 +265,9 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
     """No HB on the branch. From the stability at the two ends:
 
     - stable at both: the answer "stable" (crit_value = lo: with C_p from 0, stable
-      without joint damping), the engine having found no crossing between;
+      without joint damping), the engine having found no crossing between; also when
+      neutral at lo (within NEUTRAL_MARGIN: without an imbalance the whirl pair is
+      undamped at C_p = 0) and stable at hi;
     - unstable at both: the answer "unstable" (more than `hi` needed);
     - unstable at lo, stable at hi: the crossing lies before the engine's first step,
       where the engine does not test for bifurcations (seen at Omega = 9 Hz, m_u = 0.25
@@ -286,6 +289,11 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
         return "neutral" if abs(m) <= NEUTRAL_MARGIN else "stable" if m < 0 else "unstable"
 
     ends = f"margin {m_lo:.3g} 1/s at {lo:g}, {m_hi:.3g} at {hi:g}"
+    if status == "ok" and state(m_lo) == "neutral" and state(m_hi) == "stable":
+        # Neutral at lo (no imbalance: the whirl pair is undamped at C_p = 0) and stable
+        # above it: the critical value is lo itself.
+        return {"crit_status": "stable", "crit_value": float(lo), "crit_whirl": math.nan,
+                "crit_n_hopf": 0.0, "crit_source": "ends"}
     if status == "ok" and state(m_lo) == state(m_hi) in ("stable", "unstable"):
         return {"crit_status": state(m_lo), "crit_value": float(lo) if m_lo < 0 else math.nan,
                 "crit_whirl": math.nan, "crit_n_hopf": 0.0, "crit_source": "ends"}
