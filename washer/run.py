@@ -158,8 +158,20 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             list(sinks or [])
         result = execute(r, br, mode, all_sinks)
     result.files = file_sink.files if files else None
+    if files and not result.rows:
+        # No point: empty b- and s-files would only hide that the run failed.
+        for p in (result.files.b_path, result.files.s_path):
+            with contextlib.suppress(OSError):
+                if not p.is_symlink() and p.stat().st_size == 0:
+                    p.unlink()
+    if c["e"].split(":")[0] == "washer":
+        from washer.machine.layout import UNITS
+        result.units = dict(UNITS)
     if verbose:
-        print(f"{c['e'] or problem.name} ... done")
+        if result.status == "ok":
+            print(f"{c['e'] or problem.name} ... done")
+        else:
+            print(f"{c['e'] or problem.name} ... failed", file=sys.stderr)
     return result
 
 
@@ -177,9 +189,19 @@ def _check_size(c: Constants, problem: Problem, allow: bool) -> None:
 
 
 def load(path):
-    """Read an AUTO b- or s-file (ours or AUTO-07p's)."""
+    """Read an AUTO b- or s-file (ours or AUTO-07p's).
+
+    A b-file gives AUTO's bifurcation diagram (washer.auto.diagram.Diagram): a list of
+    branches whose rows iterate as before and whose columns are named by the file's
+    titles (`load('b.ab')[0]['L2-NORM']`, `load('b.ab')['PAR(1)']`, a labelled
+    point `load('b.ab')('HB1')` when the s-file is beside it). An s-file gives its
+    records (washer.cont.branch.Record), which restart runs."""
     p = Path(path)
-    return read_s(p) if p.name.startswith("s.") else read_b(p)
+    if p.name.startswith("s."):
+        return read_s(p)
+    from washer.auto.diagram import Diagram
+    s_path = p.with_name("s." + p.name[2:]) if p.name.startswith("b.") else None
+    return Diagram.read(p, s_path if s_path is not None and s_path.exists() else None)
 
 
 def _copy_examples(args: list[str]) -> int:
@@ -228,8 +250,15 @@ def main(argv: list[str] | None = None) -> int:
         if os.environ.get("WASHER_TRACEBACK"):
             raise
         return 2
-    print(f"Saved as {res.files.b_path}, {res.files.s_path}, {res.files.d_path}")
-    return 0 if res.status == "ok" else 1
+    written = [str(p) for p in (res.files.b_path, res.files.s_path, res.files.d_path)
+               if p.exists()]
+    if res.status == "ok":
+        print(f"Saved as {', '.join(written)}")
+        return 0
+    kept = (f"{len(res.rows)} points computed before it are in {', '.join(written)}"
+            if res.rows else f"no point was computed (diagnostics in {res.files.d_path})")
+    print(f"error: {argv[0]}: the run {res.status}; {kept}", file=sys.stderr)
+    return 1
 
 
 if __name__ == "__main__":

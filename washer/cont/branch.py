@@ -122,15 +122,114 @@ class Record:
 @dataclass
 class Branch:
     """The points of one run, in the order written (all branches of the run,
-    including those reached by branch switching), and its labelled points."""
+    including those reached by branch switching), and its labelled points.
+
+    As AUTO's CLUI and pandas users expect it:
+        print(branch)           AUTO's table of labelled points (BR PT TY LAB and columns)
+        branch('HB1')           a labelled point (Record) by type and count, label or position
+        branch['B'], branch['PAR(3)'], branch['L2-NORM']
+                                one value per point (ndarray): a parameter or state by name
+                                (parnames, unames) or index, or a b-file column by title
+        branch.to_dataframe()   one row per point: BR, PT, TY, LAB, stable, the b-file
+                                columns by name, every named parameter; units in .attrs
+    """
     rows: list = field(default_factory=list)        # every Record (lab 0 included)
     status: str = "ok"
     elapsed: float = 0.0
     counters: Counters = field(default_factory=Counters)    # summed over the branches
+    #: The b-file's column titles of `Record.values` (PAR(ICP(1)) or its name, the
+    #: system's columns, the other free parameters); names of PAR and U indices; units
+    #: by name (where the problem states them).
+    titles: list = field(default_factory=list)
+    parnames: dict = field(default_factory=dict)
+    unames: dict = field(default_factory=dict)
+    units: dict = field(default_factory=dict)
 
     @property
     def specials(self) -> list:
         return [r for r in self.rows if r.lab]
+
+    # ------------------------------------------------------------ reading it
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __repr__(self) -> str:
+        kinds: dict[str, int] = {}
+        for r in self.specials:
+            kinds[r.ty] = kinds.get(r.ty, 0) + 1
+        found = ", ".join(f"{n} {k}" for k, n in kinds.items()) or "none"
+        return (f"<Branch: {len(self.rows)} points, labelled: {found}; status {self.status!r}"
+                f"{'; columns ' + ', '.join(self.titles) if self.titles else ''}>")
+
+    def __str__(self) -> str:
+        """AUTO's table of labelled points (the screen format: I4, I6, A3, I5, ES14.5)."""
+        titles = self.titles or [f"column {i + 1}" for i in range(
+            max((len(r.values) for r in self.rows), default=0))]
+        head = f"  BR    PT  TY  LAB" + "".join(f"{t[:13]:>14}" for t in titles)
+        lines = [head]
+        for r in self.specials:
+            pt = (r.pt - 1) % 9999 + 1
+            lines.append(f"{r.br:4d}{pt:6d} {r.ty:>3}{r.lab:5d}"
+                         + "".join(f"{v:14.5E}" for v in r.values))
+        if not self.specials:
+            lines.append("  (no labelled points)")
+        lines.append(f"{len(self.rows)} points; status: {self.status}")
+        return "\n".join(lines)
+
+    def _index(self, names: dict, key: str) -> int | None:
+        for i, n in names.items():
+            if n == key:
+                return int(i)
+        return None
+
+    def __getitem__(self, key) -> np.ndarray:
+        """One value per point: branch['B'] (a parameter by name: PAR of every point),
+        branch['x'] (a state by name: U of every point; the mesh profile of a BVP
+        point is (NTPL,) so the result is (npoints, NTPL)), branch['PAR(3)'],
+        branch['U(1)'], branch['PERIOD'], or a b-file column by title
+        ('L2-NORM', 'MAX U(1)', ...)."""
+        if not isinstance(key, str):
+            raise TypeError(f"branch[{key!r}]: index with a name ('B', 'PAR(1)', "
+                            "'L2-NORM'); rows are branch.rows, labelled points branch('HB1')")
+        i = self._index(self.parnames, key)
+        if i is None and key == "PERIOD":
+            i = 11
+        if i is None and key.startswith("PAR(") and key.endswith(")") and key[4:-1].isdigit():
+            i = int(key[4:-1])
+        if i is not None:
+            return np.array([r.par[i - 1] if len(r.par) >= i else np.nan for r in self.rows])
+        j = self._index(self.unames, key)
+        if j is None and key.startswith("U(") and key.endswith(")") and key[2:-1].isdigit():
+            j = int(key[2:-1])
+        if j is not None and key not in self.titles:
+            cols = [np.asarray(r.U) for r in self.rows]
+            return np.array([c[j - 1] if c.ndim == 1 else c[:, j - 1] for c in cols])
+        if key in self.titles:
+            k = self.titles.index(key)
+            return np.array([r.values[k] for r in self.rows])
+        known = sorted(set(map(str, self.parnames.values())) | set(map(str, self.unames.values()))
+                       | set(self.titles))
+        raise KeyError(f"{key!r}: not a parameter, state or column of this branch "
+                       f"(known: {', '.join(known)}; or PAR(i), U(i))")
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per point: BR, PT, TY (categorical: '' for
+        unlabelled points, 'HB', 'LP', ...), LAB, stable (bool, NaN where undefined),
+        the b-file's columns by their titles, then every named parameter not among
+        them. `df.attrs['units']` gives the unit of each column where known."""
+        import pandas as pd
+        data = {"BR": [r.br for r in self.rows], "PT": [r.pt for r in self.rows],
+                "TY": pd.Categorical([r.ty for r in self.rows]),
+                "LAB": [r.lab for r in self.rows],
+                "stable": pd.array([r.stable for r in self.rows], dtype="boolean")}
+        for k, t in enumerate(self.titles):
+            data[t] = [r.values[k] if k < len(r.values) else np.nan for r in self.rows]
+        for i, n in sorted((int(i), n) for i, n in self.parnames.items()):
+            if n not in data:
+                data[n] = self[n]
+        df = pd.DataFrame(data)
+        df.attrs["units"] = {c: self.units[c] for c in df.columns if c in self.units}
+        return df
 
     def __call__(self, key):
         """r('HB1'), r('LP'), r(3), r(-1): a labelled point by type (and count), label

@@ -186,7 +186,10 @@ def build(c, problem, records=None, name: str = "", records_source: str = "the r
 def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
     """Run the branches of `run` (the first one, then MXBF switches) through sinks."""
     t0 = time.perf_counter()
-    run.branch = Branch()            # a fresh result for every execution
+    c = run.constants                # a fresh result for every execution, its columns named
+    run.branch = Branch(titles=list(run.titles),
+                        parnames={int(k): v for k, v in c["parnames"].items()},
+                        unames={int(k): v for k, v in c["unames"].items()})
     ex = _Executor(run, sinks, run.constants)
     ex.label = run.label0
     ex.emit("begin", run)
