@@ -410,9 +410,12 @@ class Continuation:
             return
         if not st.detect:
             # Test functions start at zero (AUTO: TEST(:) = 0): nothing is detected
-            # on the first written interval.
+            # on the first written interval. The step adapts after it as after any
+            # (AUTO's loop calls ADPTDS from its first point on: ab's, log's PT 3 lie
+            # 2 DS beyond PT 2).
             st.detect = True
             yield from self._accept(nxt, current)
+            self._adapt_step(nxt.iterations)
             return
         hit = self._first_zero(current, nxt, st.ds)
         yield from self._flush()
@@ -426,11 +429,20 @@ class Continuation:
             st.n_points += 1
             code = Code.UZ if isinstance(key, tuple) else sysm.located_code(key, sp)
             yield Step("special", sp, prev=current, code=int(code), key=key)
+            if sysm.arclength == "plane":
+                # AUTO's CNRLBV adapts after every point, located ones included (with
+                # the last location step's iterations); CNRLAE only after regular ones.
+                self._adapt_step(sp.iterations)
             return
         yield from self._accept(nxt, current)
+        self._adapt_step(nxt.iterations)
+
+    def _adapt_step(self, iterations: int) -> None:
+        """AUTO's ADPTDS every IADS points (IADS = 0: a fixed step)."""
+        st = self.state
         st.n_since_adapt += 1
         if self.s.IADS > 0 and st.n_since_adapt >= self.s.IADS:
-            st.ds = adapt_step(st.ds, nxt.iterations, self.s)
+            st.ds = adapt_step(st.ds, iterations, self.s)
             st.n_since_adapt = 0
 
     def _accept(self, pt: Point, prev: Point):
