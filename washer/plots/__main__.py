@@ -1,14 +1,14 @@
 """Bifurcation diagrams and periodic orbits from AUTO files.
 
-    python -m washer.plots b.NAME [b.OTHER ...] [--x 0] [--y 1] [--out STEM]
+    python -m washer.plots b.NAME [b.OTHER ...] [--x rho] [--y L2-NORM] [--out STEM]
     python -m washer.plots s.NAME --label 8 [--components 1 2 3] [--phase 1 2] [--out STEM]
 
-b-files: columns are those of the b-file rows: 0 = PAR(ICP(1)), 1 = L2-norm (or the IPLT
-measure), 2.. = U(i) (equilibria) or MAX U(i) (periodic orbits), then the other ICP
-parameters (-1 = the last one, e.g. the second parameter of a Hopf curve, or PERIOD).
-Several b-files go on one axes (equilibria blue, periodic orbits orange; stable solid,
-unstable dashed; HB, LP, BP, PD, TR, UZ marked). Writes STEM.png and STEM.pdf (default:
-b.NAME_diagram).
+b-files: --x and --y name columns as the b-file's header does: a parameter by its parnames
+name or PAR(i), a state by its unames name or U(i) ('MAX x' or 'MAX U(1)' for periodic
+orbits), L2-NORM, PERIOD; or by position (0 = PAR(ICP(1)), 1 = the norm, -1 the last).
+Several b-files go on one axes, one colour and legend entry each; stable parts solid,
+unstable dashed; HB, LP, BP, PD, TR, UZ marked with their labels. Writes STEM.png and
+STEM.pdf (default: b.NAME_diagram).
 s-files: the periodic solution with label --label: its components against time and a
 phase portrait (default: s.NAME_orbitLABEL).
 """
@@ -24,8 +24,10 @@ def main(argv: list[str] | None = None) -> int:
                                  description="Bifurcation diagrams (b-files) and periodic "
                                              "orbits (s-files, --label)")
     ap.add_argument("files", type=Path, nargs="+", metavar="FILE")
-    ap.add_argument("--x", type=int, default=0, help="column on the x axis (default 0)")
-    ap.add_argument("--y", type=int, default=1, help="column on the y axis (default 1)")
+    ap.add_argument("--x", default="0", help="column on the x axis: a name (parnames, "
+                    "unames, PAR(i), U(i), 'MAX x', L2-NORM, PERIOD) or a position "
+                    "(default 0, the first continuation parameter)")
+    ap.add_argument("--y", default="1", help="column on the y axis (default 1, the norm)")
     ap.add_argument("--label", type=int, default=None,
                     help="s-file: the label of the periodic solution to draw")
     ap.add_argument("--components", type=int, nargs="+", default=None,
@@ -54,7 +56,11 @@ def main(argv: list[str] | None = None) -> int:
             return 2
     else:
         from washer.plots.diagrams import save_diagram
-        written = save_diagram(args.files, args.out, args.x, args.y)
+        try:
+            written = save_diagram(args.files, args.out, args.x, args.y)
+        except KeyError as exc:
+            print(f"error: {exc.args[0]}", file=sys.stderr)
+            return 2
     for p in written:
         print(f"wrote {p}")
     return 0
