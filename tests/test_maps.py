@@ -212,7 +212,7 @@ def test_map_fold_locus(tmp_path):
         assert row.U[0] == pytest.approx(-q / 2, abs=1e-6)
 
 
-@pytest.mark.parametrize("ips", [-2, 5, 7, 9, 11, 12, 14, 15, 16, 17])
+@pytest.mark.parametrize("ips", [5, 7, 9, 11, 12, 14, 15, 16, 17])
 def test_unsupported_problem_types_are_refused(tmp_path, ips):
     (tmp_path / "fold.py").write_text(FOLD_MAP)
     (tmp_path / "c.x").write_text(f"NDIM=1, IPS={ips}, ICP=[1]\n")

@@ -10,6 +10,7 @@ cycle_loci   the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR
 bvp          the collocation base of periodic orbits and their loci (registers nothing)
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching
 maps         fixed points of maps (IPS = -1; FNDS), PD switching, fold/PD/NS loci
+timeint      time integration by implicit Euler steps (IPS = -2; FNTI)
 _algebraic, _loci  the bases of the algebraic systems
 """
 import importlib
