@@ -10,7 +10,8 @@ HERE = Path(__file__).resolve().parent
 
 
 class build_py_with_constants(build_py):
-    """Also ship the AUTO constants files of auto_constants/ as washer/auto_constants/.
+    """Also ship the AUTO constants files of auto_constants/ as washer/auto_constants/,
+    and the examples (examples/*.toml, AUTO's ab demo) as washer/examples/.
 
     They stay at the top of the source tree (where the README, the tests and
     users of a checkout run them); a wheel carries a copy inside the package so
@@ -26,6 +27,14 @@ class build_py_with_constants(build_py):
         dst.mkdir(parents=True, exist_ok=True)
         for f in sorted((HERE / "auto_constants").glob("c.*")):
             shutil.copy2(f, dst / f.name)
+        # The sweep specs and AUTO's ab demo, for `--copy-examples` (washer.auto.constants.
+        # shipped_examples reads them from washer/examples/ in an installed copy).
+        ex = Path(self.build_lib) / "washer" / "examples"
+        ex.mkdir(parents=True, exist_ok=True)
+        for f in sorted((HERE / "examples").glob("*.toml")):
+            shutil.copy2(f, ex / f.name)
+        for rel in ("tests/data/ab/ab.py", "tests/data/ab/c.ab"):
+            shutil.copy2(HERE / rel, ex / Path(rel).name)
 
 
 setup(cffi_modules=["build.py:ffibuilder", "build.py:contbuilder"],

@@ -77,6 +77,8 @@ def test_wheel_has_every_subpackage_the_constants_and_a_stripped_kernel(built):
     shipped = {p.name for p in (src / "auto_constants").glob("c.*")}
     in_wheel = {Path(n).name for n in info if n.startswith("washer/auto_constants/")}
     assert shipped and shipped == in_wheel
+    examples = {p.name for p in (src / "examples").glob("*.toml")} | {"ab.py", "c.ab"}
+    assert examples <= {Path(n).name for n in info if n.startswith("washer/examples/")}
     kernels = [n for n in info if n.startswith("washer/_kernel") and n.endswith(".so")]
     assert len(kernels) == 1 and info[kernels[0]] < MAX_KERNEL_BYTES, kernels
     # the continuation engine's compiled linear algebra (washer.cont.reduction)
@@ -109,6 +111,7 @@ def test_installed_wheel_runs_in_another_folder(built, tmp_path):
 
     out = _sh([py, "-m", "washer.run", "--copy-examples", "ex"], work).stdout
     assert (work / "ex" / "c.washer").is_file() and "copied" in out
+    assert (work / "ex" / "sweep_small.toml").is_file() and (work / "ex" / "ab.py").is_file()
     res = _sh([py, "-m", "washer.run", "c.washer", "NMX=4"], work / "ex")
     rows = [l for l in (work / "ex" / "b.washer").read_text().splitlines()
             if not l.startswith("   0")]

@@ -446,13 +446,37 @@ def shipped_constants() -> dict[str, Path]:
     return {p.name: p for p in sorted(folder.glob("c.*"))} if folder else {}
 
 
+#: AUTO's `ab` demo shipped as an example (equations and constants): its place in a checkout.
+AB_DEMO = ("tests/data/ab/ab.py", "tests/data/ab/c.ab")
+
+
+def shipped_examples() -> dict[str, Path]:
+    """{file name: path} of the other shipped examples: the sweep specs (sweep_*.toml)
+    and AUTO's ab demo (ab.py, c.ab). A wheel carries them as washer/examples/
+    (setup.py); a checkout has them in examples/ and tests/data/ab/."""
+    pkg = Path(__file__).resolve().parents[1]
+    inside = pkg / "examples"
+    if inside.is_dir():
+        return {f.name: f for f in sorted(inside.iterdir())
+                if f.is_file() and not f.name.startswith((".", "_"))}
+    root = pkg.parent
+    out = {f.name: f for f in sorted((root / "examples").glob("*.toml"))}
+    for rel in AB_DEMO:
+        if (root / rel).is_file():
+            out[Path(rel).name] = root / rel
+    return out
+
+
 def copy_examples(dest: str | Path, overwrite: bool = False) -> tuple[list[Path], list[Path]]:
-    """Copy the shipped constants files into `dest` (created if missing).
+    """Copy the shipped constants files and examples (sweep specs, AUTO's ab demo)
+    into `dest` (created if missing).
 
     Returns (copied, skipped): an existing file is kept unless overwrite=True,
     so a user's edited constants are never replaced silently.
     """
     files = shipped_constants()
+    if files:
+        files = dict(files, **shipped_examples())
     if not files:
         raise ConstantsError("no shipped constants files found: this washer installation "
                              "lacks washer/auto_constants/ (reinstall the package)")
