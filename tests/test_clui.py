@@ -1,0 +1,156 @@
+"""AUTO's command language: the script dialect, the runner's constants, the diagram and
+solution objects (label selection, relabel, merge, save), checked against AUTO-07p's own
+files and, where it is installed, AUTO-07p's own parsers reading what washer saves."""
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.auto import clui
+from washer.auto.diagram import Diagram, SolutionList
+from washer.auto.script import ScriptError, run_script, translate
+
+DEMOS = Path(__file__).parent / "data" / "auto_demos"
+AUTO_PYTHON = Path("/usr/lib/auto-07p/python")
+
+
+def test_python2_print_statements_become_calls():
+    src = ('print "\\n***Start***"\n'
+           'print pgm, ": first run"\n'
+           'print "%s : run"%pgm\n'
+           'print x,\n'
+           'print\n'
+           'for i in [1]:\n'
+           '    print "y"  # comment\n'
+           'print("already a call")\n'
+           'printer = 1\n')
+    out = translate(src)
+    assert out.splitlines() == ['print( "\\n***Start***")', 'print( pgm, ": first run")',
+                                'print( "%s : run"%pgm)', 'print( x, end=" ")', 'print()',
+                                'for i in [1]:', '    print( "y")  # comment',
+                                'print("already a call")', 'printer = 1']
+    compile(out, "x", "exec")          # valid Python 3
+
+
+def test_unknown_command_names_it_and_the_line(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("x.auto").write_text('print "start"\n\nfrobnicate("ab")\n')
+    with pytest.raises(ScriptError) as err:
+        run_script("x.auto")
+    msg = str(err.value)
+    assert "x.auto:3" in msg and "'frobnicate'" in msg and 'frobnicate("ab")' in msg
+
+
+def test_a_failing_command_names_the_line(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("y.auto").write_text("r = 1\nrun(e='nosuch', c='nosuch')\n")
+    with pytest.raises(ScriptError) as err:
+        run_script("y.auto")
+    assert "y.auto:2" in str(err.value) and "c.nosuch" in str(err.value)
+
+
+def test_constants_follow_autos_none_means_default():
+    c = clui.AutoConstants(DS=0.02, NMX=40, e="ab", parnames={1: "a"})
+    c["DS"] = "-"
+    assert c["DS"] == -0.02
+    c.update(clui.AutoConstants(NMX=5))   # a new constants file: unset keys back to default
+    assert c["NMX"] == 5 and c["DS"] is None
+    assert c["e"] == "ab" and c["parnames"] == {1: "a"}      # AUTO's special keys survive
+    with pytest.raises(clui.AutoError, match="Unknown option: NMAX"):
+        c.update(NMAX=3)
+    w = c.washer("test")
+    assert w["NMX"] == 5 and w["DS"] == 0.01                 # None -> AUTO's default
+
+
+def _diagram(demo, name):
+    ref = DEMOS / demo / "autoref"
+    return Diagram.read(ref / f"b.{name}", ref / f"s.{name}")
+
+
+def test_label_selection_on_autos_own_files():
+    bd = _diagram("frc", "frc")
+    labels = bd.getLabels()
+    assert labels == [r.lab for b in bd for r in b.rows if r.lab]
+    sols = bd()
+    assert isinstance(sols, SolutionList) and len(sols) == len(labels)
+    first = sols[0]
+    assert bd(first["LAB"])["LAB"] == first["LAB"]
+    by_type = {}
+    for s in sols:
+        by_type.setdefault(s["TY"], []).append(s["LAB"])
+    for ty, labs in by_type.items():
+        assert [s["LAB"] for s in bd(ty)] == labs
+        assert bd(f"{ty}{len(labs)}")["LAB"] == labs[-1]
+    # solutions taken from a diagram carry its largest label and branch (restart numbering)
+    assert {s._mlab for s in sols} == {max(labels)}
+    # a column by name, the PAR vector by index and name
+    col = bd["PAR(5)"] if "PAR(5)" in bd[0].titles else bd[bd[0].titles[0]]
+    assert len(col) == len(bd[0])
+    assert first.PAR(5) == first["PAR(5)"] == first.PAR["PAR(5)"]
+    with pytest.raises(KeyError):
+        bd("HB99")
+
+
+def test_relabel_and_save_roundtrip(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    bd = _diagram("frc", "0") + _diagram("frc", "frc")
+    rl = clui.relabel(bd)
+    n = len(bd.getLabels())
+    assert rl.getLabels() == list(range(1, n + 1))
+    assert [s["LAB"] for s in rl()] == list(range(1, n + 1))
+    clui.save(rl, "both")
+    back = Diagram.read("b.both", "s.both")
+    assert back.getLabels() == rl.getLabels()
+    for a, b in zip(back(), rl()):
+        assert a["LAB"] == b["LAB"] and a["TY"] == b["TY"]
+        np.testing.assert_array_equal(a.PAR, b.PAR)
+        np.testing.assert_array_equal(a.U, b.U)
+    rows = [r.values for br in back for r in br.rows]
+    assert rows == [r.values for br in bd for r in br.rows]
+
+
+def test_merge_joins_a_branch_computed_both_ways(tmp_path, monkeypatch):
+    """Two runs from the same start in opposite directions become one branch: the second
+    reversed, then the first without the common start; labels renumbered in order."""
+    from washer.auto.diagram import Branch
+    from washer.auto.files import Row
+    fw = Branch(["   0 header"], ["PAR(1)", "L2-NORM"], [Row(1, 1, 9, 1, [0.0, 1.0]),
+                Row(1, 2, 0, 0, [0.1, 1.1]), Row(1, 3, 9, 2, [0.2, 1.2])], {"DS": 0.1})
+    bw = Branch(["   0 header"], ["PAR(1)", "L2-NORM"], [Row(1, 1, 9, 3, [0.0, 1.0]),
+                Row(1, -2, 2, 4, [-0.1, 0.9]), Row(1, -3, 9, 5, [-0.2, 0.8])], {"DS": -0.1})
+    m = clui.merge(Diagram([fw, bw]))
+    assert len(m) == 1
+    assert [r.values[0] for r in m[0].rows] == [-0.2, -0.1, 0.0, 0.1, 0.2]
+    assert [r.pt for r in m[0].rows] == [-1, -2, 3, 4, 5]
+    assert [r.lab for r in m[0].rows] == [1, 2, 3, 0, 4]
+    # two runs in the same direction: not merged
+    again = fw.copy()
+    again.c = {"DS": 0.1}
+    assert len(clui.merge(Diagram([fw, again]))) == 2
+
+
+@pytest.mark.skipif(not AUTO_PYTHON.exists(), reason="AUTO-07p's Python tools not installed")
+def test_autos_parsers_read_what_the_clui_saves(tmp_path):
+    """A demo run and saved by washer's CLUI (frc: run, save(r, name), clean) is read by
+    AUTO-07p's own parseB/parseS with the same labels and types."""
+    import subprocess
+    work = tmp_path / "frc"
+    shutil.copytree(DEMOS / "frc", work, ignore=shutil.ignore_patterns("autoref"))
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]),
+               OMP_NUM_THREADS="1")
+    subprocess.run([sys.executable, "-m", "washer.auto", "frc.auto"], cwd=work, env=env,
+                   check=True, capture_output=True)
+    code = ("import sys; sys.path.insert(0, %r)\n"
+            "from auto import parseB, parseS\n"
+            "b = parseB.parseB('b.frc'); s = parseS.parseS('s.frc')\n"
+            "print([(p['TY name'], p['LAB']) for p in [b.getLabel(l) for l in b.getLabels()]])\n"
+            "print([(x['Type name'], x['Label']) for x in s])\n" % str(AUTO_PYTHON))
+    out = subprocess.run([sys.executable, "-c", code], cwd=work, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-2000:]
+    b_labels, s_labels = out.stdout.strip().splitlines()
+    ours = Diagram.read(work / "b.frc", work / "s.frc")
+    expect = [(s["TY"], s["LAB"]) for s in ours()]
+    assert eval(b_labels) == expect and eval(s_labels) == expect
