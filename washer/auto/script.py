@@ -167,5 +167,7 @@ class Console(code.InteractiveConsole):
 
 
 def interact() -> None:
-    Console(namespace()).interact(banner="washer: AUTO's command language (AUTO> commands: "
-                                         "run, load, save, ...; Ctrl-D to leave)", exitmsg="")
+    sys.ps1, sys.ps2 = "AUTO> ", "..... "
+    Console(namespace()).interact(banner="washer: AUTO's command language (run, load, save, "
+                                         "append, merge, relabel, ...; Ctrl-D to leave)",
+                                  exitmsg="")
