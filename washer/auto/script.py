@@ -102,6 +102,15 @@ def _span(lines, start, end) -> str:
     return lines[r0 - 1][c0:] + "".join(lines[r0:r1 - 1]) + lines[r1 - 1][:c1]
 
 
+def _register_modules(ns: dict) -> None:
+    """AUTO's module names for helper files a script imports (`from AUTOclui import *`)."""
+    import types
+    if "AUTOclui" not in sys.modules:
+        mod = types.ModuleType("AUTOclui", "washer's AUTO commands under AUTO's module name")
+        mod.__dict__.update({k: v for k, v in ns.items() if not k.startswith("__")})
+        sys.modules["AUTOclui"] = mod
+
+
 def namespace() -> dict:
     """The names a script sees: AUTO's commands and aliases, and its objects."""
     ns = {"__name__": "__main__", "__builtins__": __builtins__}
@@ -109,6 +118,7 @@ def namespace() -> dict:
     from washer.auto import diagram
     ns.update(Diagram=diagram.Diagram, Solution=diagram.Solution,
               SolutionList=diagram.SolutionList, AutoError=clui.AutoError)
+    _register_modules(ns)
     return ns
 
 

@@ -42,6 +42,7 @@ void washer_set_context(int ips, int ndim, int ntst, int ncol, int nbc, int nint
 void washer_set_measures(double rds, double fldf, double hbff, double biff, double spbf,
                          int nins, const double *eig);
 int washer_has(const char *name);
+int washer_eig_wanted(void);
 void washer_func_batch(int k, int ndim, int npar, const double *us, const double *pars,
                        int par_stride, const int *icp, double *fs, double *scratch);
 void washer_jac_batch(int k, int ndim, int npar, const double *us, const double *pars,
@@ -112,6 +113,7 @@ class CompiledUser:
         self._scratch = np.zeros(0)
         self._scratch_ptr = None
         self._pvls_seen = not self.has["pvls"]
+        self.pvls_wants_eigenvalues = False     # learnt on the first PVLS that asks GETP
 
     def _first_pvls(self, u, pars) -> None:
         """AUTO calls PVLS on the starting point before FUNC, and user files rely on it
@@ -213,15 +215,20 @@ class CompiledUser:
                                         _ffi.NULL)
             self.lib.washer_pvls(self.ndim, _dptr(u), _dptr(par))
 
-    def set_multipliers(self, mu) -> None:
-        """Floquet multipliers (or eigenvalues) for GETP's 'EIG' and 'STA' (None: none)."""
+    def eig_wanted(self) -> bool:
+        """Whether the last PVLS asked GETP for 'EIG' or 'STA' that were not set."""
+        return bool(self.lib.washer_eig_wanted())
+
+    def set_multipliers(self, mu, stable=None) -> None:
+        """Floquet multipliers (or eigenvalues) for GETP's 'EIG' and 'STA' (None: none);
+        stable(mu) -> bool array says which count as stable (default |mu| <= 1)."""
         if mu is None:
             self._eig = None
             self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, 0, _ffi.NULL)
             return
         mu = np.asarray(mu, dtype=complex)
         self._eig = np.ascontiguousarray(np.column_stack([mu.real, mu.imag]).ravel())
-        nins = int(np.sum(np.abs(mu) <= 1 + 1e-5))
+        nins = int(np.sum(stable(mu))) if stable else int(np.sum(np.abs(mu) <= 1 + 1e-5))
         self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, nins, _dptr(self._eig))
 
     def bcnd(self, par, nbc: int, u0, u1) -> np.ndarray:
@@ -300,8 +307,30 @@ class CompiledProblem(Problem):
             mu = getattr(u, "multipliers", None)
             self.user.set_multipliers(mu)
             u = np.asarray(u).view(np.ndarray)
-        self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+            self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+            return par
+        if np.ndim(u) == 2:
+            self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+            return par
+        # Equilibria: GETP's EIG/STA are the eigenvalues of f_u (AUTO's order as the
+        # d-file's), computed only for a PVLS that asks for them (learnt on its first call).
+        if self.user.pvls_wants_eigenvalues:
+            self._set_eigenvalues(u, par)
+        else:
+            self.user.set_multipliers(None)
+        first = np.array(par)
+        self.user.pvls(u, par)
+        if self.user.eig_wanted() and not self.user.pvls_wants_eigenvalues:
+            self.user.pvls_wants_eigenvalues = True
+            par[:] = first
+            self._set_eigenvalues(u, par)
+            self.user.pvls(u, par)
         return par
+
+    def _set_eigenvalues(self, u, par) -> None:
+        from washer.cont.systems.equilibrium import eigenvalues_sorted
+        lam = eigenvalues_sorted(self.dfdu(np.asarray(u, float), par))
+        self.user.set_multipliers(lam, stable=lambda m: m.real < 0)
 
     def set_icp(self, icp) -> None:
         self.user.set_icp(icp)

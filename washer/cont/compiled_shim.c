@@ -44,7 +44,16 @@ static struct {
     const double *dtm;          /* (ntst,) mesh interval lengths, NULL: uniform */
     double rds, fldf, hbff, biff, spbf;
     const double *eig;          /* (2 * ndim,) re, im alternating, NULL: none */
-} ctx = {1, 0, 0, 0, 0, 0, 0, NULL, 0, 0, 0, 0, 0, NULL};
+    int eig_wanted;             /* GETP asked for EIG or STA while eig was NULL */
+} ctx = {1, 0, 0, 0, 0, 0, 0, NULL, 0, 0, 0, 0, 0, NULL, 0};
+
+/* Whether GETP was asked for eigenvalues it did not have since the last call (then reset). */
+int washer_eig_wanted(void)
+{
+    int w = ctx.eig_wanted;
+    ctx.eig_wanted = 0;
+    return w;
+}
 
 void washer_set_context(int ips, int ndim, int ntst, int ncol, int nbc, int nint,
                         const double *dtm)
@@ -148,8 +157,11 @@ static double getp_c(const char *code, int ic, const double *u)
     if (!strcmp(c, "BV0")) v = u[ic - 1];
     else if (!strcmp(c, "STP")) v = ctx.rds;
     else if (!strcmp(c, "FLD")) v = ctx.fldf;
-    else if (!strcmp(c, "STA")) v = ctx.nins;
-    else if (!strcmp(c, "EIG")) v = (ctx.eig && ic >= 1 && ic <= 2 * ctx.ndim) ? ctx.eig[ic - 1] : 0.0;
+    else if (!strcmp(c, "STA")) { v = ctx.nins; if (!ctx.eig) ctx.eig_wanted = 1; }
+    else if (!strcmp(c, "EIG")) {
+        if (!ctx.eig) ctx.eig_wanted = 1;
+        v = (ctx.eig && ic >= 1 && ic <= 2 * ctx.ndim) ? ctx.eig[ic - 1] : 0.0;
+    }
     else if (!strcmp(c, "NDI") || !strcmp(c, "NDX")) v = ctx.ndim;
     else if (!strcmp(c, "NTS")) v = ctx.ntst;
     else if (!strcmp(c, "NCO")) v = ctx.ncol;
