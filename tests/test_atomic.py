@@ -109,3 +109,20 @@ def test_sweep_parts_never_follow_planted_links(tmp_path):
     store.write_part([{"id": "a", "status": "ok"}])
     assert victim.read_text() == "precious"
     assert list(store.read_parts()["id"]) == ["a"]
+
+
+def test_clui_diagram_writes_replace_links_and_append_whole(tmp_path):
+    from pathlib import Path
+    from washer.auto.diagram import Diagram
+    ref = Path(__file__).parent / "data" / "auto_reference" / "ab2p"
+    d = Diagram.read(ref / "b.eq", ref / "s.eq")
+    victim = tmp_path / "victim"
+    victim.write_text("precious")
+    for k in "bsd":
+        (tmp_path / f"{k}.out").symlink_to(victim)
+    b, s, _ = d.write([tmp_path / f"{k}.out" for k in "bsd"])
+    assert victim.read_text() == "precious"
+    once = b.read_text()
+    d.write([tmp_path / f"{k}.out" for k in "bsd"], append=True)
+    assert b.read_text() == once + once
+    assert len(Diagram.read(b, s)) == 2 * len(d)

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from washer.atomic import write_text
 from washer.auto.codes import split_code, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _read_record, _read_text, fmt_e,
                                record_text)
@@ -324,7 +325,7 @@ class SolutionList(list):
         return out
 
     def write(self, path) -> None:
-        Path(path).write_text("".join(s.text() for s in self if not s.empty))
+        write_text(path, "".join(s.text() for s in self if not s.empty))
 
     def __add__(self, other):
         return SolutionList(list(self) + list(other))
@@ -530,15 +531,16 @@ class Diagram(list):
             b, s, d = (Path(p) for p in name_or_paths)
         else:
             b, s, d = (Path(f"{k}.{name_or_paths}") for k in "bsd")
-        mode = "a" if append else "w"
-        with open(b, mode) as fb:
-            fb.write("".join(br.text() for br in self if br.rows))
-        with open(s, mode) as fs:
-            fs.write("".join(sol.text() for sol in self() if not sol.empty))
+        # Each file is replaced whole (washer.atomic: never through a link, never
+        # half-written); appending rewrites the old content followed by the new.
+        def put(path: Path, text: str) -> None:
+            old = path.read_text() if append and path.is_file() else ""
+            write_text(path, old + text)
+        put(b, "".join(br.text() for br in self if br.rows))
+        put(s, "".join(sol.text() for sol in self() if not sol.empty))
         diag = "".join(br.diagnostics for br in self)
         if diag or not append:
-            with open(d, mode) as fd:
-                fd.write(diag)
+            put(d, diag)
         return b, s, d
 
     def __repr__(self) -> str:

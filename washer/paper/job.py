@@ -313,16 +313,17 @@ def _main(args) -> int:
     write_summary(d / "measurements.json", meas, resp)
     path = report.write(d, params, meas, resp, figs, log, mode=mode,
                         timing=dict(auto=t_auto, sim=t_sim, total=wall))
-    with open(path, "a", encoding="utf-8") as fh:
-        fh.write("\n" + whirl.markdown(fam, whirl_cmp, "whirl_orbits.png") + "\n")
-        fh.write("\n" + exact_stability.markdown(exact)
-                 + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
-                 f"(computed in {t_exact:.1f} s: `python -m washer.paper.exact_stability` reruns it)\n")
-        fh.write("\n" + exact_whirl.markdown(ex, "exact_whirl.png") + "\n")
-        fh.write("\n" + exact_whirl.clearance_markdown(ex, "clearance.png") + "\n")
-        fh.write("\n" + mechanism.markdown(mech, "mechanism.png") + "\n")
-        fh.write("\n" + sensitivity.markdown(sens)
-                 + f"\n(these four sections computed in {t_beyond:.1f} s)\n")
+    # The report is replaced whole (washer.atomic), never appended to in place.
+    write_text(path, path.read_text(encoding="utf-8")
+               + "\n" + whirl.markdown(fam, whirl_cmp, "whirl_orbits.png") + "\n"
+               + "\n" + exact_stability.markdown(exact)
+               + f"\n![Exact critical C_p on Fig 4](fig4_exact.png)\n\n"
+               f"(computed in {t_exact:.1f} s: `python -m washer.paper.exact_stability` reruns it)\n"
+               + "\n" + exact_whirl.markdown(ex, "exact_whirl.png") + "\n"
+               + "\n" + exact_whirl.clearance_markdown(ex, "clearance.png") + "\n"
+               + "\n" + mechanism.markdown(mech, "mechanism.png") + "\n"
+               + "\n" + sensitivity.markdown(sens)
+               + f"\n(these four sections computed in {t_beyond:.1f} s)\n")
     for k, paths in figs.items():
         print(f"  {k}: " + ", ".join(p.name for p in paths))
     print("  forced: " + ", ".join(p.name for p in exact_files))
