@@ -301,12 +301,16 @@ class Collocation:
         dF = -dpar / self.mesh.dtm[None, :, None, None]
         return self.jacobian_general(blocks, dF, up_old[None], np.zeros((1, 2)))
 
+    def has_pattern(self, J) -> bool:
+        """Whether J was assembled by `jacobian_general` on this mesh (this CSC pattern)."""
+        return (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
+                and J.indices is not None and np.array_equal(J.indptr, self._indptr))
+
     def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
         """[J; border] as a CSC matrix (N + 1, N + 1). A J built by `jacobian` (this
         pattern) is bordered by filling a precomputed structure; any other by vstack."""
         border = np.asarray(border, float)
-        if (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
-                and J.indices is not None and np.array_equal(J.indptr, self._indptr)):
+        if self.has_pattern(J):
             data = np.empty(self.nnz + self.n_x)
             data[self._pos_J] = J.data
             data[self._pos_border] = border

@@ -27,6 +27,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from washer.cont import collocation as col
+from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.problem import FD_STEP
 from washer.cont.system import Solution
@@ -180,8 +181,18 @@ class CollocationBVP:
         self.up_old = self.period(par) * self.field.f(self.U_old, par)
 
     # ------------------------------------------------------------------ contract
-    def factor(self, J, border: np.ndarray) -> SparseFactor:
-        return SparseFactor(self.coll.bordered(J, np.asarray(border, float)))
+    def factor(self, J, border: np.ndarray):
+        """[J; border] factorised. A Jacobian assembled by `coll` goes to the compiled
+        condensation and block reduction (washer.cont.reduction: the same solves and
+        determinant, and the Floquet pair of the same elimination, kept as
+        `self._reduced = (J, factor)` for `multipliers`); any other matrix, or without
+        the compiled module, to SuperLU."""
+        border = np.asarray(border, float)
+        if reduction.available() and self.coll.has_pattern(J):
+            f = reduction.BorderedCollocation.from_jacobian(self.coll, J, border)
+            self._reduced = (J, f)
+            return f
+        return SparseFactor(self.coll.bordered(J, border))
 
     def inner(self, a: np.ndarray, b: np.ndarray) -> float:
         """int_0^1 sum_i THU_i a_i(t) b_i(t) dt + sum THL(k) a_k b_k over the parameter

@@ -239,8 +239,9 @@ class PeriodicOrbits(CollocationBVP):
                 dF[slot] = self.field.f(ug, par).reshape(N, m, n)
             else:
                 dF[slot] = T * self.field.fp(ug, par, index).reshape(N, m, n)
-        self._last_blocks = (x.copy(), blocks)
-        return self.coll.jacobian_general(blocks, dF, self.up_old[None], np.zeros((1, 2)))
+        J = self.coll.jacobian_general(blocks, dF, self.up_old[None], np.zeros((1, 2)))
+        self._last_blocks = (x.copy(), blocks, J)
+        return J
 
     def params(self, x: np.ndarray) -> np.ndarray:
         """Full PAR at x: the free parameters (PAR(11) the period) and the user's pvls
@@ -289,8 +290,15 @@ class PeriodicOrbits(CollocationBVP):
 
     def multipliers(self, x: np.ndarray) -> np.ndarray:
         """Floquet multipliers at x in AUTO's order, from the condensed collocation
-        blocks of the Jacobian at x (CONPAR + REDUCE + FLOWKM)."""
-        P0, P1 = col.condense_blocks(self._blocks_at(x), self.ndim)
+        blocks of the Jacobian at x (CONPAR + REDUCE + FLOWKM): the pair of the compiled
+        factorisation of that Jacobian when it was factorised (the tangent at a
+        converged point), else a condensation of its blocks."""
+        blocks = self._blocks_at(x)
+        reduced = getattr(self, "_reduced", None)
+        if reduced is not None and reduced[0] is self._last_blocks[2]:
+            P0, P1 = reduced[1].floquet_pair()
+        else:
+            P0, P1 = col.condense_blocks(blocks, self.ndim)
         return floquet.pencil_multipliers(P0, P1)
 
     def stability(self, x: np.ndarray, J=None) -> Stability | None:
