@@ -39,9 +39,12 @@ Contents, with the AUTO routine each follows:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
+
+if TYPE_CHECKING:                  # annotations only; imported where used
+    import scipy.sparse as sp
 
 #: AUTO's EQDF treats NCOL-th derivatives below this as zero ("small derivative" case:
 #: the mesh then stays uniform).
@@ -208,6 +211,10 @@ class Collocation:
         rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
         cols = np.concatenate([cols_blk, cols_par, cols_bc, cols_int])
         self.nnz = len(rows)
+        # where the boundary and integral rows' values sit (assembly order), for
+        # washer.cont.reduction, which takes those rows dense
+        tail = len(rows_blk) + len(rows_par)
+        self._tail_rows, self._tail_cols = rows[tail:] - self.n_coll, cols[tail:]
         # CSC order of the entries; entries with the same (row, col) never occur
         order = np.lexsort((rows, cols))
         self._order = order
@@ -281,6 +288,7 @@ class Collocation:
         (NINT, NPAR); bc_jac (general_bc only): (B0, B1, Bpar), the boundary
         conditions' derivatives with respect to u(0), u(1) (NDIM, NDIM) and the free
         parameters (NDIM, NPAR)."""
+        import scipy.sparse as sp       # here: a run without collocation never loads it
         dpar = -self.mesh.dtm[None, :, None, None] * dF_par
         rows_int = np.concatenate([(self.w_node[None, :, None] * int_u).reshape(self.nint, -1),
                                    np.asarray(int_par, float).reshape(self.nint, -1)], axis=1)
@@ -303,12 +311,14 @@ class Collocation:
 
     def has_pattern(self, J) -> bool:
         """Whether J was assembled by `jacobian_general` on this mesh (this CSC pattern)."""
+        import scipy.sparse as sp
         return (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
                 and J.indices is not None and np.array_equal(J.indptr, self._indptr))
 
     def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
         """[J; border] as a CSC matrix (N + 1, N + 1). A J built by `jacobian` (this
         pattern) is bordered by filling a precomputed structure; any other by vstack."""
+        import scipy.sparse as sp
         border = np.asarray(border, float)
         if self.has_pattern(J):
             data = np.empty(self.nnz + self.n_x)

@@ -29,7 +29,6 @@ import math
 from typing import Callable
 
 import numpy as np
-import scipy.linalg
 
 from washer.auto.codes import Code
 from washer.cont.system import Stability
@@ -65,6 +64,7 @@ def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
     pencil (P0, -P1) by QZ, so that huge multipliers (long orbits near a homoclinic one)
     come out as large or infinite values instead of overflowing; infinite ones are inf.
     Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
+    import scipy.linalg      # here: scipy.linalg's import outweighs a short run
     with np.errstate(all="ignore"):
         mu = scipy.linalg.eigvals(P0, -P1)
     mu = np.where(np.isfinite(mu), mu, np.inf + 0j)

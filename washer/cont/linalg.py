@@ -8,12 +8,14 @@ test on algebraic branches is the determinant of the bordered matrix).
 from __future__ import annotations
 
 import warnings
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+
+# scipy is imported where it is used: its import (scipy.linalg above all) costs more
+# than a whole short run of a small problem, which needs none of it.
+if TYPE_CHECKING:                  # annotations only
+    import scipy.sparse as sp
 
 #: SuperLU column ordering: minimum degree on A^T + A. Measured on lrz's bordered
 #: collocation matrices (N = 425 / 1805): 0.7 / 3.9 ms per factorisation, fill 8.8e3 /
@@ -40,6 +42,7 @@ class DenseFactor:
         self.M = M
         self.lu = None
         if len(M) > self.LU_SIZE:
+            import scipy.linalg
             with warnings.catch_warnings():
                 # An exactly singular matrix (at a branch point) is handled in solve().
                 warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
@@ -48,6 +51,7 @@ class DenseFactor:
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         try:
             if self.lu is not None:
+                import scipy.linalg
                 x = scipy.linalg.lu_solve(self.lu, rhs, check_finite=False)
             else:
                 x = np.linalg.solve(self.M, rhs)
@@ -74,6 +78,7 @@ class SparseFactor:
     matrix, with the determinant's sign and log-magnitude (for the contract)."""
 
     def __init__(self, M: sp.csc_matrix):
+        import scipy.sparse.linalg as spla
         self.M = M
         try:
             self.lu = spla.splu(M, permc_spec=PERMC_SPEC)

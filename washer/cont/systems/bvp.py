@@ -24,7 +24,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from washer.cont import collocation as col
 from washer.cont import reduction
@@ -258,6 +257,7 @@ class CollocationBVP:
         cols_I = np.arange(n, nu)
         M_II = M[:nc][:, cols_I].tocsc()
         M_IS = M[:nc][:, cols_S].toarray()
+        import scipy.sparse.linalg as spla
         X = spla.splu(M_II, permc_spec=PERMC_SPEC).solve(M_IS)
         M_R = M[nc:]
         Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X

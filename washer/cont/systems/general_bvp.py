@@ -40,8 +40,6 @@ import math
 from types import SimpleNamespace
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from washer.auto.codes import Code
 from washer.cont import collocation as col
@@ -248,6 +246,7 @@ class BoundaryValueProblem:
                 rows.append(np.full(self.n_x, r0 + q))
                 cols.append(np.arange(self.n_x))
                 vals.append(np.r_[(self.w_node[:, None] * Ju[q]).ravel(), Jp[q]])
+        import scipy.sparse as sp       # here: its import outweighs a short algebraic run
         J = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                           shape=(self.n_eq, self.n_x)).tocsc()
         return J
@@ -291,6 +290,7 @@ class BoundaryValueProblem:
         return Ju, Jp
 
     def factor(self, J, border):
+        import scipy.sparse as sp
         M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
                       format="csc")
         return SparseFactor(M)
@@ -462,6 +462,8 @@ class BoundaryValueProblem:
         and integral conditions, border): Sc = M_RS - M_RI M_II^-1 M_IS, square of
         size NDIM + NFPR; M_II (the collocation equations in the nodes after t = 0)
         is a discretised initial-value problem and stays invertible."""
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as spla
         M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
                       format="csc")
         n = self.ndim

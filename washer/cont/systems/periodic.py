@@ -45,9 +45,12 @@ Differences from AUTO worth knowing:
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
+
+if TYPE_CHECKING:                  # annotations only; imported where used
+    import scipy.sparse as sp
 
 from washer.cont import collocation as col
 from washer.cont import floquet
