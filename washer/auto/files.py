@@ -472,8 +472,10 @@ class OutputFiles:
         eig = np.asarray(eig, dtype=complex)
         stable = int(np.sum(eig.real < 0))
         lines = [f"\n{br:4d}{pt:6d}         Eigenvalues  :   Stable:{stable:4d}"]
-        lines += [f"{br:4d}{pt:6d}         Eigenvalue{k:3d}:{fmt_es(e.real, 14, 5)}"
-                  f"{fmt_es(e.imag, 14, 5)}" for k, e in enumerate(eig, 1)]
+        # real and imaginary parts of every eigenvalue formatted in one call (28 characters each)
+        text = fmt_es_many(np.column_stack([eig.real, eig.imag]), 14, 5)
+        lines += [f"{br:4d}{pt:6d}         Eigenvalue{k:3d}:{text[28 * (k - 1):28 * k]}"
+                  for k in range(1, len(eig) + 1)]
         self.diag("\n".join(lines))
 
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
@@ -481,9 +483,9 @@ class OutputFiles:
         'Multiplier  k ' line per multiplier with real, imaginary part and modulus (ES14.5)."""
         mults = np.asarray(mults, dtype=complex)
         lines = [f"{br:4d}{pt:6d}         Multipliers:     Stable:{n_stable:4d}"]
-        lines += [f"{br:4d}{pt:6d}         Multiplier{k:3d} {fmt_es(m.real, 14, 5)}"
-                  f"{fmt_es(m.imag, 14, 5)}  Abs. Val.{fmt_es(abs(m), 14, 5)}"
-                  for k, m in enumerate(mults, 1)]
+        text = fmt_es_many(np.column_stack([mults.real, mults.imag, np.abs(mults)]), 14, 5)
+        lines += [f"{br:4d}{pt:6d}         Multiplier{k:3d} {text[42 * (k - 1):42 * k - 14]}"
+                  f"  Abs. Val.{text[42 * k - 14:42 * k]}" for k in range(1, len(mults) + 1)]
         self.diag("\n".join(lines))
 
     def record(self, rec: Record) -> None:
