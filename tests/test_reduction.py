@@ -89,3 +89,27 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     # the same set (a complex pair ties in AUTO's order by modulus: compare sorted)
     key = lambda z: np.lexsort((z.imag, np.round(z.real, 8)))     # noqa: E731
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("general_bc", [False, True])
+def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_bc):
+    """Periodic boundary rows and general ones (B0 u(0) + B1 u(1) + Bp p, the loci of
+    cycles), with three integral conditions: the dense rows come from the pattern."""
+    from washer.cont.linalg import SparseFactor
+    rng = np.random.default_rng(5)
+    n, N, m, nint = 4, 9, 3, 3
+    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc)
+    blocks = coll.local_blocks(1.3, rng.standard_normal((N, m, n, n)))
+    dF = rng.standard_normal((nint + 1, N, m, n))
+    int_u = rng.standard_normal((nint, coll.mesh.n_nodes, n))
+    int_par = rng.standard_normal((nint, nint + 1))
+    bc = (rng.standard_normal((n, n)), rng.standard_normal((n, n)),
+          rng.standard_normal((n, nint + 1))) if general_bc else None
+    J = coll.jacobian_general(blocks, dF, int_u, int_par, bc_jac=bc)
+    border = rng.standard_normal(coll.n_x)
+    f = reduction.BorderedCollocation.from_jacobian(coll, J, border)
+    ref = SparseFactor(coll.bordered(J, border))
+    rhs = rng.standard_normal(coll.n_x)
+    np.testing.assert_allclose(f.solve(rhs), ref.solve(rhs), rtol=1e-9, atol=1e-11)
+    assert f.sign_logdet()[0] == ref.sign_logdet()[0]
+    assert f.sign_logdet()[1] == pytest.approx(ref.sign_logdet()[1], rel=1e-11)

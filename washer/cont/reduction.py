@@ -80,13 +80,9 @@ class BorderedCollocation:
         blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
         npc = N * m * n * npar
         parcols = vals[nb:nb + npc].reshape(npar, N, m * n).transpose(1, 2, 0)
-        bc = vals[nb + npc:nb + npc + 2 * n]             # d(u(0) - u(1)): +1, -1
-        rows_int = vals[nb + npc + 2 * n:].reshape(nint, coll.n_x)
+        # the boundary conditions (periodic or general) and integral rows, dense
         extra = np.zeros((n + npar, coll.n_x))
-        i = np.arange(n)
-        extra[i, i] = bc[:n]
-        extra[i, (coll.mesh.n_nodes - 1) * n + i] = bc[n:]
-        extra[n:n + nint] = rows_int
+        extra[coll._tail_rows, coll._tail_cols] = vals[nb + npc:]
         extra[n + nint] = border
         return cls(blocks, parcols, extra, dense=lambda: coll.bordered(J, border))
 
