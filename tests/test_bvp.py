@@ -350,3 +350,31 @@ def test_fold_locus_closed_form(tmp_path):
         for row in r.rows:
             assert row.par[0] * math.exp(row.par[1]) == pytest.approx(lam_c, abs=1e-9)
     assert ends == {-1, 1}
+
+
+@pytest.mark.slow
+def test_um3_demo(tmp_path):
+    """um3: orbits from a circle in z = 0 to a sphere: the outer radius to 1, eps down to
+    0.01, then the start angle both ways (NPR = 1) until the period reaches 1e4, where the
+    orbits approach the stable manifold: theta -> 0.4998523 and -0.5001477, AUTO's two
+    UZ of b.3 (its merged, relabelled result of both runs)."""
+    d = demo(tmp_path, "um3")
+    c = read_constants(d / "c.um3")
+    r1 = run(d / "c.um3", e="um3", sv="u1", verbose=False)
+    r2 = run(d / "c.um3", e="um3", s="u1", IRS=r1.specials[-1].lab, ICP=["eps", "Period"],
+             DS=-c["DS"], DSMAX=1.0, UZSTOP={"eps": 0.01}, sv="u2", verbose=False)
+    assert r1.status == r2.status == "ok"
+    compare(ours((r1, 11)), auto_rows("um3", "b.1"), tolerance(c, DSMAX=10.0))
+    compare(ours((r2, 2)), auto_rows("um3", "b.2"), tolerance(c, DSMAX=1.0))
+    ends = []
+    for ds in (c["DS"], -c["DS"]):
+        p = run(d / "c.um3", e="um3", s="u2", IRS=r2.specials[-1].lab, ICP=["theta", "Period"],
+                NPR=1, DS=ds, DSMIN=1e-5, DSMAX=1.0,
+                UZSTOP={"theta": [1.25, -0.75], "Period": 1e4}, sv="u3", verbose=False)
+        assert p.status == "ok" and p.specials[-1].ty == "UZ"
+        assert p.specials[-1].par[10] == pytest.approx(1e4, rel=1e-8)
+        ends.append(p.specials[-1].par[0])
+    ref = [r.values[0] for r in branch_rows(DATA / "um3" / "autoref" / "b.3")
+           if type_name(r.ty) == "UZ"]
+    assert len(ref) == 2
+    np.testing.assert_allclose(sorted(ends), sorted(ref), atol=tolerance(c, DSMAX=1.0))
