@@ -335,3 +335,17 @@ def test_forced_par_values_are_named_by_the_constants_file(tmp_path):
         run(c, verbose=False)
     assert str(err.value).startswith(f"{c}:{len(c.read_text().splitlines())}:")
     assert "reference.toml" not in str(err.value)
+
+
+def test_forced_washer_refuses_omega_not_positive():
+    """Continuing the forced response in Omega stops at Omega = 0 with a reason instead
+    of continuing into a drum turning backwards."""
+    from washer.cont.problem import ProblemError
+    from washer.problems.washer import PAR_NAMES, forced_problem
+    P = forced_problem()
+    par = np.zeros(17)
+    par[[i - 1 for i, n in PAR_NAMES.items() if n == "Omega"][0]] = -1.0
+    u = np.r_[np.zeros(12), 0.0, 1.0]
+    with pytest.raises((ValueError, ProblemError),
+                       match=r"Omega = -1 Hz: the forced response is defined for Omega > 0"):
+        P.func(u, par)

@@ -153,9 +153,12 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
         P[:, idx] = np.broadcast_to(pars[:, par_idx], (len(us), len(idx)))
         P[:, tied_idx] = np.broadcast_to(pars[:, :1], (len(us), 1))
         beta = 2 * np.pi * P[:, layout.INDEX["Omega"]]
-        if np.any(beta == 0):
-            raise ValueError("Omega = 0: the forcing angle theta = atan2(x, y) cannot be "
-                             "given to the kernel as a time at zero speed")
+        if not np.all(beta > 0):
+            # Omega is the drum's speed (Hz, >= 0 in every parameter set); at 0 the
+            # forcing angle theta = atan2(x, y) is no time, below it no washer.
+            bad = float(P[np.argmin(beta), layout.INDEX["Omega"]])
+            raise ValueError(f"Omega = {bad:g} Hz: the forced response is defined for "
+                             "Omega > 0 (the drum's speed); the continuation stops here")
         x, y = us[:, 12], us[:, 13]
         return us[:, :12], P, np.arctan2(x, y) / beta, beta, x, y
 
