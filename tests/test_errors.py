@@ -81,3 +81,33 @@ def test_bad_names_and_shapes(model):
         model.rhs_rot(np.zeros(11))
     with pytest.raises(TypeError, match="load_params"):
         washer.Model({"C_p": 1})
+
+
+@pytest.mark.parametrize("old,new,field,hint", [
+    ("Omega = 10.0", "Omega = 600.0", "[operation] Omega = 600", "Omega is in Hz"),
+    ("m_u = 1.0", "m_u = 1000.0", "[imbalance] m_u = 1000", "1000 g is 1 kg"),
+    ("R_u = 0.15", "R_u = 150.0", "[imbalance] R_u = 150", "150 mm is 0.15 m"),
+    ("l0 = 0.4603496155090264", "l0 = 460.3", "[suspension] l0 = 460.3", "460 mm is 0.46 m"),
+    ("m = 12.0", "m = 12000.0", "[tub] m = 12000", "12000 g is 12 kg"),
+    ("upper_z = 0.87", "upper_z = 870.0", "[suspension] upper_z = 870", "upper_z is in m"),
+    ("g = 9.81", "g = 981.0", "[environment] g = 981", "9.81 on Earth"),
+])
+def test_unit_slips_warn_naming_field_and_unit(tmp_path, old, new, field, hint):
+    p = _write(tmp_path, _edit(old, new))
+    with pytest.warns(washer.machine.params.ParameterWarning) as rec:
+        load_params(p)
+    msgs = [str(w.message) for w in rec]
+    assert any(m.startswith(f"{p}: {field}") and hint in m for m in msgs), msgs
+
+
+def test_absurd_rod_lengths_warn(tmp_path):
+    p = _write(tmp_path, _edit("upper_z = 0.87", "upper_z = 2.9"))    # rods ~2.9 m long
+    with pytest.warns(washer.machine.params.ParameterWarning, match=r"rod 0 is 2.9\d* m long"):
+        load_params(p)
+
+
+def test_the_reference_set_raises_no_warning():
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        load_params()

@@ -58,6 +58,59 @@ NONNEG = {"Omega", "m_u", "R_u", "K_s", "C_a", "C_p", "C_ox", "C_oz", "m_b", "J_
 POSITIVE = {"tau_s", "l0", "m_t"}
 
 
+class ParameterWarning(UserWarning):
+    """A value far outside what a domestic washing machine has (a unit slip?)."""
+
+
+#: Plausible ranges of a vertical-axis washer, (low, high, what a value beyond them
+#: probably is): a value outside is accepted (studies may go there on purpose) with a
+#: ParameterWarning naming the field and the likely slip (rpm for Hz, mm for m, g for kg).
+PLAUSIBLE = {
+    ("operation", "Omega"): (0.0, 30.0, "Omega is in Hz: 600 rpm is 10 Hz"),
+    ("operation", "tau_s"): (0.01, 600.0, "tau_s is in s"),
+    ("imbalance", "m_u"): (0.0, 10.0, "m_u is in kg: 1000 g is 1 kg"),
+    ("imbalance", "R_u"): (0.0, 0.5, "R_u is in m: 150 mm is 0.15 m"),
+    ("imbalance", "h_u"): (-1.0, 1.0, "h_u is in m"),
+    ("suspension", "K_s"): (0.0, 1e5, "K_s is in N/m"),
+    ("suspension", "C_a"): (0.0, 1e4, "C_a is in N s/m"),
+    ("suspension", "C_p"): (0.0, 50.0, "C_p is in N m s/rad"),
+    ("suspension", "l0"): (0.05, 2.0, "l0 is in m: 460 mm is 0.46 m"),
+    ("suspension", "upper_radius"): (0.02, 1.0, "upper_radius is in m"),
+    ("suspension", "upper_z"): (0.1, 3.0, "upper_z is in m"),
+    ("suspension", "lower_radius"): (0.02, 1.0, "lower_radius is in m"),
+    ("tub", "m"): (1.0, 200.0, "the tub's m is in kg: 12000 g is 12 kg"),
+    ("basket", "m"): (0.0, 100.0, "the basket's m is in kg"),
+    ("basket", "h"): (-1.0, 1.5, "h is in m"),
+    ("basket", "J_t"): (0.0, 20.0, "J_t is in kg m^2"),
+    ("basket", "J_z"): (0.0, 20.0, "J_z is in kg m^2"),
+    ("environment", "g"): (9.7, 9.9, "g is in m/s^2 (9.81 on Earth)"),
+}
+#: Rods shorter or longer than this (m, at the reference pose) are implausible.
+ROD_LENGTH = (0.1, 2.0)
+
+
+def _plausibility(raw: dict, vals: dict, source: str) -> None:
+    """ParameterWarning for each value outside PLAUSIBLE and each implausible rod."""
+    import warnings
+    for key, (lo, hi, hint) in PLAUSIBLE.items():
+        v = raw.get(key)
+        if v is not None and not lo <= v <= hi:
+            warnings.warn(f"{_where(source, *key)} = {v:g}: outside the plausible range "
+                          f"{lo:g} to {hi:g} of a washing machine ({hint})",
+                          ParameterWarning, stacklevel=4)
+    odd = []
+    for k in range(layout.N_RODS):
+        P = np.array([vals[layout.rod_param(f, k)] for f in ("Px", "Py", "Pz")])
+        O = np.array([vals[layout.rod_param(f, k)] for f in ("Ox", "Oy", "Oz")])
+        length = float(np.linalg.norm(P - O))
+        if not ROD_LENGTH[0] <= length <= ROD_LENGTH[1]:
+            odd.append(f"rod {k} is {length:.3g} m long")
+    if odd:
+        warnings.warn(f"{_where(source, 'suspension')}: {', '.join(odd)} between its joints "
+                      f"(plausible {ROD_LENGTH[0]:g} to {ROD_LENGTH[1]:g} m; joints are in m)",
+                      ParameterWarning, stacklevel=4)
+
+
 def default_params_path() -> Path:
     """The reference parameter set shipped with the package."""
     return Path(str(resources.files("washer.data") / "reference.toml"))
@@ -204,6 +257,7 @@ def params_from_dict(data: dict, source: str = "<dict>") -> Params:
     vals["J_tx"], vals["J_ty"], vals["J_tz"] = raw[("tub", "J")]
     _rods(raw, vals, source)
     _check_values(vals, source)
+    _plausibility(raw, vals, source)
     return Params(vals, tied, source)
 
 
