@@ -253,6 +253,9 @@ def test_restart_from_a_record_without_a_positive_period(tmp_path):
     ("THL = {1: 'w'}", r"THL\[1\] expects a number"),
     ("THL = {1: -1}", r"THL\[1\] = -1: weights of the arclength norm are >= 0"),
     ("THU = {2: -0.5}", r"THU\[2\] = -0.5: weights"),
+    ("UZR = {1: []}", r"UZR\[1\] is an empty list"),
+    ("parnames = {1: 2}", r"parnames\[1\] expects a name in quotes, got 2"),
+    ("unames = {'a': 'x'}", r"unames keys are indices 1, 2, ..., got 'a'"),
 ])
 def test_mistyped_lists_and_dicts_name_file_and_line(tmp_path, stmt, message):
     with pytest.raises(ConstantsError, match=message) as err:

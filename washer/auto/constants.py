@@ -56,7 +56,7 @@ NUMBER_DICTS = ("PAR", "U", "THL", "THU", "UZR", "UZSTOP")
 #: Weights: a negative one would make the arclength norm indefinite.
 WEIGHT_KEYS = ("THL", "THU")
 #: SP and STOP entries: a point type, then an optional count ('HB3', 'LP0', 'BP').
-_TYPE_ENTRY = re.compile(r"[A-Za-z]{2}\d*")
+_TYPE_ENTRY = re.compile(r"[A-Za-z]{1,3}\d*")
 
 
 class ConstantsError(ValueError):
@@ -233,6 +233,14 @@ def check_value(key: str, value, where: str):
             raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
         if key in NUMBER_DICTS:
             _check_number_dict(key, value, where)
+        if key in ("parnames", "unames"):
+            for k, n in value.items():
+                if isinstance(k, bool) or not isinstance(k, int) or k < 1:
+                    raise ConstantsError(f"{where}: {key} keys are indices 1, 2, ..., "
+                                         f"got {k!r}")
+                if not isinstance(n, str) or not n.strip():
+                    raise ConstantsError(f"{where}: {key}[{k}] expects a name in quotes, "
+                                         f"got {n!r}")
     return value
 
 
@@ -243,6 +251,9 @@ def _check_number_dict(key: str, value: dict, where: str) -> None:
         if isinstance(k, bool) or not isinstance(k, (int, str)):
             raise ConstantsError(f"{where}: {key} keys are indices or names, got {k!r}")
         vals = v if isinstance(v, list) and key in ("UZR", "UZSTOP") else [v]
+        if not vals:
+            raise ConstantsError(f"{where}: {key}[{k!r}] is an empty list: expected a value "
+                                 "or a list of values")
         for x in vals:
             if isinstance(x, bool) or not isinstance(x, (int, float)):
                 raise ConstantsError(f"{where}: {key}[{k!r}] expects a number, got {x!r}")
