@@ -272,7 +272,7 @@ def test_duplicate_icp_entries_are_refused(tmp_path):
 
 @pytest.mark.parametrize("stmt,message", [
     ("THL = {12: 1.0}", r"THL weight on index 12: expected an index in 1..NPAR=11"),
-    ("THU = {3: 1.0}", r"THU weight on index 3: expected an index in 1..NDIM=2"),
+    ("THU = {17: 1.0}", r"THU weight on index 17: expected an index in 1..8 NDIM=16"),
     ("IPS = 2\nNTST = 0", r"NTST = 0: IPS = 2 solves on a mesh of NTST intervals"),
 ])
 def test_weights_on_indices_that_do_not_exist(tmp_path, stmt, message):

@@ -180,8 +180,10 @@ class Settings:
         if ips in (2, 12) and "THL" not in getattr(c, "given", {}):
             thl = {11: 0.0}
         thu = {c.u_index(k): float(v) for k, v in c["THU"].items()}
+        # THU may weigh the unknowns of the extended systems too (U(NDIM + 1..) of Hopf and
+        # fold loci, e.g. kappa = omega^2 of a Hopf curve): AUTO allocates THU(NDIM*8).
         for key, weights, top, what in (("THL", thl, npar, "NPAR"),
-                                        ("THU", thu, c["NDIM"], "NDIM")):
+                                        ("THU", thu, 8 * c["NDIM"], "8 NDIM")):
             for i in weights:
                 if not 1 <= i <= top:
                     where = getattr(c, "given", {}).get(key, src)
