@@ -54,9 +54,18 @@ class HopfSystem(LocusSystem):
         n = self.ndim
         u, v, kappa = x[:n], x[n:2 * n], x[2 * n]
         p = self._p(x)
-        A = self.problem.dfdu(u, p)
-        return np.r_[self.problem.func(u, p), A @ (A @ v) + kappa * v, v @ v - 1.0,
-                     (A.T @ self.v_old - A @ self.v_old) @ v]
+        A = self._fu(u, p)
+        return np.concatenate((self.problem.func(u, p), A @ (A @ v) + kappa * v,
+                               [v @ v - 1.0, (A.T @ self.v_old - A @ self.v_old) @ v]))
+
+    def _fu(self, u, p) -> np.ndarray:
+        """f_u(u, p), remembered for the last (u, p): the corrector asks for the residual
+        and then the Jacobian at the same point."""
+        key = (u.tobytes(), p.tobytes())
+        memo = getattr(self, "_fu_memo", None)
+        if memo is None or memo[0] != key:
+            memo = self._fu_memo = (key, self.problem.dfdu(u, p))
+        return memo[1]
 
     def jacobian(self, x, frozen_second: bool = False):
         """dG/dx, shape (2n + 2, 2n + 3). Blocks in v and kappa are exact; the
@@ -68,7 +77,7 @@ class HopfSystem(LocusSystem):
         n = self.ndim
         v, kappa = x[n:2 * n], x[2 * n]
         u, p = x[:n], self._p(x)
-        A = self.problem.dfdu(u, p)
+        A = self._fu(u, p)
         fp = self.problem.dfdp(u, p, self.free)
         vo = self.v_old
         w = A.T @ vo - A @ vo
@@ -84,7 +93,7 @@ class HopfSystem(LocusSystem):
             self._second = (d_g, d_phase)
         J = np.zeros((2 * n + 2, 2 * n + 3))
         # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2).
-        cols_s = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
+        cols_s = np.concatenate((np.arange(n), [2 * n + 2, 2 * n + 1]))
         J[:n, :n] = A
         J[:n, 2 * n + 2] = fp[:, 0]
         J[:n, 2 * n + 1] = fp[:, 1]
