@@ -163,9 +163,15 @@ from side_by_side import Case, Step, play_washer
 cases = [Case(c["name"], [Step(**s) for s in c["steps"]], c["files"], c["auto"])
          for c in ast.literal_eval(sys.argv[3])]
 folder = Path(sys.argv[2])
+out = {}
 for case in cases:                          # untimed: imports, first calls
-    play_washer(case, folder / "warm" / case.name)
-out = {case.name: play_washer(case, folder / "timed" / case.name) for case in cases}
+    try:
+        play_washer(case, folder / "warm" / case.name)
+    except Exception as exc:                # a failing case is reported, the others run
+        out[case.name] = {"error": f"{type(exc).__name__}: {exc}"}
+for case in cases:
+    if case.name not in out:
+        out[case.name] = play_washer(case, folder / "timed" / case.name)
 print(json.dumps(out))
 '''
 
@@ -241,6 +247,7 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
     old_tree = worktree(against) if against else None
     try:
         best: dict = {}
+        errors: dict = {}
         if use_auto:                      # compile every demo once, untimed
             for c in cases:
                 if c.auto:
@@ -261,8 +268,12 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
                 folder = base / f"{side}{rep}"
                 folder.mkdir()
                 res = run_washer(cases, folder, root)
-                sides[side] = {c.name: totals(c, folder / "timed" / c.name, res[c.name])
-                               for c in cases}
+                sides[side] = {}
+                for c in cases:
+                    if "error" in res[c.name]:
+                        errors[(c.name, side)] = res[c.name]["error"]
+                    else:
+                        sides[side][c.name] = totals(c, folder / "timed" / c.name, res[c.name])
             for side, per_case in sides.items():
                 for name, (t, n) in per_case.items():
                     key = (name, side)
@@ -270,7 +281,7 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
                         best[key] = (t, n)
         rows = []
         for c in cases:
-            row = {"case": c.name}
+            row = {"case": c.name, "errors": {s: e for (n, s), e in errors.items() if n == c.name}}
             for side in ("washer", "old", "auto"):
                 if (c.name, side) in best:
                     row[side] = best[(c.name, side)]
@@ -292,6 +303,9 @@ def report(rows: list[dict], against: str | None = None) -> str:
     head += f" {'AUTO us/pt':>11s} {'washer/AUTO':>11s}"
     out = [head]
     for r in rows:
+        if "washer" not in r:
+            out.append(f"{r['case']:24s} failed: {r['errors'].get('washer', '?')[:200]}")
+            continue
         t, n = r["washer"]
         per = 1e6 * t / max(n, 1)
         pts = f"{n}"
@@ -301,7 +315,7 @@ def report(rows: list[dict], against: str | None = None) -> str:
             po = 1e6 * to / max(no, 1)
             line += f" {po:17.0f} {po / per:7.2f}x"
         elif against:
-            line += f" {'-':>17s} {'-':>8s}"
+            line += f" {'failed':>17s} {'-':>8s}"
         if "auto" in r:
             ta, na = r["auto"]
             pa = 1e6 * ta / max(na, 1)
