@@ -29,7 +29,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import washer
+from washer.cont import floquet
 from washer.machine import forced, kernel
+from washer.problems import forced as shooting
 from washer.problems.washer import washer_problem
 from washer.run import run
 
@@ -48,7 +50,7 @@ def best_of(fn, repeat=3):
 def main():
     params = washer.load_params()
     P = params.vector()
-    r = forced.periodic_response(params)
+    r = shooting.periodic_response(params)
     T, u0 = r.T, r.u0
 
     t_k, (_, _, _, st) = best_of(lambda: kernel.flow_variational(0.0, T, u0, P), 5)
@@ -64,23 +66,23 @@ def main():
     print(f"  kernel (washer_flow_variational) : {t_k * 1e3:8.2f} ms, {st['nfev']} evaluations")
     print(f"  solve_ivp DOP853, kernel rhs/jac : {t_s * 1e3:8.2f} ms, {sol.nfev} evaluations")
 
-    t_r, r = best_of(lambda: forced.periodic_response(params))
+    t_r, r = best_of(lambda: shooting.periodic_response(params))
     print("\nperiodic response with Floquet multipliers (from the averaged equilibrium)")
     print(f"  {t_r * 1e3:8.1f} ms, {r.iterations} Newton iterations, residual {r.residual:.1e}, "
           f"max|mu| = {np.abs(r.multipliers).max():.9f}")
 
     cp_avg, _ = forced.averaged_hopf(params)
     start = forced.averaged_start(params.replace(C_p=cp_avg))
-    t_tr, (_, sp) = best_of(lambda: forced.locate_tr(
+    t_tr, (_, sp) = best_of(lambda: shooting.locate_tr(
         params, "C_p", (0.95 * cp_avg, 1.05 * cp_avg), start))
     print("\nTR point in C_p")
-    print(f"  Brent on C_p                     : {t_tr:8.3f} s, C_p = {sp.value:.12f}")
-    t_c, b = best_of(lambda: forced.continue_response(params.replace(C_p=0.08), "C_p", 0.13,
-                                                      ds=0.1, ds_max=0.3))
-    tr = [s for s in b.special if s.type == "TR"]
-    print(f"  continuation 0.08 -> 0.13 + locate: {t_c:8.3f} s, {len(b.values)} points, "
-          f"C_p = {tr[0].value:.12f}")
-    t_cc, c = best_of(lambda: forced.critical_cp(params))
+    print(f"  locate_tr (C_p alone)            : {t_tr:8.3f} s, C_p = {sp.par[0]:.12f}")
+    t_c, b = best_of(lambda: shooting.continue_response(params.replace(C_p=0.08), "C_p", 0.13,
+                                                        ds=0.1, ds_max=0.3))
+    tr = [s for s in b.specials if s.ty == "TR"]
+    print(f"  continuation 0.08 -> 0.13 + locate: {t_c:8.3f} s, {len(b.rows)} points, "
+          f"C_p = {tr[0].par[0]:.12f}")
+    t_cc, c = best_of(lambda: shooting.critical_cp(params))
     print(f"  critical_cp (exact, averaged, frozen): {t_cc:8.3f} s: "
           f"{c['C_p_exact']:.10f}, {c['C_p_averaged']:.10f}, {c['C_p_frozen']:.10f}")
     collocation_run(params, c)
@@ -116,7 +118,7 @@ def collocation_run(params, crit):
         mu = np.asarray(tr.stability.values)
         print(f"  TR located, C_p 0.09 -> 0.11          : {t_tr:8.3f} s, {len(r.rows)} points, "
               f"C_p = {tr.par[0]:.12f} (shooting {crit['C_p_exact']:.12f}), "
-              f"critical mu = {forced.critical_pair(mu):.9f}")
+              f"critical mu = {floquet.critical_pair(mu):.9f}")
         t_all, r = best_of(go())
         print(f"  c.washer.machine.forced, C_p 0 -> 0.5         : {t_all:8.3f} s, {len(r.rows)} points")
 

@@ -20,8 +20,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, linear_sum_assignment
 
 from washer import Model
-from washer.machine import forced, kernel
+from washer.auto.constants import Constants
+from washer.cont import floquet
 from washer.cont.problem import Problem
+from washer.cont.runner import run as run_in_memory, solve
+from washer.machine import forced, kernel
+from washer.problems import forced as shooting
 from washer.run import run
 
 #: Tolerances of the scipy reference integrations (DOP853): far tighter than the checks.
@@ -60,10 +64,63 @@ class ForcedSystem:
         return y[:n], y[n:n + n * n].reshape(n, n), y[n + n * n:]
 
 
+def flow_problem(system: ForcedSystem, u0, p0):
+    """The system's period map as the engine's problem (washer.cont.systems.shooting):
+    PAR(1) = p, PAR(11) = the forcing period; stpnt gives (u0, p0)."""
+    n = len(u0)
+
+    def stpnt(u, par):
+        u[:] = u0
+        par[0], par[10] = p0, system.T
+
+    def func(u, par):
+        raise AssertionError("a period map has no vector field")
+
+    return Problem(n, func, stpnt, name="forced", flow=lambda u, par, i: system.flow(u, par[0]))
+
+
+def shooting_constants(n, **kw):
+    """IPS = 2 on a problem with a flow: shooting, Newton to 1e-10 (the flow's DOP853 at
+    1e-12 leaves ~1e-12), location to EPSS = 1e-11 in arclength."""
+    base = dict(NDIM=n, IPS=2, ICP=[1], ILP=1, ISP=2, NMX=400, NPR=0, ITNW=8, NWTN=8,
+                ITMX=30, EPSL=1e-10, EPSU=1e-10, EPSS=1e-11, THL={11: 0.0})
+    base.update(kw)
+    return Constants(base, source="<forced test>")
+
+
+def canonical(mu):
+    """Multipliers in one order for comparisons between routes (a conjugate pair's
+    members have equal moduli, so the engine's order leaves them as computed): by real,
+    then imaginary part, rounded to 1e-12 first."""
+    return np.sort_complex(np.round(np.asarray(mu, dtype=complex), 12))
+
+
 def shooting_route(system: ForcedSystem, u0, p):
-    """Newton shooting; returns (u0 of the periodic orbit, multipliers)."""
-    u, Phi, *_ = forced.newton_periodic(lambda v: system.flow(v, p)[:2] + (0,), u0)
-    return u, forced.sort_multipliers(np.linalg.eigvals(Phi))
+    """The engine's Newton at fixed p on the period map (AUTO's start correction);
+    returns (u0 of the periodic orbit, multipliers in the engine's order)."""
+    x, sysm, _ = solve(shooting_constants(len(u0)), flow_problem(system, u0, p))
+    return x[:-1], canonical(sysm.multipliers(x))
+
+
+def continue_flow(system: ForcedSystem, u0, p0, stop, ds, ds_max, p_scale=None,
+                  max_points=400):
+    """The engine's continuation of the forced orbit through (u0, p0) in p up to `stop`
+    (UZSTOP), pseudo-arclength in the norm of (u0, p / p_scale) (THL(1) = 1 / p_scale^2;
+    p_scale default max(|p0|, 1e-3)): the Branch and its arrays (p, u0, multipliers,
+    stable) per point."""
+    ps = p_scale if p_scale is not None else max(abs(p0), 1e-3)
+    c = shooting_constants(len(u0), DS=ds, DSMAX=ds_max, DSMIN=1e-5, NMX=max_points,
+                           UZSTOP={1: stop}, THL={1: 1 / ps ** 2, 11: 0.0})
+    b = run_in_memory(c, flow_problem(system, u0, p0))
+    assert b.status == "ok", b.status
+    values = np.array([r.par[0] for r in b.rows])
+    return b, values, np.array([r.U for r in b.rows]), \
+        np.array([r.stability.values for r in b.rows]), np.array([bool(r.stable) for r in b.rows])
+
+
+def located(b, *types):
+    """The located special points of a Branch (no EP, UZ)."""
+    return [r for r in b.specials if r.ty not in ("EP", "UZ", "")]
 
 
 #: Collocation intervals of the collocation runs on the small test systems: the nodes' error is
@@ -107,13 +164,12 @@ def engine_route(system: ForcedSystem, u0, p):
 
 
 def _without_oscillator(mu, T):
-    """Multipliers of the collocation runs less the oscillator's trivial 1 and radial exp(-2 T),
-    sorted as the shooting's. (QZ gives conjugate pairs whose moduli differ by rounding,
-    which would decide sort_multipliers' order: rounded to 1e-12 first.)"""
+    """Multipliers of the collocation runs less the oscillator's trivial 1 and radial
+    exp(-2 T), in the `canonical` order."""
     mu = np.asarray(mu, dtype=complex)
     mu = np.delete(mu, np.argmin(np.abs(mu - 1)))
     mu = np.delete(mu, np.argmin(np.abs(mu - np.exp(-2 * T))))
-    return forced.sort_multipliers(np.round(mu, 12))
+    return canonical(mu)
 
 
 #: Ways of computing a forced periodic orbit and its multipliers: Newton shooting and
@@ -138,7 +194,7 @@ def linear_oscillator_exact(zeta, w0, F0, nu):
     A, B = F0 * (w0 ** 2 - nu ** 2) / D, F0 * 2 * zeta * w0 * nu / D
     lam = -zeta * w0 + 1j * w0 * np.sqrt(1 - zeta ** 2)
     T = 2 * np.pi / nu
-    return A, B, forced.sort_multipliers(np.exp(np.array([lam, lam.conjugate()]) * T))
+    return A, B, canonical(np.exp(np.array([lam, lam.conjugate()]) * T))
 
 
 @pytest.mark.parametrize("route", sorted(ROUTES))
@@ -184,11 +240,11 @@ def test_continuation_of_linear_oscillator_is_linear_in_the_forcing():
     must lie on the closed-form line, with the same multipliers everywhere."""
     sys_ = linear_oscillator()
     u0, _ = shooting_route(sys_, np.zeros(2), 0.7)
-    b = forced.continue_orbit(sys_.flow, u0, 0.7, 2.0, name="F0", ds=0.2, ds_max=0.5)
-    assert b.values[-1] >= 2.0 and len(b.values) >= 4
-    assert np.allclose(b.u0, np.outer(b.values / 0.7, u0), atol=1e-9)
-    assert np.allclose(b.multipliers, b.multipliers[0], atol=1e-9)
-    assert b.special == []
+    b, values, us, mus, _ = continue_flow(sys_, u0, 0.7, 2.0, ds=0.2, ds_max=0.5)
+    assert values[-1] == pytest.approx(2.0, abs=1e-12) and len(values) >= 4
+    assert np.allclose(us, np.outer(values / 0.7, u0), atol=1e-9)
+    assert np.allclose(mus, mus[0], atol=1e-9)
+    assert located(b) == []
 
 
 def mathieu(c=0.1, q=0.3, F0=0.5):
@@ -220,18 +276,21 @@ def test_period_doubling_located_on_damped_mathieu_equation():
     c, q = 0.1, 0.3
     sys_ = mathieu(c, q)
     u0, _ = shooting_route(sys_, np.zeros(2), 0.5)
-    b = forced.continue_orbit(sys_.flow, u0, 0.5, 1.5, name="a", ds=0.1, ds_max=0.2)
-    pd = [s for s in b.special if s.type == "PD"]
-    assert [s.type for s in b.special] == ["PD", "PD"]
+    b, values, _, _, stable = continue_flow(sys_, u0, 0.5, 1.5, ds=0.1, ds_max=0.2)
+    pd = located(b)
+    assert [s.ty for s in pd] == ["PD", "PD"]
     exact = hill_pd_boundaries(c, q)
     # Hill's determinant with 12 odd harmonics is exact to roundoff here (q^12 / 12!^2);
     # the located values carry the flow's ~1e-11 error divided by d mu / d a ~ O(1).
-    assert np.allclose([s.value for s in pd], exact, atol=1e-8)
+    assert np.allclose([s.par[0] for s in pd], exact, atol=1e-8)
     for s in pd:
-        assert abs(s.crossing + 1) < 1e-8
-    # Between the two PD points the response is unstable (a multiplier below -1).
-    inside = (b.values > exact[0]) & (b.values < exact[1])
-    assert inside.any() and not b.stable[inside].any() and b.stable[~inside].all()
+        assert abs(floquet.critical(s.stability.values, trivial=False) + 1) < 1e-8
+    # Between the two PD points the response is unstable (a multiplier below -1); the
+    # PD rows themselves carry the stability of the point before them (AUTO's rule).
+    regular = np.array([not r.lab for r in b.rows])
+    inside = (values > exact[0] + 1e-6) & (values < exact[1] - 1e-6) & regular
+    outside = ((values < exact[0] - 1e-6) | (values > exact[1] + 1e-6)) & regular
+    assert inside.any() and not stable[inside].any() and stable[outside].all()
 
 
 def duffing(c=0.1, beta=1.0, nu=1.5):
@@ -251,17 +310,17 @@ def test_fold_of_duffing_response_is_passed_and_located():
     c, beta, nu = 0.1, 1.0, 1.5
     sys_ = duffing(c, beta, nu)
     u0, _ = shooting_route(sys_, np.zeros(2), 0.1)
-    b = forced.continue_orbit(sys_.flow, u0, 0.1, 1.0, name="F", ds=0.3, ds_max=1.0,
-                              p_scale=0.1, max_points=200)
-    lp = [s for s in b.special if s.type == "LP"]
-    assert b.values[-1] >= 1.0 and len(lp) == 2
+    b, values, _, _, _ = continue_flow(sys_, u0, 0.1, 1.0, ds=0.3, ds_max=1.0, p_scale=0.1,
+                                       max_points=200)
+    lp = located(b)
+    assert values[-1] == pytest.approx(1.0, abs=1e-12) and [s.ty for s in lp] == ["LP", "LP"]
     for s in lp:
-        assert abs(s.crossing - 1) < 1e-8
+        assert np.abs(s.stability.values - 1).min() < 1e-8
     # The parameter turns at each LP: the branch's F reaches a local extremum there.
     for s in lp:
-        k = np.argmin(np.abs(b.values - s.value))
-        nb = b.values[max(k - 2, 0):k + 3]
-        assert s.value >= nb.max() - 1e-9 or s.value <= nb.min() + 1e-9
+        k = np.argmin(np.abs(values - s.par[0]))
+        nb = values[max(k - 2, 0):k + 3]
+        assert s.par[0] >= nb.max() - 1e-9 or s.par[0] <= nb.min() + 1e-9
     # Harmonic balance x = a cos(nu t + phi): F^2 = a^2 ((1 - nu^2 + 3/4 beta a^2)^2 +
     # (c nu)^2); its folds are the extrema of F(a). The neglected third harmonic is
     # ~ beta a^3 / (32 nu^2) relative: a few per cent at these amplitudes.
@@ -269,14 +328,14 @@ def test_fold_of_duffing_response_is_passed_and_located():
     F = a * np.sqrt((1 - nu ** 2 + 0.75 * beta * a ** 2) ** 2 + (c * nu) ** 2)
     ext = np.where(np.diff(np.sign(np.diff(F))) != 0)[0] + 1
     assert len(ext) == 2
-    assert np.allclose(sorted(s.value for s in lp), sorted(F[ext]), rtol=0.05)
+    assert np.allclose(sorted(s.par[0] for s in lp), sorted(F[ext]), rtol=0.05)
 
 
 # ------------------------------------------------------------------ the washer kernel's flow
 
 @pytest.fixture(scope="module")
 def nominal(params):
-    return forced.periodic_response(params)
+    return shooting.periodic_response(params)
 
 
 def test_monodromy_matches_finite_differences_of_the_flow(params, nominal):
@@ -303,7 +362,7 @@ def test_variational_flow_matches_solve_ivp(params, nominal):
     kernel's rhs and Jacobians: agreement to the kernel's own tolerance (rtol 1e-10 on
     entries up to ~10: 1e-9)."""
     P, T, u0 = params.vector(), nominal.T, nominal.u0
-    d = forced._direction(params, "C_p")
+    d = forced.direction_of(params.tied, "C_p")
     uT, Phi, s, _ = kernel.flow_variational(0.0, T, u0, P, "constant", d)
 
     def aug(t, y):
@@ -348,8 +407,8 @@ def test_long_simulation_start_reaches_the_same_orbit(params):
     """Two starts (the averaged equilibrium; 300 periods of simulation from rest) give one
     orbit where it is stable (C_p = 0.2): 1e-9, a few Newton tolerances."""
     q = params.replace(C_p=0.2)
-    a = forced.periodic_response(q)
-    b = forced.periodic_response(q, forced.simulated_start(q))
+    a = shooting.periodic_response(q)
+    b = shooting.periodic_response(q, forced.simulated_start(q))
     assert np.abs(a.u0 - b.u0).max() < 1e-9
     assert np.abs(a.multipliers - b.multipliers).max() < 1e-9
 
@@ -392,7 +451,7 @@ def _rot(axis, a):
 
 
 def _matched_errors(params):
-    r = forced.periodic_response(params)
+    r = shooting.periodic_response(params)
     m = Model(params)
     eps = m.rotating_equilibrium(frame="averaged")
     mu_avg = np.exp(m.eigenvalues(eps, frame="averaged") * r.T)
@@ -428,7 +487,7 @@ def test_multipliers_agree_with_averaged_eigenvalues_to_second_order(params):
 
 @pytest.fixture(scope="module")
 def critical(params):
-    return forced.critical_cp(params)
+    return shooting.critical_cp(params)
 
 
 def test_exact_critical_cp_near_averaged_and_far_from_frozen(critical):
@@ -449,18 +508,21 @@ def test_exact_critical_cp_near_averaged_and_far_from_frozen(critical):
 
 def test_stability_changes_at_the_located_tr_point(params, critical):
     cp = critical["C_p_exact"]
-    below = forced.periodic_response(params.replace(C_p=cp * (1 - 1e-4)))
-    above = forced.periodic_response(params.replace(C_p=cp * (1 + 1e-4)))
+    below = shooting.periodic_response(params.replace(C_p=cp * (1 - 1e-4)))
+    above = shooting.periodic_response(params.replace(C_p=cp * (1 + 1e-4)))
     assert not below.stable and above.stable
 
 
-def test_continuation_in_cp_detects_the_same_tr_point(params, critical):
-    b = forced.continue_response(params.replace(C_p=0.08), "C_p", 0.13, ds=0.1, ds_max=0.3)
-    assert [s.type for s in b.special] == ["TR"]
-    # Two independent locations (Brent on C_p with Newton per value; Brent along the chord
-    # with the pseudo-arclength corrector) of the same zero: 1e-9 (measured 5e-13).
-    assert abs(b.special[0].value - critical["C_p_exact"]) < 1e-9
-    assert not b.stable[0] and b.stable[-1]
+def test_continuation_in_cp_detects_the_same_tr_point(params, engine_run):
+    """The shooting continuation in C_p (pseudo-arclength in (u0, C_p)) finds one TR, at
+    the C_p where the collocation run (an independent discretisation: the system made
+    autonomous, Gauss collocation) finds it: 1e-9 (both are converged far below)."""
+    b = shooting.continue_response(params.replace(C_p=0.08), "C_p", 0.13, ds=0.1,
+                                   ds_max=0.3)
+    tr = [s for s in b.specials if s.ty not in ("EP", "UZ")]
+    assert [s.ty for s in tr] == ["TR"]
+    assert abs(tr[0].par[0] - engine_run("TR1").par[0]) < 1e-9
+    assert not b.rows[0].stable and b.rows[-1].stable
 
 
 @pytest.mark.parametrize("name", ["m_u", "R_u", "C_a", "K_s", "Omega"])
@@ -470,13 +532,16 @@ def test_tr_in_any_parameter_lies_on_the_critical_cp_surface(params, name):
     point where the exact critical C_p, located independently in C_p, is 0.101. Both
     locations are converged to ~1e-12 in their parameter; the multipliers' smooth
     integration error moves them together (5e-12 between rtol 1e-10 and 1e-12 at
-    nominal values), so 1e-9 is a safe bound."""
-    b = forced.continue_response(params, name, 0.98 * params[name], ds=0.005, ds_max=0.01)
-    tr = [s for s in b.special if s.type == "TR"]
-    assert len(tr) == 1 and b.stable[-1] and not b.stable[0]
-    q = params.replace(**{name: tr[0].value})
-    r, sp = forced.locate_tr(q, "C_p", (0.1, 0.102), tr[0].u0)
-    assert abs(sp.value - params["C_p"]) < 1e-9
+    nominal values), so 1e-9 is a safe bound. The TR point lies ~1e-4 (relative) from the
+    start, and the engine tests no sign change on its first two steps (AUTO's hidden
+    first step and first written interval): the first step is 1e-5."""
+    b = shooting.continue_response(params, name, 0.98 * params[name], ds=1e-5, ds_max=0.01)
+    tr = [s for s in b.specials if s.ty == "TR"]
+    index = {n: i for i, n in shooting.PAR_NAMES.items()}[name]
+    assert len(tr) == 1 and b.rows[-1].stable and not b.rows[0].stable
+    q = params.replace(**{name: float(tr[0].par[index - 1])})
+    r, sp = shooting.locate_tr(q, "C_p", (0.1, 0.102), tr[0].U)
+    assert abs(sp.par[0] - params["C_p"]) < 1e-9
 
 
 # ------------------------------------------------------------------ the collocation run on the washer
@@ -510,7 +575,7 @@ def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critica
     D = np.abs(mu[:, None] - critical["multipliers"][None, :])
     i, j = linear_sum_assignment(D)
     assert D[i, j].max() < 1e-9
-    assert abs(abs(forced.critical_pair(mu)) - 1) < 1e-9
+    assert abs(abs(floquet.critical_pair(mu, trivial=False)) - 1) < 1e-9
 
 
 def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, engine_run,
@@ -522,7 +587,7 @@ def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, e
     rows = engine_run.rows
     cp = np.array([r.par[0] for r in rows])
     assert cp[0] == 0.0 and cp[-1] == pytest.approx(0.5, abs=1e-9)
-    start = forced.periodic_response(params.replace(C_p=0.0))
+    start = shooting.periodic_response(params.replace(C_p=0.0))
     assert np.abs(np.asarray(rows[0].u)[0, :12] - start.u0).max() < 1e-9
     stable = np.array([bool(r.stable) for r in rows])
     below, above = cp < critical["C_p_exact"] - 1e-6, cp > critical["C_p_exact"] + 1e-6
@@ -541,7 +606,7 @@ def test_forced_problem_is_the_kernel_rhs_at_the_oscillator_angle(params):
     from washer.problems.washer import washer_problem
     pr = washer_problem("washer:forced", params=params)
     u0, par = pr.start(pr.npar)
-    r = forced.periodic_response(params)
+    r = shooting.periodic_response(params)
     assert np.array_equal(u0[:12], r.u0) and np.array_equal(u0[12:], [0.0, 1.0])
     assert par[0] == params["C_p"] and par[10] == pytest.approx(0.1, rel=1e-15)
     P, w = params.vector(), 2 * np.pi * params["Omega"]
@@ -572,7 +637,7 @@ def test_flow_variational_refuses_bad_input(params, nominal):
     # No direction: no parameter sensitivity, the flow and Phi unchanged.
     u1, Phi, s, _ = kernel.flow_variational(0.0, nominal.T, nominal.u0, P)
     u1d, Phid, sd, _ = kernel.flow_variational(0.0, nominal.T, nominal.u0, P, "constant",
-                                               forced._direction(params, "K_s"))
+                                               forced.direction_of(params.tied, "K_s"))
     assert not s.any() and np.abs(sd).max() > 0
     assert np.abs(u1 - u1d).max() < 1e-9 and np.abs(Phi - Phid).max() < 1e-8
 

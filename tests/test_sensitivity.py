@@ -3,7 +3,7 @@ and one row checked against the exact torus point computed independently."""
 import numpy as np
 import pytest
 
-from washer.machine import forced
+from washer.problems import forced as shooting
 from washer.paper import sensitivity as se
 
 
@@ -29,6 +29,6 @@ def test_a_row_against_the_exact_torus_point(params):
     (averaging's error, ~1e-4 at the reference point), and well off the nominal."""
     q = se.scaled(params, "r_tz", 1.2)
     avg = se.critical(q)["C_p"]
-    ex = forced.critical_cp(q)["C_p_exact"]
+    ex = shooting.critical_cp(q)["C_p_exact"]
     assert avg == pytest.approx(ex, rel=1e-3)
     assert avg > 1.2 * se.critical(params)["C_p"]

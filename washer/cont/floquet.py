@@ -6,6 +6,9 @@ tests of cycles FNLPBV (LP), FNBPBV (BP), FNSPBV (PD, TR).
 Order of the multipliers (AUTO's, `sort_multipliers`): the one closest to 1 first (the
 trivial multiplier of an autonomous orbit), then the others by increasing distance of
 |mu| from the unit circle, so mu[1] is the nontrivial multiplier nearest the circle.
+The orbits of periodically forced systems (shooting) have no trivial multiplier
+(`trivial=False` throughout): all are sorted by their distance from the circle and
+mu[0] is the critical one.
 
 The tests, with the sign conventions of AUTO:
 * LP of cycles: the PAR(ICP(1))-component of the unit tangent.
@@ -20,8 +23,8 @@ The tests, with the sign conventions of AUTO:
   separate PD and TR functions each see only one end of the step and miss the PD.
   This is the only torus test of the engine.
 PD and TR are accepted only where the stable count changed (FNSPBV), and undefined
-while the multipliers are inaccurate or NDIM <= 2 (a planar orbit has one nontrivial
-multiplier, real and positive).
+while the multipliers are inaccurate or with fewer than two nontrivial multipliers (a
+planar autonomous orbit has one, real and positive).
 """
 from __future__ import annotations
 
@@ -39,6 +42,8 @@ STABLE_TOL = 1e-5
 #: multiplier closest to 1 is farther than INACCURATE from 1, resumed below ACCURATE.
 INACCURATE = 5e-2
 ACCURATE = 1e-2
+#: A multiplier is complex when |Im mu| > COMPLEX_TOL (1 + |mu|).
+COMPLEX_TOL = 1e-10
 #: The note a Stability carries while the multipliers are inaccurate.
 INACCURATE_NOTE = "Multiplier inaccurate"
 #: The key of the combined test of period doublings and tori (FNSPBV's one function);
@@ -46,16 +51,19 @@ INACCURATE_NOTE = "Multiplier inaccurate"
 SPB = int(Code.PD)
 
 
-def sort_multipliers(mu) -> np.ndarray:
-    """AUTO's order: the multiplier closest to 1 first, then by ||mu| - 1|."""
+def sort_multipliers(mu, trivial: bool = True) -> np.ndarray:
+    """AUTO's order: the multiplier closest to 1 first (when the orbit has a trivial
+    one), then by ||mu| - 1| (a stable sort: ties keep the order they came in)."""
     mu = np.asarray(mu, complex)
     if len(mu) == 0:
         return mu
     with np.errstate(invalid="ignore"):
-        i1 = int(np.nanargmin(np.abs(mu - 1)))
-        rest = np.delete(mu, i1)
-        rest = rest[np.argsort(np.abs(np.abs(rest) - 1), kind="stable")]
-    return np.r_[mu[i1], rest]
+        head = []
+        if trivial:
+            i1 = int(np.nanargmin(np.abs(mu - 1)))
+            head, mu = [mu[i1]], np.delete(mu, i1)
+        rest = mu[np.argsort(np.abs(np.abs(mu) - 1), kind="stable")]
+    return np.r_[head, rest].astype(complex)
 
 
 def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
@@ -71,12 +79,30 @@ def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
     return sort_multipliers(mu)
 
 
-def classify(mu: np.ndarray, epss: float) -> tuple[int, float | None]:
+def critical(mu: np.ndarray, trivial: bool = True) -> complex | None:
+    """The nontrivial multiplier closest to the unit circle (mu_2 of AUTO's FNSPBV) of
+    multipliers sorted by `sort_multipliers`, or None."""
+    k = 1 if trivial else 0
+    return complex(mu[k]) if len(mu) > k else None
+
+
+def critical_pair(mu, trivial: bool = True) -> complex:
+    """The complex multiplier (Im > 0) closest to the unit circle among the nontrivial
+    ones, nan if all are real: the pair whose crossing of |mu| = 1 is a torus (TR)
+    bifurcation; the analogue for multipliers mu = exp(lambda T) of the eigenvalue pair
+    closest to the imaginary axis (washer.cont.systems.equilibrium.critical_pair)."""
+    mu = sort_multipliers(mu, trivial)[1 if trivial else 0:]
+    cpx = mu[mu.imag > 0]
+    cpx = cpx[np.abs(cpx.imag) > COMPLEX_TOL * (1 + np.abs(cpx))]
+    return complex(cpx[0]) if cpx.size else complex(np.nan, np.nan)
+
+
+def classify(mu: np.ndarray, epss: float, trivial: bool = True) -> tuple[int, float | None]:
     """AUTO's TPSPBV + FNSPBV on sorted multipliers: (Code.PD / Code.TR / 0,
     |mu_2| - 1 or None); mu_2 is the nontrivial multiplier closest to the circle."""
-    if len(mu) < 2:
+    m2 = critical(mu, trivial)
+    if m2 is None:
         return 0, None
-    m2 = mu[1]
     if not np.isfinite(m2):
         return 0, None
     if abs(m2.imag) > math.sqrt(epss):
@@ -86,15 +112,17 @@ def classify(mu: np.ndarray, epss: float) -> tuple[int, float | None]:
     return 0, None
 
 
-def torus_angle(mu: np.ndarray, epss: float) -> float | None:
+def torus_angle(mu: np.ndarray, epss: float, trivial: bool = True) -> float | None:
     """|arg mu_2| where TPSPBV classes the point as TR (AUTO writes it to PAR(12)), else None."""
-    kind, _ = classify(mu, epss)
+    kind, _ = classify(mu, epss, trivial)
     if kind != Code.TR:
         return None
-    return abs(math.atan2(mu[1].imag, mu[1].real))
+    m2 = critical(mu, trivial)
+    return abs(math.atan2(m2.imag, m2.real))
 
 
-def stability(mu: np.ndarray, ndim: int, suspended: bool) -> Stability:
+def stability(mu: np.ndarray, ndim: int, suspended: bool, trivial: bool = True,
+              tol: float = STABLE_TOL) -> Stability:
     """Stable count (AUTO's NINS) and notes of sorted multipliers (FNSPBV).
 
     n_stable counts the trivial multiplier plus the others with |mu| <= 1 + STABLE_TOL.
@@ -103,7 +131,12 @@ def stability(mu: np.ndarray, ndim: int, suspended: bool) -> Stability:
     with the note INACCURATE_NOTE. AUTO enters that state only when the multiplier
     nearest the circle is also of PD/TR type (otherwise it goes on counting the
     inaccurate multipliers: lrz's PT 28 is 'Stable: 3' in its d-file); this enters it
-    whenever mu_1 is off, so such points are reported unstable, not stable."""
+    whenever mu_1 is off, so such points are reported unstable, not stable. Without a
+    trivial multiplier (forced orbits) NINS counts those with |mu| <= 1 + tol; `tol`
+    (default AUTO's STABLE_TOL) is the multipliers' accuracy."""
+    if not trivial:
+        n_st = int(np.sum(np.abs(mu) <= 1 + tol))
+        return Stability(values=mu, n_stable=n_st, stable=n_st == ndim, kind="multipliers")
     notes = []
     err = abs(mu[0] - 1) if len(mu) else 0.0
     n_st = 1 + int(np.sum(np.abs(mu[1:]) <= 1 + STABLE_TOL))
@@ -120,15 +153,16 @@ def inaccurate(st: Stability | None) -> bool:
     return st is not None and INACCURATE_NOTE in st.notes
 
 
-def active_tests(settings, ndim: int) -> list:
+def active_tests(settings, ndim: int, trivial: bool = True) -> list:
     """LP of cycles (ILP), BP of cycles (|ISP| >= 2, != 4), PD and TR (ISP in {2, 4},
-    NDIM > 2), as support.f90:CHECKSP, SP overriding (Settings.detects)."""
+    at least two nontrivial multipliers: NDIM > 2 for autonomous orbits), as
+    support.f90:CHECKSP, SP overriding (Settings.detects)."""
     out = []
     if settings.detects("LP"):
         out.append(int(Code.LPC))
     if settings.detects("BP"):
         out.append(int(Code.BPC))
-    if ndim > 2 and (settings.detects("PD") or settings.detects("TR")):
+    if ndim - trivial >= 2 and (settings.detects("PD") or settings.detects("TR")):
         out.append(SPB)
     return out
 
@@ -139,18 +173,18 @@ def spb_kinds(settings) -> tuple:
                  if settings.detects(name))
 
 
-def spb_code(key, stability: Stability | None, epss: float):
+def spb_code(key, stability: Stability | None, epss: float, trivial: bool = True):
     """The written base code of a located zero of test `key`: for SPB, PD or TR as TPSPBV
     classes the multipliers at the located point; any other key is its own code."""
     if key != SPB or stability is None:
         return key
-    kind, _ = classify(stability.values, epss)
+    kind, _ = classify(stability.values, epss, trivial)
     return kind or key
 
 
 def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
                    bp: Callable[[], float | None] | None = None,
-                   kinds: tuple = (int(Code.PD), int(Code.TR))) -> dict:
+                   kinds: tuple = (int(Code.PD), int(Code.TR)), trivial: bool = True) -> dict:
     """{Code.LPC, Code.BPC, SPB: value or None} for the requested codes.
 
     tangent : the unit tangent (its last component is PAR(ICP(1))-dot) or None.
@@ -172,19 +206,20 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
             else bp()
     if SPB in codes:
         d = None
-        if ndim > 2 and st is not None and not inaccurate(st):
-            kind, val = classify(st.values, epss)
+        if ndim - trivial >= 2 and st is not None and not inaccurate(st):
+            kind, val = classify(st.values, epss, trivial)
             if kind in kinds:
                 d = val
         out[SPB] = d
     return out
 
 
-def accept(code: int, prev, cur, ndim: int) -> bool:
+def accept(code: int, prev, cur, ndim: int, trivial: bool = True) -> bool:
     """PD/TR (the combined test SPB) only if the stable count changed (FNSPBV: NINS1 ==
-    NINS -> no point), never for NDIM <= 2. LP/BP of cycles and UZ always."""
+    NINS -> no point), never with fewer than two nontrivial multipliers. LP/BP of
+    cycles and UZ always."""
     if code in (SPB, Code.TR):
-        if ndim <= 2 or prev.stability is None or cur.stability is None:
+        if ndim - trivial < 2 or prev.stability is None or cur.stability is None:
             return False
         return prev.stability.n_stable != cur.stability.n_stable
     return True

@@ -191,23 +191,27 @@ class Continuation:
                 raise ConvergenceError("Newton iterates diverge")
         raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
 
-    def correct_start(self, x):
+    def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
         (STPNT rounding, a restart in other parameters) is corrected before the
         branch begins, orthogonally to the branch: the matrix is [J; t] with t the
         null vector of J at the start. (Holding PAR(ICP(1)) instead fails where the
         branch is parallel to the other unknowns there: a locus along which the
-        principal parameter is constant, as dd2's period-doubling curve p1 = 3.)"""
+        principal parameter is constant, as dd2's period-doubling curve p1 = 3.)
+        hold: hold PAR(ICP(1)) (the matrix [J; e_last]): a solution at the given
+        parameters (washer.cont.runner.solve)."""
         s = self.s
         x = np.array(x, dtype=float)
         e = np.zeros(len(x))
         e[-1] = 1.0
-        try:
-            J0 = self.sys.jacobian(x)
-        except ProblemError as exc:
-            raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
-        if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
-            e = np.linalg.svd(J0)[2][-1]
+        if not hold:
+            try:
+                J0 = self.sys.jacobian(x)
+            except ProblemError as exc:
+                raise ConvergenceError(f"the equations fail at the start point ({exc})") \
+                    from exc
+            if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
+                e = np.linalg.svd(J0)[2][-1]
         for _ in range(START_ITERATIONS):
             try:
                 G = self._residual(x)

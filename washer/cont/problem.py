@@ -24,6 +24,11 @@ User problems live in NAME.py beside the constants file (e='NAME'):
                                   # and upold(t) = f(uold(t)) (for phase conditions);
                                   # the engine integrates them over [0, 1]
 
+Periodically forced problems may supply their flow over one forcing period beside
+func, `flow(u0, par, index)` -> (phi_T(u0) (NDIM,), monodromy matrix (NDIM, NDIM),
+d phi_T / d PAR(index) (NDIM,)): their periodic orbits (IPS = 2) are then computed by
+shooting (washer.cont.systems.shooting).
+
 Built-in problems may also pass batched callables, `func_batch(us, pars)`
 ((k, NDIM), (k, NPAR) -> (k, NDIM)) and `dfdu_batch(us, pars)` (-> (k, NDIM,
 NDIM)): every finite-difference stencil of the engine (Jacobians, the second
@@ -69,8 +74,9 @@ class Problem:
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
-                 bcnd=None, icnd=None):
+                 bcnd=None, icnd=None, flow=None):
         self.ndim, self.name, self.npar = ndim, name, npar
+        self._flow = flow
         self._bcnd, self._icnd = bcnd, icnd
         self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
@@ -89,6 +95,31 @@ class Problem:
     @property
     def has_pvls(self) -> bool:
         return self._pvls is not None
+
+    @property
+    def has_flow(self) -> bool:
+        return self._flow is not None
+
+    def period_map(self, u0, par, index: int):
+        """(phi_T(u0) (NDIM,), Phi (NDIM, NDIM), d phi_T / d PAR(index) (NDIM,)) from the
+        problem's flow over one forcing period, checked."""
+        if self._flow is None:
+            raise ProblemError(f"{self.name}: no flow(u0, par, index) for shooting")
+        try:
+            uT, Phi, dp = self._flow(np.asarray(u0, float), np.asarray(par, float), index)
+        except ProblemError:
+            raise
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: flow(u0, par, {index}) failed: "
+                               f"{type(exc).__name__}: {exc}") from exc
+        n = self.ndim
+        uT, Phi, dp = (np.asarray(a, dtype=float) for a in (uT, Phi, dp))
+        if uT.shape != (n,) or Phi.shape != (n, n) or dp.shape != (n,):
+            raise ProblemError(f"{self.name}: flow returned shapes {uT.shape}, {Phi.shape}, "
+                               f"{dp.shape}; expected ({n},), ({n}, {n}), ({n},)")
+        if not (np.all(np.isfinite(uT)) and np.all(np.isfinite(Phi))):
+            raise ProblemError(f"{self.name}: flow returned non-finite values")
+        return uT, Phi, dp
 
     # ------------------------------------------------------------------ calls
     def _call(self, fn, what: str, *args) -> np.ndarray:

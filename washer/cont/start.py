@@ -111,10 +111,14 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     settings it runs with (restarting a point of a curve continues the curve)."""
     irs = c["IRS"]
     kind = start_kind(rec)
+    # A problem that supplies its period map has its periodic orbits by shooting
+    # (washer.cont.systems.shooting), from its stpnt or a record of such a run.
+    shooting = s.IPS == 2 and problem.has_flow
     if s.ISW == -1 and kind not in ("BP", "PD"):
         raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
                          f"{kind or 'a regular point'} (IRS={irs!r})")
-    if s.IPS == 2 and rec is not None and np.ndim(rec.u) == 1 and kind != "HB":
+    if s.IPS == 2 and rec is not None and np.ndim(rec.u) == 1 and kind != "HB" \
+            and not shooting:
         raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
                          f"solution, got {kind or 'a regular point'} of an algebraic branch "
                          f"(IRS={irs!r})")
@@ -126,7 +130,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     isw_key = -1 if s.ISW == -1 and kind == "BP" else \
         (2 if s.ISW == 2 or kind.endswith("curve") else 1)
     try:
-        ctor = lookup(s.IPS, isw_key, kind)
+        ctor = lookup(s.IPS, isw_key, "shooting" if shooting else kind)
     except KeyError as exc:
         raise RunError(f"{c.source}: {exc.args[0]}") from None
     names = {int(k): v for k, v in c["unames"].items()}

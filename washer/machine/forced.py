@@ -14,13 +14,15 @@ asymptotically stable when all lie inside the unit circle. The averaged rotating
 system's Hopf point (docs/model.md section 4) approximates a Neimark-Sacker (torus, AUTO's TR)
 bifurcation of this orbit: a complex pair leaving the unit circle.
 
+The continuation of this response (the engine's shooting system, TR/PD/LP located, the
+exact critical C_p) is washer.problems.forced:
+
     >>> p = load_params()
     >>> r = periodic_response(p)                  # nominal values, start from averaging
     >>> r.multipliers[:2], r.stable
-    >>> b = continue_response(p, "C_p", 0.2)      # pseudo-arclength, TR/PD/LP located
-    >>> b.special[0].type, b.special[0].value     # ('TR', 0.10101...)
+    >>> b = continue_response(p, "C_p", 0.2)      # the engine: TR/PD/LP located
+    >>> b("TR1").par[0]                           # 0.10101...
     >>> c = critical_cp(p)                        # exact C_p,crit beside averaged/frozen
-    >>> curve = critical_curve(p, np.linspace(4.5, 15, 8))   # the exact Fig 4 curve
 
 Symmetry (checked in tests/test_forced.py). The four identical rods at 90 degrees make a
 quarter turn about the vertical axis, with theta -> theta + pi/2, a symmetry of eq 48; a
@@ -43,7 +45,7 @@ TR point and multipliers (agreement ~5e-12).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
@@ -63,19 +65,8 @@ RTOL, ATOL = 1e-10, 1e-12
 #: accuracy at RTOL; asking for less than the integration error would only make Newton
 #: chase noise.
 NEWTON_TOL = 1e-10
-NEWTON_MAX_ITER = 12
-#: A multiplier is complex when |Im mu| > COMPLEX_TOL (it is ~1e-9 accurate).
-COMPLEX_TOL = 1e-7
-
-#: A located zero of the TR function is a torus bifurcation when the leading complex pair
-#: lies on the unit circle to this (the multipliers' accuracy is ~1e-9).
-TR_ACCEPT = 1e-6
-
 #: Parameters the forced response can be continued in (anything with a kernel derivative).
 PARAMETERS = layout.DIFF_PARAMS
-
-#: Special-point codes, as AUTO labels them for periodic orbits.
-TYPES = ("TR", "PD", "LP")
 
 
 class ShootingError(RuntimeError):
@@ -120,31 +111,38 @@ def rotating_from_ground(u, Omega: float, t) -> np.ndarray:
 
 # ------------------------------------------------------------------ the periodic orbit
 
-def _direction(params: Params, name: str) -> np.ndarray:
+def direction_of(tied: bool, name: str) -> np.ndarray:
     """Weights of the kernel's Jp columns for a change of parameter `name` as the user
-    moves it (C_p moves C_ox and C_oz too when tied)."""
+    moves it (C_p moves C_ox and C_oz too when `tied`)."""
     if name not in PARAMETERS:
         raise ValueError(f"parameter: expected one of {', '.join(PARAMETERS)}, got {name!r}")
     d = np.zeros(kernel.N_DIFF)
-    for c in layout.moved_by(name, params.tied):
+    for c in layout.moved_by(name, tied):
         d[kernel.DIFF_NAMES.index(c)] = 1.0
     return d
 
 
-def shoot(params: Params, u0, name: str | None = None, rtol: float = RTOL,
-          atol: float = ATOL):
-    """One period of the constant-speed ground-frame flow from u0 (12,) at t = 0.
+def shoot_vector(P, u0, direction=None, omega: bool = False, rtol: float = RTOL,
+                 atol: float = ATOL):
+    """One period T = 1/Omega of the constant-speed ground-frame flow from u0 (12,) at
+    t = 0 for the kernel parameter vector P (layout order).
 
     Returns (u(T) (12,), Phi (12, 12) monodromy, g_p (12,), stats): g_p is the derivative
-    of u(T) with respect to parameter `name` including, for Omega, the change of the
-    period T = 1/Omega (zeros when name is None)."""
-    P = params.vector()
-    T = 1.0 / params["Omega"]
-    d = None if name is None else _direction(params, name)
-    uT, Phi, s, stats = kernel.flow_variational(0.0, T, u0, P, "constant", d, rtol, atol)
-    if name == "Omega":   # d u(T(Omega)) / d Omega = s + f(T, u(T)) dT/dOmega
+    of u(T) along `direction` (N_DIFF,) of the kernel parameters (zeros when None)
+    including, when the direction is Omega's (`omega`), the change of the period."""
+    T = 1.0 / P[layout.INDEX["Omega"]]
+    uT, Phi, s, stats = kernel.flow_variational(0.0, T, u0, P, "constant", direction,
+                                                rtol, atol)
+    if omega:             # d u(T(Omega)) / d Omega = s + f(T, u(T)) dT/dOmega
         s = s + kernel.rhs_fixed(T, uT, P, "constant") * (-T * T)
     return uT, Phi, s, stats
+
+
+def shoot(params: Params, u0, name: str | None = None, rtol: float = RTOL,
+          atol: float = ATOL):
+    """`shoot_vector` at `params`, the derivative in parameter `name` (or none)."""
+    d = None if name is None else direction_of(params.tied, name)
+    return shoot_vector(params.vector(), u0, d, name == "Omega", rtol, atol)
 
 
 @dataclass
@@ -153,7 +151,10 @@ class ForcedResponse:
 
     u0: ground-frame state (q, q_dot) at t = 0, theta = 0 (12,), SI units.
     T: period 1/Omega (s). monodromy: Phi (12, 12). multipliers: eigenvalues of Phi (12,)
-    complex, by decreasing modulus. residual: max|u(T) - u0| at the solution.
+    complex, in the engine's order (washer.cont.floquet.sort_multipliers without a
+    trivial multiplier: closest to the unit circle first). residual: max|u(T) - u0| at
+    the solution; iterations: Newton iterations. Computed by
+    washer.problems.forced.periodic_response.
     """
     params: Params
     u0: np.ndarray
@@ -161,8 +162,7 @@ class ForcedResponse:
     monodromy: np.ndarray
     multipliers: np.ndarray
     residual: float
-    iterations: int
-    nfev: int
+    iterations: int = 0
 
     @property
     def stable(self) -> bool:
@@ -182,12 +182,6 @@ class ForcedResponse:
         Y, _, _ = kernel.integrate("fixed", "constant", 0.0, self.u0, self.params.vector(),
                                    t, RTOL, ATOL)
         return t, rotating_from_ground(Y, self.params["Omega"], t)
-
-
-def sort_multipliers(mu) -> np.ndarray:
-    """Multipliers (n,) complex by decreasing modulus, each pair's Im > 0 member first."""
-    mu = np.asarray(mu, dtype=complex)
-    return mu[np.lexsort((-mu.imag, -np.abs(mu)))]
 
 
 def averaged_start(params: Params, frame: str = "averaged", guess=None) -> np.ndarray:
@@ -211,280 +205,7 @@ def simulated_start(params: Params, periods: int = 300, u_start=None) -> np.ndar
     return Y[-1]
 
 
-def newton_periodic(flow, u0, tol: float = NEWTON_TOL, max_iter: int = NEWTON_MAX_ITER):
-    """Newton on the periodicity condition flow(u0)[0] - u0 = 0 of any T-periodic system.
-
-    flow(u0) -> (u(T) (n,), Phi (n, n), nfev): the flow over one period and its monodromy
-    matrix (any integrator: the kernel's for the washer, scipy's in the tests). Exact
-    Jacobian Phi - I, so convergence is quadratic. Returns (u0, Phi, residual, iterations,
-    nfev); raises ShootingError after max_iter iterations."""
-    u = np.array(u0, dtype=float)
-    nfev = 0
-    for it in range(max_iter + 1):
-        uT, Phi, n = flow(u)
-        nfev += n
-        G = uT - u
-        res = float(np.abs(G).max())
-        if res <= tol * (1 + np.abs(u).max()):
-            return u, Phi, res, it, nfev
-        if it == max_iter:
-            break
-        u = u - np.linalg.solve(Phi - np.eye(u.size), G)
-    raise ShootingError(f"periodic response: no convergence in {max_iter} Newton iterations "
-                        f"(residual {res:.3e})")
-
-
-def periodic_response(params: Params, u0=None, *, tol: float = NEWTON_TOL,
-                      max_iter: int = NEWTON_MAX_ITER) -> ForcedResponse:
-    """The T-periodic response of the washer (eq 48, constant speed) by Newton shooting
-    (`newton_periodic` with the kernel's flow), u0 from `averaged_start` if None:
-    3-4 iterations from there. Raises ShootingError if Newton fails."""
-    u = averaged_start(params) if u0 is None else np.array(u0, dtype=float)
-
-    def flow(v):
-        uT, Phi, _, st = shoot(params, v)
-        return uT, Phi, st["nfev"]
-
-    u, Phi, res, it, nfev = newton_periodic(flow, u, tol, max_iter)
-    return ForcedResponse(params, u, 1.0 / params["Omega"], Phi,
-                          sort_multipliers(np.linalg.eigvals(Phi)), res, it, nfev)
-
-
-# ------------------------------------------------------------------ test functions
-
-def bifurcation_functions(mu) -> dict[str, float]:
-    """Test functions of the special points, zero at them, continuous in the multipliers mu
-    (n,) (through collisions of real multipliers into complex pairs too):
-
-    TR (Neimark-Sacker): prod over i < j of (mu_i mu_j - 1), zero when a complex pair has
-    |mu| = 1 (also at a 'neutral saddle', two real mu with product 1: a sign change there
-    is rejected after location, as AUTO does);
-    PD (period doubling): det(Phi + I) = prod (mu + 1);
-    LP (fold of the forced response): det(Phi - I) = prod (mu - 1).
-    Each changes sign when one multiplier (pair) crosses the unit circle its way."""
-    mu = np.asarray(mu, dtype=complex)
-    i, j = np.triu_indices(mu.size, 1)
-    return {"TR": float(np.prod(mu[i] * mu[j] - 1.0).real),
-            "PD": float(np.prod(mu + 1.0).real),
-            "LP": float(np.prod(mu - 1.0).real)}
-
-
-def critical_pair(mu) -> complex:
-    """The leading complex multiplier (Im > 0, largest modulus; nan if none): the pair whose
-    exit through |mu| = 1 makes the response lose stability at a TR point."""
-    mu = np.asarray(mu, dtype=complex)
-    cpx = mu[mu.imag > COMPLEX_TOL]
-    return complex(cpx[np.argmax(np.abs(cpx))]) if cpx.size else complex(np.nan)
-
-
-# ------------------------------------------------------------------ continuation
-
-@dataclass
-class SpecialPoint:
-    """A located special point: type (TR, PD, LP), parameter `name` = value, the orbit's
-    initial state u0 (n,) and multipliers (n,) there, and max|u(T) - u0| at it."""
-    type: str
-    name: str
-    value: float
-    u0: np.ndarray
-    multipliers: np.ndarray
-    residual: float
-
-    @property
-    def crossing(self) -> complex:
-        """The critical multiplier: leading complex one (TR), or the real one nearest -1/+1."""
-        mu = self.multipliers
-        if self.type == "TR":
-            return critical_pair(mu)
-        target = -1.0 if self.type == "PD" else 1.0
-        return complex(mu[np.argmin(np.abs(mu - target))])
-
-
-@dataclass
-class Branch:
-    """A continued branch of periodic orbits in parameter `name`.
-
-    values (m,): parameter; u0 (m, n): the orbit's state at t = 0; multipliers (m, n),
-    each row by decreasing modulus; stable (m,) bool; special: located TR/PD/LP points in
-    the order met; wall: seconds."""
-    name: str
-    values: np.ndarray
-    u0: np.ndarray
-    multipliers: np.ndarray
-    stable: np.ndarray
-    special: list = field(default_factory=list)
-    wall: float = 0.0
-
-
-class _Continuer:
-    """Pseudo-arclength continuation of G(u0, p) = u(T; u0, p) - u0 = 0 in X = (u0, p / ps).
-
-    flow(u0, p) -> (u(T) (n,), Phi (n, n), du(T)/dp (n,)): one period of any periodically
-    forced system with its monodromy matrix and parameter sensitivity."""
-
-    def __init__(self, flow, n: int, ps: float):
-        self.flow, self.n, self.ps = flow, n, ps
-
-    def G(self, X):
-        n = self.n
-        uT, Phi, gp = self.flow(X[:n], X[n] * self.ps)
-        A = np.hstack([Phi - np.eye(n), (np.asarray(gp) * self.ps)[:, None]])
-        return uT - X[:n], A, Phi
-
-    def correct(self, Xp, tangent, tol=NEWTON_TOL, max_iter=8):
-        """Newton on [G(X); tangent . (X - Xp)] = 0 from the predictor Xp."""
-        X = Xp.copy()
-        for it in range(max_iter):
-            G, A, Phi = self.G(X)
-            if np.abs(G).max() <= tol * (1 + np.abs(X[:self.n]).max()) and it > 0:
-                return X, A, Phi
-            dX = np.linalg.solve(np.vstack([A, tangent]), -np.r_[G, tangent @ (X - Xp)])
-            X = X + dX
-        raise ShootingError("continuation corrector did not converge")
-
-    @staticmethod
-    def tangent(A, prev=None):
-        """Unit null vector of the n x (n + 1) Jacobian A, oriented along prev."""
-        t = np.linalg.svd(A)[2][-1]
-        if prev is not None and t @ prev < 0:
-            t = -t
-        return t
-
-
-def continue_orbit(flow, u0, p0: float, stop: float, *, name: str = "p", ds: float = 0.02,
-                   ds_max: float = 0.1, ds_min: float = 1e-5, max_points: int = 400,
-                   p_scale: float | None = None, locate: bool = True) -> Branch:
-    """Continue the T-periodic orbit through (u0, p0) (u0 a converged orbit) until the
-    parameter reaches `stop`, for any forced system given by its one-period
-    flow(u0, p) -> (u(T), Phi, du(T)/dp).
-
-    Pseudo-arclength, so folds of the response are passed, in X = (u0, p / p_scale)
-    (p_scale default max(|p0|, 1e-3): steps ds are then relative to the starting value);
-    secant predictor along the tangent; steps halve on corrector failure and grow 1.5x
-    after each success up to ds_max. Multipliers at every point; sign changes of the
-    `bifurcation_functions` between consecutive points are located (`locate=True`) by
-    Brent's method along the chord between them (corrector orthogonal to the chord), so
-    LP is located as well as TR and PD."""
-    import time
-    t_wall = time.perf_counter()
-    u0 = np.asarray(u0, dtype=float)
-    n = u0.size
-    c = _Continuer(flow, n, p_scale if p_scale is not None else max(abs(p0), 1e-3))
-    X = np.r_[u0, p0 / c.ps]
-    _, A, Phi = c.G(X)
-    direction = np.sign(stop - p0) or 1.0
-    tan = c.tangent(A)
-    if tan[n] * direction < 0:
-        tan = -tan
-    pts = [(X, sort_multipliers(np.linalg.eigvals(Phi)))]
-    special = []
-    h = ds
-    while len(pts) < max_points:
-        try:
-            Xn, An, Phin = c.correct(X + h * tan, tan)
-        except (ShootingError, kernel.KernelError, np.linalg.LinAlgError):
-            h /= 2
-            if h < ds_min:
-                break
-            continue
-        mu = sort_multipliers(np.linalg.eigvals(Phin))
-        tf0, tf1 = bifurcation_functions(pts[-1][1]), bifurcation_functions(mu)
-        if locate:
-            for typ in TYPES:
-                if tf0[typ] != 0 and np.sign(tf0[typ]) != np.sign(tf1[typ]):
-                    sp = _locate_on_chord(c, X, Xn, typ, name)
-                    if sp is not None:
-                        special.append(sp)
-        tan = c.tangent(An, tan)
-        X = Xn
-        pts.append((X, mu))
-        h = min(ds_max, 1.5 * h)
-        if (X[n] * c.ps - stop) * direction >= 0:
-            break
-    Xs = np.array([x for x, _ in pts])
-    mus = np.array([m for _, m in pts])
-    return Branch(name, Xs[:, n] * c.ps, Xs[:, :n], mus, np.abs(mus).max(axis=1) < 1.0,
-                  special, time.perf_counter() - t_wall)
-
-
-def _locate_on_chord(c: _Continuer, Xa, Xb, typ: str, name: str, xtol: float = 1e-12):
-    """Zero of bifurcation function `typ` between branch points Xa, Xb: points of the branch
-    on the hyperplanes orthogonal to the chord at fraction sigma, Brent on sigma."""
-    chord = Xb - Xa
-    unit = chord / np.linalg.norm(chord)
-    cache = {}
-
-    def point(sigma):
-        X, _, Phi = c.correct(Xa + sigma * chord, unit)
-        mu = sort_multipliers(np.linalg.eigvals(Phi))
-        cache[sigma] = (X, mu)
-        return bifurcation_functions(mu)[typ]
-
-    try:
-        sigma = brentq(point, 0.0, 1.0, xtol=xtol, rtol=4 * np.finfo(float).eps)
-        if sigma not in cache:
-            point(sigma)
-    except (ValueError, ShootingError, kernel.KernelError, np.linalg.LinAlgError):
-        return None
-    X, mu = cache[sigma]
-    if typ == "TR" and not abs(abs(critical_pair(mu)) - 1.0) < TR_ACCEPT:
-        return None             # a neutral saddle (real mu_i mu_j = 1), not a torus bifurcation
-    G = c.G(X)[0]
-    return SpecialPoint(typ, name, float(X[c.n] * c.ps), X[:c.n], mu, float(np.abs(G).max()))
-
-
-def washer_flow(params: Params, name: str):
-    """flow(u0, p) of the washer (eq 48, constant speed) with parameter `name` set to p."""
-    def flow(u0, p):
-        uT, Phi, gp, _ = shoot(params.replace(**{name: p}), u0, name)
-        return uT, Phi, gp
-    return flow
-
-
-def continue_response(params: Params, name: str, stop: float, *, start=None,
-                      **kwargs) -> Branch:
-    """Continue the washer's forced response in parameter `name` (one of PARAMETERS:
-    C_p, Omega, m_u, R_u, C_a, K_s, ...) from its value in `params` to `stop`, with the
-    multipliers at every point and TR/PD/LP located (`continue_orbit`; kwargs: ds, ds_max,
-    ds_min, max_points, locate). start: a ForcedResponse at `params` (default: computed)."""
-    if name not in PARAMETERS:
-        raise ValueError(f"parameter: expected one of {', '.join(PARAMETERS)}, got {name!r}")
-    r = start if start is not None else periodic_response(params)
-    return continue_orbit(washer_flow(params, name), r.u0, params[name], stop, name=name,
-                          **kwargs)
-
-
 # ------------------------------------------------------------------ TR in one and two parameters
-
-def tr_test(params: Params, name: str, value: float, u0=None) -> tuple[float, ForcedResponse]:
-    """|mu_c| - 1 of the leading complex pair at parameter `name` = value, and the response."""
-    r = periodic_response(params.replace(**{name: value}), u0)
-    return abs(critical_pair(r.multipliers)) - 1.0, r
-
-
-def locate_tr(params: Params, name: str, bracket: tuple[float, float], u0=None,
-              xtol: float = 1e-12) -> tuple[ForcedResponse, SpecialPoint]:
-    """The Neimark-Sacker (TR) point in parameter `name` inside `bracket` (a, b), where
-    |mu_c| - 1 changes sign: Brent's method on the parameter, each evaluation a converged
-    periodic response (warm-started from the last). The TR point is not a fold of the
-    response, so the parameter is a good coordinate there. Returns (the ForcedResponse at
-    the TR point, the SpecialPoint)."""
-    state = {"u0": u0}
-
-    def g(v):
-        val, r = tr_test(params, name, v, state["u0"])
-        state["u0"], state["r"] = r.u0, r
-        return val
-
-    a, b = bracket
-    ga, gb = g(a), g(b)
-    if np.sign(ga) == np.sign(gb):
-        raise ValueError(f"locate_tr: |mu|-1 has the same sign at {name} = {a} and {b} "
-                         f"({ga:+.3e}, {gb:+.3e})")
-    v = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps)
-    _, r = tr_test(params, name, v, state["u0"])
-    return r, SpecialPoint("TR", name, v, r.u0, r.multipliers, r.residual)
-
 
 def averaged_hopf(params: Params, frame: str = "averaged", c_max: float = 2.0,
                   n_scan: int = 81, xtol: float = 1e-12) -> tuple[float, np.ndarray]:
@@ -521,30 +242,3 @@ def hopf_or_nan(params: Params, frame: str):
         return averaged_hopf(params, frame)
     except ValueError:          # no sign change of max Re(lambda) in the bracket: no Hopf
         return float("nan"), np.full(12, np.nan, dtype=complex)
-
-
-def critical_cp(params: Params, rel_bracket: float = 0.05, abs_bracket: float = 1e-3) -> dict:
-    """The exact critical C_p (TR of the forced response) at the other values of `params`,
-    beside the averaged and frozen (tau0 = params['tau0']) Hopf values.
-
-    The TR point is bracketed within +-(rel_bracket |C_p,avg| + abs_bracket) of the averaged
-    Hopf value (clipped at C_p = 0): averaging is accurate to far better (docs/model.md section 4;
-    here 1e-5 absolute). Returns a dict: C_p_exact/averaged/frozen (nan where the frozen
-    system has no Hopf in (0, 2)), the multipliers at the exact point (12,), the critical
-    multiplier and its Floquet exponent log(mu)/T (1/s, imaginary part modulo 2 pi Omega:
-    the ground-frame whirl), the averaged eigenvalues at the averaged Hopf point (1/s),
-    and the ForcedResponse there."""
-    cp_avg, lam_avg = hopf_or_nan(params, "averaged")
-    cp_frozen, _ = hopf_or_nan(params, "frozen")
-    if np.isnan(cp_avg):        # below the averaged curve's lower end: search from C_p = 0
-        bracket, start = (0.0, 2 * abs_bracket), None
-    else:
-        half = rel_bracket * abs(cp_avg) + abs_bracket
-        bracket = (max(cp_avg - half, 0.0), cp_avg + half)
-        start = averaged_start(params.replace(C_p=cp_avg))
-    r, sp = locate_tr(params, "C_p", bracket, start)
-    mu_c = critical_pair(r.multipliers)
-    return {"Omega": params["Omega"], "C_p_exact": sp.value, "C_p_averaged": cp_avg,
-            "C_p_frozen": cp_frozen, "multipliers": r.multipliers,
-            "critical_multiplier": mu_c, "critical_exponent": np.log(mu_c) / r.T,
-            "averaged_eigenvalues": lam_avg, "response": r}

@@ -55,6 +55,8 @@ DS_MAX = 0.08
 FIRST_AMPLITUDE = 0.004
 #: Integration tolerances of the map: those of the forced response (`washer.machine.forced`).
 RTOL, ATOL = forced.RTOL, forced.ATOL
+#: A multiplier is complex when |Im mu| > COMPLEX_TOL (the multipliers are ~1e-9 accurate).
+COMPLEX_TOL = 1e-7
 
 
 def frame_matrix(Omega: float, t: float) -> np.ndarray:
@@ -82,7 +84,7 @@ def half_period_map(params: Params, name: str = "C_p"):
 
     def fmap(X, p):
         q = params.replace(**{name: float(p)})
-        P, d = q.vector(), forced._direction(q, name)
+        P, d = q.vector(), forced.direction_of(q.tied, name)
         X = np.atleast_2d(X)
         F, DF, Fp = np.empty_like(X), np.empty((X.shape[0], 12, 12)), np.empty_like(X)
         for j, xi in enumerate(X):
@@ -121,18 +123,22 @@ class Birth:
 
 def birth(params: Params, name: str = "C_p", bracket=None) -> Birth:
     """The TR point of the forced response in `name` (default bracket: around the averaged
-    Hopf value, as `forced.critical_cp`) and the T/2 map's critical eigenpair there."""
+    Hopf value, as `washer.problems.forced.critical_cp`) and the T/2 map's critical
+    eigenpair there."""
+    # The TR point is an engine run (the washer's shooting problem, a floor above).
+    from washer.machine.layout import PAR_INDEX
+    from washer.problems import forced as shooting
     if name == "C_p" and bracket is None:
-        c = forced.critical_cp(params)
+        c = shooting.critical_cp(params)
         value, u0 = c["C_p_exact"], c["response"].u0
     else:
-        r, sp = forced.locate_tr(params, name, bracket)
-        value, u0 = sp.value, r.u0
+        r, rec = shooting.locate_tr(params, name, bracket)
+        value, u0 = float(rec.par[PAR_INDEX[name] - 1]), r.u0
     q = params.replace(**{name: value})
     xi = forced.rotating_from_ground(u0, q["Omega"], 0.0)
     _, DF, _ = half_period_map(q, name)(xi[None, :], value)
     lam, V = np.linalg.eig(DF[0])
-    cand = [i for i in np.argsort(-np.abs(lam))[:4] if abs(lam[i].imag) > forced.COMPLEX_TOL]
+    cand = [i for i in np.argsort(-np.abs(lam))[:4] if abs(lam[i].imag) > COMPLEX_TOL]
     i = cand[0]
     v = V[:, i]
     if (v[1] / v[0]).imag > 0:           # eps2 leads eps1: clockwise; take the conjugate pair

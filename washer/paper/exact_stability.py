@@ -25,7 +25,10 @@ import numpy as np
 
 from scipy.optimize import brentq
 
+from washer.cont import floquet
 from washer.machine import forced, kernel
+from washer.machine.layout import PAR_INDEX
+from washer.problems import forced as shooting
 from washer.machine.model import Model
 from washer.machine.params import load_params
 from washer.atomic import write_text
@@ -41,7 +44,8 @@ def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
     stable even without joint damping."""
     q = params.replace(C_p=0.0)
     if kind == "exact":
-        return forced.locate_tr(q, "Omega", bracket)[1].value
+        rec = shooting.locate_tr(q, "Omega", bracket)[1]
+        return float(rec.par[PAR_INDEX["Omega"] - 1])
     state = {"eps": None}
 
     def g(om):
@@ -74,10 +78,10 @@ def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 
             r = {"Omega": float(om), "C_p_exact": 0.0,
                  "C_p_averaged": forced.hopf_or_nan(q, "averaged")[0],
                  "C_p_frozen": forced.hopf_or_nan(q, "frozen")[0],
-                 "critical_multiplier": forced.critical_pair(
-                     forced.periodic_response(q.replace(C_p=0.0)).multipliers)}
+                 "critical_multiplier": floquet.critical_pair(
+                     shooting.periodic_response(q.replace(C_p=0.0)).multipliers, trivial=False)}
         else:
-            r = forced.critical_cp(q, rel_bracket)
+            r = shooting.critical_cp(q, rel_bracket)
         rows.append(r)
     cp_ex = np.array([r["C_p_exact"] for r in rows])
     cp_av = np.array([r["C_p_averaged"] for r in rows])
@@ -102,7 +106,7 @@ def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
     for name, value in points:
         row = {"name": name, "value": float(value)}
         try:
-            c = forced.critical_cp(params.replace(**{name: value}))
+            c = shooting.critical_cp(params.replace(**{name: value}))
             row.update(C_p_exact=c["C_p_exact"], C_p_averaged=c["C_p_averaged"],
                        C_p_frozen=c["C_p_frozen"], error=c["C_p_exact"] - c["C_p_averaged"],
                        note="undamped at C_p = 0: neutral, not a Hopf" if
@@ -111,7 +115,7 @@ def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
             q = params.replace(**{name: value})
             note = f"no TR point near the averaged Hopf ({type(exc).__name__})"
             try:
-                if forced.periodic_response(q.replace(C_p=0.0)).stable:
+                if shooting.periodic_response(q.replace(C_p=0.0)).stable:
                     note = "stable down to C_p = 0: no TR point"
             except (forced.ShootingError, kernel.KernelError):
                 pass
@@ -129,7 +133,7 @@ def compute(params, n_curve: int = N_CURVE, ends: bool = True, progress=print) -
     out = {}
     t = time.perf_counter()
     progress("  forced response: exact critical C_p at nominal values")
-    c = forced.critical_cp(params)
+    c = shooting.critical_cp(params)
     out["nominal"] = {k: c[k] for k in ("Omega", "C_p_exact", "C_p_averaged", "C_p_frozen")}
     out["nominal"].update(
         multipliers=c["multipliers"], critical_multiplier=c["critical_multiplier"],

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from washer.machine import forced, layout
+from washer.problems import forced as shooting
 from washer.machine.model import Model
 from washer.machine.params import Params
 
@@ -102,7 +103,7 @@ def compute(params: Params, progress=print) -> dict:
         corners[name] = critical(q)
         if np.isfinite(corners[name]["C_p"]) and corners[name]["C_p"] > 0:
             try:            # the exact torus point beside it: averaging holds out there too
-                corners[name]["exact"] = float(forced.critical_cp(q)["C_p_exact"])
+                corners[name]["exact"] = float(shooting.critical_cp(q)["C_p_exact"])
             except Exception:  # noqa: BLE001 - reported as missing
                 corners[name]["exact"] = np.nan
     return {"nominal": nominal, "rows": rows, "corners": corners, "change": CHANGE}

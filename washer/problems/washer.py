@@ -31,34 +31,20 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
     injected: nothing is reloaded or changed behind the caller's back."""
     if e == "washer:forced":
         return forced_problem(params, source)
+    if e == "washer:shooting":
+        from washer.problems.forced import shooting_problem
+        return shooting_problem(params)
     frame = {"washer": "averaged", "washer:averaged": "averaged",
              "washer:frozen": "frozen"}.get(e)
     if frame is None:
         from washer.cont.runner import RunError
         raise RunError(f"{source}: e='{e}': expected 'washer', 'washer:averaged', "
-                       "'washer:frozen' or 'washer:forced'")
+                       "'washer:frozen', 'washer:forced' or 'washer:shooting'")
     if params is None:
         params = _reference_params()
-    base = params.vector()
     tied = params.tied
     cols = {name: kernel.DIFF_NAMES.index(name) for name in PAR_NAMES.values()}
-    idx = np.array([layout.INDEX[n] for n in PAR_NAMES.values()])
-    par_idx = np.array([i - 1 for i in PAR_NAMES])
-
-    def kernel_params(par):
-        P = base.copy()
-        P[idx] = np.asarray(par)[par_idx]
-        for name in layout.moved_by("C_p", tied)[1:]:
-            P[layout.INDEX[name]] = par[0]
-        return P
-
-    def kernel_params_many(pars):
-        pars = np.asarray(pars, dtype=float)
-        P = np.repeat(base[None, :], len(pars), axis=0)
-        P[:, idx] = pars[:, par_idx]
-        for name in layout.moved_by("C_p", tied)[1:]:
-            P[:, layout.INDEX[name]] = pars[:, 0]
-        return P
+    kernel_params, kernel_params_many = kernel_parameters(params)
 
     # jac_rot returns J and Jp together: dfdu and dfdp at the same point (every
     # Newton step asks for both) share one kernel call through this cache.
@@ -101,6 +87,32 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR, dfdu_batch=dfdu_batch,
                    func_batch=func_batch, parnames=dict(PAR_NAMES))
+
+
+def kernel_parameters(params):
+    """(kernel_params(par) -> P, kernel_params_many(pars) -> (k, N_PARAMS)): the kernel's
+    parameter vector for AUTO's PAR vector(s), the other entries from `params`; the tied
+    dampers move with C_p = PAR(1) (layout.moved_by)."""
+    base = params.vector()
+    tied = params.tied
+    idx = np.array([layout.INDEX[n] for n in PAR_NAMES.values()])
+    par_idx = np.array([i - 1 for i in PAR_NAMES])
+
+    def kernel_params(par):
+        P = base.copy()
+        P[idx] = np.asarray(par)[par_idx]
+        for name in layout.moved_by("C_p", tied)[1:]:
+            P[layout.INDEX[name]] = par[0]
+        return P
+
+    def kernel_params_many(pars):
+        pars = np.asarray(pars, dtype=float)
+        P = np.repeat(base[None, :], len(pars), axis=0)
+        P[:, idx] = pars[:, par_idx]
+        for name in layout.moved_by("C_p", tied)[1:]:
+            P[:, layout.INDEX[name]] = pars[:, 0]
+        return P
+    return kernel_params, kernel_params_many
 
 
 #: Forcing-angle step (rad) of the central difference d f / d theta, the washer rows'
@@ -200,8 +212,8 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
         t = float(t) % 1.0
         if t not in cache:
             if "response" not in cache:
-                from washer.machine import forced
-                cache["response"] = forced.periodic_response(params)
+                from washer.problems.forced import periodic_response
+                cache["response"] = periodic_response(params)
             r = cache["response"]
             cache[t] = r.u0 if t == 0 else kernel.integrate(
                 "fixed", "constant", 0.0, r.u0, base, [t * r.T], STPNT_RTOL, STPNT_ATOL)[0][0]

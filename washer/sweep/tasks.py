@@ -226,8 +226,12 @@ FLOQUET_ABS = 1e-3
 
 def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> dict:
     """The exact critical value: the averaged one (continuation), then the TR point of
-    the forced response within a bracket around it (Brent on |mu_c| - 1)."""
+    the forced response within a bracket around it (washer.problems.forced.locate_tr:
+    the engine's shooting continuation, TR located by the one TR test)."""
+    from washer.cont import floquet
     from washer.machine import forced
+    from washer.machine.layout import PAR_INDEX
+    from washer.problems import forced as shooting
     avg = critical(params, parameter, lo, hi, "continuation")
     if avg["crit_status"] != "hopf":        # no crossing in the range: the same answer
         return avg | {"crit_averaged": avg["crit_value"], "crit_multiplier_angle": math.nan}
@@ -235,14 +239,14 @@ def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> d
     half = FLOQUET_BRACKET * abs(v) + FLOQUET_ABS * (hi - lo)
     bracket = (max(v - half, lo), min(v + half, hi))
     try:
-        start = forced.averaged_start(params.replace(**{parameter: v}))
-        r, sp = forced.locate_tr(params, parameter, bracket, start)
+        start = forced.averaged_start(params.replace(**{parameter: bracket[0]}))
+        r, sp = shooting.locate_tr(params, parameter, bracket, start)
     except Exception as exc:  # noqa: BLE001 - recorded per point
         raise PointError(f"critical (floquet): no TR point of the forced response in "
                          f"[{bracket[0]:.6g}, {bracket[1]:.6g}] around the averaged "
                          f"{v:.6g}: {exc}") from None
-    mu = forced.critical_pair(r.multipliers)
-    return {"crit_status": "hopf", "crit_value": float(sp.value), "crit_whirl": avg["crit_whirl"],
+    mu = floquet.critical_pair(r.multipliers, trivial=False)
+    return {"crit_status": "hopf", "crit_value": float(sp.par[PAR_INDEX[parameter] - 1]), "crit_whirl": avg["crit_whirl"],
             "crit_n_hopf": avg["crit_n_hopf"], "crit_source": "floquet",
             "crit_averaged": float(v), "crit_multiplier_angle": float(abs(np.angle(mu)))}
 
