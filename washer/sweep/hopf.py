@@ -9,9 +9,10 @@ washer.run (e='washer', averaged frame) in `folder`, as an AUTO script would:
 2. the Hopf curve from HB1 in (x, y) (ISW = 2), both directions, stopped at the
    edges of the map (UZSTOP);
 
-and returns the curve read back from the b-files (`washer.auto.files.read_b`)
-as a list of branches, arrays (k, 2) of (x, y). The b-files stay in `folder`
-(b.hopf_fwd, b.hopf_bwd), so `python -m washer.plots` can draw them too.
+and returns the curve as a list of branches, arrays (k, 2) of (x, y), from the
+runs in memory (the start run writes nothing; the curve restarts from its Branch).
+The curve's b-files are written to `folder` (b.hopf_fwd, b.hopf_bwd), so
+`python -m washer.plots` can draw them too.
 
 Both parameters must be PAR entries of e='washer'; every other parameter is
 `params`' (injected into the problem: run(..., params=...)). The curve lies at
@@ -42,9 +43,8 @@ class HopfCurveError(RuntimeError):
     """No Hopf curve could be computed for the map (the message says why)."""
 
 
-HOPF_CONSTANTS = """# written by washer.sweep (hopf): Hopf curve in ({x}, {y}) from HB1 of s.start
+HOPF_CONSTANTS = """# written by washer.sweep (hopf): Hopf curve in ({x}, {y}) from HB1 of the start run
 e = 'washer'
-s = 'start'
 parnames = {parnames}
 NDIM = 12, IPS = 1, IRS = 'HB1', ILP = 1
 ICP = ['{x}', '{y}']
@@ -61,7 +61,6 @@ UZSTOP = {{'{x}': [{x0!r}, {x1!r}], '{y}': [{y0!r}, {y1!r}]}}
 
 def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarray]:
     """Branches (k, 2) of the averaged system's Hopf curve in (x, y) within xr x yr."""
-    from washer.auto.files import read_b
     from washer.machine.layout import PAR_NAMES
     from washer.run import run
     for name in (x, y):
@@ -70,13 +69,14 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     (x0, x1), (y0, y1) = _widen(xr), _widen(yr)
-    start = folder / "c.start"
     tried = []
     for cont, (c0, c1), other, (o0, o1) in ((x, (x0, x1), y, (y0, y1)), (y, (y0, y1), x, (x0, x1))):
         for ov in (0.5 * (o0 + o1), o0, o1):
             p = params.replace(**{other: max(ov, 0.0)})
-            write_text(start, critical_constants(cont, max(c0, 0.0), c1))
-            res = run(start, verbose=False, params=p, sv="start")
+            # The start run stays in memory; the Hopf curve restarts from its Branch.
+            res = run(critical_constants(cont, max(c0, 0.0), c1), verbose=False, params=p,
+                      files=False)
+            start = res
             tried.append(f"{cont} in [{max(c0, 0):g}, {c1:g}] at {other} = {ov:g}")
             if any(s.ty == "HB" for s in res.specials):
                 break
@@ -93,10 +93,11 @@ def hopf_curve(params: Params, x: str, xr, y: str, yr, folder) -> list[np.ndarra
         x0=x0, x1=x1, y0=y0, y1=y1))
     branches = []
     for sign, sv in ((1, "hopf_fwd"), (-1, "hopf_bwd")):
-        res = run(c, verbose=False, params=p, sv=sv, DS=sign * 0.2 / HOPF_STEPS)
-        for rows in read_b(folder / f"b.{sv}"):
-            # b-file columns: PAR(ICP(1)), L2-norm, U(1..), PAR(ICP(2)) last.
-            pts = np.array([[r.values[0], r.values[-1]] for r in rows])
+        res = run(c, verbose=False, params=p, sv=sv, DS=sign * 0.2 / HOPF_STEPS,
+                  restart=start)
+        for br in sorted({r.br for r in res.rows}):
+            # b-row values: PAR(ICP(1)), L2-norm, U(1..), PAR(ICP(2)) last.
+            pts = np.array([[r.values[0], r.values[-1]] for r in res.rows if r.br == br])
             if len(pts):
                 branches.append(pts)
         if res.status != "ok" and not branches:

@@ -76,9 +76,7 @@ Parquet schema as field metadata, `washer.sweep.results`).
 from __future__ import annotations
 
 import math
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -161,31 +159,21 @@ NEUTRAL_MARGIN = 1e-9
 #: Tolerance of the fallback root search, as a fraction of the range (the
 #: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
 CRIT_XTOL = 1e-9
-CRIT_CONSTANTS = """# written by washer.sweep (critical): one-parameter search for the first HB
-e = 'washer'
-parnames = {parnames}
-NDIM = 12, IPS = 1, IRS = 0, ILP = 1
-ICP = ['{name}']
-ISP = 2, ISW = 1, MXBF = 0
-NMX = {nmx}, NPR = 0, ITMX = 8, ITNW = 7, JAC = 1
-EPSL = 1e-07, EPSU = 1e-07, EPSS = 1e-05
-DS = {ds!r}, DSMIN = {dsmin!r}, DSMAX = {dsmax!r}, IADS = 1
-NPAR = 17
-PAR = {par}
-UZSTOP = {{'{name}': {hi!r}}}
-"""
-
-
-def critical_constants(name: str, lo: float, hi: float) -> str:
-    """Text of a constants file continuing the averaged equilibrium in `name` from lo
-    to hi; the other parameters come with the problem (run(..., params=...))."""
+def critical_constants(name: str, lo: float, hi: float):
+    """The constants (washer.auto.constants.Constants, in memory) of the one-parameter
+    search for the first HB: the averaged equilibrium (e='washer') continued in `name`
+    from lo to hi (as auto_constants/c.washer); the other parameters come with the
+    problem (run(..., params=...))."""
+    from washer.auto.constants import Constants
     from washer.machine.layout import PAR_NAMES
-    par = {name: float(lo)}
     span = hi - lo
-    return CRIT_CONSTANTS.format(
-        parnames=repr(dict(PAR_NAMES)), name=name, nmx=10 * CRIT_STEPS,
-        ds=span / (5 * CRIT_STEPS), dsmin=span * 1e-6, dsmax=span / CRIT_STEPS,
-        par=repr(par), hi=float(hi))
+    return Constants({
+        "e": "washer", "parnames": dict(PAR_NAMES), "NDIM": 12, "IPS": 1, "IRS": 0,
+        "ILP": 1, "ICP": [name], "ISP": 2, "ISW": 1, "MXBF": 0, "NMX": 10 * CRIT_STEPS,
+        "NPR": 0, "ITMX": 8, "ITNW": 7, "JAC": 1, "EPSL": 1e-07, "EPSU": 1e-07,
+        "EPSS": 1e-05, "DS": span / (5 * CRIT_STEPS), "DSMIN": span * 1e-6,
+        "DSMAX": span / CRIT_STEPS, "IADS": 1, "NPAR": 17, "PAR": {name: float(lo)},
+        "UZSTOP": {name: float(hi)}}, source=f"<critical search in {name}>")
 
 
 def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float = 3.0,
@@ -205,10 +193,8 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
     from washer.machine.layout import PAR_NAMES
     from washer.run import run
     idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
-    with tempfile.TemporaryDirectory(prefix="washer-critical-") as d:
-        path = Path(d) / "c.critical"
-        path.write_text(critical_constants(parameter, lo, hi))
-        res = run(path, verbose=False, params=params)
+    res = run(critical_constants(parameter, lo, hi), verbose=False, params=params,
+              files=False)
     hbs = [s for s in res.specials if s.ty == "HB"]
     if hbs:
         period = float(hbs[0].par[10])
