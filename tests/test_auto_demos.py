@@ -116,10 +116,20 @@ def test_ab_closed_forms(ab_runs):
         assert lp.U[0] * (1 - lp.U[0]) == pytest.approx(4 / 17, rel=1e-8)
 
 
-def test_hb_criticality_is_reported(ab_runs):
+def test_hb_first_lyapunov_coefficient_is_kuznetsovs(ab_runs):
+    """l1 at ab's HB1 (p2 = 17, p3 = 3) against Kuznetsov's eq 3.20 with sympy's exact
+    derivatives at the exact Hopf point (mpmath, 30 digits; tests/closed_form_exact.py),
+    both with |q| = 1 and <p, q> = 1. The engine's l1 is a Richardson-extrapolated finite
+    difference, O(h^4) ~ 1e-9 relative here, at a Hopf point located to ~1e-8 in p1:
+    1e-6 relative bounds both. The criticality follows its sign."""
+    from ab_exact import F, X, hopf_point, p1, p2, u1, u2
+    from closed_form_exact import first_lyapunov
     hb1 = ab_runs["eq"]("HB1")
-    assert hb1.info["criticality"] in ("supercritical", "subcritical")
-    assert np.isfinite(hb1.info["l1"])
+    x1, x2, q1 = hopf_point({p2: 17.0}, [u1, u2, p1], [hb1.U[0], hb1.U[1], hb1.par[0]])
+    exact = first_lyapunov(F, list(X), {u1: x1, u2: x2, p1: q1, p2: 17.0})
+    assert abs(hb1.par[0] - q1) < 1e-7
+    assert hb1.info["l1"] == pytest.approx(exact, rel=1e-6)
+    assert hb1.info["criticality"] == ("supercritical" if exact < 0 else "subcritical")
 
 
 def test_lorenz_matches_auto(lrz_runs):

@@ -32,6 +32,74 @@ def test_every_registered_system_has_the_whole_contract(key):
     assert cls.arclength in ("sphere", "plane")
 
 
+def _fd_jacobian(sysm, x, h=1e-4):
+    """Central differences of the residual, column by column (dense)."""
+    cols = []
+    for j in range(len(x)):
+        e = np.zeros(len(x))
+        e[j] = h * (1 + abs(x[j]))
+        cols.append((sysm.residual(x + e) - sysm.residual(x - e)) / (2 * e[j]))
+    return np.column_stack(cols)
+
+
+def _ab_system(tmp_path, **overrides):
+    """The system a run of AUTO's ab demo starts with (after the equilibrium run's s-file
+    is written), through the same start resolution as every run."""
+    from washer.auto.files import read_s
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    if not (tmp_path / "s.eq").exists():
+        run(tmp_path / "c.ab", verbose=False, sv="eq")
+    c = read_constants(tmp_path / "c.ab")
+    for k, v in overrides.items():
+        c.set(k, v)
+    problem = load_python_problem("ab", tmp_path, 2)
+    records = read_s(tmp_path / "s.eq") if c["IRS"] not in (0, "0") else None
+    r, _, _ = build(c, problem, records)
+    return r.system, r.settings
+
+
+@pytest.mark.parametrize("overrides", [
+    {},                                                           # equilibria (FUNI)
+    {"IRS": "LP1", "ICP": [1, 2], "ISW": 2},                      # fold curve (FNLP)
+    {"IRS": "HB1", "ICP": [1, 2], "ISW": 2},                      # Hopf curve (FNHB)
+    {"IRS": "HB1", "IPS": 2, "ICP": [1, 11], "NTST": 10},         # periodic orbits (FNPS)
+], ids=["equilibrium", "fold", "hopf", "periodic"])
+def test_systems_honour_the_contract_at_their_start(tmp_path, overrides):
+    """What the iterator relies on, checked on each system as a run builds it: shapes
+    (N equations, N + 1 unknowns), the Jacobian against central differences of the
+    residual with steps 1e-4 (1 + |x_j|), to 1e-5 of max|J| (the loci's residuals hold
+    f_u as central differences themselves, ab having JAC = 0, whose ~1e-9 noise the step
+    divides to ~1e-5 at most; the truncation is ~1e-8 times the third derivatives;
+    measured 3e-7 on the fold and Hopf curves, 6e-10 on the periodic orbits),
+    border(t) @ a == inner(a, t), params(x) holding x's
+    principal parameter, the
+    test values a subset of the active tests, and update/remesh leaving a point that
+    still solves the equations."""
+    sysm, s = _ab_system(tmp_path, **overrides)
+    x0, t0 = sysm.start()
+    n = sysm.n_eq
+    assert x0.shape == (n + 1,) and sysm.residual(x0).shape == (n,)
+    J = sysm.jacobian(x0)
+    Jd = J.toarray() if hasattr(J, "toarray") else np.asarray(J)
+    assert Jd.shape == (n, n + 1)
+    fd = _fd_jacobian(sysm, x0)
+    assert np.abs(Jd - fd).max() <= 1e-5 * max(1.0, np.abs(Jd).max())
+    rng = np.random.default_rng(3)
+    a, t = rng.standard_normal(n + 1), rng.standard_normal(n + 1)
+    assert sysm.border(t) @ a == pytest.approx(sysm.inner(a, t), rel=1e-12)
+    assert sysm.params(x0)[s.ICP[0] - 1] == x0[-1]
+    tangent = t0 if t0 is not None else t / np.sqrt(sysm.inner(t, t))
+    st = sysm.stability(x0, J)
+    tests = sysm.test_functions(x0, tangent, J, st, sysm.factor(J, sysm.border(tangent)),
+                                sysm.active_tests())
+    assert set(tests) <= set(sysm.active_tests())
+    sysm.update(x0, tangent)
+    moved = sysm.remesh(x0, tangent) if sysm.wants_remesh(3) else (x0, tangent)
+    r0 = np.abs(sysm.residual(x0)).max()
+    assert np.abs(sysm.residual(moved[0])).max() <= max(10 * r0, 1e-6)
+
+
 def test_a_run_in_memory_needs_no_sink_pickles_and_repeats(tmp_path):
     for f in ("ab.py", "c.ab"):
         shutil.copy(DATA / "ab" / f, tmp_path)

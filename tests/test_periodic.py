@@ -27,6 +27,7 @@ import pytest
 
 from washer.auto.files import read_s, record_text
 from washer.cont.branch import Record
+from washer.cont.iterator import Continuation
 from washer.cont import collocation as col
 from washer.auto.codes import Code
 from washer.cont.problem import Problem
@@ -88,48 +89,21 @@ def newton_fixed(sysm, x, slot=-1, tol=1e-10, maxit=25):
     raise AssertionError(f"Newton did not converge in {maxit} iterations")
 
 
-def _correct(sysm, xp, xref, tref, ds, nwtn=3, itnw=8, eps=1e-8):
-    row = sysm.border(tref)
-    x, fac = xp.copy(), None
-    for it in range(1, itnw + 1):
-        G = sysm.residual(x)
-        if fac is None or it <= nwtn:
-            fac = sysm.factor(sysm.jacobian(x), row)
-        dx = fac.solve(-np.r_[G, row @ (x - xref) - ds])
-        x = x + dx
-        if (np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1]))) < eps
-                and abs(dx[-1]) / (1 + abs(x[-1])) < eps):
-            return x, it
-    raise AssertionError("no convergence")
-
-
 def _branch(sysm, n, ds, dsmax=0.5):
-    """AUTO's BVP loop in miniature (STEPBV, CONTBV, and ADAPT every IAD written points
-    through the system's wants_remesh/remesh, as washer.cont.iterator does): returns
-    the points."""
-    x, t = sysm.start()
-    t = t / math.sqrt(sysm.inner(t, t))
-    sysm.update(x, t)
-    pts = [x]
-    for k in range(1, n + 1):
-        while True:
-            try:
-                xn, it = _correct(sysm, x + ds * t, x, t, ds)
-                break
-            except AssertionError:
-                ds /= 2                                   # STEPBV: retry with half the step
-                if abs(ds) < 1e-6:
-                    raise
-        tn = (xn - x) / ds
-        tn /= math.sqrt(sysm.inner(tn, tn))
-        sysm.update(xn, tn)
-        x, t = xn, tn
-        pts.append(x.copy())
-        if sysm.wants_remesh(k + 1):                  # the start is point 1 (NTOT)
-            x, t = sysm.remesh(x, t)
-        grow = 2 if it <= 1 else 1.5 if it == 2 else 1.1 if it <= 4 else 1.0   # ADPTDS, ITNW 8
-        ds = math.copysign(min(abs(ds) * grow, dsmax), ds)
-    return pts
+    """The unknowns of the start and n further points of the shipped iterator
+    (washer.cont.iterator.Continuation: predictor, Newton-chord corrector, AUTO's step
+    control, mesh adaptation through the system's wants_remesh/remesh) from the system's
+    start, with DS = ds and DSMAX = dsmax."""
+    it = Continuation(sysm, sysm.settings.with_(DS=ds, DSMAX=dsmax, DSMIN=1e-6))
+    pts = []
+    for step in it:
+        if step.kind == "failed":
+            raise AssertionError(step.text)
+        if step.point is not None and step.kind != "note":
+            pts.append(step.point.x.copy())
+        if len(pts) > n:
+            return pts
+    raise AssertionError("the branch ended early")
 
 
 # ------------------------------------------------------------------ closed form
@@ -183,7 +157,7 @@ def test_start_from_a_hopf_point_follows_the_closed_form_family():
     assert np.ptp(np.hypot(V[:, 0], V[:, 1])) < 1e-12
     quarter = col.evaluate(sysm.mesh, V, (sysm.mesh.node_times() + 0.25) % 1.0)
     assert np.max(np.abs(np.sum(V * quarter, axis=1))) < 1e-3 * np.max(V ** 2)
-    pts = _branch(sysm, 10, 0.05)
+    pts = _branch(sysm, 12, 0.05)
     mus = []
     for x in pts[1:]:
         U = x[:-2].reshape(-1, 2)
