@@ -25,7 +25,7 @@ from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory, solve
 from washer.machine import forced
 from washer.machine.forced import ForcedResponse, ShootingError
-from washer.problems.washer import NPAR, PAR_NAMES, _reference_params, kernel_parameters
+from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, kernel_parameters
 
 #: Newton's tolerance (EPSU = EPSL): relative corrections below the flow's accuracy at
 #: forced.RTOL are noise (machine.forced.NEWTON_TOL).

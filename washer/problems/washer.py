@@ -8,20 +8,18 @@ PAR indices (1-based, AUTO's PAR(11) is left to the period):
 """
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
-from washer.machine import kernel, layout
 from washer.cont.problem import Problem
+from washer.machine import kernel, layout
 from washer.machine.model import Model
-from washer.machine.params import load_params
+from washer.problems.forced import periodic_response, shooting_problem
+from washer.problems.parameters import (NPAR, PAR_NAMES, _reference_params,  # noqa: F401
+                                        kernel_parameters)
 
-#: PAR(i) -> kernel parameter name (washer.machine.layout.PAR_NAMES). C_p moves C_ox
-#: and C_oz with it when the parameter file ties them (layout.moved_by).
-PAR_NAMES = layout.PAR_NAMES
+#: PAR(i) -> kernel parameter name (washer.machine.layout.PAR_NAMES); the washer's
+#: problems share the map and the reference set (washer.problems.parameters).
 __doc__ += "\n".join(f"    PAR({i}) = {n} ({layout.UNITS[n]})" for i, n in PAR_NAMES.items())
-NPAR = 17
 
 
 def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> Problem:
@@ -32,7 +30,6 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
     if e == "washer:forced":
         return forced_problem(params, source)
     if e == "washer:shooting":
-        from washer.problems.forced import shooting_problem
         return shooting_problem(params)
     frame = {"washer": "averaged", "washer:averaged": "averaged",
              "washer:frozen": "frozen"}.get(e)
@@ -87,32 +84,6 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR, dfdu_batch=dfdu_batch,
                    func_batch=func_batch, parnames=dict(PAR_NAMES))
-
-
-def kernel_parameters(params):
-    """(kernel_params(par) -> P, kernel_params_many(pars) -> (k, N_PARAMS)): the kernel's
-    parameter vector for AUTO's PAR vector(s), the other entries from `params`; the tied
-    dampers move with C_p = PAR(1) (layout.moved_by)."""
-    base = params.vector()
-    tied = params.tied
-    idx = np.array([layout.INDEX[n] for n in PAR_NAMES.values()])
-    par_idx = np.array([i - 1 for i in PAR_NAMES])
-
-    def kernel_params(par):
-        P = base.copy()
-        P[idx] = np.asarray(par)[par_idx]
-        for name in layout.moved_by("C_p", tied)[1:]:
-            P[layout.INDEX[name]] = par[0]
-        return P
-
-    def kernel_params_many(pars):
-        pars = np.asarray(pars, dtype=float)
-        P = np.repeat(base[None, :], len(pars), axis=0)
-        P[:, idx] = pars[:, par_idx]
-        for name in layout.moved_by("C_p", tied)[1:]:
-            P[:, layout.INDEX[name]] = pars[:, 0]
-        return P
-    return kernel_params, kernel_params_many
 
 
 #: Forcing-angle step (rad) of the central difference d f / d theta, the washer rows'
@@ -212,7 +183,6 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
         t = float(t) % 1.0
         if t not in cache:
             if "response" not in cache:
-                from washer.problems.forced import periodic_response
                 cache["response"] = periodic_response(params)
             r = cache["response"]
             cache[t] = r.u0 if t == 0 else kernel.integrate(
@@ -230,12 +200,6 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
 
     return Problem(FORCED_NDIM, func, stpnt, dfdu, None, name="washer:forced", npar=NPAR,
                    dfdu_batch=dfdu_batch, func_batch=func_batch, parnames=dict(PAR_NAMES))
-
-
-@functools.lru_cache(maxsize=1)
-def _reference_params():
-    """The shipped reference parameter set, read once per process."""
-    return load_params()
 
 
 def forced_start_params(c, params=None):
