@@ -20,6 +20,25 @@ class AlgebraicSystem:
     curve_type = 0
     freezes_second_derivatives = False
 
+    def _one_parameter(self, start) -> None:
+        """The set-up of systems with unknowns x = (u, PAR(ICP(1))): problem, settings,
+        N = NDIM, the weights, the start point and a stored direction reused when the
+        record has the same free parameter (AUTO)."""
+        s = start.settings
+        self.problem, self.settings = start.problem, s
+        self.ndim = self.n_eq = start.problem.ndim
+        self.par = np.array(start.par, dtype=float)
+        self.free = [s.ICP[0]]
+        self.unames = dict(start.unames)
+        self.theta = np.r_[s.theta_u(self.ndim), s.theta_par(s.ICP[0])]
+        u = np.asarray(start.u, dtype=float)[:self.ndim]
+        self._x0 = np.r_[u, self.par[s.ICP[0] - 1]]
+        self._t0 = None
+        rec = start.record
+        if rec is not None and rec.udot is not None and len(rec.rldot) and \
+                list(rec.icp[:1]) == self.free and len(rec.udot) >= self.ndim:
+            self._t0 = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:
         return float(np.sum(self.theta * a * b))

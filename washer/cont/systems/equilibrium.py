@@ -67,22 +67,8 @@ class EquilibriumSystem(AlgebraicSystem):
     """f(u, par) = 0 with unknowns x = (u, PAR(ICP(1)))."""
 
     def __init__(self, start: StartData):
-        s = start.settings
-        self.problem, self.settings = start.problem, s
-        self.ndim = self.n_eq = start.problem.ndim
-        self.par = np.array(start.par, dtype=float)
-        self.free = [s.ICP[0]]
-        self.unames = dict(start.unames)
-        self.theta = np.r_[s.theta_u(self.ndim), s.theta_par(s.ICP[0])]
-        u = np.asarray(start.u, dtype=float)[:self.ndim]
-        self._x0 = np.r_[u, self.par[s.ICP[0] - 1]]
-        self._t0 = None
-        rec = start.record
-        if rec is not None and rec.udot is not None and len(rec.rldot) and \
-                list(rec.icp[:1]) == self.free and len(rec.udot) >= self.ndim:
-            # A stored direction with the same free parameter is reused (AUTO).
-            self._t0 = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
-        self._switch = s.ISW == -1 and start.kind == "BP"
+        self._one_parameter(start)
+        self._switch = start.settings.ISW == -1 and start.kind == "BP"
 
     # ------------------------------------------------------------ equations
     def params(self, x) -> np.ndarray:
