@@ -24,7 +24,7 @@ def _fake_run(statuses):
 def test_a_failing_run_is_recorded_and_the_others_still_run(tmp_path, monkeypatch):
     monkeypatch.setattr(runs, "run", _fake_run({"washer.hopf.K_s": "stopped: MX at K_s = 612",
                                                 "washer.eps3.bwd": ValueError("garbage")}))
-    monkeypatch.setattr(runs, "read_curve", lambda folder, name, two_par: f"curve {name}")
+    monkeypatch.setattr(runs, "curve_of", lambda name, fwd, bwd, two_par, **k: f"curve {name}")
     curves, results, log = runs.run_all(tmp_path, progress=lambda *a: None)
     failed = log.failed()
     assert failed == {"washer.hopf.K_s": "stopped: MX at K_s = 612",

@@ -27,7 +27,7 @@ def test_an_interrupted_rerun_keeps_the_previous_results(tmp_path, monkeypatch):
     (auto / "s.washer").write_text("previous\n")
     calls = []
     monkeypatch.setattr(runs, "run", _writing_run(calls))
-    monkeypatch.setattr(runs, "read_curve", lambda folder, name, two_par: name)
+    monkeypatch.setattr(runs, "curve_of", lambda name, fwd, bwd, two_par, **k: name)
     try:
         runs.run_all(tmp_path, progress=lambda *a: None)
     except KeyboardInterrupt:
@@ -47,7 +47,7 @@ def test_a_finished_rerun_replaces_the_results(tmp_path, monkeypatch):
     monkeypatch.setattr(runs, "run", lambda path, verbose=False, **o: (
         (path.parent / f"b.{o.get('sv') or path.name[2:]}").write_text("new\n"),
         SimpleNamespace(status="ok", specials=[], rows=[]))[1])
-    monkeypatch.setattr(runs, "read_curve", lambda folder, name, two_par: name)
+    monkeypatch.setattr(runs, "curve_of", lambda name, fwd, bwd, two_par, **k: name)
     runs.run_all(tmp_path, progress=lambda *a: None)
     assert (auto / "b.washer").read_text() == "new\n"
     assert not (auto / "b.gone").exists()

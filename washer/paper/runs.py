@@ -68,19 +68,33 @@ class RunLog:
 
 
 def read_curve(folder: Path, name: str, two_par: bool) -> Curve:
-    """The curve of b.<name> joined with b.<name>.bwd when that exists: backward
-    part reversed, then the forward part (their shared start point once)."""
+    """The curve of b.<name> joined with b.<name>.bwd when that exists (an output folder
+    read back: the job itself builds its curves from the runs in memory)."""
     read = lambda path: [r for branch in read_b(path) for r in branch] if path.exists() else []
-    bwd, fwd = read(folder / f"b.{name}.bwd")[::-1], read(folder / f"b.{name}")
-    rows = bwd[:-1] + fwd if (bwd and fwd) else bwd + fwd
-    if not rows:
+    fwd, bwd = read(folder / f"b.{name}"), read(folder / f"b.{name}.bwd")
+    if not (fwd or bwd):
         raise FileNotFoundError(f"no b.{name} in {folder}")
+    return curve_of(name, fwd, bwd, two_par, type_of=lambda r: type_name(r.ty),
+                    stable_of=lambda r: r.pt < 0)
+
+
+def curve_of(name: str, fwd: list, bwd: list, two_par: bool,
+             type_of=lambda r: r.ty, stable_of=lambda r: bool(r.stable)) -> Curve:
+    """A Curve from the rows of a run (washer.cont.branch.Record: a run's Branch.rows) and
+    of its backward run: backward part reversed, then the forward part (their shared
+    start point once). type_of/stable_of read a row's type name and stability (b-file
+    rows: type_name(TY), PT < 0)."""
+    bwd = list(bwd)[::-1]
+    rows = bwd[:-1] + list(fwd) if (bwd and fwd) else bwd + list(fwd)
+    if not rows:
+        raise ValueError(f"{name}: no points")
     vals = np.array([r.values for r in rows])
-    names = [(type_name(r.ty), r.lab) for r in rows]
+    names = [(type_of(r), r.lab) for r in rows]
     specials = [(t, i, lab) for i, (t, lab) in enumerate(names) if t and lab]
     return Curve(name, vals[:, 0], vals[:, -1] if two_par else None, vals[:, 1],
-                 vals[:, 2:-1] if two_par else vals[:, 2:7], np.array([r.pt < 0 for r in rows]),
-                 specials, (names[0][0], names[-1][0]))
+                 vals[:, 2:-1] if two_par else vals[:, 2:7],
+                 np.array([stable_of(r) for r in rows]), specials,
+                 (names[0][0], names[-1][0]))
 
 
 def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):
@@ -102,15 +116,21 @@ def _run(folder: Path, cfile: str, log: RunLog, label: str, **overrides):
     return res
 
 
-def _read(folder: Path, name: str, two_par: bool, log: RunLog, labels) -> Curve | None:
-    """The curve of a run, or None when one of its runs failed or left no points."""
+def _read(folder: Path, name: str, two_par: bool, log: RunLog, labels, runs=None
+          ) -> Curve | None:
+    """The curve of a run (and its backward run) from the Branches in memory `runs`
+    (forward, backward or None), else read back from its b-files; None when one of its
+    runs failed or left no points."""
     if any(log.status.get(k) != "ok" for k in labels):
         return None
     try:
+        if runs is not None and runs[0] is not None:
+            return curve_of(name, runs[0].rows, runs[1].rows if runs[1] is not None else [],
+                            two_par)
         return read_curve(folder, name, two_par)
     except (OSError, ValueError) as exc:
         for k in labels:
-            log.status[k] = f"finished, but its b-file cannot be read: {exc}"
+            log.status[k] = f"finished, but its points cannot be read: {exc}"
         return None
 
 
@@ -162,7 +182,7 @@ def _run_all_in(folder: Path, quick: bool, progress) -> tuple[dict, dict, "RunLo
         name = f"washer{suffix}"
         progress(f"  Fig 3 branch in C_p ({frame})")
         results[name] = _run(folder, f"c.{name}", log, name)
-        curves[name] = _read(folder, name, False, log, [name])
+        curves[name] = _read(folder, name, False, log, [name], (results[name], None))
     def both_ways(name: str, two_par: bool):
         fwd, bwd = {}, {"DS": "-"}
         if quick:
@@ -170,9 +190,9 @@ def _run_all_in(folder: Path, quick: bool, progress) -> tuple[dict, dict, "RunLo
             ds = c["DS"] * QUICK_STEP_FACTOR
             fwd = {"DS": ds, "DSMAX": c["DSMAX"] * QUICK_STEP_FACTOR}
             bwd = dict(fwd, DS=-ds)
-        _run(folder, f"c.{name}", log, name, **fwd)
-        _run(folder, f"c.{name}", log, f"{name}.bwd", **bwd, sv=f"{name}.bwd")
-        curves[name] = _read(folder, name, two_par, log, [name, f"{name}.bwd"])
+        runs = (_run(folder, f"c.{name}", log, name, **fwd),
+                _run(folder, f"c.{name}", log, f"{name}.bwd", **bwd, sv=f"{name}.bwd"))
+        curves[name] = _read(folder, name, two_par, log, [name, f"{name}.bwd"], runs)
 
     for key, fig in list(HOPF_CURVES.items()) + [("m_u_R_u", "Fig. 5(c)")]:
         for frame, (_, suffix) in FRAMES.items():
