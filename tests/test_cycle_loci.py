@@ -129,12 +129,12 @@ def test_mobius_pd_locus(mobius):
 def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
     """The washer's exact stability boundary continued directly as a TR locus in
     (Omega, C_p) (auto_constants/c.washer.forced.tr, from the TR of c.washer.forced)
-    against washer.forced.critical_cp, an independent route (Newton shooting of the
-    forced response with an adaptive integrator at 1e-10, then Brent on |mu| - 1 in C_p)
+    against washer.problems.forced.critical_cp, an independent route (shooting of the
+    forced response with an adaptive integrator at 1e-10, its TR located in C_p alone)
     at the locus's UZ points Omega = 11 and 12 Hz: the same C_p to 1e-8 (collocation at
     NTST = 20 is superconvergent, ~1e-11 here; the shooting's own integration error is of
     that size too)."""
-    from washer.machine import forced
+    from washer.problems import forced
     from washer.problems.washer import _reference_params
     root = Path(__file__).parent.parent / "auto_constants"
     for name in ("c.washer.forced", "c.washer.forced.tr"):
