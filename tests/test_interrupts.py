@@ -194,3 +194,28 @@ def test_run_command_exits_130_on_ctrl_c(tmp_path, capsys):
         sinks.ScreenSink.point = real
     err = capsys.readouterr().err
     assert "interrupted" in err and "Saved as" not in err
+
+
+def test_ctrl_c_stops_the_forced_washer_run_and_keeps_its_points(tmp_path):
+    """python -m washer.run on the forced washer (shooting and collocation, kernel
+    integrations inside): exit 130 within a second, the b-file readable with the
+    points so far, and every label of the b-file has its s-record."""
+    import shutil
+    from washer.run import load
+    shutil.copy(ROOT / "auto_constants" / "c.washer.forced", tmp_path)
+    code = ("import sys\nimport washer.cont.sinks as S\n"
+            "real = S.ScreenSink.point\n"
+            "def point(self, lab, pt):\n"
+            "    real(self, lab, pt)\n"
+            "    if lab.pt == 3: print('ready', flush=True)\n"
+            "S.ScreenSink.point = point\n"
+            "from washer.run import main\n"
+            f"sys.exit(main([{str(tmp_path / 'c.washer.forced')!r}, 'NMX=400', 'UZSTOP={{}}']))\n")
+    dt, rc, out, err = interrupt_after_ready(code, timeout=120)
+    assert rc == 130, err
+    assert dt < 1.0, f"took {dt:.2f} s"
+    assert "interrupted" in err and "Traceback" not in err
+    rows = [r for b in load(tmp_path / "b.washer.forced") for r in b]
+    assert len(rows) >= 3
+    labels = [r.lab for r in rows if r.lab]
+    assert [r.lab for r in load(tmp_path / "s.washer.forced")] == labels
