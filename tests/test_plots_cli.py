@@ -64,3 +64,11 @@ def test_command_line_by_name_and_its_errors(tmp_path, capsys):
     assert main([str(tmp_path / "b.lrz"), "--x", "rho", "--y", "gamma"]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"error: {tmp_path / 'b.lrz'}: 'gamma': no such column")
+
+
+def test_unwritable_output_is_one_line(tmp_path, capsys):
+    shutil.copy(LRZ, tmp_path / "b.lrz")
+    (tmp_path / "afile").write_text("x")
+    assert main([str(tmp_path / "b.lrz"), "--out", str(tmp_path / "afile" / "d")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and "cannot write" in err and err.count("\n") == 1

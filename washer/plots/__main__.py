@@ -20,6 +20,18 @@ from pathlib import Path
 
 
 def main(argv: list[str] | None = None) -> int:
+    from washer.atomic import OutputError
+    try:
+        return _main(argv)
+    except OutputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str] | None) -> int:
     ap = argparse.ArgumentParser(prog="python -m washer.plots",
                                  description="Bifurcation diagrams (b-files) and periodic "
                                              "orbits (s-files, --label)")

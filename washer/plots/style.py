@@ -5,7 +5,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 
-from washer.atomic import save_figure
+from washer.atomic import check_folder, save_figure
 
 RC = {"figure.figsize": (6.4, 4.0), "font.size": 10, "axes.grid": True, "grid.alpha": 0.3,
       "lines.linewidth": 1.0, "savefig.dpi": 150, "legend.frameon": False}
@@ -19,7 +19,7 @@ def figure(nrows: int = 1, ncols: int = 1, **kw):
 
 def save(fig, stem: Path, formats=("png", "pdf")) -> list[Path]:
     """Save `fig` as stem.png and stem.pdf, close it, return the paths."""
-    stem.parent.mkdir(parents=True, exist_ok=True)
+    check_folder(stem.parent)            # OutputError naming the folder, not an OSError
     paths = []
     with plt.rc_context(RC):
         for ext in formats:
