@@ -84,3 +84,25 @@ def test_a_failing_location_step_is_retried_halved():
     with pytest.raises(LocationFailed, match="halving"):
         locate(lambda s: (_ for _ in ()).throw(RuntimeError("diverges")), "LP", -0.25, 0.75,
                1.0, settings)
+
+
+def test_a_location_ends_at_the_last_trial_when_the_failing_correction_is_below_tolerance():
+    """Next to a branch point of cycles the last, tiny trial step may not converge (the
+    Newton matrix is nearly singular): AUTO's LCSPBV tests the correction before it
+    steps and returns the point it has. Here the trial steps converge everywhere but
+    within 1e-7 of the zero of q(s) = e + e^2 / 3 + e^3 (e = s - 1/2), and the location
+    ends at the last converged trial, within the tolerance EPSS (1 + sqrt|DS DSMAX|) of
+    the zero (it failed before: 'trial step failed')."""
+    from types import SimpleNamespace
+    from washer.cont.events import locate
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-3)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
+
+    def trial(s):
+        e = s - 0.5
+        if abs(e) < 1e-7:
+            raise RuntimeError("no convergence next to the branch point")
+        return ("point", s), e + e * e / 3 + e ** 3
+    pt, s = locate(trial, "BP", trial(0.0)[1], trial(1.0)[1], 1.0, settings)
+    assert pt == ("point", s)
+    assert abs(s - 0.5) < tol

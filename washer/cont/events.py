@@ -141,16 +141,28 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     bracket. Here the sign bracket is kept and iterations go on (within ITMX)
     until it is below 10 tolerances too; if ITMX runs out first, AUTO's own
     rule decides.
+
+    A trial that does not converge even halved (`_converged_trial`) ends the location
+    at the last converged trial when the correction it was asked for is below the
+    tolerance: AUTO's LCSPBV tests the next correction before it steps and returns the
+    point it has (next to a branch point of cycles, where the Newton matrix is nearly
+    singular, that last tiny step is the one that fails: brc's BP).
     """
     tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
     lo, qlo, hi, qhi = 0.0, q_prev, s_cur, q_cur          # the bracket (as s values)
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
-    best = None
+    best = last = None
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
-        pt, q, s_new = _converged_trial(trial, s_new, s_last, settings)
+        try:
+            pt, q, s_new = _converged_trial(trial, s_new, s_last, settings)
+        except LocationFailed:
+            if last is not None and abs(s_new - last[1]) < tol:
+                best = last
+                break
+            raise
         if q is None or not np.isfinite(q):
             raise LocationFailed("test function undefined at a trial point")
         if q == 0:
@@ -166,6 +178,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
             if side == 1:
                 qlo /= 2
             side = 1
+        last = (pt, s_new, q)
         converged = abs(s_new - s_last) < tol
         if converged:
             best = (pt, s_new, q)
