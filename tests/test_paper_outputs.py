@@ -69,3 +69,12 @@ def test_second_job_in_one_folder_is_refused(tmp_path, monkeypatch, capsys):
     with output_lock(tmp_path, "paper"):
         assert job.main(["--out", str(tmp_path)]) == 75
     assert "being written by process" in capsys.readouterr().err
+
+
+def test_ctrl_c_after_the_runs_is_exit_130_not_a_traceback(tmp_path, monkeypatch, capsys):
+    def late(args):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(job, "_main", late)
+    assert job.main(["--out", str(tmp_path)]) == 130
+    assert "interrupted" in capsys.readouterr().err
+    assert not (tmp_path / ".paper.lock").exists()

@@ -197,6 +197,12 @@ def main(argv: list[str] | None = None) -> int:
         check_folder(args.out)          # before hours of work, not after
         with output_lock(args.out, "paper", what=f"the reproduction in {args.out}"):
             return _main(args)
+    except KeyboardInterrupt as exc:
+        # Anywhere in the job (runs, figures, the sections beyond the paper): the report
+        # is written last and whole, so an interrupt leaves the previous one.
+        print(f"\ninterrupted{': ' + str(exc) if str(exc) else ''}; no report written",
+              file=sys.stderr)
+        return 130
     except OutputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
