@@ -271,8 +271,8 @@ def test_duplicate_icp_entries_are_refused(tmp_path):
 
 
 @pytest.mark.parametrize("stmt,message", [
-    ("THL = {12: 1.0}", r"THL weight on index 12: expected an index in 1..NPAR=11"),
-    ("THU = {17: 1.0}", r"THU weight on index 17: expected an index in 1..8 NDIM=16"),
+    ("THL = {-1: 1.0}", r"THL weight on index -1: expected an index in 1..NPAR=11"),
+    ("THU = {0: 1.0}", r"THU weight on index 0: expected an index in 1..8 NDIM=16"),
     ("IPS = 2\nNTST = 0", r"NTST = 0: IPS = 2 solves on a mesh of NTST intervals"),
 ])
 def test_weights_on_indices_that_do_not_exist(tmp_path, stmt, message):
@@ -313,6 +313,25 @@ def test_icp_by_washer_name_without_parnames(tmp_path):
     header = [l for l in (tmp_path / "b.names").read_text().splitlines() if l.startswith("   0")]
     assert header[-3].endswith(" 'm_u'") and "Active continuation parameter" in header[-3]
     assert header[-1].split()[4] == "m_u"                # the first column's title
+
+
+@pytest.mark.parametrize("stmt,message", [
+    ("THL = {12: 1.0}", r"THL weight on index 12 has no effect: not an index of this run "
+                        r"\(1..NPAR=11\)"),
+    ("THU = {17: 1.0}", r"THU weight on index 17 has no effect: not an index of this run "
+                        r"\(1..8 NDIM=16\)"),
+])
+def test_weights_beyond_the_run_are_said_and_dropped(tmp_path, stmt, message):
+    """AUTO ignores them (its r3b demo has THL on PAR(23) with NPAR 22): a warning, not
+    silence, and the run goes on."""
+    from washer.cont.settings import SettingsWarning
+    from washer.run import run
+    c = _ab(tmp_path)
+    c.write_text(c.read_text() + stmt + "\nNMX = 5\n")
+    with pytest.warns(SettingsWarning, match=message) as rec:
+        res = run(c, verbose=False)
+    assert str(rec[0].message).startswith(f"{c}:{len(c.read_text().splitlines()) - 1}:")
+    assert len(res.rows) == 5
 
 
 def test_huge_mesh_is_refused_with_its_estimate(tmp_path, capsys):

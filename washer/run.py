@@ -25,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import warnings
 from pathlib import Path
 
 from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
@@ -224,6 +225,8 @@ def _copy_examples(args: list[str]) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
+    # Warnings (a unit slip, a constant without effect) as one plain line each.
+    warnings.formatwarning = lambda message, category, *a, **k: f"warning: {message}\n"
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2

@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import warnings
 from pathlib import Path
 
 from washer.atomic import OutputError, check_folder
@@ -36,6 +37,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--allow-large", action="store_true",
                     help="run a response whose estimated memory or time is far above the usual")
     args = ap.parse_args(argv)
+    # Warnings (a unit slip, a constant without effect) as one plain line each.
+    warnings.formatwarning = lambda message, category, *a, **k: f"warning: {message}\n"
     names = sorted(SETUPS) if "all" in args.setups else list(dict.fromkeys(args.setups))
     try:
         params = _check_arguments(args, names)

@@ -9,6 +9,7 @@ perturbations, NPAR raised to 11 or 12, THL's default {11: 0} for IPS = 2).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -39,6 +40,10 @@ _D = DEFAULTS
 
 class SettingsError(ValueError):
     """Constants that no run can use (a step rule that would never end, ...)."""
+
+
+class SettingsWarning(UserWarning):
+    """A constant without effect in this run (a weight on an index it does not have)."""
 
 
 @dataclass(frozen=True)
@@ -184,11 +189,17 @@ class Settings:
         # fold loci, e.g. kappa = omega^2 of a Hopf curve): AUTO allocates THU(NDIM*8).
         for key, weights, top, what in (("THL", thl, npar, "NPAR"),
                                         ("THU", thu, 8 * c["NDIM"], "8 NDIM")):
-            for i in weights:
-                if not 1 <= i <= top:
-                    where = getattr(c, "given", {}).get(key, src)
+            for i in list(weights):
+                where = getattr(c, "given", {}).get(key, src)
+                if i < 1:
                     raise SettingsError(f"{where}: {key} weight on index {i}: expected an index "
                                         f"in 1..{what}={top}")
+                if i > top:
+                    # AUTO ignores such a weight (some of its demos carry one): said, dropped.
+                    warnings.warn(f"{where}: {key} weight on index {i} has no effect: not an "
+                                  f"index of this run (1..{what}={top})", SettingsWarning,
+                                  stacklevel=2)
+                    del weights[i]
         uz = [(abs(i), v, i < 0) for i, v in c.par_values("UZR")]
         uz += [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
         for i, _, _ in uz:
