@@ -472,8 +472,13 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
         spec.loader.exec_module(mod)
     except Exception as exc:
         raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
+    from washer.cont import symbolic
+    if symbolic.is_symbolic(mod):
+        # u, par, f as sympy expressions: generated into C and compiled (symbolic.py)
+        return symbolic.symbolic_problem(mod, path, ndim, name)
     if not callable(getattr(mod, "func", None)):
-        raise ProblemError(f"{path}: defines no func(u, par)")
+        raise ProblemError(f"{path}: defines no func(u, par) (nor sympy expressions u, par "
+                           "and f)")
     return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
                    getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
                    bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None))

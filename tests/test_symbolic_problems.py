@@ -1,0 +1,86 @@
+"""User problems as sympy expressions (washer.cont.symbolic): the generated and compiled
+f, f_u, f_p against the hand-written Lorenz equations and their Jacobian written out
+by hand, and runs against the closed-form Hopf point and the Python file's run."""
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.cont.problem import ProblemError, load_python_problem
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+
+
+@pytest.fixture
+def folder(tmp_path, monkeypatch):
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+    for f in (DATA / "lrz_sym").iterdir():
+        shutil.copy(f, tmp_path)
+    return tmp_path
+
+
+def lorenz(u, par):
+    x, y, z = u
+    rho, beta, sigma = par[:3]
+    f = np.array([sigma * (y - x), rho * x - y - x * z, x * y - beta * z])
+    J = np.array([[-sigma, sigma, 0.0], [rho - z, -1.0, -x], [y, x, -beta]])
+    Jp = np.array([[0.0, 0.0, y - x], [x, 0.0, 0.0], [0.0, -z, 0.0]])
+    return f, J, Jp
+
+
+def test_generated_f_and_exact_jacobians_are_lorenz(folder):
+    prob = load_python_problem("lrz", folder, 3).with_jac(1)
+    rng = np.random.default_rng(2)
+    us = rng.standard_normal((20, 3)) * 10
+    pars = np.c_[rng.uniform(0, 30, (20, 1)), rng.uniform(1, 3, (20, 1)),
+                 rng.uniform(5, 15, (20, 1)), rng.standard_normal((20, 2))]    # NPAR 5
+    F = prob.func_many(us, pars)
+    Js = prob.dfdu_many(us, pars)
+    for u, p, f, J in zip(us, pars, F, Js):
+        f_ref, J_ref, Jp_ref = lorenz(u, p)
+        # the same arithmetic up to the order of operations: rounding only
+        np.testing.assert_allclose(f, f_ref, rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(J, J_ref, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(prob.dfdu(u, p), J_ref, rtol=0, atol=1e-13)
+        Jp = prob.dfdp(u, p, [1, 2, 3, 4])
+        np.testing.assert_allclose(Jp, np.c_[Jp_ref, np.zeros(3)], rtol=0, atol=1e-13)
+
+
+def test_equilibria_find_the_closed_form_hopf_point_as_the_python_file(folder, tmp_path_factory):
+    """lrz's equilibria with the exact Jacobian (JAC = 1): both HBs at
+    rho_H = sigma (sigma + beta + 3) / (sigma - beta - 1), located to AUTO's EPSS-based
+    accuracy, and the same labelled points as the numpy file with differences (JAC = 0)."""
+    r = run(folder / "c.lrz", verbose=False, sv="eq")
+    beta, sigma = 8 / 3, 10.0
+    rho_h = sigma * (sigma + beta + 3) / (sigma - beta - 1)
+    hbs = [s for s in r.specials if s.ty == "HB"]
+    assert len(hbs) == 2
+    for s in hbs:
+        assert s.par[0] == pytest.approx(rho_h, abs=1e-5)
+    plain = tmp_path_factory.mktemp("plain")
+    for f in ("lrz.py", "c.lrz"):
+        shutil.copy(DATA / "lrz" / f, plain)
+    ref = run(plain / "c.lrz", verbose=False, sv="eq")
+    assert [s.ty for s in r.specials] == [s.ty for s in ref.specials]
+    for a, b in zip(r.specials, ref.specials):
+        assert a.par[0] == pytest.approx(b.par[0], abs=1e-5)
+
+
+def test_periodic_orbits_from_the_compiled_problem(folder):
+    run(folder / "c.lrz", verbose=False, sv="eq")
+    po = run(folder / "c.lrz", verbose=False, s="eq", IRS="HB1", IPS=2, ICP=["rho", "PERIOD"],
+             NMX=35, NPR=2, DS=0.5, sv="po")
+    assert po.status == "ok" and len(po.rows) == 35
+    # the family ends near the homoclinic orbit at rho = 13.9265 (lrz.auto's first family)
+    assert po.specials[-1].par[0] == pytest.approx(13.9265, abs=1e-3)
+
+
+def test_an_unknown_symbol_is_named(folder):
+    (folder / "bad.py").write_text("import sympy as sp\nu = sp.symbols('x y z')\n"
+                                   "par = sp.symbols('rho beta sigma')\n"
+                                   "x, y, z = u\nq = sp.Symbol('q')\n"
+                                   "f = [y - x, q * x, x * y - z]\n")
+    with pytest.raises(ProblemError, match=r"bad\.py: f\[1\] uses \['q'\]"):
+        load_python_problem("bad", folder, 3)
