@@ -652,7 +652,9 @@ def find_record(records: list[Record], irs) -> Record:
         damaged = getattr(records, "damaged", [])
         extra = f" (a damaged record at the end was left out: {damaged[0]})" if damaged else ""
         raise LookupError(f"IRS={irs!r}: {exc} in the restart file{extra}") from None
-    if rec.ntst > 0 and len(rec.par) >= 11 and rec.ips in (2, -2, 12, 4):
+    # Periodic solutions only: a general BVP (IPS = 4), a map's or a time integration's
+    # record (IPS = -1, -2: NTST = 1 marks a stored direction) need no period.
+    if rec.ntst > 0 and rec.ncol > 0 and len(rec.par) >= 11 and rec.ips in (2, 12):
         period = float(rec.par[10])
         if not (math.isfinite(period) and period > 0):
             lines = getattr(records, "header_lines", {})

@@ -168,18 +168,28 @@ class Collocation:
     u(0) - u(1), then the NINT integral conditions (the phase condition first).
     """
 
-    def __init__(self, mesh: Mesh, ndim: int, nint: int = 1, general_bc: bool = False):
+    def __init__(self, mesh: Mesh, ndim: int, nint: int = 1, general_bc: bool = False,
+                 nbc: int | None = None, npar: int | None = None):
         self.mesh, self.ndim, self.nint = mesh, ndim, nint
-        #: general_bc: the NDIM boundary conditions are any functions of (u(0), u(1),
-        #: parameters) (the loci of period doublings and tori: v(0) + v(1) = 0, rotated
-        #: copies), with dense blocks; else u(0) - u(1) with the fixed +-1 pattern.
+        #: general_bc: the NBC boundary conditions are any functions of (u(0), u(1),
+        #: parameters) (general BVPs, IPS = 4; the loci of period doublings and tori:
+        #: v(0) + v(1) = 0, rotated copies), with dense blocks; else u(0) - u(1) with
+        #: the fixed +-1 pattern (NBC = NDIM).
         self.general_bc = general_bc
-        self.npar = nint + 1
+        #: NBC boundary conditions (NDIM unless given) and NPAR = NBC + NINT - NDIM + 1
+        #: free parameters (NINT + 1 unless given).
+        self.nbc = ndim if nbc is None else int(nbc)
+        self.npar = nint + 1 if npar is None else int(npar)
+        if not general_bc and self.nbc != ndim:
+            raise ValueError(f"periodicity is NDIM = {ndim} conditions, not NBC = {self.nbc}")
+        if self.nbc + nint - ndim + 1 != self.npar:
+            raise ValueError(f"NBC + NINT - NDIM + 1 = {self.nbc + nint - ndim + 1} free "
+                             f"parameters, not {self.npar}")
         m, n, N = mesh.ncol, ndim, mesh.ntst
         self.WT, self.WP = lagrange_weights(m)
         self.n_u = mesh.n_nodes * n
         self.n_coll = N * m * n
-        self.n_eq = self.n_coll + n + nint
+        self.n_eq = self.n_coll + self.nbc + nint
         self.n_x = self.n_u + self.npar
         #: local node indices of interval j: j*m + k, shape (N, m + 1)
         self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
@@ -196,17 +206,17 @@ class Collocation:
         jj, cc, ii = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), indexing="ij")
         rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), npar)
         cols_par = np.repeat(self.n_u + np.arange(npar), N * m * n)
-        pr = self.n_coll + np.arange(n)
+        pr = self.n_coll + np.arange(self.nbc)
         last = (self.mesh.n_nodes - 1) * n
         if self.general_bc:
             # rows: every BC; columns: u(0), u(1), then the parameters (row-major blocks)
             bcols = np.r_[np.arange(n), last + np.arange(n), self.n_u + np.arange(npar)]
             rows_bc = np.repeat(pr, len(bcols))
-            cols_bc = np.tile(bcols, n)
+            cols_bc = np.tile(bcols, self.nbc)
         else:
             rows_bc = np.concatenate([pr, pr])
             cols_bc = np.concatenate([np.arange(n), last + np.arange(n)])
-        rows_int = np.repeat(self.n_coll + n + np.arange(nint), self.n_x)
+        rows_int = np.repeat(self.n_coll + self.nbc + np.arange(nint), self.n_x)
         cols_int = np.tile(np.arange(self.n_x), nint)
         rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
         cols = np.concatenate([cols_blk, cols_par, cols_bc, cols_int])
@@ -250,7 +260,7 @@ class Collocation:
     def residual_general(self, U: np.ndarray, F: np.ndarray, integrals, bc=None) -> np.ndarray:
         """The (N,) residual of U' = F on the mesh: F the right-hand side at the Gauss
         points (NTST, NCOL, NDIM), already scaled (T f for periodic orbits);
-        `integrals` the NINT integral conditions' values; `bc` the NDIM boundary
+        `integrals` the NINT integral conditions' values; `bc` the NBC boundary
         conditions' values (default u(0) - u(1), periodicity)."""
         loc = U[self.local]                                  # (N, m+1, n)
         coll = np.einsum("kc,jkn->jcn", self.WP, loc) - self.mesh.dtm[:, None, None] * F
@@ -286,12 +296,14 @@ class Collocation:
         integrands with respect to u at the nodes, (NINT, n_nodes, NDIM) (weighted here
         by the quadrature); int_par: the integral conditions' parameter derivatives,
         (NINT, NPAR); bc_jac (general_bc only): (B0, B1, Bpar), the boundary
-        conditions' derivatives with respect to u(0), u(1) (NDIM, NDIM) and the free
-        parameters (NDIM, NPAR)."""
+        conditions' derivatives with respect to u(0), u(1) (NBC, NDIM) and the free
+        parameters (NBC, NPAR)."""
         import scipy.sparse as sp       # here: a run without collocation never loads it
         dpar = -self.mesh.dtm[None, :, None, None] * dF_par
-        rows_int = np.concatenate([(self.w_node[None, :, None] * int_u).reshape(self.nint, -1),
-                                   np.asarray(int_par, float).reshape(self.nint, -1)], axis=1)
+        nn = self.mesh.n_nodes * self.ndim
+        rows_int = np.concatenate([(self.w_node[None, :, None] * int_u).reshape(self.nint, nn),
+                                   np.asarray(int_par, float).reshape(self.nint, self.npar)],
+                                  axis=1)
         if self.general_bc:
             B0, B1, Bp = bc_jac
             bc_vals = np.concatenate([B0, B1, Bp], axis=1).ravel()

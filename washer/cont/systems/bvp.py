@@ -132,6 +132,10 @@ class CollocationBVP:
     #: True: the boundary conditions are the subclass's own (`Collocation` general_bc:
     #: dense blocks in u(0), u(1) and the parameters), else periodicity u(0) = u(1).
     general_bc = False
+    #: NBC boundary conditions (None: n_comp, periodicity and the loci's).
+    nbc = None
+    #: Mesh adaptation of a periodic profile (EQDF wraps around) or of a general BVP.
+    periodic_mesh = True
 
     # ------------------------------------------------------------------ set-up
     @property
@@ -141,7 +145,8 @@ class CollocationBVP:
     def set_mesh(self, mesh: col.Mesh) -> None:
         self.mesh = mesh
         self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint,
-                                    general_bc=self.general_bc)
+                                    general_bc=self.general_bc, nbc=self.nbc,
+                                    npar=self.n_tail)
         self.n_eq = self.coll.n_eq
         thu = self.settings.theta_u(self.ndim)
         th = np.r_[thu, np.ones(self.n_comp - self.ndim)]
@@ -225,7 +230,7 @@ class CollocationBVP:
         previous point) are interpolated onto it; the phase reference too."""
         old = self.mesh
         W = self.coll.profile(x)
-        tm = col.new_mesh(old, W[:, :self.ndim], old.ntst, periodic=True)
+        tm = col.new_mesh(old, W[:, :self.ndim], old.ntst, periodic=self.periodic_mesh)
         nt = self.n_tail
 
         def move(v):

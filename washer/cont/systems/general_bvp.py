@@ -13,12 +13,12 @@ the collocation's node quadrature (WINT).
 
 Discretisation as for periodic orbits (washer.cont.collocation): NTST intervals,
 NCOL Gauss points, the NCOL + 1 equally spaced nodes per interval as unknowns.
-Unknowns x = (U flattened node-major, PAR(ICP(2..NFPR)), PAR(ICP(1))). The sparse
-Jacobian is assembled here (boundary conditions couple u(0), u(1) and the parameters
-in any way, and there are NFPR parameter unknowns), not by the periodic pattern of
-`collocation.Collocation` that the base `systems.bvp.CollocationBVP` builds on; the
-mesh adaptation equidistributes without periodic wrap-around (EQDF's open-interval
-end rule).
+Unknowns x = (U flattened node-major, PAR(ICP(2..NFPR)), PAR(ICP(1))). The system is
+a `systems.bvp.CollocationBVP`, the base of the periodic orbits and their loci: the
+same collocation (`collocation.Collocation` with NBC general boundary conditions and
+NFPR parameter unknowns, its sparsity pattern fixed per mesh), factorisation, inner
+product, mesh adaptation (without the periodic wrap-around of EQDF), the reduction
+onto the boundary unknowns for the BP test and the switching direction, and output.
 
 Starts:
 * IRS = 0: STPNT at every node time of the uniform mesh, stpnt(u, par, t) (AUTO's
@@ -46,20 +46,18 @@ from washer.cont import collocation as col
 from washer.cont.pvls import Orbit
 from washer.cont.problem import Problem
 from washer.cont.system import Solution, StartData, register
-from washer.cont.linalg import PERMC_SPEC, SparseFactor
-from washer.cont.systems.bvp import VectorField
+from washer.cont.systems.bvp import CollocationBVP, VectorField
 
 #: Relative step of the finite differences of bcnd and icnd (AUTO's HMACH).
 FD_REL = 1e-7
-#: GENWTS's (WT, WP) by NCOL, computed once (a remesh only moves the mesh).
-_WEIGHTS: dict = {}
 
 
-class BoundaryValueProblem:
-    """The continued system of a general BVP (IPS = 4, ISW = 1 or -1 at a BP)."""
-    curve_type = 0
-    arclength = "plane"
-    freezes_second_derivatives = False
+class BoundaryValueProblem(CollocationBVP):
+    """The continued system of a general BVP (IPS = 4, ISW = 1 or -1 at a BP).
+    `ndim` here counts every component of the continued BVP (2 NDIM on the fold locus),
+    `ndm` the user's (the b-file's columns)."""
+    general_bc = True
+    periodic_mesh = False
 
     def __init__(self, data):
         s = data.settings
@@ -80,6 +78,7 @@ class BoundaryValueProblem:
         # ICP(2), which stays written).
         self.free = list(getattr(self, "_free", None) or s.ICP[:nfpr])
         self._order = self.free[1:] + self.free[:1]      # x's parameter slots
+        self.n_comp = n
         self.field = VectorField(self.problem, n)
         self.par = np.zeros(max(s.NPAR, max(s.ICP)))
         p = np.asarray(data.par, float)
@@ -101,25 +100,24 @@ class BoundaryValueProblem:
             self._begin(U, None)
 
     # ------------------------------------------------------------------ set-up
-    def _set_mesh(self, mesh: col.Mesh) -> None:
-        self.mesh = mesh
-        m, n, N = mesh.ncol, self.ndim, mesh.ntst
-        if m not in _WEIGHTS:
-            _WEIGHTS[m] = col.lagrange_weights(m)
-        self.WT, self.WP = _WEIGHTS[m]
-        self.w_node = mesh.node_weights()
-        self.n_u = mesh.n_nodes * n
-        self.n_coll = N * m * n
-        self.n_eq = self.n_coll + self.nbc + self.nint
-        self.n_x = self.n_u + self.nfpr
-        self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
-        j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
-                                    np.arange(n), indexing="ij")
-        self._rows_blk = ((j * m + c) * n + i).ravel()
-        self._cols_blk = ((j * m + k) * n + l).ravel()
-        thu = self.settings.theta_u(n)
-        self.weights = np.r_[np.kron(self.w_node, thu),
-                             [self.settings.theta_par(i) for i in self._order]]
+    @property
+    def n_tail(self) -> int:
+        return self.nfpr
+
+    def tail_weights(self) -> np.ndarray:
+        return np.array([self.settings.theta_par(i) for i in self._order])
+
+    def period(self, par) -> float:
+        """No period scales a general BVP's right-hand side."""
+        return 1.0
+
+    def set_mesh(self, mesh: col.Mesh) -> None:
+        super().set_mesh(mesh)
+        c = self.coll
+        self.n_u, self.n_coll, self.n_x = c.n_u, c.n_coll, c.n_x
+        self.w_node, self.local, self.WT, self.WP = c.w_node, c.local, c.WT, c.WP
+
+    _set_mesh = set_mesh
 
     def _x(self, U, par) -> np.ndarray:
         return np.r_[np.asarray(U, float).ravel(), [par[i - 1] for i in self._order]]
@@ -205,51 +203,25 @@ class BoundaryValueProblem:
         U, par = self.unpack(x)
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         fg = self.field.f(self.at_gauss(U).reshape(-1, n), par).reshape(N, m, n)
-        coll = np.einsum("kc,jkn->jcn", self.WP, U[self.local]) - self.mesh.dtm[:, None, None] * fg
-        parts = [coll.ravel(), self._bc(U, par)]
-        if self.nint:
-            parts.append(self.w_node @ self._ic_nodes(U, par))
-        return np.concatenate(parts)
+        ints = self.w_node @ self._ic_nodes(U, par) if self.nint else np.zeros(0)
+        return self.coll.residual_general(U, fg, ints, bc=self._bc(U, par))
 
     def jacobian(self, x):
         U, par = self.unpack(x)
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         ug = self.at_gauss(U).reshape(-1, n)
-        A = self.field.fu(ug, par).reshape(N, m, n, n)
-        eye = np.eye(n)
-        blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
-               - self.mesh.dtm[:, None, None, None, None]
-               * self.WT.T[None, :, None, :, None] * A[:, :, :, None, :])
-        rows = [self._rows_blk]
-        cols = [self._cols_blk]
-        vals = [blk.ravel()]
-        # parameter columns of the collocation equations
-        rc = np.arange(self.n_coll)
-        for k, i in enumerate(self._order):
-            dF = self.field.fp(ug, par, i).reshape(N, m, n)
-            rows.append(rc)
-            cols.append(np.full(self.n_coll, self.n_u + k))
-            vals.append((-self.mesh.dtm[:, None, None] * dF).ravel())
-        # boundary conditions: central differences in u(0), u(1) and the parameters
+        blocks = self.coll.local_blocks(1.0, self.field.fu(ug, par).reshape(N, m, n, n))
+        dF = np.array([self.field.fp(ug, par, i).reshape(N, m, n) for i in self._order])
         if self.nbc:
-            r0 = self.n_coll
             Jb = self._bc_jacobian(U, par)                  # (nbc, 2n + nfpr)
-            for q in range(self.nbc):
-                rows.append(np.full(2 * n + self.nfpr, r0 + q))
-                cols.append(np.r_[np.arange(n), self.n_u - n + np.arange(n),
-                                  self.n_u + np.arange(self.nfpr)])
-                vals.append(Jb[q])
+            bc_jac = (Jb[:, :n], Jb[:, n:2 * n], Jb[:, 2 * n:])
+        else:
+            bc_jac = (np.zeros((0, n)), np.zeros((0, n)), np.zeros((0, self.nfpr)))
         if self.nint:
-            r0 = self.n_coll + self.nbc
-            Ju, Jp = self._ic_jacobian(U, par)             # (nint, n_nodes, n), (nint, nfpr)
-            for q in range(self.nint):
-                rows.append(np.full(self.n_x, r0 + q))
-                cols.append(np.arange(self.n_x))
-                vals.append(np.r_[(self.w_node[:, None] * Ju[q]).ravel(), Jp[q]])
-        import scipy.sparse as sp       # here: its import outweighs a short algebraic run
-        J = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                          shape=(self.n_eq, self.n_x)).tocsc()
-        return J
+            Ju, Jp = self._ic_jacobian(U, par)              # (nint, n_nodes, n), (nint, nfpr)
+        else:
+            Ju, Jp = np.zeros((0, len(U), n)), np.zeros((0, self.nfpr))
+        return self.coll.jacobian_general(blocks, dF, Ju, Jp, bc_jac=bc_jac)
 
     def _bc_jacobian(self, U, par) -> np.ndarray:
         n = self.ndim
@@ -289,18 +261,6 @@ class BoundaryValueProblem:
             Jp[:, k] = (self.w_node @ self._ic_nodes(U, pp) - base) / h
         return Ju, Jp
 
-    def factor(self, J, border):
-        import scipy.sparse as sp
-        M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
-                      format="csc")
-        return SparseFactor(M)
-
-    def inner(self, a, b) -> float:
-        return float(np.dot(a, self.weights * b))
-
-    def border(self, t):
-        return self.weights * np.asarray(t, float)
-
     def params(self, x):
         U, par = self.unpack(x)
         if getattr(self.problem, "has_pvls", False):
@@ -320,7 +280,21 @@ class BoundaryValueProblem:
             nrm = math.sqrt(self.inner(self._stored, self._stored))
             if nrm > 0:
                 return x0, self._stored / nrm
-        z = self.null_vector(J, np.zeros(self.n_x))
+        # The null vector of J: bordered by PAR(ICP(1)) (the solve with that component
+        # 1, as the iterator's own start), which stays well conditioned on stiff
+        # problems (spb at eps = 1e-3, where the reduced matrix's smallest singular
+        # vector is rounding); at a fold in PAR(ICP(1)) that border is singular and the
+        # reduced matrix's null vector is taken.
+        e = np.zeros(self.n_x)
+        e[-1] = 1.0
+        try:
+            with np.errstate(all="ignore"):
+                z = self.factor(J, e).solve(e)
+            good = np.all(np.isfinite(z)) and np.max(np.abs(z)) < 1e12
+        except (RuntimeError, np.linalg.LinAlgError, ValueError):
+            good = False
+        if not good:
+            z = self.null_vector(J, np.zeros(self.n_x))
         return x0, self._orient(z / math.sqrt(self.inner(z, z)), x0)
 
     def _orient(self, t, x):
@@ -382,27 +356,18 @@ class BoundaryValueProblem:
         self.par = par
         self.n_points += 1
 
-    def wants_remesh(self, n_points: int) -> bool:
-        iad = self.settings.IAD
-        return iad > 0 and n_points % iad == 0
+    def set_phase_reference(self, U, par) -> None:
+        """CONTBV: the accepted profile and f at it (UOLDPS, UPOLDP) are the integral
+        conditions' references, all components."""
+        self.U_old = np.array(U, float)
+        self.up_old = self.field.f(self.U_old, par)
 
     def remesh(self, x, *vectors) -> tuple:
-        """ADAPT: re-equidistribute the mesh (same NTST, NCOL), moving x, the vectors
-        and the references of the integral conditions onto it."""
-        U, _ = self.unpack(x)
+        """ADAPT (the base's), the branch direction of the integral conditions too."""
         old = self.mesh
-        tm = col.new_mesh(old, U, old.ntst, periodic=False)
-
-        def move(v):
-            v = np.asarray(v, float)
-            Uv = v[:self.n_u].reshape(-1, self.ndim)
-            return np.r_[col.interpolate(old, Uv, tm, old.ncol).ravel(), v[self.n_u:]]
-        out = [move(x)] + [move(v) for v in vectors]
-        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
-        self.udot_old = col.interpolate(old, self.udot_old, tm, old.ncol)
-        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
-        self._set_mesh(col.Mesh(tm, old.ncol))
-        return tuple(out)
+        out = super().remesh(x, *vectors)
+        self.udot_old = col.interpolate(old, self.udot_old, self.mesh.tm, old.ncol)
+        return out
 
     # ------------------------------------------------------------------ output
     def measure(self, U) -> float:
@@ -456,45 +421,7 @@ class BoundaryValueProblem:
                         udot=udot, rldot=rldot, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
                         ndim_user=self.ndm)
 
-    # ------------------------------------------------------------------ BP, switching
-    def _schur(self, J, border):
-        """[J; border] reduced onto S = (u(0), the free parameters) and R = (boundary
-        and integral conditions, border): Sc = M_RS - M_RI M_II^-1 M_IS, square of
-        size NDIM + NFPR; M_II (the collocation equations in the nodes after t = 0)
-        is a discretised initial-value problem and stays invertible."""
-        import scipy.sparse as sp
-        import scipy.sparse.linalg as spla
-        M = sp.vstack([sp.csc_matrix(J), sp.csr_matrix(np.asarray(border, float)[None, :])],
-                      format="csc")
-        n = self.ndim
-        cols_S = np.r_[np.arange(n), self.n_u + np.arange(self.nfpr)]
-        cols_I = np.arange(n, self.n_u)
-        rows_I = np.arange(self.n_coll)
-        rows_R = np.arange(self.n_coll, M.shape[0])
-        M_II = M[rows_I][:, cols_I].tocsc()
-        M_IS = M[rows_I][:, cols_S].toarray()
-        lu = spla.splu(M_II, permc_spec=PERMC_SPEC)
-        X = lu.solve(M_IS)
-        M_R = M[rows_R]
-        Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X
-        return Sc, cols_S, cols_I, X
-
-    def bp_function(self, J, tangent) -> float:
-        Sc = self._schur(J, self.weights * tangent)[0]
-        scale = np.linalg.norm(Sc)
-        if not np.isfinite(scale) or scale == 0:
-            return 0.0
-        sign, logdet = np.linalg.slogdet(Sc / scale)
-        return float(sign * math.exp(logdet))
-
-    def null_vector(self, J, border) -> np.ndarray:
-        Sc, cols_S, cols_I, X = self._schur(J, border)
-        zS = np.linalg.svd(Sc)[2][-1]
-        z = np.zeros(self.n_x)
-        z[cols_S] = zS
-        z[cols_I] = -X @ zS
-        return z
-
+    # ------------------------------------------------------------------ switching
     def directions(self, x, tangent, code) -> list:
         if int(code) != int(Code.BPC):
             return []
