@@ -21,6 +21,8 @@ tests/data/auto_reference):
   lrz_po200   the same at NTST 200
   chu_po      chu periodic orbits from HB1 (NTST 25, a period doubling)
   ab_po       ab's seven periodic families from every HB of the p1-branches (ab.auto)
+  lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
+              expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
 washer-only (no AUTO column; skipped with --quick):
   washer_fig3     the equilibrium branch in C_p (c.washer, NDIM 12)
   washer_fig4     its Hopf curve in (C_p, Omega) (c.washer.hopf.Omega)
@@ -71,6 +73,15 @@ CASES = [
     Case("ab_po", [Step("start", "ab.1", "ab", timed=False),
                    Step("eq", "ab.2", "ab", start="start", each="*", timed=False),
                    Step("po", "ab.3", "ab", start="eq_", each="HB")], ABPO_FILES),
+]
+SYM = [(DATA / "lrz_sym" / "lrz.py", "lrz.py"), (DATA / "lrz_sym" / "c.lrz", "c.lrz")]
+CASES += [
+    # washer with the Lorenz equations as sympy expressions, compiled, exact f_u and f_p
+    # (JAC = 1); AUTO with its Fortran file and JAC = 0 as in lrz_eq / lrz_po35
+    Case("lrz_eq_sympy", [Step("eq", "lrz", "lrz")], LRZ_FILES, washer_files=SYM),
+    Case("lrz_po35_sympy", [Step("eq", "lrz", "lrz", timed=False),
+                            Step("po", "lrz", "lrz", start="eq", irs="HB1", ov=LRZ_PO)],
+         LRZ_FILES, washer_files=SYM),
 ]
 WASHER_CASES = [
     Case("washer_fig3", [Step("washer", "washer", "washer")], WASHER_FILES, auto=False),

@@ -56,11 +56,13 @@ class Step:
 @dataclass
 class Case:
     """A named chain. files: (source, name) copied into the run folder; auto: whether
-    AUTO-07p can run it (False for the washer's own model)."""
+    AUTO-07p can run it (False for the washer's own model); washer_files: copied after
+    `files` on washer's side only (its own NAME.py and constants of the same equations)."""
     name: str
     steps: list
     files: list
     auto: bool = True
+    washer_files: list = field(default_factory=list)
 
 
 # ----------------------------------------------------------------------------- AUTO side
@@ -160,7 +162,8 @@ import ast, json, sys
 from pathlib import Path
 sys.path.insert(0, sys.argv[1])            # the benchmarks folder (this module)
 from side_by_side import Case, Step, play_washer
-cases = [Case(c["name"], [Step(**s) for s in c["steps"]], c["files"], c["auto"])
+cases = [Case(c["name"], [Step(**s) for s in c["steps"]], c["files"], c["auto"],
+              c["washer_files"])
          for c in ast.literal_eval(sys.argv[3])]
 folder = Path(sys.argv[2])
 out = {}
@@ -182,7 +185,7 @@ def play_washer(case: Case, d: Path) -> dict:
     import time
     from washer.run import run
     d.mkdir(parents=True, exist_ok=True)
-    for src, name in case.files:
+    for src, name in list(case.files) + list(case.washer_files):
         shutil.copy(src, d / name)
     times, runs = {}, {}
     for s in case.steps:
@@ -214,7 +217,8 @@ def run_washer(cases: list, folder: Path, code_root: Path) -> dict:
     env = dict(ENV_1, PYTHONPATH=str(code_root))
     # repr, not JSON: the overrides' integer keys (UZSTOP={1: ...}) must stay integers
     payload = repr([dict(name=c.name, steps=[asdict(s) for s in c.steps],
-                               files=[(str(a), b) for a, b in c.files], auto=c.auto)
+                               files=[(str(a), b) for a, b in c.files], auto=c.auto,
+                               washer_files=[(str(a), b) for a, b in c.washer_files])
                           for c in cases])
     r = subprocess.run([sys.executable, "-c", WORKER, str(Path(__file__).parent), str(folder),
                         payload], env=env, capture_output=True, text=True, cwd=folder)
