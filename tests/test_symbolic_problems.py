@@ -84,3 +84,37 @@ def test_an_unknown_symbol_is_named(folder):
                                    "f = [y - x, q * x, x * y - z]\n")
     with pytest.raises(ProblemError, match=r"bad\.py: f\[1\] uses \['q'\]"):
         load_python_problem("bad", folder, 3)
+
+
+def test_exact_second_derivatives_are_lorenz(folder):
+    """f_zz[e_s, w] from the generated Hessian: the Lorenz second derivatives written out
+    (d2 f1/dsigma dx = -1, d2 f1/dsigma dy = 1, d2 f2/drho dx = 1, d2 f2/dx dz = -1,
+    d2 f3/dx dy = 1, d2 f3/dbeta dz = -1)."""
+    prob = load_python_problem("lrz", folder, 3)
+    u, par = np.array([1.3, -0.4, 2.2]), np.array([24.0, 8 / 3, 10.0, 0.0])
+    ws = np.array([[0.3, -1.1, 0.7], [2.0, 0.5, -0.25]])
+    T = prob.second_derivatives(u, par, ws, [1, 3, 4])          # rows: x, y, z, rho, sigma, PAR(4)
+    for k, (a, b, c) in enumerate(ws):
+        expect = np.array([[0, -c, b], [0, 0, a], [0, -a, 0],   # e_x, e_y, e_z
+                           [0, a, 0], [b - a, 0, 0], [0, 0, 0]])  # rho, sigma, PAR(4)
+        np.testing.assert_allclose(T[:, k, :], expect, rtol=0, atol=1e-14)
+
+
+def test_hopf_locus_with_exact_derivatives_is_the_closed_form(folder):
+    """The Hopf locus in (rho, sigma) at beta = 8/3 (lrz2p's run), exact f_u and f_zz:
+    rho_H = sigma (sigma + beta + 3) / (sigma - beta - 1) at the UZ points sigma = 5,
+    10, 20, to the corrector's tolerance."""
+    run(folder / "c.lrz", verbose=False, sv="eq")
+    uz = []
+    for ds in (0.1, -0.1):            # from sigma = 10 up to 20 and down to 5
+        hb = run(folder / "c.lrz", verbose=False, s="eq", IRS="HB1", ICP=["rho", "sigma"],
+                 ISW=2, NMX=300, DS=ds, DSMAX=2.0, UZR={"sigma": [5.0, 10.0, 20.0]},
+                 UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0}, sv="hb")
+        assert hb.status == "ok"
+        uz += [s for s in hb.specials if s.ty == "UZ" and round(s.par[2]) in (5, 20)]
+    beta = 8 / 3
+    assert sorted(round(s.par[2]) for s in uz) == [5, 20]
+    for s in uz:
+        sigma = s.par[2]
+        assert s.par[0] == pytest.approx(sigma * (sigma + beta + 3) / (sigma - beta - 1),
+                                         rel=1e-7)

@@ -15,8 +15,9 @@ common subexpressions of f, f_u and f_p shared (one sympy.cse over all of them) 
 printed as C (sympy.ccode), one loop over points per function; the C file is compiled
 once and cached by content (washer.cont.compile). The Problem uses the exact f_u and
 f_p where JAC allows (JAC = 1, as for user-supplied derivatives in AUTO), else the
-engine's differences of the compiled f; second derivatives (loci, the first Lyapunov
-coefficient) are differences of the compiled f in batched calls.
+engine's differences of the compiled f. The second derivatives the loci of folds and
+Hopf points need are exact (the generated Hessian); the first Lyapunov coefficient's
+third derivatives are still differences of the compiled f.
 """
 from __future__ import annotations
 
@@ -34,7 +35,9 @@ CDEF = """
 void washer_sym_func(int k, const double *U, const double *P, int pstride, double *F);
 void washer_sym_jac(int k, const double *U, const double *P, int pstride, double *J,
                     double *Jp);
+void washer_sym_hess(int k, const double *U, const double *P, int pstride, double *H);
 """
+#: H (k, NDIM, NDIM + NPAR_SYM, NDIM): H[q, i, s, j] = d^2 f_i / dz_s du_j, z = (u, PAR).
 
 
 #: Generated C of the files loaded in this process: (path, source bytes, NDIM) -> text.
@@ -79,6 +82,10 @@ def generate_c(u_syms, par_syms: dict, exprs) -> str:
         return "\n".join(lines)
 
     fbody = body([(f"out[{i}]", f[i]) for i in range(n)])
+    z = list(u_syms) + [par_syms.get(i + 1, sympy.Dummy()) for i in range(npar)]
+    nz = n + npar
+    hbody = body([(f"H[{n * nz * n}L * q + {(i * nz + s) * n + j}]", J[i, j].diff(z[s]))
+                  for i in range(n) for s in range(nz) for j in range(n)])
     jbody = body([(f"J[{n * n}L * q + {i * n + j}]", J[i, j]) for i in range(n) for j in range(n)]
                  + [(f"Jp[{n * npar}L * q + {i * npar + j}]", Jp[i, j])
                     for i in range(n) for j in range(npar)])
@@ -103,6 +110,15 @@ void washer_sym_jac(int k, const double *U, const double *P, int pstride, double
         const double *p = P + (long)pstride * q;
         (void)u; (void)p;
 {jbody}
+    }}
+}}
+
+void washer_sym_hess(int k, const double *U, const double *P, int pstride, double *H) {{
+    for (long q = 0; q < k; ++q) {{
+        const double *u = U + {n}L * q;
+        const double *p = P + (long)pstride * q;
+        (void)u; (void)p;
+{hbody}
     }}
 }}
 """
@@ -148,6 +164,35 @@ class _Compiled:
                                 self._ptr(Jp))
         return J, Jp[:, :, :self.npar]
 
+    def hess(self, u, par) -> np.ndarray:
+        """(NDIM, NDIM + NPAR_SYM, NDIM) second derivatives at one point."""
+        us, pars, stride = self._args(u, par)
+        H = np.empty((1, self.n, self.n + self.npar, self.n))
+        self.lib.washer_sym_hess(1, self._ptr(us), self._ptr(pars), stride, self._ptr(H))
+        return H[0]
+
+
+class SymbolicProblem(Problem):
+    """A Problem whose second derivatives are exact (generated), not differences."""
+
+    def __init__(self, *args, compiled: _Compiled, **kw):
+        super().__init__(*args, **kw)
+        self._compiled = compiled
+
+    def second_derivatives(self, u, par, ws, par_indices) -> np.ndarray:
+        """f_zz[e_s, w_k] (see Problem.second_derivatives), from the generated Hessian:
+        shape (NDIM + len(par_indices), len(ws), NDIM)."""
+        c = self._compiled
+        H = c.hess(np.asarray(u, float), np.asarray(par, float))       # (n, n + npar, n)
+        ws = np.atleast_2d(np.asarray(ws, dtype=float))
+        n = c.n
+        rows = list(range(n)) + [n + i - 1 if i <= c.npar else -1 for i in par_indices]
+        Hs = np.zeros((len(rows), n, n))                                # [s, i, j]
+        for r, s in enumerate(rows):
+            if s >= 0:
+                Hs[r] = H[:, s, :]
+        return np.einsum("sij,kj->ski", Hs, ws)
+
 
 def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
     """The Problem of a symbolic NAME.py (see the module docstring)."""
@@ -191,7 +236,7 @@ def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
         out[:, :Jp.shape[1]] = Jp
         return out
 
-    return Problem(ndim, func, getattr(mod, "stpnt", None), dfdu, dfdp, name=name,
-                   pvls=getattr(mod, "pvls", None), bcnd=getattr(mod, "bcnd", None),
-                   icnd=getattr(mod, "icnd", None), dfdu_batch=dfdu_batch,
-                   func_batch=func_batch)
+    return SymbolicProblem(ndim, func, getattr(mod, "stpnt", None), dfdu, dfdp, name=name,
+                           pvls=getattr(mod, "pvls", None), bcnd=getattr(mod, "bcnd", None),
+                           icnd=getattr(mod, "icnd", None), dfdu_batch=dfdu_batch,
+                           func_batch=func_batch, compiled=c)
