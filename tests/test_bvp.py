@@ -378,3 +378,17 @@ def test_um3_demo(tmp_path):
            if type_name(r.ty) == "UZ"]
     assert len(ref) == 2
     np.testing.assert_allclose(sorted(ends), sorted(ref), atol=tolerance(c, DSMAX=1.0))
+
+
+def test_stw_demo(tmp_path):
+    """stw: a travelling wave from an approximate start (stpnt's profile does not satisfy
+    the eigenvector conditions: AUTO corrects it on the first step, as we do): NBC = 10,
+    NINT = 1, ten free parameters; UZ at PAR(1) = 1 and EP at NMX = 20 as AUTO's (its
+    first point PAR(1) = 0.0071658 is ours to 1e-5)."""
+    d = demo(tmp_path, "stw")
+    c = read_constants(d / "c.stw")
+    r = run(d / "c.stw", e="stw", sv="stw", verbose=False)
+    assert r.status == "ok"
+    compare(ours((r, 1)), auto_rows("stw", "b.stw"), tolerance(c), uz_targets=(1.0,))
+    ref = branch_rows(DATA / "stw" / "autoref" / "b.stw")
+    assert r.rows[1].values[0] == pytest.approx(ref[1].values[0], abs=1e-5)
