@@ -392,3 +392,23 @@ def test_stw_demo(tmp_path):
     compare(ours((r, 1)), auto_rows("stw", "b.stw"), tolerance(c), uz_targets=(1.0,))
     ref = branch_rows(DATA / "stw" / "autoref" / "b.stw")
     assert r.rows[1].values[0] == pytest.approx(ref[1].values[0], abs=1e-5)
+
+
+def test_ezp_demo(tmp_path):
+    """ezp: Bratu's problem in complex variables (NDIM = 4 reals); the real fold is a BP
+    (3.5138307, AUTO's 3.5138307570) into complex solutions, followed both ways (ISW = -1)
+    to UZ at lam = 5 and 6. The second switch restarts from the records of both earlier
+    runs, as the script's `ezp + run(...)` hands AUTO: branch 3, labels 8 and 9."""
+    d = demo(tmp_path, "ezp")
+    c = read_constants(d / "c.ezp")
+    r = run(d / "c.ezp", e="ezp", sv="ezp", verbose=False)
+    q1 = run(d / "c.ezp", e="ezp", s="ezp", IRS=r("BP1").lab, ISW=-1, sv="q1", verbose=False)
+    (d / "s.both").write_text((d / "s.ezp").read_text() + (d / "s.q1").read_text())
+    q2 = run(d / "c.ezp", e="ezp", s="both", IRS=r("BP1").lab, ISW=-1, DS=-c["DS"], sv="q2",
+             verbose=False)
+    assert r.status == q1.status == q2.status == "ok"
+    compare(ours((r, 1), (q1, 1), (q2, 1)), auto_rows("ezp", "b.ezp"), tolerance(c),
+            uz_targets=(2.0, 5.0, 6.0))
+    assert [s.lab for s in q2.specials] == [8, 9]
+    # The complex branch: Im u1 is nonzero on it (the real branch has none).
+    assert np.max(np.abs(q2.specials[0].U[:, 1])) > 0.1
