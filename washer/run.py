@@ -1,6 +1,8 @@
 """Run AUTO constants files: `python -m washer.run c.NAME [KEY=value ...]`.
 
-    python -m washer.run --copy-examples DIR   # the shipped constants files into DIR
+    python -m washer.run c.NAME --allow-large  # a mesh far larger than usual (NTST)
+    python -m washer.run --copy-examples DIR   # the shipped constants files, sweep specs
+                                               # and AUTO's ab demo into DIR
 
 Like AUTO's run(c='NAME'): reads c.NAME, loads the equations named by e
 (e='washer' is the built-in model, e='washer:frozen' its frozen rotating
@@ -19,6 +21,7 @@ the repository's tests/data/ab/):
     eq = run("c.ab", sv="eq")
     hb = run("c.ab", IRS="HB1", ICP=[1, 2], ISW=2, s="eq", sv="hb")
     eq("HB1").par, load("b.hb")
+    print(eq); eq["PAR(1)"]; eq.to_dataframe()   # AUTO's table; a column; a DataFrame
 """
 from __future__ import annotations
 
