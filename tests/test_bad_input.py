@@ -371,3 +371,25 @@ def test_forced_washer_refuses_omega_not_positive():
     with pytest.raises((ValueError, ProblemError),
                        match=r"Omega = -1 Hz: the forced response is defined for Omega > 0"):
         P.func(u, par)
+
+
+@pytest.mark.parametrize("par,message", [
+    ("{'m_t': 0.0}", r"PAR: m_t = 0.0: expected a value > 0"),
+    ("{'Omega': -1.0}", r"PAR: Omega = -1.0: expected a value >= 0"),
+])
+def test_washer_par_values_are_checked_as_a_parameter_set(tmp_path, par, message):
+    from washer.run import RunError, run
+    c = tmp_path / "c.w"
+    c.write_text(f"e = 'washer'\nNDIM = 12\nICP = ['C_p']\nNMX = 3\nPAR = {par}\n")
+    with pytest.raises(RunError, match=message) as err:
+        run(c, verbose=False)
+    assert str(err.value).startswith(f"{c}:5:")
+
+
+def test_washer_icp_outside_its_parameters_warns(tmp_path):
+    from washer.run import run
+    c = tmp_path / "c.w"
+    c.write_text("e = 'washer'\nNDIM = 12\nICP = [30]\nNMX = 3\nJAC = 1\n")
+    with pytest.warns(UserWarning, match=r"c.w:3: ICP: PAR\(30\) is not a parameter of "
+                                         r"e='washer'"):
+        run(c, verbose=False)

@@ -59,15 +59,25 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
         raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py, or AUTO's NAME.f90, "
                        "NAME.f or NAME.c, beside the file) or e='washer'")
     if e.split(":")[0] == "washer":
+        from washer.machine.layout import PAR_NAMES
+        from washer.machine.params import ParameterError
         from washer.problems.washer import forced_start_params, washer_problem
+        # The PAR values of the constants file must be a valid parameter set (m_t > 0,
+        # Omega >= 0, ...), as a parameter file's would: checked here, named by the file.
+        try:
+            start = forced_start_params(c, params)
+        except ParameterError as exc:
+            detail = str(exc).split(": ", 1)[-1]
+            raise RunError(f"{c.given.get('PAR', c.source)}: PAR: {detail}") from None
         if e == "washer:forced" and c["IRS"] in (0, "0"):
-            from washer.machine.params import ParameterError
-            try:
-                params = forced_start_params(c, params)     # stpnt's orbit at the start PAR
-            except ParameterError as exc:
-                # The values come from the constants file, not from the parameter set.
-                detail = str(exc).split(": ", 1)[-1]
-                raise RunError(f"{c.given.get('PAR', c.source)}: PAR: {detail}") from None
+            params = start                                  # stpnt's orbit at the start PAR
+        for i in c.icp():
+            if i not in PAR_NAMES and i not in (11, 12) and c["ISW"] in (0, 1, -1):
+                warnings.warn(f"{c.given.get('ICP', c.source)}: ICP: PAR({i}) is not a "
+                              f"parameter of e={e!r} (its parameters: "
+                              f"{', '.join(f'{k}={n}' for k, n in PAR_NAMES.items())}): "
+                              "the branch continues a value the equations do not read",
+                              UserWarning, stacklevel=3)
         return washer_problem(e, params=params, source=c.source)
     if not (Path(folder) / f"{e}.py").exists():
         # AUTO's own user files: NAME.f90, NAME.f or NAME.c, compiled on first use.
