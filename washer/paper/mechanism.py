@@ -185,7 +185,8 @@ def hopf_mode(params: Params) -> dict:
     return {"C_p": float(cp), "lambda": complex(lam_c), "f_whirl": float(f_g),
             "r_per_tilt": float(abs(r) / abs(t)), "pivot": s,
             "phase": float(np.angle(r / t)), "bounce": float(abs(v[2]) / abs(r)),
-            "yaw": float(abs(v[5]) / abs(t)), "eps": np.asarray(eps)}
+            "yaw": float(abs(v[5]) / abs(t)), "eps": np.asarray(eps),
+            "r": complex(r / abs(t)), "t": complex(t / abs(t))}
 
 
 # ------------------------------------------------------------------ report
@@ -258,12 +259,13 @@ def markdown(res: dict, figure: str) -> str:
 
 def plot(res: dict, stem) -> list:
     """(a) Campbell diagram: ground-frame frequencies of the mode pairs against Omega,
-    unstable points marked; (b) the damper shares at the Hopf point and at C_p = 0."""
+    unstable points marked; (b) the damper shares at the Hopf point and at C_p = 0; (c) the
+    Hopf mode's shape: the tub's axis at eight phases of a cycle, with its pivot."""
     from pathlib import Path
 
     from washer.plots.style import figure, save
     c = res["campbell"]
-    fig, (a, b) = figure(1, 2, figsize=(10, 3.8))
+    fig, (a, b, m) = figure(1, 3, figsize=(14, 3.9))
     for j in range(c.freq.shape[1]):
         f = np.abs(c.freq[:, j])
         fwd = c.freq[:, j] > 0
@@ -292,4 +294,24 @@ def plot(res: dict, stem) -> list:
     b.set_ylabel("energy into the whirl per cycle (% of its energy)")
     b.set_title("(b) what each damper does to the critical mode", loc="left", fontsize=9)
     b.legend(fontsize=7)
+    # (c) The mode's shape seen from the side: the tub's axis (plane A at s = 0 to 0.5 m
+    # above it) at eight phases of one cycle, for a tilt of 0.1 rad, x = Re(e^{i phi}
+    # (r + s t)); the point that stands still is the pivot.
+    mo = res["mode"]
+    s_axis = np.linspace(-1.2, 0.5, 50)
+    tilt = 0.1
+    for k, ph in enumerate(np.linspace(0, 2 * np.pi, 8, endpoint=False)):
+        x = tilt * (np.exp(1j * ph) * (mo["r"] + s_axis * mo["t"])).real
+        tub = s_axis >= 0
+        m.plot(x[tub], s_axis[tub], "-", color="C0", lw=2.0, alpha=0.7)
+        m.plot(x[~tub], s_axis[~tub], ":", color="C0", lw=0.8, alpha=0.5)
+    m.plot([0], [mo["pivot"]], "ko", ms=5, label=f"pivot of the mode, {mo['pivot']:.2f} m")
+    m.plot([0], [res["rod_lines_meet"]], "k^", ms=5,
+           label=f"rod lines meet the axis, {res['rod_lines_meet']:.2f} m")
+    m.axhline(0.0, color="0.5", lw=0.6)
+    m.set_xlabel("horizontal offset of the axis (m), tilt 0.1 rad")
+    m.set_ylabel("height along the tub axis above plane A (m)")
+    m.set_title(f"(c) the Hopf mode: a pendulum whirl, {mo['f_whirl']:.3f} Hz", loc="left",
+                fontsize=9)
+    m.legend(fontsize=7, loc="lower right")
     return save(fig, Path(stem))
