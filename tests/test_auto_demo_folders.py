@@ -25,7 +25,6 @@ EXPECTED_FAIL = {
     "abcb": "ISW = 3 (branch-point loci of generic BVPs) is not implemented; the cycle run "
             "stops with no convergence before AUTO's fold of cycles",
     "apbp": "branch-point continuation (ISW = 2 at a BP, ISW = 3) is not implemented",
-    "brf": "the periodic branch has no BP where AUTO has one, so the script's BP1 is missing",
     "lcbp": "branch-point continuation of cycles (ISW = 2, 3 at a BP) is not implemented",
     "tfc": "branch-point continuation of cycles (ISW = 2 at a BP) is not implemented",
     "ops": "optimisation (IPS = 15) is not supported",

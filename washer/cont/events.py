@@ -107,7 +107,7 @@ def _muller(s: list, q: list) -> float | None:
     return s2 - 2 * q2 / den
 
 
-def _converged_trial(trial, s_new: float, s_last: float, settings):
+def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
     """trial(s_new), or, where its step does not converge, trial at s halved back towards
     the last converged trial s_last (AUTO's LCSPBV steps from its last trial point with
     STEPBV, which halves a failing step down to DSMIN): (point, q, s). LocationFailed when
@@ -115,7 +115,7 @@ def _converged_trial(trial, s_new: float, s_last: float, settings):
     first = None
     while True:
         try:
-            pt, q = trial(s_new)
+            pt, q = trial(s_new) if base is None else trial(s_new, base)
             return pt, q, s_new
         except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
             # A trial step that does not converge (ConvergenceError, ProblemError are
@@ -128,12 +128,17 @@ def _converged_trial(trial, s_new: float, s_last: float, settings):
             s_new = half
 
 
-def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
+def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
+           from_last: bool = False):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
     trial(s) -> (point, q): the continuation step of arclength s from the
     previous point and the test's value there (raises on failure).
+    from_last: call trial(s, (point, s_point)) with the last converged trial instead,
+    once there is one, so that the step is taken from it (AUTO's LCSPBV continues from
+    its last trial point: the final step is tiny and converges in the fewest Newton
+    iterations, which is what ADPTDS then sees).
     Returns (point, s) or raises LocationFailed.
 
     AUTO stops as soon as a correction of s is below the tolerance; a
@@ -153,11 +158,12 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
-    best = last = None
+    best = last = auto_nit = None
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
         try:
-            pt, q, s_new = _converged_trial(trial, s_new, s_last, settings)
+            base = (last[0], last[1]) if (from_last and last is not None) else None
+            pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
         except LocationFailed:
             if last is not None and abs(s_new - last[1]) < tol:
                 best = last
@@ -191,12 +197,21 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings):
         a, b = min(lo, hi), max(lo, hi)
         if cand is None or not (a < cand < b):
             cand = hi - qhi * (hi - lo) / (qhi - qlo)     # Illinois regula falsi
+        if auto_nit is None and abs(cand - s_new) < tol:
+            # AUTO's LCSPBV would stop here (the next correction is below the
+            # tolerance): ADPTDS then sees this trial's Newton count.
+            auto_nit = getattr(pt, "iterations", None)
         s_new = cand
     if best is None:
         raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations")
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
+    if auto_nit is not None and hasattr(pt, "iterations"):
+        # The step control after a located point counts the Newton iterations of the
+        # trial AUTO ends its location with (the further trials that narrow the
+        # bracket here are tiny steps of one iteration).
+        pt.iterations = auto_nit
     return pt, s_best
 
 
@@ -232,8 +247,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
         key = keys[0]
         try:
-            sp, s_sp = locate(lambda s_: trial(s_, key), key, prev.tests[key],
-                              target.tests[key], span, settings)
+            sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base), key,
+                              prev.tests[key], target.tests[key], span, settings,
+                              from_last=secant)
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other

@@ -179,10 +179,21 @@ class Continuation:
                 dx = factor.solve(-np.append(G, c))
             if not np.all(np.isfinite(dx)):
                 raise ConvergenceError("singular Newton matrix")
-            x = x + dx
-            du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
-            dl = abs(dx[-1]) / (1 + abs(x[-1]))
-            if dl <= s.EPSL and du <= s.EPSU:
+            ns = getattr(sysm, "n_state", None) if plane else None
+            if ns is not None:
+                # AUTO's NEWTONBV: every free parameter's correction relative to it
+                # within EPSL (the period's too), the profile's largest correction
+                # relative to its largest value before the update within EPSU.
+                du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x[:ns])))
+                x = x + dx
+                dl = float(np.max(np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))))
+                done = dl <= s.EPSL and du < s.EPSU
+            else:
+                x = x + dx
+                du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
+                dl = abs(dx[-1]) / (1 + abs(x[-1]))
+                done = dl <= s.EPSL and du <= s.EPSU
+            if done:
                 return x, it
             size = max(du, dl)
             if delref is None:
@@ -320,7 +331,7 @@ class Continuation:
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
         """The earliest accepted zero between prev and cur (`events.first_zero`)."""
-        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key: self._trial(prev, s_, key),
+        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key, base=None: self._trial(prev, s_, key, base),
                           accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
                           note=lambda text: self._pending.append(Step("note", text=text)),
                           curve_type=self.sys.curve_type,
@@ -335,8 +346,14 @@ class Continuation:
         J = cached[2]
         sp.tests = self._tests(sp, J, self._factor(J, self.sys.border(sp.tangent)), None)
 
-    def _trial(self, prev: Point, s_, key):
-        pt = self._step(prev, s_, keys=[key])
+    def _trial(self, prev: Point, s_, key, base=None):
+        """The trial point at arclength s_ from prev, evaluating test `key` only: a step
+        from prev, or from `base` = (an earlier trial point, its s) by s_ - s."""
+        if base is not None:
+            p0, s0 = base
+            pt = self._step(p0, s_ - s0, keys=[key])
+        else:
+            pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)
 
     def _accepted(self, key, prev, cur) -> bool:

@@ -155,6 +155,13 @@ class CollocationBVP:
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
 
+    @property
+    def n_state(self) -> int:
+        """How many leading unknowns are the profile (the rest are free parameters):
+        the corrector tests them as AUTO's NEWTONBV does (EPSU on the profile, EPSL on
+        each parameter)."""
+        return self.coll.n_u
+
     #: AUTO's NRTN (SETRTN): for each component of u, the number of turns of 2 pi it
     #: makes over one period (u(1) - u(0) = 2 pi NRTN: an angle of a pendulum-like
     #: system that rotates); None when no component rotates.

@@ -337,6 +337,12 @@ class BoundaryValueProblem(CollocationBVP):
     def accept(self, code, prev, cur) -> bool:
         return True
 
+    @property
+    def n_state(self) -> int:
+        """The profile's unknowns come first (AUTO's NEWTONBV test: EPSU on them, EPSL
+        on each free parameter)."""
+        return self.n_u
+
     def located_code(self, key, point) -> int:
         """A located zero is written with its test's code."""
         return key
