@@ -412,3 +412,51 @@ def test_ezp_demo(tmp_path):
     assert [s.lab for s in q2.specials] == [8, 9]
     # The complex branch: Im u1 is nonzero on it (the real branch has none).
     assert np.max(np.abs(q2.specials[0].U[:, 1])) > 0.1
+
+
+BRATU_2 = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], -par[0] * np.exp(u[0])])
+def stpnt(u, par, t=0.0):
+    par[0] = 0.0
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[0]])
+'''
+
+BRATU_3 = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], -par[0] * np.exp(u[0]), u[0]])
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[0], u0[2]])
+def pvls(u, par):
+    par[1] = u.bv1(3)
+'''
+
+
+def test_restart_with_more_components(tmp_path):
+    """A BVP restarted from a solution with fewer components (AUTO's READBV fills the
+    others with 0, as pcl's connecting orbits start from a periodic orbit): Bratu's
+    problem with u3' = u1, u3(0) = 0 appended, restarted at lam = 1 from the plain
+    problem's solution; at the UZ lam = 2 u3(1) = int_0^1 u1 dt, against the closed form
+    u1 = -2 ln(cosh(theta (t - 1/2) / 2) / cosh(theta / 4)) (theta on the lower branch)."""
+    (tmp_path / "b2.py").write_text(BRATU_2)
+    (tmp_path / "b3.py").write_text(BRATU_3)
+    (tmp_path / "c.b2").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=10, NCOL=4, "
+                                   "ILP=0, ISP=0, NMX=100, DS=0.1, DSMAX=0.5, NPAR=2, "
+                                   "UZSTOP={1: 1.0}\n")
+    (tmp_path / "c.b3").write_text("NDIM=3, IPS=4, ICP=[1, 2], NBC=3, NINT=0, NTST=10, NCOL=4, "
+                                   "ILP=0, ISP=0, NMX=100, DS=0.1, DSMAX=0.5, NPAR=2, "
+                                   "UZSTOP={1: 2.0}\n")
+    r2 = run(tmp_path / "c.b2", e="b2", sv="b2", verbose=False)
+    r3 = run(tmp_path / "c.b3", e="b3", s="b2", IRS=r2.specials[-1].lab, sv="b3", verbose=False)
+    assert r2.status == r3.status == "ok" and r3.specials[-1].ty == "UZ"
+    uz = r3.specials[-1]
+    th = bratu_theta(2.0, 0)
+    mpmath.mp.dps = 20
+    exact = float(mpmath.quad(lambda t: -2 * mpmath.log(mpmath.cosh(th * (t - 0.5) / 2)
+                                                       / mpmath.cosh(th / 4)), [0, 1]))
+    assert uz.par[1] == pytest.approx(exact, rel=1e-6)
+    assert uz.U.shape[1] == 3

@@ -55,7 +55,10 @@ def restart_record(c, problem, records, records_source: str = "the restart file"
         rec = find_record(records, irs)
     except LookupError as exc:
         raise RunError(f"{records_source}: {exc}") from None
-    if rec.ndim_user != problem.ndim:
+    # A general BVP may restart from a solution of fewer components (AUTO's READBV
+    # fills the others with 0: pcl's connecting orbits start from a periodic orbit).
+    widen = c["IPS"] == 4 and np.ndim(rec.u) == 2 and rec.ndim_user < problem.ndim
+    if rec.ndim_user != problem.ndim and not widen:
         raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
                          f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
     return rec

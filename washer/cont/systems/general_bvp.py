@@ -52,6 +52,13 @@ from washer.cont.systems.bvp import CollocationBVP, VectorField
 FD_REL = 1e-7
 
 
+def _widen(P: np.ndarray, n: int) -> np.ndarray:
+    """A stored profile (NTPL, k) with k <= n components, the others 0 (READBV)."""
+    if P.shape[1] >= n:
+        return P
+    return np.hstack([P, np.zeros((len(P), n - P.shape[1]))])
+
+
 class BoundaryValueProblem(CollocationBVP):
     """The continued system of a general BVP (IPS = 4, ISW = 1 or -1 at a BP).
     `ndim` here counts every component of the continued BVP (2 NDIM on the fold locus),
@@ -141,7 +148,7 @@ class BoundaryValueProblem(CollocationBVP):
     def _from_record(self, rec) -> None:
         """STPNBV1 + ADAPT2: the stored solution on the run's mesh."""
         s, n = self.settings, self.ndim
-        U_r = np.asarray(rec.U, float)[:, :n]
+        U_r = _widen(np.asarray(rec.U, float)[:, :n], n)
         ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
         if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
             raise ValueError(f"BVP restart: record with {len(U_r)} points but NTST = {ntst_r}, "
@@ -151,7 +158,7 @@ class BoundaryValueProblem(CollocationBVP):
         mesh_r = col.Mesh(t_r[::ncol_r].copy(), ncol_r)
         ud_r = None
         if rec.udot is not None:
-            ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n]
+            ud_r = _widen(np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n], n)
         if ntst_r == s.NTST and ncol_r == s.NCOL:
             mesh, U, ud = mesh_r, U_r.copy(), ud_r
         else:
