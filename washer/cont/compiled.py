@@ -303,11 +303,22 @@ class CompiledProblem(Problem):
         if self._pvls is None:
             return par
         if getattr(u, "ntst", None):
-            t, ntst, ncol = u.t, u.ntst, u.ncol
-            mu = getattr(u, "multipliers", None)
-            self.user.set_multipliers(mu)
-            u = np.asarray(u).view(np.ndarray)
+            # An Orbit: its multipliers (GETP's EIG, STA) cost a condensation, so they are
+            # computed only for a PVLS that asks for them (learnt on its first call).
+            orbit = u
+            t, ntst, ncol = orbit.t, orbit.ntst, orbit.ncol
+            u = np.asarray(orbit).view(np.ndarray)
+            if self.user.pvls_wants_eigenvalues:
+                self.user.set_multipliers(orbit.multipliers)
+            else:
+                self.user.set_multipliers(None)
+            first = np.array(par)
             self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+            if self.user.eig_wanted() and not self.user.pvls_wants_eigenvalues:
+                self.user.pvls_wants_eigenvalues = True
+                par[:] = first
+                self.user.set_multipliers(orbit.multipliers)
+                self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
             return par
         if np.ndim(u) == 2:
             self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
