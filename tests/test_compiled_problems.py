@@ -90,6 +90,23 @@ def test_getp_measures_of_an_orbit(cache):
     assert par[20] == pytest.approx(0.3) and par[22] == pytest.approx(-0.3)
 
 
+def test_getp_eigenvalues_of_an_equilibrium(cache):
+    """GETP('EIG') on an equilibrium: the eigenvalues of f_u (real, imaginary parts
+    alternating, by decreasing real part), here of the closed-form Jacobian; 'STA' the
+    number with negative real part."""
+    p = load_compiled_problem(DATA / "compiled" / "jac.f90", 2).with_jac(1)
+    u = np.array([0.3, -0.2])
+    par = np.zeros(36)
+    par[:3] = [0.5, -2.0, 0.1]
+    out = p.pvls(u, par)
+    A = np.array([[par[0] - 3 * u[0] ** 2, par[1]], [-1 - 2 * u[0] * u[1], par[2] - u[0] ** 2]])
+    lam = np.linalg.eigvals(A)
+    lam = lam[np.argsort(-lam.real, kind="stable")]
+    np.testing.assert_allclose(out[29:33], [lam[0].real, lam[0].imag, lam[1].real, lam[1].imag],
+                               rtol=1e-12, atol=1e-14)
+    assert out[33] == np.sum(lam.real < 0)
+
+
 def test_cache_reuses_and_rebuilds(cache, tmp_path):
     src = tmp_path / "ab.f90"
     shutil.copy(AB_F90, src)
