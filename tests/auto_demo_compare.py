@@ -103,9 +103,8 @@ def points(path: Path, reference: bool) -> list[Point]:
         tol = 2 * epss * (1 + math.sqrt(ds * dsmax))
         titles = b.titles
         k_per = None
-        for name in ("PERIOD", "PAR(11)"):
-            if name in titles[1:]:
-                k_per = titles.index(name)
+        if "PERIOD" in titles[1:]:          # AUTO's title of PAR(11) on periodic orbits
+            k_per = titles.index("PERIOD")
         for r in b.rows:
             name = type_name(r.ty)
             if r.lab and name not in ("RG", ""):
