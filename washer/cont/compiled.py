@@ -205,11 +205,13 @@ class CompiledUser:
                 keep.append(d)
                 dtm = _dptr(d)
             # UPS(NDIM*NCOL, NTST+1): the mesh points in a row, padded to full columns.
-            ups = np.zeros(self.ndim * ncol * (ntst + 1))
+            # On loci the solution has more components than the user's NDIM (AUTO passes
+            # the extended NDIM then).
+            ndim = u.shape[1]
+            ups = np.zeros(ndim * ncol * (ntst + 1))
             ups[:u.size] = u.ravel()
-            self.lib.washer_set_context(2 if ips is None else ips, self.ndim, ntst, ncol, 0, 0,
-                                        dtm)
-            self.lib.washer_pvls(self.ndim, _dptr(ups), _dptr(par))
+            self.lib.washer_set_context(2 if ips is None else ips, ndim, ntst, ncol, 0, 0, dtm)
+            self.lib.washer_pvls(ndim, _dptr(ups), _dptr(par))
         else:
             self.lib.washer_set_context(1 if ips is None else ips, self.ndim, 0, 0, 0, 0,
                                         _ffi.NULL)
