@@ -152,3 +152,23 @@ def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
         omega, cp = r.values[0], r.values[-1]
         want = forced.critical_cp(params.replace(Omega=omega))["C_p_exact"]
         assert cp == pytest.approx(want, abs=1e-8)
+
+
+def test_mobius_tr_locus_restarts_from_its_own_point(tr_locus, mobius):
+    """A restart at a point of the torus locus (its UZ at b = -3, IRS there, ISW = 2)
+    continues the locus from the stored (u, v, w) and angle PAR(12): a = 0 and
+    theta = pi - sqrt(-b) on to the UZSTOP b = -9. (Beyond, theta reaches 0 at
+    b = -pi^2, the 1:1 resonance, where the pair meets the trivial multiplier: a triple
+    multiplier 1, at which the extended system is singular; its location fails there and
+    the d-file says so.)"""
+    res = run(mobius / "c.mobius.trloc", verbose=False, sv="trloc2", s="trloc",
+              IRS="UZ1", UZSTOP={2: -9.0})
+    assert res.status == "ok"
+    lab = [r for r in res.rows if r.lab]
+    assert [r.code for r in lab] == [-84]
+    assert res.rows[0].values[0] == pytest.approx(-3.0)
+    assert lab[0].values[0] == pytest.approx(-9.0)
+    for r in res.rows:
+        b, a = r.values[0], r.values[-1]
+        assert a == pytest.approx(0.0, abs=COLLOCATION)
+        assert r.par[11] == pytest.approx(math.pi - math.sqrt(-b), abs=COLLOCATION)

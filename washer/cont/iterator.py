@@ -262,6 +262,24 @@ class Continuation:
     def initial_tangent(self, x, J):
         """Null vector of J with AUTO's sign rule (STPRAE), unit in the inner product."""
         Jd = J if isinstance(J, np.ndarray) else None
+        ns = getattr(self.sys, "n_state", None)
+        if Jd is None and ns is not None and hasattr(self.sys, "null_vector"):
+            # AUTO's STDRBV: the null vector of the BVP's Jacobian itself (a bordered
+            # solve fixing PAR(ICP(1))-dot fails where the branch starts at a fold in
+            # PAR(ICP(1)), e.g. a restart from a point of a fold locus of cycles), made
+            # unit, with PAR(ICP(1))-dot > 0, or the next free parameter's, or the last
+            # node's first non-negligible component.
+            t = self.sys.null_vector(J, np.zeros(len(x)))
+            t = t / math.sqrt(self.sys.inner(t, t))
+            order = [len(t) - 1] + list(range(ns, len(t) - 1))
+            for i in order:
+                if abs(t[i]) / (1 + abs(x[i])) > self.s.EPSL:
+                    return t if t[i] > 0 else -t
+            last = np.arange(ns - self.s.NDIM, ns)
+            for i in last:
+                if abs(t[i]) / (1 + abs(x[i])) > self.s.EPSU:
+                    return t if t[i] > 0 else -t
+            return t
         if Jd is not None:
             _, _, Vt = np.linalg.svd(Jd)
             t = Vt[-1]

@@ -95,6 +95,10 @@ def start_values(c, s: Settings, problem, rec, data=None) -> tuple[np.ndarray, n
     return u, par
 
 
+#: Start kinds of points of the loci of cycles (IPS = 2, ISW = 2).
+CYCLE_CURVES = ("LPC-curve", "PD-curve", "TR-curve")
+
+
 def start_kind(rec) -> str:
     """The registry's start kind of a record: its type name, or 'HB-curve' / 'LP-curve'
     for points of the ISW = 2 curves of algebraic problems (the record's written code
@@ -106,6 +110,9 @@ def start_kind(rec) -> str:
         return {2: "LP-curve", 3: "HB-curve"}[curve]
     if curve == 5 and rec.ips == 4:
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
+    if curve in (5, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
+        # a point of a locus of folds, period doublings or tori of cycles
+        return {5: "LPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
     return type_name(base)
 
 
@@ -132,6 +139,8 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
         s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
     isw_key = -1 if s.ISW == -1 and kind == "BP" else \
         (2 if s.ISW == 2 or kind.endswith("curve") else 1)
+    if kind in CYCLE_CURVES and s.ISW != 2:
+        isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:
         ctor = lookup(s.IPS, isw_key, "shooting" if shooting else kind)
     except KeyError as exc:
@@ -157,6 +166,10 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
     if c["IBR"]:
         return c["IBR"]
     if rec is None or s.ISW < 0:
+        return mbr + 1
+    if s.IPS == 2 and s.ISW == 2 and kind in ("LP", "PD", "TR", "BP"):
+        # A locus of cycles started at its special point: AUTO's INITPS makes that run
+        # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1
     if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
         return rec.lab

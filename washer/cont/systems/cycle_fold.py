@@ -38,6 +38,7 @@ NORM = 1.0
 
 
 @register(2, 2, "LP")
+@register(2, 2, "LPC-curve")
 class CycleFoldLocus(CollocationBVP):
     curve_type = 5
     nint = 3
@@ -60,6 +61,9 @@ class CycleFoldLocus(CollocationBVP):
         p = np.asarray(data.par, float)
         self.par[:min(len(p), len(self.par))] = p[:len(self.par)]
         rec = data.record
+        if data.kind == "LPC-curve":
+            self._from_curve(rec)
+            return
         if rec is None or np.ndim(rec.U) != 2 or rec.udot is None or len(rec.rldot) < 2:
             raise ValueError("the fold of cycles is continued from an LP record of a periodic "
                              "branch with its direction (IIS > 0)")
@@ -85,6 +89,33 @@ class CycleFoldLocus(CollocationBVP):
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), T, self.par[self.p2 - 1], beta, self.par[self.p1 - 1]],
                        None)
+
+    def _from_curve(self, rec) -> None:
+        """A restart at a point of this locus (its record stores W = (u, v) and, after
+        PAR(1..NPAR), beta and c, as AUTO's PAR(NPAR-1), PAR(NPAR)): W on the run's mesh,
+        v and beta rescaled to int <v, v> + beta^2 = 1; the stored direction reused when
+        the free parameters are the same (STPNBV)."""
+        s, n = self.settings, self.n
+        mesh_r, W_r, Wd_r = stored_profile(rec, n, 2 * n)
+        if W_r.shape[1] != 2 * n:
+            raise ValueError(f"a point of a fold locus of cycles stores 2 NDIM = {2 * n} "
+                             f"components, this record {W_r.shape[1]}")
+        mesh, (W, Wd) = onto_mesh(mesh_r, [W_r, Wd_r], s.NTST, s.NCOL, n)
+        self.set_mesh(mesh)
+        beta = float(rec.par[-2])
+        scale = math.sqrt(NORM / (self.coll.integral(np.sum(W[:, n:] ** 2, axis=1)) + beta ** 2))
+        W[:, n:] *= scale
+        beta *= scale
+        self.set_phase_reference(W[:, :n], self.par)
+        self.set_rotations(W[:, :n])
+        x0 = np.r_[W.ravel(), self.par[10], self.par[self.p2 - 1], beta, self.par[self.p1 - 1]]
+        t0 = None
+        rl = list(rec.rldot or [])
+        if Wd is not None and len(rl) >= 4 and list(rec.icp)[:3] == self.free:
+            t = np.r_[Wd.ravel(), rl[1], rl[2], rl[3], rl[0]]
+            nrm = math.sqrt(self.inner(t, t))
+            t0 = t / nrm if nrm > 0 else None
+        self._start = (x0, t0)
 
     # ------------------------------------------------------------------ helpers
     def unpack(self, x):

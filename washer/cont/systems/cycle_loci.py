@@ -90,7 +90,10 @@ class _CycleLocus(CollocationBVP):
         if rec is None or np.ndim(rec.U) != 2 or len(rec.U) < 2:
             raise ValueError(f"the {name} locus starts from a {data.kind or 'special'} record "
                              "of a periodic branch")
-        self._from_record(rec)
+        if data.kind.endswith("-curve"):
+            self._from_curve(rec)
+        else:
+            self._from_record(rec)
 
     # ------------------------------------------------------------------ set-up
     def tail_weights(self) -> np.ndarray:
@@ -110,6 +113,31 @@ class _CycleLocus(CollocationBVP):
         self.V_old = V.copy()
         W = np.c_[U, V]
         self._start = (np.r_[W.ravel(), [self.par[i - 1] for i in self.xpar]], None)
+
+    def _from_curve(self, rec) -> None:
+        """A restart at a point of this locus (its record stores W = (u, v[, w]) and the
+        angle PAR(12) of a torus): W on the run's mesh, the eigenfunction rescaled to the
+        norm NORM; the stored direction reused when the free parameters are the same."""
+        s, n, m = self.settings, self.n, self.copies
+        mesh_r, W_r, Wd_r = stored_profile(rec, n, m * n)
+        if W_r.shape[1] != m * n:
+            raise ValueError(f"a point of this locus stores {m} NDIM = {m * n} components, "
+                             f"this record {W_r.shape[1]}")
+        mesh, (W, Wd) = onto_mesh(mesh_r, [W_r, Wd_r], s.NTST, s.NCOL, n)
+        self.set_mesh(mesh)
+        W[:, n:] *= math.sqrt(NORM / self.coll.integral(np.sum(W[:, n:] ** 2, axis=1)))
+        self.set_phase_reference(W[:, :n], self.par)
+        self.set_rotations(W[:, :n])
+        self.V_old = W[:, n:].copy()
+        x0 = np.r_[W.ravel(), [self.par[i - 1] for i in self.xpar]]
+        t0 = None
+        rl = list(rec.rldot or [])
+        if Wd is not None and len(rl) == len(self.free) and list(rec.icp) == self.free:
+            d = dict(zip(self.free, rl))
+            t = np.r_[Wd.ravel(), [d[i] for i in self.xpar]]
+            nrm = math.sqrt(self.inner(t, t))
+            t0 = t / nrm if nrm > 0 else None
+        self._start = (x0, t0)
 
     def fundamental(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
         """Phi (n_nodes, n, n) of the variational equation along the orbit U (the u
@@ -221,6 +249,7 @@ class _CycleLocus(CollocationBVP):
 
 
 @register(2, 2, "PD")
+@register(2, 2, "PD-curve")
 class PeriodDoublingLocus(_CycleLocus):
     """The locus of period doublings (FNPD/BCPD/ICPD); see the module docstring."""
     copies = 2
@@ -286,6 +315,7 @@ class PeriodDoublingLocus(_CycleLocus):
 
 
 @register(2, 2, "TR")
+@register(2, 2, "TR-curve")
 class TorusLocus(_CycleLocus):
     """The locus of torus bifurcations (FNTR/BCTR/ICTR); see the module docstring."""
     copies = 3
