@@ -34,6 +34,7 @@ from washer.machine import forced, kernel
 from washer.problems import forced as shooting
 from washer.problems.washer import washer_problem
 from washer.run import run
+from washer.problems.rotating import averaged_hopf
 
 CONSTANTS = Path(__file__).resolve().parent.parent / "auto_constants" / "c.washer.machine.forced"
 
@@ -71,7 +72,7 @@ def main():
     print(f"  {t_r * 1e3:8.1f} ms, {r.iterations} Newton iterations, residual {r.residual:.1e}, "
           f"max|mu| = {np.abs(r.multipliers).max():.9f}")
 
-    cp_avg, _ = forced.averaged_hopf(params)
+    cp_avg, _ = averaged_hopf(params)
     start = forced.averaged_start(params.replace(C_p=cp_avg))
     t_tr, (_, sp) = best_of(lambda: shooting.locate_tr(
         params, "C_p", (0.95 * cp_avg, 1.05 * cp_avg), start))

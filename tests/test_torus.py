@@ -8,6 +8,7 @@ import pytest
 from washer.machine import forced, torus
 from washer.problems import forced as shooting
 from washer.cont import invariant_circle as ic
+from washer.problems.rotating import averaged_hopf
 
 
 @pytest.fixture(scope="module")
@@ -96,7 +97,7 @@ def test_exact_whirl_against_normal_form_and_long_simulation(params):
     # Lyapunov coefficient's finite differences scatter by ~0.5 %, and the exact and
     # averaged critical values differ by 1e-4 relative).
     from washer.sweep.tasks import whirl_growth
-    a_nf, r0, _ = whirl_growth(params, "C_p", forced.averaged_hopf(params)[0])
+    a_nf, r0, _ = whirl_growth(params, "C_p", averaged_hopf(params)[0])
     a_ex = w.amplitude[0] / np.sqrt(w.birth.value - w.value[0])
     assert a_ex == pytest.approx(a_nf, rel=0.03)
     assert r0 == pytest.approx(np.hypot(*w.birth.xi[:2]), rel=1e-3)

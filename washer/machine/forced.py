@@ -48,8 +48,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
-
 from washer.machine import kernel, layout
 from washer.machine.model import Model
 from washer.machine.params import Params
@@ -203,42 +201,3 @@ def simulated_start(params: Params, periods: int = 300, u_start=None) -> np.ndar
     Y, _, _ = kernel.integrate("fixed", "constant", 0.0, u_start, params.vector(),
                                [periods * T], RTOL, ATOL)
     return Y[-1]
-
-
-# ------------------------------------------------------------------ TR in one and two parameters
-
-def averaged_hopf(params: Params, frame: str = "averaged", c_max: float = 2.0,
-                  n_scan: int = 81, xtol: float = 1e-12) -> tuple[float, np.ndarray]:
-    """C_p of the first Hopf point of the averaged (or frozen) rotating-frame system
-    (eq 59) at the other parameters of `params`, scanning C_p from 0 up to c_max in n_scan
-    values for the first sign change of max Re(lambda) at the equilibrium (Hopf curves can
-    turn back at large C_p), then Brent. Returns (C_p, eigenvalues (12,) there, 1/s);
-    ValueError if there is none."""
-    state = {"eps": None}
-
-    def g(cp):
-        m = Model(params.replace(C_p=cp))
-        state["eps"] = m.rotating_equilibrium(frame=frame, guess=state["eps"])
-        state["lam"] = m.eigenvalues(state["eps"], frame=frame)
-        return float(state["lam"].real.max())
-
-    grid = np.linspace(0.0, c_max, n_scan)
-    g_prev = g(grid[0])
-    if g_prev == 0.0:           # no damping at all (C_a = 0 too): neutral at C_p = 0
-        return 0.0, state["lam"]
-    for a, b in zip(grid[:-1], grid[1:]):
-        g_b = g(b)
-        if np.sign(g_b) != np.sign(g_prev):
-            cp = brentq(g, a, b, xtol=xtol)
-            g(cp)
-            return cp, state["lam"]
-        g_prev = g_b
-    raise ValueError(f"averaged_hopf ({frame}): no Hopf point for C_p in [0, {c_max}]")
-
-
-def hopf_or_nan(params: Params, frame: str):
-    """`averaged_hopf`, or (nan, nan eigenvalues) where there is no Hopf point."""
-    try:
-        return averaged_hopf(params, frame)
-    except ValueError:          # no sign change of max Re(lambda) in the bracket: no Hopf
-        return float("nan"), np.full(12, np.nan, dtype=complex)

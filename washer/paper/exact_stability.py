@@ -23,13 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-from scipy.optimize import brentq
-
 from washer.cont import floquet
 from washer.machine import forced, kernel
 from washer.machine.layout import PAR_INDEX
 from washer.problems import forced as shooting
-from washer.machine.model import Model
+from washer.problems.rotating import first_hopf, hopf_or_nan
 from washer.machine.params import load_params
 from washer.atomic import write_text
 
@@ -39,21 +37,14 @@ N_CURVE, N_CURVE_QUICK = 23, 6
 
 def lower_end(params: Params, kind: str = "exact", bracket=(3.0, 6.0)) -> float:
     """Omega (Hz) of the lower end of the Fig 4 curve, where the critical C_p reaches 0:
-    kind 'exact' (TR of the forced response at C_p = 0, Brent on Omega) or 'averaged'
-    / 'frozen' (Hopf of the rotating-frame system at C_p = 0). Below it the response is
+    kind 'exact' (TR of the forced response at C_p = 0) or 'averaged' / 'frozen' (Hopf
+    of the rotating-frame system at C_p = 0), both located by the engine in Omega. Below it the response is
     stable even without joint damping."""
     q = params.replace(C_p=0.0)
     if kind == "exact":
         rec = shooting.locate_tr(q, "Omega", bracket)[1]
         return float(rec.par[PAR_INDEX["Omega"] - 1])
-    state = {"eps": None}
-
-    def g(om):
-        m = Model(q.replace(Omega=om))
-        state["eps"] = m.rotating_equilibrium(frame=kind, guess=state["eps"])
-        return float(m.eigenvalues(state["eps"], frame=kind).real.max())
-
-    return brentq(g, *bracket, xtol=1e-12)
+    return first_hopf(q, "Omega", *bracket, frame=kind)[0]
 
 
 def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 15.0,
@@ -76,8 +67,8 @@ def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 
         q = params.replace(Omega=float(om))
         if abs(om - low["exact"]) <= 1e-9 * om:     # the end itself: C_p,crit = 0 by definition
             r = {"Omega": float(om), "C_p_exact": 0.0,
-                 "C_p_averaged": forced.hopf_or_nan(q, "averaged")[0],
-                 "C_p_frozen": forced.hopf_or_nan(q, "frozen")[0],
+                 "C_p_averaged": hopf_or_nan(q, "averaged")[0],
+                 "C_p_frozen": hopf_or_nan(q, "frozen")[0],
                  "critical_multiplier": floquet.critical_pair(
                      shooting.periodic_response(q.replace(C_p=0.0)).multipliers, trivial=False)}
         else:
@@ -119,7 +110,7 @@ def averaging_errors(params: Params, points=TABLE1_ENDS) -> list[dict]:
                     note = "stable down to C_p = 0: no TR point"
             except (forced.ShootingError, kernel.KernelError):
                 pass
-            row.update(C_p_exact=np.nan, C_p_averaged=forced.hopf_or_nan(q, "averaged")[0],
+            row.update(C_p_exact=np.nan, C_p_averaged=hopf_or_nan(q, "averaged")[0],
                        C_p_frozen=np.nan, error=np.nan, note=note)
         rows.append(row)
     return rows

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.machine import torus
+from washer.problems.rotating import averaged_hopf
 
 #: Length of the simulation (s) judged against the C_p = 0 circle, and of the window at its
 #: end. The slowest normal mode decays at ~0.0116 1/s at C_p = 0 (the circle's leading
@@ -110,9 +111,8 @@ def compute(params, averaged=None, quick: bool = False, progress=print) -> dict:
                         "C_p": torus.damping_for_clearance(w, CLEARANCES)}
     out["r_birth"] = float(np.hypot(*w.birth.xi[:2]))
     out["growth"] = torus.growth_coefficient(w)
-    from washer.machine import forced
     from washer.sweep.tasks import whirl_growth
-    out["growth_normal_form"] = whirl_growth(params, "C_p", forced.averaged_hopf(params)[0])[0]
+    out["growth_normal_form"] = whirl_growth(params, "C_p", averaged_hopf(params)[0])[0]
     return out
 
 

@@ -22,9 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from washer.machine import forced
 from washer.machine.model import Model
 from washer.machine.params import Params
+from washer.problems.rotating import averaged_hopf
 
 TWO_PI = 2.0 * np.pi
 #: The dampers: kernel parameter and what it is (with tied dampings C_p moves the three
@@ -170,7 +170,7 @@ def hopf_mode(params: Params) -> dict:
     s (m, along the tub axis from plane A) where the point of the axis stands still,
     s = -<r, t> / <t, t> with r = eps1 + i eps2 and t = eps5 - i eps4 the complex
     translation and tilt (small angles: the axis point at s moves by r + s t)."""
-    cp, lam = forced.averaged_hopf(params)
+    cp, lam = averaged_hopf(params)
     q = params.replace(C_p=cp)
     pair = lam[np.argmax(np.where(lam.imag > 0, -np.abs(lam.real), -np.inf))]
     lam_c, v, eps = _critical_eigenvalue(q, pair)

@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.machine import forced, layout
+from washer.machine import layout
 from washer.problems import forced as shooting
 from washer.machine.model import Model
 from washer.machine.params import Params
+from washer.problems.rotating import averaged_hopf
 
 #: Relative change of each estimated parameter.
 CHANGE = 0.2
@@ -51,7 +52,7 @@ def critical(params: Params) -> dict:
     coefficient is not negative, i.e. the point is not supercritical); nan where the
     machine has no hanging equilibrium or no Hopf point in C_p in [0, 2]."""
     try:
-        cp, lam = forced.averaged_hopf(params)
+        cp, lam = averaged_hopf(params)
         pair = lam[np.argmin(np.where(lam.imag > 0, np.abs(lam.real), np.inf))]
         f = (2 * np.pi * params["Omega"] - abs(pair.imag)) / (2 * np.pi)
         z = float(Model(params.replace(m_u=0.0)).static_equilibrium()[2])

@@ -26,6 +26,7 @@ from washer.cont.runner import run as run_in_memory, solve
 from washer.machine import forced
 from washer.machine.forced import ForcedResponse, ShootingError
 from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, kernel_parameters
+from washer.problems.rotating import hopf_or_nan
 
 #: Newton's tolerance (EPSU = EPSL): relative corrections below the flow's accuracy at
 #: forced.RTOL are noise (machine.forced.NEWTON_TOL).
@@ -159,8 +160,8 @@ def critical_cp(params, rel_bracket: float = 0.05, abs_bracket: float = 1e-3) ->
     critical multiplier and its Floquet exponent log(mu)/T (1/s, imaginary part modulo
     2 pi Omega: the ground-frame whirl), the averaged eigenvalues at the averaged Hopf
     point (1/s), and the ForcedResponse there."""
-    cp_avg, lam_avg = forced.hopf_or_nan(params, "averaged")
-    cp_frozen, _ = forced.hopf_or_nan(params, "frozen")
+    cp_avg, lam_avg = hopf_or_nan(params, "averaged")
+    cp_frozen, _ = hopf_or_nan(params, "frozen")
     if np.isnan(cp_avg):        # below the averaged curve's lower end: search from C_p = 0
         bracket, start = (0.0, 2 * abs_bracket), None
     else:

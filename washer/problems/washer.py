@@ -12,10 +12,9 @@ import numpy as np
 
 from washer.cont.problem import Problem
 from washer.machine import kernel, layout
-from washer.machine.model import Model
 from washer.problems.forced import periodic_response, shooting_problem
-from washer.problems.parameters import (NPAR, PAR_NAMES, _reference_params,  # noqa: F401
-                                        kernel_parameters)
+from washer.problems.rotating import rotating_problem
+from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params  # noqa: F401
 
 #: PAR(i) -> kernel parameter name (washer.machine.layout.PAR_NAMES); the washer's
 #: problems share the map and the reference set (washer.problems.parameters).
@@ -37,53 +36,7 @@ def washer_problem(e: str = "washer", params=None, source: str = "<washer>") -> 
         from washer.cont.runner import RunError
         raise RunError(f"{source}: e='{e}': expected 'washer', 'washer:averaged', "
                        "'washer:frozen', 'washer:forced' or 'washer:shooting'")
-    if params is None:
-        params = _reference_params()
-    tied = params.tied
-    cols = {name: kernel.DIFF_NAMES.index(name) for name in PAR_NAMES.values()}
-    kernel_params, kernel_params_many = kernel_parameters(params)
-
-    # jac_rot returns J and Jp together: dfdu and dfdp at the same point (every
-    # Newton step asks for both) share one kernel call through this cache.
-    last = {"key": None, "val": None}
-
-    def jac(u, par):
-        key = (np.asarray(u, float).tobytes(), np.asarray(par, float).tobytes())
-        if last["key"] != key:
-            last["key"], last["val"] = key, kernel.jac_rot(u, kernel_params(par), frame)
-        return last["val"]
-
-    def func(u, par):
-        return kernel.rhs_rot(u, kernel_params(par), frame)
-
-    def func_batch(us, pars):
-        return kernel.rhs_rot_batch(np.ascontiguousarray(us), kernel_params_many(pars), frame)
-
-    def dfdu(u, par):
-        return jac(u, par)[0].copy()
-
-    def dfdu_batch(us, pars):
-        return kernel.jac_rot_batch(np.ascontiguousarray(us), kernel_params_many(pars), frame)[0]
-
-    def dfdp(u, par):
-        Jp = jac(u, par)[1]
-        out = np.zeros((12, len(par)))
-        for i, name in PAR_NAMES.items():
-            if i <= len(par):
-                out[:, i - 1] = Jp[:, cols[name]]
-        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
-            out[:, 0] += Jp[:, cols[name]]
-            out[:, layout.PAR_INDEX[name] - 1] = 0.0
-        return out
-
-    def stpnt(u, par):
-        for i, name in PAR_NAMES.items():
-            if i <= len(par):
-                par[i - 1] = params[name]
-        u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
-
-    return Problem(12, func, stpnt, dfdu, dfdp, name=e, npar=NPAR, dfdu_batch=dfdu_batch,
-                   func_batch=func_batch, parnames=dict(PAR_NAMES))
+    return rotating_problem(frame, params, name=e)
 
 
 #: Forcing-angle step (rad) of the central difference d f / d theta, the washer rows'

@@ -1,0 +1,119 @@
+"""The washer's rotating-frame equilibria as a continuation problem (e='washer',
+'washer:averaged', 'washer:frozen': the system of eq 59 averaged over the frame angle or
+frozen at tau0, NDIM = 12, u = (eps, eps_dot)), and the one search for its Hopf point
+in a parameter: the engine's HB location along the equilibrium branch (AUTO's FNHBEQ
+test, Muller location), not a root search on max Re(lambda).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.auto.constants import Constants
+from washer.cont.problem import Problem
+from washer.cont.runner import run as run_in_memory
+from washer.machine import kernel, layout
+from washer.machine.model import Model
+from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, kernel_parameters
+
+#: Steps of the Hopf search: DSMAX = range / HOPF_STEPS keeps two Hopf points of one
+#: range apart; the first step is HOPF_FIRST of the range (the engine tests no sign
+#: change on its first two steps, AUTO's rule: the Hopf point must lie beyond them).
+HOPF_STEPS = 80
+HOPF_FIRST = 1e-6
+#: Location tolerance (EPSS) of the search: Muller converges far below it in C_p.
+HOPF_EPSS = 1e-9
+
+
+def rotating_problem(frame: str = "averaged", params=None, name: str = "washer") -> Problem:
+    """The washer as AUTO's FUNC/STPNT in the rotating frame `frame` ('averaged' or
+    'frozen') with `params` (a washer.Params; default the shipped reference set)
+    injected: nothing is reloaded or changed behind the caller's back."""
+    if params is None:
+        params = _reference_params()
+    tied = params.tied
+    cols = {name: kernel.DIFF_NAMES.index(name) for name in PAR_NAMES.values()}
+    kernel_params, kernel_params_many = kernel_parameters(params)
+
+    # jac_rot returns J and Jp together: dfdu and dfdp at the same point (every
+    # Newton step asks for both) share one kernel call through this cache.
+    last = {"key": None, "val": None}
+
+    def jac(u, par):
+        key = (np.asarray(u, float).tobytes(), np.asarray(par, float).tobytes())
+        if last["key"] != key:
+            last["key"], last["val"] = key, kernel.jac_rot(u, kernel_params(par), frame)
+        return last["val"]
+
+    def func(u, par):
+        return kernel.rhs_rot(u, kernel_params(par), frame)
+
+    def func_batch(us, pars):
+        return kernel.rhs_rot_batch(np.ascontiguousarray(us), kernel_params_many(pars), frame)
+
+    def dfdu(u, par):
+        return jac(u, par)[0].copy()
+
+    def dfdu_batch(us, pars):
+        return kernel.jac_rot_batch(np.ascontiguousarray(us), kernel_params_many(pars), frame)[0]
+
+    def dfdp(u, par):
+        Jp = jac(u, par)[1]
+        out = np.zeros((12, len(par)))
+        for i, name in PAR_NAMES.items():
+            if i <= len(par):
+                out[:, i - 1] = Jp[:, cols[name]]
+        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
+            out[:, 0] += Jp[:, cols[name]]
+            out[:, layout.PAR_INDEX[name] - 1] = 0.0
+        return out
+
+    def stpnt(u, par):
+        for i, name in PAR_NAMES.items():
+            if i <= len(par):
+                par[i - 1] = params[name]
+        u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
+
+    return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
+                   func_batch=func_batch, parnames=dict(PAR_NAMES))
+
+
+def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,
+               frame: str = "averaged") -> tuple[float, np.ndarray]:
+    """The first Hopf point of the rotating-frame equilibrium in parameter `name` (one of
+    PAR_NAMES) from lo to hi, the others from `params`: the engine continues the
+    equilibrium from its value at lo and stops at the first HB. Returns (the value, the
+    eigenvalues there (12,), 1/s, by decreasing real part); ValueError if there is none.
+    At lo itself: a neutral start (max Re(lambda) = 0 exactly, no damping at all) is
+    returned as the Hopf point."""
+    at_lo = params.replace(**{name: lo})
+    m = Model(at_lo)
+    lam = m.eigenvalues(m.rotating_equilibrium(frame=frame), frame=frame)
+    if lam.real.max() == 0.0:
+        return float(lo), lam
+    index = {n: i for i, n in PAR_NAMES.items()}[name]
+    span = hi - lo
+    c = Constants({"NDIM": 12, "IPS": 1, "IRS": 0, "ICP": [index], "ILP": 0, "ISP": 1,
+                   "ISW": 1, "MXBF": 0, "NMX": 20 * HOPF_STEPS, "NPR": 0, "JAC": 1,
+                   "ITNW": 7, "ITMX": 30, "EPSL": 1e-10, "EPSU": 1e-10, "EPSS": HOPF_EPSS,
+                   "DS": span * HOPF_FIRST, "DSMIN": span * 1e-12, "DSMAX": span / HOPF_STEPS,
+                   "IADS": 1, "NPAR": NPAR, "UZSTOP": {index: hi}, "STOP": ["HB1"]},
+                  source=f"<Hopf search in {name}>")
+    br = run_in_memory(c, rotating_problem(frame, at_lo))
+    hb = [r for r in br.specials if r.ty == "HB"]
+    if not hb:
+        raise ValueError(f"no Hopf point ({frame}) for {name} in [{lo}, {hi}] ({br.status})")
+    return float(hb[0].par[index - 1]), np.asarray(hb[0].stability.values)
+
+
+def averaged_hopf(params, frame: str = "averaged", c_max: float = 2.0):
+    """C_p of the first Hopf point of the averaged (or frozen) rotating-frame system from
+    C_p = 0 to c_max, and the eigenvalues there (`first_hopf`)."""
+    return first_hopf(params, "C_p", 0.0, c_max, frame)
+
+
+def hopf_or_nan(params, frame: str):
+    """`averaged_hopf`, or (nan, nan eigenvalues) where there is no Hopf point."""
+    try:
+        return averaged_hopf(params, frame)
+    except ValueError:
+        return float("nan"), np.full(12, np.nan, dtype=complex)
