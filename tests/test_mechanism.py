@@ -32,7 +32,7 @@ def test_without_axial_dampers_the_pair_is_neutral_then_stable(params):
 def test_hopf_mode_frequency_is_the_exact_torus_point(params):
     """The averaged Hopf mode seen from the ground whirls at the frequency the exact torus
     point's rotation number gives (averaging is accurate to ~1e-4 there)."""
-    from washer.machine import torus
+    from washer.problems import torus
     mode = me.hopf_mode(params)
     b = torus.birth(params)
     assert mode["f_whirl"] == pytest.approx(torus.whirl_frequency(b.rho, params["Omega"]),

@@ -1,11 +1,12 @@
-"""The exact whirl (washer.machine.torus): the half-period map of the rotating frame and its
+"""The exact whirl (washer.problems.torus): the half-period map of the rotating frame and its
 invariant circles, checked against independent computations: finite differences of the
 map, the one-period monodromy matrix of washer.machine.forced, the normal form of a supercritical
 Neimark-Sacker point, and a long simulation of eq 48 that knows nothing of the circle."""
 import numpy as np
 import pytest
 
-from washer.machine import forced, torus
+from washer.machine import forced
+from washer.problems import torus
 from washer.problems import forced as shooting
 from washer.cont import invariant_circle as ic
 from washer.problems.rotating import averaged_hopf

@@ -40,7 +40,7 @@ The map enters only through
     fmap(X (N, n), p) -> (F (N, n), DF (N, n, n), Fp (N, n))
 
 (values, Jacobians in x and derivatives in p at the N points). Nothing here knows what
-the map stands for (the washer's stroboscopic map is `washer.machine.torus`).
+the map stands for (the washer's stroboscopic map is `washer.problems.torus`).
 """
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """The exact whirl beside the averaged one: the invariant circles of the T/2 map
-(`washer.machine.torus`) from the torus point down to C_p = 0, against the averaged rotating
+(`washer.problems.torus`) from the torus point down to C_p = 0, against the averaged rotating
 frame's periodic orbits (`washer.paper.whirl`, c.washer.po) along the whole family and
 against a long simulation of the unaveraged equations; and the joint damping needed to
 keep the whirl within a clearance.
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.machine import torus
+from washer.problems import torus
 from washer.problems.rotating import averaged_hopf
 
 #: Length of the simulation (s) judged against the C_p = 0 circle, and of the window at its
@@ -136,7 +136,7 @@ def markdown(res: dict, figure: str) -> str:
         "Past the torus (TR) point the forced response is replaced by a two-frequency motion "
         "(the spin and the whirl): an invariant circle of the stroboscopic map over half a "
         "forcing period in the rotating frame. It is computed without averaging "
-        "(`washer.machine.torus`: Fourier collocation in the circle's angle, "
+        "(`washer.problems.torus`: Fourier collocation in the circle's angle, "
         f"{w.branch.circles[0].N} nodes, the map and its Jacobian from the kernel's variational "
         f"flow), born at the TR point C_p = {w.birth.value:.6f} and continued to C_p = 0 "
         f"({len(w.value)} circles, {res['wall_family']:.0f} s, status {w.branch.status}). "

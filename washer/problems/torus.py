@@ -39,6 +39,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from washer.machine import forced, kernel
+from washer.machine.layout import PAR_INDEX
+from washer.problems import forced as shooting
 from washer.cont import invariant_circle as ic
 from washer.machine.params import Params
 
@@ -125,9 +127,6 @@ def birth(params: Params, name: str = "C_p", bracket=None) -> Birth:
     """The TR point of the forced response in `name` (default bracket: around the averaged
     Hopf value, as `washer.problems.forced.critical_cp`) and the T/2 map's critical
     eigenpair there."""
-    # The TR point is an engine run (the washer's shooting problem, a floor above).
-    from washer.machine.layout import PAR_INDEX
-    from washer.problems import forced as shooting
     if name == "C_p" and bracket is None:
         c = shooting.critical_cp(params)
         value, u0 = c["C_p_exact"], c["response"].u0

@@ -1,0 +1,77 @@
+"""One point of a run as AUTO writes it (a b-row and its s-record), in memory: the one
+record type of the engine's results (washer.cont.branch.Branch.rows) and of the
+records read from s-files (washer.auto.files.read_s)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from washer.auto.codes import split_code, type_name
+
+
+@dataclass
+class Record:
+    """One point of a run as AUTO writes it, in memory: the b-row and the s-record's
+    content. The engine's results (`Branch.rows`) and the records read from s-files
+    (`washer.auto.files.read_s`) are this one type, so either restarts a run.
+
+    br, pt, lab : branch, point number (1-based, unsigned), label (0 = none).
+    code : the written type code (two-digit on ISW = 2 curves); `ty` is its name.
+    nfpr, isw, ndim_user, ips : the s-record header's NFPR, ISW, user NDIM, IPS.
+    u : the stored state: (NSTATE,) for algebraic problems (extended on the loci:
+        2 NDIM + 1 on fold curves, 2 NDIM + 2 on Hopf curves) or (NTPL, n) mesh values
+        of a BVP; `U` is the user's part of it.
+    par : (NPAR,) PAR(1..NPAR), PAR(11) the period.
+    icp, rldot, udot : the free parameters, d PAR(icp)/ds and the state's direction
+        (udot None when no direction is stored).
+    t, ntst, ncol : the mesh times (NTPL,) and the mesh of a BVP record (None, 0, 0
+        for algebraic ones).
+    values : the b-row's values: PAR(ICP(1)), the columns, the other free parameters.
+    stable : sign of PT (True -> written negative); None = not defined.
+    stability : eigenvalues or multipliers (washer.cont.system.Stability) or None.
+    info : extra results (first Lyapunov coefficient 'l1' at HB, its criticality).
+    """
+    br: int
+    pt: int
+    code: int
+    lab: int
+    nfpr: int
+    isw: int
+    ndim_user: int
+    ips: int
+    u: np.ndarray
+    par: np.ndarray
+    icp: list = field(default_factory=list)
+    rldot: list = field(default_factory=list)
+    udot: np.ndarray | None = None
+    t: np.ndarray | None = None
+    ntst: int = 0
+    ncol: int = 0
+    values: list = field(default_factory=list)
+    stable: bool | None = None
+    stability: object = None                     # washer.cont.system.Stability
+    info: dict = field(default_factory=dict)
+
+    @property
+    def ty(self) -> str:
+        """The type's name: 'HB', 'UZ', 'GH', ... ('' for unlabelled points)."""
+        return type_name(self.code)
+
+    @property
+    def curve_type(self) -> int:
+        """AUTO's ITPST of the curve the point lies on, carried by its written code:
+        0 on ordinary branches, 2 fold, 3 Hopf, 5/7/8 loci of cycles."""
+        return split_code(self.code)[1]
+
+    @property
+    def U(self) -> np.ndarray:
+        """The user's state: the first NDIM stored values of an algebraic point, the
+        whole profile of a BVP."""
+        u = np.asarray(self.u)
+        n = self.ndim_user or len(u)
+        return u[:n] if u.ndim == 1 else u
+
+    def __getitem__(self, key):
+        return {"TY": self.ty, "LAB": self.lab, "BR": self.br, "PT": self.pt,
+                "TY number": self.code}[key]
