@@ -34,6 +34,11 @@ EPS_NEWTON = forced.NEWTON_TOL
 #: Location tolerance (EPSS) in arclength: the located parameter is accurate to about
 #: this times its rate along the branch (Muller's last step is far below it).
 EPS_LOCATE = 1e-11
+#: First step of `locate_tr` as a fraction of the bracket: the engine tests no sign change
+#: on its first two steps (AUTO's hidden first step and first written interval), so they
+#: are kept to ~3e-2 of the bracket (DS doubles after easy steps, up to a quarter of it);
+#: the callers bracket the TR point around an estimate in the middle.
+FIRST_STEP = 1e-2
 #: Newton iterations per step (ITNW), location iterations (ITMX).
 ITNW, ITMX = 8, 30
 
@@ -136,7 +141,7 @@ def locate_tr(params, name: str, bracket: tuple[float, float], u0=None):
     the TR point, its Record). ValueError if there is none in the bracket."""
     a, b = bracket
     index = {n: i for i, n in PAR_NAMES.items()}[name]
-    c = constants(name, DS=(b - a) / 8, DSMAX=abs(b - a) / 4, DSMIN=abs(b - a) * 1e-6,
+    c = constants(name, DS=(b - a) * FIRST_STEP, DSMAX=abs(b - a) / 4, DSMIN=abs(b - a) * 1e-9,
                   THU={i: 0.0 for i in range(1, 13)}, UZSTOP={index: b}, STOP=["TR1"],
                   ILP=0, NMX=200)
     at_a = params.replace(**{name: a})
