@@ -18,22 +18,24 @@ from auto_demo_compare import all_demos, run_demo
 #: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
 FAST = {"frc", "lrz", "lor", "chu"}
 
-BVP = "boundary-value problems (IPS = 4) are not in the engine yet"
-MAPS = "maps (IPS = -1) are not in the engine yet"
-#: Why a demo does not match AUTO yet.
+BP_LOCI = "loci of branch points (ISW = 2 at a BP, ISW = 3) are not in the engine"
+#: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
-    "abcb": "ISW = 3 (branch-point loci of generic BVPs) is not implemented; the cycle run "
-            "stops with no convergence before AUTO's fold of cycles",
-    "apbp": "branch-point continuation (ISW = 2 at a BP, ISW = 3) is not implemented",
-    "lcbp": "branch-point continuation of cycles (ISW = 2, 3 at a BP) is not implemented",
-    "tfc": "branch-point continuation of cycles (ISW = 2 at a BP) is not implemented",
+    "abcb": "the fold-of-cycles locus stops with no convergence (MX) before AUTO's end; "
+            + BP_LOCI,
+    "apbp": BP_LOCI,
+    "lcbp": BP_LOCI,
+    "sspg": BP_LOCI,
+    "tfc": BP_LOCI,
+    "brf": "the periodic branch reaches NMX = 120 at PAR(5) = 1.81, before AUTO's two TR "
+           "points and UZ (step-size history)",
+    "fnc": "the BVPs of the slow manifolds stop with no convergence",
+    "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",
-    "ivp": "time integration (IPS = -2) is not in the engine yet",
-    "dd2": MAPS, "log": MAPS,
-    "pcl": BVP, "ph1": BVP, "bvp": BVP, "ext": BVP, "ezp": BVP, "fnc": BVP, "fsh": BVP,
-    "int": BVP, "lin": BVP, "man": BVP, "nep": BVP, "non": BVP, "obv": BVP, "pvl": BVP,
-    "spb": BVP, "sspg": BVP, "stw": BVP, "tim": BVP, "um2": BVP, "um3": BVP,
-    "r3b": "the restarts of the periodic orbits of r3b differ from AUTO's",
+    "pcl": "a restart with a larger NDIM (the system extended through STPNT) is not in the "
+           "engine",
+    "plp": "a locus of cycle folds does not restart from its own end point",
+    "r3b": "the first run misses AUTO's third BP, so the script's UZ7 does not exist",
 }
 
 
