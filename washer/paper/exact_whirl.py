@@ -13,7 +13,6 @@ simulation integrates eq 48 from a state 1 % off the circle and is only sampled.
 """
 from __future__ import annotations
 
-import tempfile
 import time
 from pathlib import Path
 
@@ -37,16 +36,12 @@ START_OFFSET = 0.01
 
 
 def averaged_family(params, progress=print):
-    """Run c.washer then c.washer.po in a scratch folder: the averaged whirl family."""
-    import shutil
-
+    """Run c.washer then c.washer.po in memory (the second restarts from the first's
+    Branch; nothing is written): the averaged whirl family."""
     from washer.paper import runs, whirl
     from washer.run import run
-    with tempfile.TemporaryDirectory() as d:
-        for name in ("c.washer", "c.washer.po"):
-            shutil.copy(runs.CONSTANTS_DIR / name, Path(d) / name)
-        run(Path(d) / "c.washer", verbose=False)
-        return whirl.whirl_family(Path(d), progress=progress)
+    eq = run(runs.CONSTANTS_DIR / "c.washer", verbose=False, files=False)
+    return whirl.whirl_family(runs.CONSTANTS_DIR, progress=progress, restart=eq)
 
 
 def along_family(w: torus.ExactWhirl, fam) -> dict:

@@ -91,16 +91,18 @@ class _Profiles:
                           bool(lab.stable), r_mean, tilt, lab.ty))
 
 
-def whirl_family(folder: Path, progress=print) -> WhirlFamily:
+def whirl_family(folder: Path, progress=print, restart=None) -> WhirlFamily:
     """Run folder/c.washer.po (it restarts from folder/s.washer's HB label: run
-    c.washer first) with a profile sink; return the measured family."""
+    c.washer first; or from `restart`, c.washer's Branch in memory, and then writes no
+    files) with a profile sink; return the measured family."""
     import time
 
     from washer.run import run
     sink = _Profiles()
     t0 = time.perf_counter()
     progress("  the whirl's periodic orbits from the Hopf point to C_p = 0 (c.washer.po)")
-    res = run(Path(folder) / "c.washer.po", verbose=False, sinks=[sink])
+    res = run(Path(folder) / "c.washer.po", verbose=False, sinks=[sink], restart=restart,
+              files=restart is None)
     rows = sink.rows
     cols = list(zip(*rows)) if rows else [[]] * 11
     arr = [np.array(c, dtype=float) for c in cols[:7]]
