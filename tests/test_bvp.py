@@ -460,3 +460,21 @@ def test_restart_with_more_components(tmp_path):
                                                        / mpmath.cosh(th / 4)), [0, 1]))
     assert uz.par[1] == pytest.approx(exact, rel=1e-6)
     assert uz.U.shape[1] == 3
+
+
+@pytest.mark.slow
+def test_man_demo(tmp_path):
+    """man: the Lorenz stable manifold grown as orbits from a circle around the origin
+    (NBC = 7, NINT = 1: int |f| dt = PAR(12)): AUTO's five UZ on PAR(12) = 10 .. 150,
+    PAR(11) within the tolerance (AUTO's own to ~1e-9), then the circle's angle PAR(5)
+    from the UZ 25 orbit to the UZSTOP 1.1 with NPR = 2 outputs (~3 min)."""
+    d = demo(tmp_path, "man")
+    c0 = read_constants(d / "c.man.0")
+    r0 = run(d / "c.man.0", e="man", sv="m0", verbose=False)
+    assert r0.status == "ok"
+    compare(ours((r0, 11)), auto_rows("man", "b.0"), tolerance(c0))
+    r1 = run(d / "c.man.1", e="man", s="m0", IRS=r0("UZ2").lab, sv="m1", verbose=False)
+    assert r1.status == "ok"
+    ref = [r for r in branch_rows(DATA / "man" / "autoref" / "b.1") if r.lab]
+    assert r1.specials[-1].ty == type_name(ref[-1].ty) == "UZ"
+    assert r1.specials[-1].par[4] == pytest.approx(1.1, abs=1e-9)
