@@ -108,3 +108,10 @@ def test_failing_func_says_so_and_leaves_no_empty_file(tmp_path, capsys):
     assert "done" not in out and "Saved as" not in out
     assert "boom in func" in err and "no point was computed" in err
     assert not (tmp_path / "b.bad").exists() and not (tmp_path / "s.bad").exists()
+
+
+def test_a_labelled_point_prints_in_one_line(brus):
+    b, _ = brus
+    text = repr(b("HB1"))
+    assert text.startswith("<Record HB2: BR 1 PT ") and "PAR(2)=2" in text
+    assert "\n" not in text and len(text) < 200

@@ -75,3 +75,13 @@ class Record:
     def __getitem__(self, key):
         return {"TY": self.ty, "LAB": self.lab, "BR": self.br, "PT": self.pt,
                 "TY number": self.code}[key]
+
+    def __repr__(self) -> str:
+        """One line (a periodic record holds thousands of mesh values)."""
+        name = f"{self.ty}{self.lab}" if self.lab else "point"
+        free = ", ".join(f"PAR({i})={self.par[i - 1]:.6g}" for i in self.icp[:3]
+                         if 0 < i <= len(self.par))
+        u = np.asarray(self.U)
+        shape = f"U{list(u.shape)}" if u.ndim > 1 else \
+            "U=[" + ", ".join(f"{v:.6g}" for v in u[:4]) + (", ...]" if len(u) > 4 else "]")
+        return f"<Record {name}: BR {self.br} PT {self.pt}; {free + '; ' if free else ''}{shape}>"
