@@ -20,7 +20,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 #: What a source distribution is built from (MANIFEST.in picks the files inside).
 SOURCES = ("setup.py", "pyproject.toml", "build.py", "MANIFEST.in", "README.md",
-           "washer", "csrc", "auto_constants", "tests")
+           "washer", "csrc", "auto_constants", "examples", "tests")
 #: The stripped kernel is ~0.5 MB; unstripped it was ~30 MB.
 MAX_KERNEL_BYTES = 5_000_000
 
@@ -78,6 +78,7 @@ def test_wheel_has_every_subpackage_the_constants_and_a_stripped_kernel(built):
     in_wheel = {Path(n).name for n in info if n.startswith("washer/auto_constants/")}
     assert shipped and shipped == in_wheel
     examples = {p.name for p in (src / "examples").glob("*.toml")} | {"ab.py", "c.ab"}
+    assert "sweep_small.toml" in examples
     assert examples <= {Path(n).name for n in info if n.startswith("washer/examples/")}
     kernels = [n for n in info if n.startswith("washer/_kernel") and n.endswith(".so")]
     assert len(kernels) == 1 and info[kernels[0]] < MAX_KERNEL_BYTES, kernels
