@@ -84,16 +84,15 @@ def main(argv: list[str] | None = None) -> int:
     logger.setLevel(logging.INFO)
     t0 = time.perf_counter()
     try:
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings():
             warnings.simplefilter("always", SpecChangedWarning)
-            try:
-                df = run(spec, args.scheduler, out=out, serial=args.serial,
-                         n_workers=args.workers, batch_size=args.batch_size,
-                         progress=args.progress, plot=not args.no_plot,
-                         retry_failed=args.retry_failed, allow_large=args.allow_large)
-            finally:
-                for w in caught:
-                    print(f"warning: {w.message}", file=sys.stderr)
+            # Said when it happens (before the computation), one line each.
+            warnings.showwarning = lambda message, *a, **k: print(f"warning: {message}",
+                                                                  file=sys.stderr)
+            df = run(spec, args.scheduler, out=out, serial=args.serial,
+                     n_workers=args.workers, batch_size=args.batch_size,
+                     progress=args.progress, plot=not args.no_plot,
+                     retry_failed=args.retry_failed, allow_large=args.allow_large)
     except SweepInterrupted as exc:
         print(f"\n{exc}", file=sys.stderr)
         return 130

@@ -39,6 +39,8 @@ class TqdmProgress(NoProgress):
         from tqdm import tqdm
         stream = stream or sys.stderr
         tty = hasattr(stream, "isatty") and stream.isatty()
+        if not tty:
+            stream = _Lines(stream)      # a log gets one line per redraw, not one long line
         self.bar = tqdm(total=total, initial=done, file=stream, unit="point",
                         desc="sweep", dynamic_ncols=tty, ncols=None if tty else 100,
                         mininterval=0.1 if tty else LOG_INTERVAL, smoothing=0.1)
@@ -52,6 +54,21 @@ class TqdmProgress(NoProgress):
 
     def close(self) -> None:
         self.bar.close()
+
+
+class _Lines:
+    """A stream for tqdm off a terminal: its carriage returns become new lines."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, text: str) -> None:
+        text = text.replace("\r", "\n")
+        if text.strip():
+            self.stream.write(text.lstrip("\n") + ("" if text.endswith("\n") else "\n"))
+
+    def flush(self) -> None:
+        self.stream.flush()
 
 
 def make_progress(total: int, done: int, enabled: bool | None):
