@@ -1,5 +1,6 @@
-"""Invariant circles of maps (washer.cont.invariant_circle) on a map whose circle, rotation
-number and normal multipliers are known in closed form.
+"""Invariant circles of maps (washer.cont.invariant_circle, continued by the engine as
+washer.cont.systems.circles) on a map whose circle, rotation number and normal multipliers
+are known in closed form.
 
 The map is designed with sympy: the Neimark-Sacker normal form in the plane,
 z' = e^{2 pi i (rho0 + b |z|^2)} z (1 + mu - |z|^2) (z = x + i y), has the invariant circle
@@ -18,6 +19,9 @@ import pytest
 import sympy as sp
 
 from washer.cont import invariant_circle as ic
+from washer.cont.sinks import FileSink
+from washer.auto.files import read_b, read_s
+from washer.cont.systems import circles as cs
 
 RHO0, B, KAPPA, EPS, A, C = 0.3, 0.5, 0.5, 0.4, 0.6, 0.3
 
@@ -72,8 +76,8 @@ def birth(fmap, N, amplitude):
     _, DF, _ = fmap(np.zeros((1, 3)), 0.0)
     lam, V = np.linalg.eig(DF[0])
     i = int(np.argmax(lam.imag))
-    return ic.circle_at_amplitude(fmap, np.zeros(3), V[:, i], np.angle(lam[i]) / (2 * np.pi),
-                                  0.0, amplitude, N)
+    return cs.first_circle(fmap, np.zeros(3), V[:, i], np.angle(lam[i]) / (2 * np.pi), 0.0,
+                           amplitude, N)
 
 
 def test_shift_matrix_is_exact_on_trigonometric_polynomials():
@@ -110,15 +114,17 @@ def test_continued_family_follows_the_closed_form(fmap):
     solve the linearised equation), so the collocation is singular there; on the way the
     family passes rationals harmlessly, e.g. 1/3 near mu = 0.067.)"""
     c0 = birth(fmap, 31, 0.05)
-    br = ic.continue_circle(fmap, c0, 0.18, ds=0.02, ds_max=0.05)
-    assert br.status == "reached"
-    assert br.p[-1] == pytest.approx(0.18, abs=1e-12)
-    assert len(br.circles) >= 4
-    for c in br.circles:
+    br = cs.continue_circles(fmap, c0, 0.18, ds=0.02, ds_max=0.05)
+    assert cs.reached(br)
+    circles = cs.circles(br)
+    p = np.array([c.p for c in circles])
+    assert p[-1] == pytest.approx(0.18, abs=1e-12)
+    assert len(circles) >= 4
+    for c in circles:
         assert exact_error(c) < 1e-8, c.p
         assert c.rho == pytest.approx(RHO0 + B * c.p, abs=1e-10)
         assert c.moduli == pytest.approx(sorted([KAPPA, 1 - 2 * c.p], reverse=True), abs=1e-6)
-    assert np.all(np.diff(br.p) > 0)
+    assert np.all(np.diff(p) > 0)
 
 
 def test_too_few_modes_are_visible_in_the_error_and_the_spectrum(fmap):
@@ -127,6 +133,28 @@ def test_too_few_modes_are_visible_in_the_error_and_the_spectrum(fmap):
     c_fine = birth(fmap, 31, 0.3)
     X = ic.resample(c_fine.X, 7)
     assert ic.amplitudes(c_fine.X)[3] > 1e-6          # mode 3 is present, so K = 3 truncates
-    br = ic.continue_circle(fmap, ic.Circle(X, c_fine.rho, c_fine.p), c_fine.p + 1e-3,
-                            ds=0.01, max_points=3)
-    assert exact_error(br.circles[-1]) > 1e3 * exact_error(c_fine)
+    br = cs.continue_circles(fmap, ic.Circle(X, c_fine.rho, c_fine.p), c_fine.p + 1e-3,
+                             ds=0.01, max_points=3)
+    assert exact_error(cs.circles(br)[-1]) > 1e3 * exact_error(c_fine)
+
+
+def test_circle_run_writes_auto_files(fmap, tmp_path):
+    """The family as an engine run through the file sink: b-rows with the circle's curve
+    type (EP 99 at the start, UZ -94 at the end value), the columns AMPLITUDE, ROTATION,
+    MU_MAX of each circle, and s-records holding the closed profile (N + 1 points, the last
+    the first) that read back to the circle."""
+    c0 = birth(fmap, 15, 0.1)
+    br = cs.continue_circles(fmap, c0, c0.p + 0.02, ds=0.01, ds_max=0.02,
+                             sinks=[FileSink(tmp_path, "circ")])
+    rows = read_b(tmp_path / "b.circ")[0]
+    assert [r.ty for r in rows if r.lab] == [99, -94]
+    assert len(rows) == len(br.rows)
+    last = cs.circles(br)[-1]
+    assert rows[-1].values[0] == pytest.approx(c0.p + 0.02, abs=1e-9)
+    assert rows[-1].values[2] == pytest.approx(last.rho, rel=1e-9)
+    assert rows[-1].values[3] == pytest.approx(last.moduli.max(), rel=1e-9)
+    rec = read_s(tmp_path / "s.circ")[-1]
+    U = np.asarray(rec.u)
+    assert U.shape == (16, 3)
+    assert np.abs(U[-1] - U[0]).max() < 1e-9
+    assert np.abs(U[:-1] - last.X).max() < 1e-9 * (1 + np.abs(last.X).max())

@@ -19,8 +19,9 @@ the interpolant shifted, R(s) X with the real N x N matrix
 Equation (1) fixes x only up to a shift of theta; a phase condition removes it:
 sum_j <X'_ref,j, X_j - X_ref,j> = 0 with X_ref the previous circle and X'_ref its
 derivative in theta (orthogonal to the shifts of the reference). With the parameter p
-that makes N n + 1 equations in the N n + 2 unknowns z = (X, rho, p): a curve,
-continued by pseudo-arclength (`continue_circle`).
+that makes N n + 1 equations in the N n + 2 unknowns z = (X, rho, p): a curve, which the
+continuation engine follows (`washer.cont.systems.circles`: the family born at a
+Neimark-Sacker point, pseudo-arclength, its records).
 
 Stability (Jorba 2001): a perturbation v(theta) of the circle is carried by DF to
 DF(x(theta)) v(theta) at the image point theta + 2 pi rho, so the normal behaviour is
@@ -44,15 +45,10 @@ the map stands for (the washer's stroboscopic map is `washer.problems.torus`).
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-#: Newton stops when max|G| <= NEWTON_TOL * (1 + max|X|). The map is evaluated with an
-#: error of ~1e-10 (the washer's flow at rtol 1e-10); asking less would chase noise.
-NEWTON_TOL = 1e-9
-NEWTON_MAX_ITER = 10
 #: Eigenvectors whose energy in Fourier modes |k| <= K/LOW_FRACTION is at least LOW_ENERGY
 #: of the total count as resolved when the normal moduli are read (Jorba's filter): the
 #: high modes of a degree-K interpolant are not. (An eigenvalue of a circle shared by two
@@ -62,10 +58,6 @@ LOW_ENERGY = 0.4
 #: Moduli of one circle of eigenvalues agree to the eigensolver's accuracy (~1e-10 for the
 #: resolved ones); logs closer than this are one group.
 GROUP_TOL = 1e-8
-
-
-class CircleError(RuntimeError):
-    """Newton on the invariance equation did not converge."""
 
 
 # ------------------------------------------------------------------ trigonometric interpolation
@@ -219,172 +211,3 @@ def normal_moduli(X, rho: float, DF) -> tuple[np.ndarray, float, np.ndarray]:
     moduli = [np.exp(np.median(g)) for g in groups
               if not np.any(np.abs(g - logm[i_tan]) <= GROUP_TOL)]
     return np.array(sorted(moduli, reverse=True)), tangent, lam
-
-
-def newton(eq: InvarianceEquation, z0, extra=None, tol: float = NEWTON_TOL,
-           max_iter: int = NEWTON_MAX_ITER):
-    """Newton on [G(z); extra(z)] = 0 (N n + 2 equations: extra(z) -> (value, gradient
-    (N n + 2,)) is the arclength or amplitude condition). Returns (z, DF at z, residual,
-    iterations); raises CircleError."""
-    z = np.array(z0, dtype=float)
-    res = np.inf
-    for it in range(max_iter + 1):
-        G, J, DF = eq.residual_jacobian(z)
-        e, de = extra(z)
-        res = float(max(np.abs(G).max(), abs(e)))
-        X = z[:eq.N * eq.n]
-        if res <= tol * (1.0 + np.abs(X).max()) and it > 0:
-            return z, DF, res, it
-        if it == max_iter or not np.isfinite(res):
-            break
-        dz = np.linalg.solve(np.vstack([J, de]), -np.r_[G, e])
-        z = z + dz
-    raise CircleError(f"invariant circle: no convergence in {max_iter} Newton iterations "
-                      f"(residual {res:.3e})")
-
-
-# ------------------------------------------------------------------ continuation
-
-@dataclass
-class CircleBranch:
-    """A continued family of invariant circles, in the order computed: circles (list of
-    Circle), p (m,), rho (m,), amplitude (m,) = the Fourier-mode-1 amplitude of the circle
-    (2-norm over components: its radius for a round circle), leading (m,): the largest
-    normal modulus, stable (m,), status."""
-    circles: list
-    status: str
-    wall: float
-
-    @property
-    def p(self) -> np.ndarray:
-        return np.array([c.p for c in self.circles])
-
-    @property
-    def rho(self) -> np.ndarray:
-        return np.array([c.rho for c in self.circles])
-
-    @property
-    def amplitude(self) -> np.ndarray:
-        return np.array([amplitudes(c.X)[1] for c in self.circles])
-
-    @property
-    def leading(self) -> np.ndarray:
-        """The largest normal modulus of each circle (m,): < 1 where it attracts."""
-        return np.array([c.moduli.max() if c.moduli.size else np.nan for c in self.circles])
-
-    @property
-    def stable(self) -> np.ndarray:
-        return np.array([c.stable for c in self.circles])
-
-
-def _weights(N: int, n: int, scale) -> np.ndarray:
-    """Inner-product weights of z = (X, rho, p): node values averaged over the circle
-    (1/N each, per-component scales), rho and p as they are."""
-    return np.r_[np.tile(1.0 / np.asarray(scale, dtype=float) ** 2, N) / N, 1.0, 1.0]
-
-
-def circle_at_amplitude(fmap, x_star, v, rho0: float, p0: float, amplitude: float,
-                        N: int, dp_guess: float = 0.0, tol: float = NEWTON_TOL) -> Circle:
-    """The first circle of a family born at a Neimark-Sacker point: the fixed point x_star
-    (n,) at p0 with critical eigenvector v (n,) complex (DF v = mu v, arg mu = 2 pi rho0).
-    Newton from x_star + amplitude Re(v e^{i theta}) (v scaled to |Re v|, |Im v| of unit
-    largest component) with rho and p free and the circle's mode-1 content along v fixed
-    at `amplitude` (the family's size, not the parameter, is the coordinate near the birth:
-    the parameter moves like amplitude^2 there). dp_guess: p - p0 of the starting guess."""
-    x_star = np.asarray(x_star, dtype=float)
-    n = x_star.size
-    v = np.asarray(v, dtype=complex)
-    v = v / np.abs(v).max()
-    th = nodes(N)
-    X0 = x_star + amplitude * np.real(np.exp(1j * th)[:, None] * v[None, :])
-    eq = InvarianceEquation(fmap, N, n, X0)
-    # Mode-1 projection on the birth direction: (2/N) sum_j Re(conj(v e^{i th_j})) . (X_j - x*) / |v|^2.
-    basis = np.real(np.exp(1j * th)[:, None] * v[None, :])
-    g = np.r_[basis.ravel() / np.sum(basis * basis), 0.0, 0.0]
-    ref = np.r_[np.tile(x_star, N), 0.0, 0.0]
-
-    def extra(z):
-        return float(g @ (z - ref)) - amplitude, g
-
-    z, DF, res, it = newton(eq, np.r_[X0.ravel(), rho0, p0 + dp_guess], extra, tol)
-    X, rho, p = eq.split(z)
-    moduli, tangent, _ = normal_moduli(X, rho, DF)
-    return Circle(X, rho, p, res, moduli, tangent, it)
-
-
-def continue_circle(fmap, first: Circle, stop: float, *, second: Circle | None = None,
-                    ds: float = 0.05, ds_max: float = 0.5, ds_min: float = 1e-4,
-                    max_points: int = 200, scale=None, tol: float = NEWTON_TOL,
-                    progress=None) -> CircleBranch:
-    """Continue the invariant circles of fmap from `first` (and `second`, a nearby circle of
-    the same family fixing the direction; default: the direction in which p moves towards
-    `stop`) until p reaches `stop`, by pseudo-arclength in z = (X, rho, p) with the weighted
-    inner product of `_weights` (scale (n,): typical size of each component; default 1).
-
-    Secant predictor; corrector: Newton on [G; <z - z_pred, secant>] with the phase
-    condition's reference moved to the last circle; steps halve on failure down to ds_min
-    and grow 1.5x after an easy success (<= 3 iterations) up to ds_max; fmap may raise
-    ValueError or RuntimeError where it is not defined (a parameter out of range): that
-    step is halved too. The last point is
-    put exactly on p = stop (a Newton with p fixed). Normal moduli at every circle.
-    progress(circle) is called after each one."""
-    t0 = time.perf_counter()
-    N, n = first.X.shape
-    w = _weights(N, n, np.ones(n) if scale is None else scale)
-    eq = InvarianceEquation(fmap, N, n, first.X)
-
-    def zof(c):
-        return np.r_[c.X.ravel(), c.rho, c.p]
-
-    circles = [first]
-    if second is None:
-        # Direction: the null vector of dG/dz at the first circle, p moving towards stop.
-        _, J, _ = eq.residual_jacobian(zof(first))
-        t = np.linalg.svd(J)[2][-1]
-        if t[-1] * (stop - first.p) < 0:
-            t = -t
-    else:
-        circles.append(second)
-        t = zof(second) - zof(first)
-    t = t / np.sqrt(t @ (w * t))
-    h = ds
-    status = "max_points"
-    direction = np.sign(stop - first.p) or 1.0
-    while len(circles) < max_points:
-        z = zof(circles[-1])
-        zp = z + h * t
-        eq.set_reference(circles[-1].X)
-        last = (zp[-1] - stop) * direction >= 0
-        if last:        # the step would pass the end: predict onto p = stop, keep p there
-            zp = z + (stop - z[-1]) / t[-1] * t
-            e_p = np.zeros(zp.size)
-            e_p[-1] = 1.0
-
-            def extra(zz):
-                return zz[-1] - stop, e_p
-        else:
-            def extra(zz, zp=zp):
-                return float((w * t) @ (zz - zp)), w * t
-        try:
-            zn, DF, res, it = newton(eq, zp, extra, tol)
-        except (CircleError, np.linalg.LinAlgError, ArithmeticError, RuntimeError, ValueError):
-            h /= 2      # no convergence, or a Newton iterate outside fmap's domain
-            if h < ds_min:
-                status = "step too small"
-                break
-            continue
-        X, rho, p = eq.split(zn)
-        if last:
-            status = "reached"
-        moduli, tangent, _ = normal_moduli(X, rho, DF)
-        c = Circle(X, rho, p, res, moduli, tangent, it)
-        circles.append(c)
-        if progress is not None:
-            progress(c)
-        if status == "reached":
-            break
-        sec = zn - z
-        t = sec / np.sqrt(sec @ (w * sec))
-        if it <= 3:
-            h = min(ds_max, 1.5 * h)
-    return CircleBranch(circles, status, time.perf_counter() - t0)

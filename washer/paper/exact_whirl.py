@@ -91,12 +91,13 @@ def compute(params, averaged=None, quick: bool = False, progress=print) -> dict:
     t_sim = T_SIM_QUICK if quick else T_SIM
     out["simulations"] = []
     for target in (SIM_AT_QUICK if quick else SIM_AT):
-        c = w.branch.circles[int(np.argmin(np.abs(w.value - target)))]
+        c = w.circles[int(np.argmin(np.abs(w.value - target)))]
         progress(f"  exact whirl: {t_sim:g} s simulation of eq 48 at C_p = {c.p:.4f} "
                  "beside the circle")
         xi0 = c(np.array([0.3]))[0]
         xi0 = xi0 + START_OFFSET * (xi0 - np.r_[0, 0, xi0[2], 0, 0, xi0[5], np.zeros(6)])
-        sim = torus.against_simulation(params.replace(C_p=c.p), c, xi0, t_sim, WINDOW)
+        sim = torus.against_simulation(torus.params_at(params, "C_p", c.p), c, xi0, t_sim,
+                                       WINDOW)
         k = int(np.argmin(np.abs(w.value - c.p)))
         sim.update(C_p=c.p, r_mean_circle=float(w.r_mean[k]), f_circle=float(w.f_whirl[k]))
         out["simulations"].append(sim)
@@ -132,9 +133,10 @@ def markdown(res: dict, figure: str) -> str:
         "(the spin and the whirl): an invariant circle of the stroboscopic map over half a "
         "forcing period in the rotating frame. It is computed without averaging "
         "(`washer.problems.torus`: Fourier collocation in the circle's angle, "
-        f"{w.branch.circles[0].N} nodes, the map and its Jacobian from the kernel's variational "
-        f"flow), born at the TR point C_p = {w.birth.value:.6f} and continued to C_p = 0 "
-        f"({len(w.value)} circles, {res['wall_family']:.0f} s, status {w.branch.status}). "
+        f"{w.circles[0].N} nodes, the map and its Jacobian from the kernel's variational "
+        f"flow), born at the TR point C_p = {w.birth.value:.6f} and continued by the "
+        f"continuation engine to C_p = 0 ({len(w.value)} circles, "
+        f"{res['wall_family']:.0f} s, {'end value reached' if w.reached else w.branch.status}). "
         f"Fourier tail (last mode over the first) at C_p = 0: {w.tail[i0]:.1e}.",
         "",
         "| at C_p = 0 | mean r (mm) | r range (mm) | eps3 (mm) | max tilt (deg) | whirl (Hz) |",

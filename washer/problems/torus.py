@@ -8,8 +8,9 @@ over T/2 in rotating coordinates,
 
     P: xi(0) -> xi(T/2),        xi = (eps, eps_dot) (12,) of eq 52,
 
-is an invariant circle, computed here by `washer.cont.invariant_circle` (Fourier
-collocation in the circle's angle) with P and its Jacobian from one kernel call per node
+is an invariant circle, continued by the engine as `washer.cont.systems.circles` (Fourier
+collocation in the circle's angle, `washer.cont.invariant_circle`) with P and its Jacobian
+from one kernel call per node
 (`kernel.flow_variational`: DOPRI5 on the flow and its variational equations, plus the
 derivative in the continued parameter):
 
@@ -38,10 +39,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from washer.machine import forced, kernel
+from washer.machine import forced, kernel, layout
 from washer.machine.layout import PAR_INDEX
 from washer.problems import forced as shooting
 from washer.cont import invariant_circle as ic
+from washer.cont.branch import Branch
+from washer.cont.systems import circles as engine_circles
 from washer.machine.params import Params
 
 TWO_PI = 2.0 * np.pi
@@ -76,17 +79,22 @@ def frame_matrix(Omega: float, t: float) -> np.ndarray:
 def half_period_map(params: Params, name: str = "C_p"):
     """fmap(X (m, 12), p) -> (P(X) (m, 12), DP (m, 12, 12), dP/dp (m, 12)): the stroboscopic
     map over T/2 in rotating coordinates at `params` with parameter `name` = p (any of
-    `forced.PARAMETERS` but Omega, which sets the map's period)."""
+    `forced.PARAMETERS` but Omega, which sets the map's period). p moves the kernel
+    parameters `layout.moved_by` it (C_p its tied dampers) unchecked: the map is defined
+    on both sides of a physical bound (the continuation's trial points locate an end value
+    C_p = 0 from both sides)."""
     if name == "Omega":
         raise ValueError("half_period_map: Omega sets the map's period; continue in another "
                          "parameter")
     Om = params["Omega"]
     T2 = 0.5 / Om
     G0, G1inv = frame_matrix(Om, 0.0), np.linalg.inv(frame_matrix(Om, T2))
+    P0, d = params.vector(), forced.direction_of(params.tied, name)
+    moved = [layout.INDEX[c] for c in layout.moved_by(name, params.tied)]
 
     def fmap(X, p):
-        q = params.replace(**{name: float(p)})
-        P, d = q.vector(), forced.direction_of(q.tied, name)
+        P = P0.copy()
+        P[moved] = float(p)
         X = np.atleast_2d(X)
         F, DF, Fp = np.empty_like(X), np.empty((X.shape[0], 12, 12)), np.empty_like(X)
         for j, xi in enumerate(X):
@@ -151,8 +159,9 @@ def birth(params: Params, name: str = "C_p", bracket=None) -> Birth:
 class ExactWhirl:
     """The continued family of invariant circles, and what it means for the machine.
 
-    branch: the `CircleBranch`; birth: the `Birth`; name: the parameter. Per circle (arrays
-    in the order continued): value (parameter), rho, f_whirl (Hz, ground frame), mu_max
+    branch: the engine's `Branch` of the run (b-rows, status); circles: its circles
+    (`invariant_circle.Circle`, in the order continued); birth: the `Birth`; name: the
+    parameter. Per circle (arrays): value (parameter), rho, f_whirl (Hz, ground frame), mu_max
     (the largest normal multiplier modulus per T/2), stable; r_min/r_mean/r_max (m: the tub's
     distance from the axis sqrt(eps1^2 + eps2^2) over the torus), z_min/z_max (m: eps3),
     tilt_max (rad: the tub axis' angle from vertical), tail (the last Fourier amplitude over
@@ -161,7 +170,8 @@ class ExactWhirl:
     about its centre, which the imbalance puts off the axis)."""
     name: str
     birth: Birth
-    branch: ic.CircleBranch
+    branch: Branch
+    circles: list
     params: Params
     r_min: np.ndarray
     r_mean: np.ndarray
@@ -174,11 +184,16 @@ class ExactWhirl:
 
     @property
     def value(self) -> np.ndarray:
-        return self.branch.p
+        return np.array([c.p for c in self.circles])
 
     @property
     def rho(self) -> np.ndarray:
-        return self.branch.rho
+        return np.array([c.rho for c in self.circles])
+
+    @property
+    def reached(self) -> bool:
+        """Whether the family reached its end value (the run's last point is its UZ)."""
+        return engine_circles.reached(self.branch)
 
     @property
     def f_whirl(self) -> np.ndarray:
@@ -187,11 +202,11 @@ class ExactWhirl:
     @property
     def mu_max(self) -> np.ndarray:
         """The largest normal multiplier modulus per T/2 of each circle."""
-        return self.branch.leading
+        return np.array([c.moduli.max() if c.moduli.size else np.nan for c in self.circles])
 
     @property
     def stable(self) -> np.ndarray:
-        return self.branch.stable
+        return np.array([c.stable for c in self.circles])
 
 
 def torus_points(params: Params, circle: ic.Circle, n_theta: int = 64, n_t: int = 8):
@@ -216,11 +231,25 @@ def tilt(eps) -> np.ndarray:
     return np.arccos(np.clip(np.cos(eps[:, 3]) * np.cos(eps[:, 4]), -1.0, 1.0))
 
 
-def measure(params: Params, name: str, b: Birth, br: ic.CircleBranch) -> ExactWhirl:
-    """The machine's quantities along the family (`ExactWhirl`)."""
+def params_at(params: Params, name: str, value: float) -> Params:
+    """`params` with `name` = value, where a value on the wrong side of a parameter's bound
+    (C_p >= 0) by no more than the rounding of a located end value (the engine's
+    UZ_ROUNDING: the run locates C_p = 0 from both sides) is the bound itself."""
+    from washer.cont.iterator import UZ_ROUNDING
+    try:
+        return params.replace(**{name: value})
+    except ValueError:
+        if abs(value) > UZ_ROUNDING:
+            raise
+        return params.replace(**{name: 0.0})
+
+
+def measure(params: Params, name: str, b: Birth, br: Branch) -> ExactWhirl:
+    """The machine's quantities along the family (`ExactWhirl`) of the engine's run br."""
     rows = []
-    for c in br.circles:
-        q = params.replace(**{name: c.p})
+    found = engine_circles.circles(br)
+    for c in found:
+        q = params_at(params, name, c.p)
         Y = torus_points(q, c, n_theta=48, n_t=6)
         r = np.hypot(Y[:, 0], Y[:, 1])
         amp = ic.amplitudes(c.X / scale(q["Omega"]))
@@ -229,29 +258,33 @@ def measure(params: Params, name: str, b: Birth, br: ic.CircleBranch) -> ExactWh
         rows.append((r.min(), r.mean(), r.max(), Y[:, 2].min(), Y[:, 2].max(),
                      tilt(Y).max(), amp[-1] / amp[1], abs(c1)))
     cols = [np.array(x) for x in zip(*rows)]
-    return ExactWhirl(name, b, br, params, *cols)
+    return ExactWhirl(name, b, br, found, params, *cols)
 
 
 def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int = N_NODES,
                 ds: float = 0.02, ds_max: float = DS_MAX, max_points: int = 80,
-                progress=None) -> ExactWhirl:
+                sinks=()) -> ExactWhirl:
     """The invariant circles of the T/2 map from the TR point in `name` (default C_p) to
     `name` = stop, with rotation numbers and normal multipliers (`ExactWhirl`).
 
     The first circle has radius FIRST_AMPLITUDE (m) along the critical eigenvector (its
     parameter found by Newton: near the birth the amplitude, not the parameter, is the
-    coordinate); then pseudo-arclength (`invariant_circle.continue_circle`, inner product
-    `scale`). progress(circle) after each circle."""
+    coordinate); then the engine's run (`washer.cont.systems.circles.continue_circles`:
+    pseudo-arclength in the inner product of `scale`, UZSTOP at `stop`, PAR as e='washer'
+    numbers them) through `sinks` (b-/s-/d-files, the screen: washer.cont.sinks)."""
     b = birth(params, name)
     fmap = half_period_map(params, name)
-    # circle_at_amplitude scales v to a unit largest component: ask for the amplitude that
-    # makes the (eps1, eps2) offset FIRST_AMPLITUDE.
+    # first_circle scales v to a unit largest component: ask for the amplitude that makes
+    # the (eps1, eps2) offset FIRST_AMPLITUDE.
     a = FIRST_AMPLITUDE * np.abs(b.v).max() / np.abs(b.v[:2]).max()
-    first = ic.circle_at_amplitude(fmap, b.xi, b.v, b.rho, b.value, a, N)
-    if progress is not None:
-        progress(first)
-    br = ic.continue_circle(fmap, first, stop, ds=ds, ds_max=ds_max, max_points=max_points,
-                            scale=scale(params["Omega"]), progress=progress)
+    first = engine_circles.first_circle(fmap, b.xi, b.v, b.rho, b.value, a, N)
+    par = np.zeros(max(layout.PAR_NAMES) + 1)
+    for i, n in layout.PAR_NAMES.items():
+        par[i - 1] = params[n]
+    br = engine_circles.continue_circles(
+        fmap, first, stop, index=PAR_INDEX[name], par=par, ds=ds, ds_max=ds_max,
+        max_points=max_points, scale=scale(params["Omega"]), sinks=sinks,
+        name=f"washer circles in {name}")
     return measure(params, name, b, br)
 
 
