@@ -158,3 +158,26 @@ def test_circle_run_writes_auto_files(fmap, tmp_path):
     assert U.shape == (16, 3)
     assert np.abs(U[-1] - U[0]).max() < 1e-9
     assert np.abs(U[:-1] - last.X).max() < 1e-9 * (1 + np.abs(last.X).max())
+
+
+def test_circle_system_honours_the_engine_contract(fmap):
+    """InvariantCircles has every method of the ContinuedSystem Protocol, and its Jacobian
+    (invariance equation, phase condition, d/d rho, d/dp) is the derivative of its residual
+    (central differences, step 1e-6: truncation ~1e-12, rounding ~1e-10)."""
+    from washer.cont.settings import Settings
+    from washer.cont.system import ContinuedSystem
+    c0 = birth(fmap, 9, 0.1)
+    sysm = cs.InvariantCircles(fmap, c0, Settings.from_constants(
+        cs.constants(1, 0.2, 3, ds=0.01, ds_max=0.1, ds_min=1e-6, max_points=5)))
+    for m in ContinuedSystem.__dict__:
+        if callable(getattr(ContinuedSystem, m)) and not m.startswith("_"):
+            assert callable(getattr(sysm, m, None)), m
+    x0, t0 = sysm.start()
+    x = x0 + 0.01 * np.sin(np.arange(len(x0)))
+    J = sysm.jacobian(x)
+    h = 1e-6
+    fd = np.array([(sysm.residual(x + h * e) - sysm.residual(x - h * e)) / (2 * h)
+                   for e in np.eye(len(x))]).T
+    assert np.abs(fd - J).max() < 1e-7 * np.abs(J).max()
+    assert np.abs(sysm.jacobian(x0) @ t0).max() < 1e-10      # the start's tangent is a null vector
+    assert sysm.inner(t0, t0) == pytest.approx(1.0) and t0[-1] > 0   # towards the UZSTOP value

@@ -11,6 +11,8 @@ bvp          the collocation base of periodic orbits and their loci (registers n
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching
 maps         fixed points of maps (IPS = -1; FNDS), PD switching, fold/PD/NS loci
 timeint      time integration by implicit Euler steps (IPS = -2; FNTI)
+circles      invariant circles of maps (Fourier collocation), born at a Neimark-Sacker point;
+             constructed by its run (continue_circles), not from AUTO constants
 _algebraic, _loci  the bases of the algebraic systems
 """
 import importlib
