@@ -11,8 +11,9 @@ User problems live in NAME.py beside the constants file (e='NAME'):
     def dfdu(u, par): ...         # optional (used when JAC = 1 or -1), (NDIM, NDIM)
     def dfdp(u, par): ...         # optional (used when JAC = 1), (NDIM, NPAR)
     def pvls(u, par): ...         # optional, AUTO's PVLS: set PAR entries in place
-                                  # from the solution u ((NDIM,) for equilibria,
-                                  # (NTPL, NDIM) mesh values for periodic orbits)
+                                  # from the solution u ((NDIM,) for equilibria; for
+                                  # BVPs and periodic orbits a washer.cont.pvls.Orbit:
+                                  # (NTPL, NDIM) mesh values with GETP's helpers)
     def bcnd(u0, u1, par): ...    # boundary value problems (IPS = 4), AUTO's BCND:
                                   # the NBC boundary conditions (the first NBC of
                                   # what it returns, as AUTO's FB(1..NBC)), from
