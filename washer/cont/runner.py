@@ -146,8 +146,9 @@ class _Executor:
 
     def _stops(self, base: int, name: str, key) -> bool:
         s = self.s
-        if base == Code.UZ:
-            return bool(s.UZR[key[1]][2])
+        if base == Code.UZ and s.UZR[key[1]][2]:
+            return True                       # UZSTOP (or a negative UZR index)
+        # STOP counts apply to UZ too (AUTO's STOPPED: fnc's STOP=['UZ1'], ['UZ3'])
         if base == Code.LP and s.ILP < 0:
             return True
         if base in (Code.BP, Code.HB, Code.PD, Code.TR) and s.ISP < 0:
