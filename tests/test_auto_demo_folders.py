@@ -27,8 +27,6 @@ EXPECTED_FAIL = {
     "lcbp": BP_LOCI,
     "sspg": BP_LOCI,
     "tfc": BP_LOCI,
-    "brf": "the periodic branch reaches NMX = 120 at PAR(5) = 1.81, before AUTO's two TR "
-           "points and UZ (step-size history)",
     "fnc": "the BVPs of the slow manifolds stop with no convergence",
     "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",

@@ -129,7 +129,7 @@ def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
 
 
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
-           from_last: bool = False, position=None, recount: bool = False):
+           from_last: bool = False, position=None):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
@@ -143,12 +143,6 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     coordinate; with from_last the steps from the trial points do not end exactly at the
     s asked for, and q must stay a function of one coordinate for the secant, Muller
     and the bracket to make sense.
-    recount: with the trials from the previous point (from_last False), count the Newton
-    iterations AUTO's step control would see with one more step, from the trial before
-    the last to the located s (its result is discarded): branch points are located from
-    the previous point, since their test value depends on the tangent and a step from a
-    nearby trial point moves it (lcbp's BP of cycles came out 3e-4 off that way, 1.2e-7
-    from the previous point).
     Returns (point, s) or raises LocationFailed.
 
     AUTO stops as soon as a correction of s is below the tolerance; a
@@ -168,7 +162,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
-    best = last = before_last = auto_nit = None
+    best = last = auto_nit = None
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
         try:
@@ -196,7 +190,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             if side == 1:
                 qlo /= 2
             side = 1
-        before_last, last = last, (pt, s_new, q)
+        last = (pt, s_new, q)
         converged = abs(s_new - s_last) < tol
         if converged:
             best = (pt, s_new, q)
@@ -219,11 +213,6 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
-    if recount and before_last is not None and hasattr(pt, "iterations"):
-        try:
-            auto_nit = trial(s_best, (before_last[0], before_last[1]))[0].iterations
-        except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError):
-            pass
     if auto_nit is not None and hasattr(pt, "iterations"):
         # The step control after a located point counts the Newton iterations of the
         # trial AUTO ends its location with (the further trials that narrow the
@@ -266,9 +255,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base), key,
                               prev.tests[key], target.tests[key], span, settings,
-                              from_last=secant and key not in (Code.BP, Code.BPC),
-                              position=lambda p: inner(p.x - prev.x, prev.tangent),
-                              recount=secant and key in (Code.BP, Code.BPC))
+                              from_last=secant,
+                              position=lambda p: inner(p.x - prev.x, prev.tangent))
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other

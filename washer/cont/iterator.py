@@ -375,7 +375,13 @@ class Continuation:
             p0, s0 = base
             ds = s_ - s0
             x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
-            pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
+            if key in (Code.BP, Code.BPC):
+                # A branch point's test is a determinant of the Jacobian bordered by a
+                # direction: the same one, prev's tangent, at every trial, so that its
+                # values along the location are one function.
+                pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it)
+            else:
+                pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
         else:
             pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)
