@@ -232,3 +232,24 @@ def test_rotations_have_the_exact_period(tmp_path):
         u = np.asarray(r.u)
         assert u[-1, 0] - u[0, 0] == pytest.approx(2 * math.pi, abs=1e-12)
         assert np.max(np.abs(u[:, 1] - (1 + a * np.sin(u[:, 0])))) < 1e-5
+
+
+def test_general_bvp_starts_from_data(tmp_path):
+    """dat='NAME' for IPS = 4 too (AUTO's STPNUB is the same for every BVP): AUTO's bvp
+    demo from a data file of its trivial solution (u = 0 on t in [0, 1], 11 rows) finds
+    the same points as from stpnt: the branch points p1 = 1, 2, ... of u1'' = -(p1 pi)^2
+    u1 + u1^2 (exact: the eigenvalues of the linearisation)."""
+    d = tmp_path
+    for f in (DATA / "bvp" / "bvp").iterdir():
+        if f.is_file():
+            shutil.copy(f, d)
+    (d / "zero.dat").write_text("".join(f"{t:.3f} 0.0 0.0\n" for t in np.linspace(0, 1, 11)))
+    plain = run(d / "c.bvp", verbose=False, e="bvp", sv="plain")
+    data = run(d / "c.bvp", verbose=False, e="bvp", dat="zero", sv="data")
+    assert plain.status == data.status == "ok"
+    got = [(r.ty, round(r.values[0], 6)) for r in data.rows if r.lab]
+    assert got == [(r.ty, round(r.values[0], 6)) for r in plain.rows if r.lab]
+    bps = [v for t, v in got if t == "BP"]
+    assert len(bps) >= 3
+    for k, v in enumerate(bps, start=1):
+        assert v == pytest.approx(k, abs=located_tol(d / "c.bvp"))
