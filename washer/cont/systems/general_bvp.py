@@ -434,6 +434,21 @@ class BoundaryValueProblem(CollocationBVP):
                         udot=udot, rldot=rldot, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
                         ndim_user=self.ndm)
 
+    def bp_function(self, J, tangent) -> float:
+        """The BP test (FNBPBV's role): the determinant of the bordered Jacobian reduced
+        onto the boundary unknowns (the base's `reduce`), relative to its value at the
+        branch's first evaluation: a smooth function with the determinant's zeros and
+        sign. (Scaled by the reduced matrix's own norm, as for cycles, it underflows on
+        pcl's trivial branch, where the decoupled Floquet block makes it ~1e-300 long
+        before it changes sign at AUTO's BP, mu = -9.2836.)"""
+        Sc = self.reduce(J, self.weights * tangent)[0]
+        sign, logdet = np.linalg.slogdet(Sc)
+        if sign == 0 or not np.isfinite(logdet):
+            return 0.0
+        if getattr(self, "_bp_log0", None) is None:
+            self._bp_log0 = logdet
+        return float(sign * math.exp(min(max(logdet - self._bp_log0, -700.0), 700.0)))
+
     # ------------------------------------------------------------------ switching
     def directions(self, x, tangent, code) -> list:
         if int(code) != int(Code.BPC):
