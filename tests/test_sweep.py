@@ -2,6 +2,7 @@
 sweep's stability boundary against the continuation's Hopf curve."""
 from __future__ import annotations
 
+import hashlib
 import os
 import signal
 import subprocess
@@ -13,6 +14,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import washer
 from washer.sweep import SpecError, load_spec, parse_spec, run
 from washer.sweep.hopf import crossing_on_curve, hopf_curve
 from washer.sweep.plots import boundary_crossings
@@ -24,6 +26,21 @@ SMALL = ROOT / "examples" / "sweep_small.toml"
 DESIGN = ROOT / "examples" / "sweep_design.toml"
 #: Columns that legitimately differ between two runs of the same points.
 TIMING = ["elapsed_s"]
+
+
+def code_fingerprint() -> str:
+    """sha256 of the washer package on disk (sources, compiled modules, data: what a
+    process imports), file names included."""
+    root = Path(washer.__file__).parent
+    h = hashlib.sha256()
+    for f in sorted(root.rglob("*")):
+        if f.is_file() and "__pycache__" not in f.parts:
+            h.update(f.relative_to(root).as_posix().encode() + b"\0" + f.read_bytes())
+    return h.hexdigest()
+
+
+#: The package as this process imported it (washer is imported with the test modules).
+CODE_AT_IMPORT = code_fingerprint()
 
 
 @pytest.fixture(scope="module")
@@ -149,8 +166,21 @@ def test_small_sweep_serial_results(small_serial):
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
 @pytest.mark.slow
 def test_dask_results_identical_to_serial(small_serial, tmp_path):
+    """Bit for bit: a row is a function of its point's inputs alone, with no randomness
+    and no state carried between points (measured bit-identical with 1 or 2 BLAS
+    threads, in forward, reversed and interleaved point order, in batches of 1 to 4).
+    The serial rows come from the modules this process imported when the tests were
+    collected, the workers import washer from disk when the cluster starts: if the
+    package's files changed in between (merges into the checkout under a running suite),
+    the two tables are two versions of the code, whose HB locations differ in their
+    last bits with any change of the engine's step history; the test then says that
+    instead of comparing them."""
     out, serial = small_serial
     dask = run(SMALL, out=tmp_path, n_workers=2, plot=False)
+    if code_fingerprint() != CODE_AT_IMPORT:
+        pytest.fail(f"washer's files under {Path(washer.__file__).parent} changed while the "
+                    "tests ran: the Dask workers imported other code than the serial rows "
+                    "were computed with; run the suite on a checkout nobody updates meanwhile")
     a = serial.drop(columns=TIMING)
     b = dask.drop(columns=TIMING)
     pd.testing.assert_frame_equal(a, b, check_exact=True)
