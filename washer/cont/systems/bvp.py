@@ -245,8 +245,10 @@ class CollocationBVP:
             Wv = v[:self.coll.n_u].reshape(-1, self.n_comp)
             return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), v[-nt:]]
         out = [move(x)] + [move(v) for v in vectors]
-        self.U_old = col.interpolate(old, self.U_old, tm, old.ncol)
-        self.up_old = col.interpolate(old, self.up_old, tm, old.ncol)
+        # CONTBV after ADAPT: the phase reference's derivative is T f of the
+        # interpolated profile (STUPBV), not the interpolant of the old T f: where the
+        # mesh moves across a steep layer the two differ by the interpolation error.
+        self.set_phase_reference(col.interpolate(old, self.U_old, tm, old.ncol), self.par)
         self.set_mesh(col.Mesh(tm, old.ncol))
         self.mesh_changed()
         return tuple(out)
