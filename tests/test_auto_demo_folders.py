@@ -32,7 +32,6 @@ EXPECTED_FAIL = {
     "ops": "optimisation (IPS = 15) is not supported",
     "pcl": "a restart with a larger NDIM (the system extended through STPNT) is not in the "
            "engine",
-    "plp": "a locus of cycle folds does not restart from its own end point",
     "r3b": "the first run misses AUTO's third BP, so the script's UZ7 does not exist",
 }
 

@@ -195,11 +195,23 @@ class PeriodicOrbits(CollocationBVP):
         t0 = None
         if self.isw == -1:
             t0 = self._switch_direction(x0, old)
-        elif old is not None and list(getattr(rec, "icp", [])[:2]) == self.free:
+        elif old is not None and self._same_free(rec):
             nrm = math.sqrt(self.inner(old, old))          # STPNBV1: same free parameters
             t0 = old / nrm if nrm > 0 else None
         self._start = (x0, t0)
         self.start_kind = self.kind
+
+    def _same_free(self, rec) -> bool:
+        """STPNBV1's NODIR = 0: the record's free parameters are the run's, all of them
+        (NFPRS = NFPR and ICPRS = ICP) and its solution has the run's NDIM. A point of a
+        locus of cycles (free (ICP(1), 11, ICP(3), ...), profile (u, v)) restarted as an
+        orbit (ISW = 1) gets a computed direction: the locus's tangent moves the locus's
+        second parameter, which the orbit's run holds fixed (plp's isola from a point
+        of the fold locus of cycles)."""
+        icp = list(getattr(rec, "icp", []) or [])
+        nfpr = getattr(rec, "nfpr", 0) or len(icp)
+        width = np.shape(rec.U)[1] if np.ndim(rec.U) == 2 else self.ndim
+        return nfpr == len(self.free) and icp[:nfpr] == self.free and width == self.ndim
 
     def _switch_direction(self, x0, old):
         """ISW = -1 (STDRBV with IPERP = 1): the null vector of the Jacobian bordered by
