@@ -9,7 +9,7 @@ import pytest
 from washer.cont import collocation as col
 from washer.cont import floquet, reduction
 
-pytestmark = pytest.mark.skipif(not reduction.available(),
+needs_cont = pytest.mark.skipif(not reduction.available(),
                                 reason="washer._cont not built (python build.py cont)")
 
 
@@ -27,6 +27,7 @@ def random_system(rng, N, m, n, npar):
     return blocks, parcols, extra, M
 
 
+@needs_cont
 @pytest.mark.parametrize("N, m, n, npar", [(1, 1, 1, 0), (1, 3, 2, 2), (2, 1, 3, 1),
                                            (7, 4, 3, 2), (12, 3, 2, 4), (5, 2, 4, 0)])
 def test_solve_and_determinant_match_dense_lapack(N, m, n, npar):
@@ -45,6 +46,7 @@ def test_solve_and_determinant_match_dense_lapack(N, m, n, npar):
     assert l2 == pytest.approx(logdet, rel=1e-10, abs=1e-9)
 
 
+@needs_cont
 def test_floquet_pair_annihilates_the_collocation_null_space():
     rng = np.random.default_rng(3)
     N, m, n, npar = 9, 4, 3, 2
@@ -60,6 +62,7 @@ def test_floquet_pair_annihilates_the_collocation_null_space():
     assert np.linalg.matrix_rank(np.c_[P0, P1]) == n
 
 
+@needs_cont
 def test_collocation_jacobian_against_superlu_and_householder_floquet():
     """A Jacobian assembled by Collocation (a linear periodic system's blocks): the same
     Newton step as the sparse LU, the same determinant, the same multipliers as the
@@ -91,6 +94,7 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)
 
 
+@needs_cont
 @pytest.mark.parametrize("general_bc", [False, True])
 def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_bc):
     """Periodic boundary rows and general ones (B0 u(0) + B1 u(1) + Bp p, the loci of
@@ -113,3 +117,32 @@ def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_
     np.testing.assert_allclose(f.solve(rhs), ref.solve(rhs), rtol=1e-9, atol=1e-11)
     assert f.sign_logdet()[0] == ref.sign_logdet()[0]
     assert f.sign_logdet()[1] == pytest.approx(ref.sign_logdet()[1], rel=1e-11)
+
+
+@pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
+                                                    (True, 2, 1)])
+def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc, nbc, nint):
+    """reduction.onto_start (forward substitution over the intervals) against the Schur
+    complement formed with SuperLU on the assembled matrix; periodic and general
+    boundary conditions, NBC = NDIM or not (IPS = 4: NPAR = NBC + NINT - NDIM + 1)."""
+    import scipy.sparse.linalg as spla
+    rng = np.random.default_rng(8)
+    n, N, m = 3, 11, 4
+    npar = nbc + nint - n + 1
+    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc,
+                           nbc=nbc, npar=npar)
+    blocks = coll.local_blocks(0.9, rng.standard_normal((N, m, n, n)))
+    bc = (rng.standard_normal((nbc, n)), rng.standard_normal((nbc, n)),
+          rng.standard_normal((nbc, npar))) if general_bc else None
+    J = coll.jacobian_general(blocks, rng.standard_normal((npar, N, m, n)),
+                              rng.standard_normal((nint, coll.mesh.n_nodes, n)),
+                              rng.standard_normal((nint, npar)), bc_jac=bc)
+    border = rng.standard_normal(coll.n_x)
+    Sc, X = reduction.onto_start(coll, J, border)
+    M = coll.bordered(J, border).tocsc()
+    S = np.r_[np.arange(n), coll.n_u + np.arange(npar)]
+    I = np.arange(n, coll.n_u)
+    X_ref = spla.splu(M[:coll.n_coll][:, I].tocsc()).solve(M[:coll.n_coll][:, S].toarray())
+    Sc_ref = M[coll.n_coll:][:, S].toarray() - M[coll.n_coll:][:, I] @ X_ref
+    np.testing.assert_allclose(X, X_ref, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-12)

@@ -3,7 +3,9 @@
 the reduction of the chain of intervals (REDUCE) and the remaining dense system in
 (U(0), U(1), parameters) (DIMRGE), one elimination that gives
 
-* solves of the Newton and tangent systems (any number of right-hand sides),
+* solves of the Newton and tangent systems (any number of right-hand sides; each with
+  one step of iterative refinement against the matrix as given: the pivoting confined
+  to the blocks lets the elimination grow more than LAPACK's),
 * the determinant's sign and log-magnitude (the BP test of cycles),
 * the pair (P0, P1) with P0 U(0) + P1 U(1) = 0 on the collocation rows with the
   parameters held: the Floquet multipliers are the eigenvalues of -P1^-1 P0
@@ -27,6 +29,50 @@ except ImportError:                                      # not built: see build.
 def available() -> bool:
     """Whether washer._cont is built (python build.py cont)."""
     return lib is not None
+
+
+def pieces(coll, J, border) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(blocks, parcols, extra) of [J; border] for J assembled by `coll.jacobian_general`
+    (its CSC pattern; the values are unpacked, nothing is searched): the layout of
+    csrc/cont/cont_api.h."""
+    m, n, N = coll.mesh.ncol, coll.ndim, coll.mesh.ntst
+    npar = coll.npar
+    vals = np.empty(coll.nnz)
+    vals[coll._order] = J.data                           # back to assembly order
+    nb = coll._n_blk
+    blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
+    npc = N * m * n * npar
+    parcols = vals[nb:nb + npc].reshape(npar, N, m * n).transpose(1, 2, 0)
+    # the boundary conditions (periodic or general) and integral rows, dense
+    # (NBC + NINT + 1 = NDIM + NPAR rows: NPAR = NBC + NINT - NDIM + 1)
+    extra = np.zeros((n + npar, coll.n_x))
+    extra[coll._tail_rows, coll._tail_cols] = vals[nb + npc:]
+    extra[-1] = border
+    return blocks, parcols, extra
+
+
+def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:
+    """[J; border] reduced onto S = (U(0), the parameters) and the dense rows R:
+    (Sc, X) with Sc = M_RS - M_RI M_II^-1 M_IS and X = M_II^-1 M_IS (see
+    systems.bvp.CollocationBVP.reduce). M_II, the collocation rows in the nodes after
+    t = 0, is block lower bidiagonal: interval j's own nodes form the square block B_j,
+    its first node couples to the interval before, so X follows interval by interval
+    (forward substitution) after one batched solve of every B_j."""
+    blocks, parcols, extra = pieces(coll, J, border)
+    N, mn, w = blocks.shape
+    n = w - mn
+    A, B = blocks[:, :, :n], blocks[:, :, n:]
+    RHS = np.concatenate([np.zeros((N, mn, n)), parcols], axis=2)     # columns (U(0), par)
+    RHS[0, :, :n] = A[0]
+    P = np.linalg.solve(B, RHS)                      # B_j^-1 RHS_j
+    Q = np.linalg.solve(B, A)                        # B_j^-1 A_j
+    Y = P
+    for j in range(1, N):
+        Y[j] -= Q[j] @ Y[j - 1, -n:]
+    X = Y.reshape(N * mn, -1)
+    cols_S = np.concatenate([np.arange(n), coll.n_u + np.arange(coll.npar)])
+    Sc = extra[:, cols_S] - extra[:, n:coll.n_u] @ X
+    return Sc, X
 
 
 def _ptr(a: np.ndarray):
@@ -72,18 +118,7 @@ class BorderedCollocation:
     def from_jacobian(cls, coll, J, border) -> "BorderedCollocation":
         """From a Jacobian assembled by `coll.jacobian_general` (its CSC pattern) and
         the border row (nx,)."""
-        m, n, N = coll.mesh.ncol, coll.ndim, coll.mesh.ntst
-        npar, nint = coll.npar, coll.nint
-        vals = np.empty(coll.nnz)
-        vals[coll._order] = J.data                       # back to assembly order
-        nb = coll._n_blk
-        blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
-        npc = N * m * n * npar
-        parcols = vals[nb:nb + npc].reshape(npar, N, m * n).transpose(1, 2, 0)
-        # the boundary conditions (periodic or general) and integral rows, dense
-        extra = np.zeros((n + npar, coll.n_x))
-        extra[coll._tail_rows, coll._tail_cols] = vals[nb + npc:]
-        extra[n + nint] = border
+        blocks, parcols, extra = pieces(coll, J, border)
         return cls(blocks, parcols, extra, dense=lambda: coll.bordered(J, border))
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:

@@ -35,6 +35,17 @@ from washer.cont.system import Solution
 H2 = 1e-4
 
 
+#: Factorise the Newton and tangent systems with the compiled condensation and block
+#: reduction (washer.cont.reduction) instead of SuperLU. Off: both are accurate to
+#: rounding (the compiled solve with one refinement step, tests/test_reduction.py) and the
+#: compiled one is 2-30x faster, but on ab's family from HB10 (AUTO's ab demo, NTST 70),
+#: whose orbits are under-resolved on the way to the homoclinic end (MAX U(1) > 1),
+#: runs with it stopped at PT 127 or 238 where every SuperLU ordering tried (MMD_AT_PLUS_A,
+#: COLAMD, MMD_ATA, NATURAL) reached AUTO's PERIOD = 1000: kept off until that is
+#: understood.
+COMPILED_FACTOR = False
+
+
 class VectorField:
     """f, f_u, f_p of a washer.cont.problem.Problem at many points at once: a thin
     adapter over Problem.func_many / dfdu_many (one batched or vectorised call per
@@ -193,13 +204,12 @@ class CollocationBVP:
 
     # ------------------------------------------------------------------ contract
     def factor(self, J, border: np.ndarray):
-        """[J; border] factorised. A Jacobian assembled by `coll` goes to the compiled
-        condensation and block reduction (washer.cont.reduction: the same solves and
-        determinant, and the Floquet pair of the same elimination, kept as
-        `self._reduced = (J, factor)` for `multipliers`); any other matrix, or without
-        the compiled module, to SuperLU."""
+        """[J; border] factorised by SuperLU; with COMPILED_FACTOR, a Jacobian assembled
+        by `coll` goes to the compiled condensation and block reduction
+        (washer.cont.reduction: the same solves and determinant, and the Floquet pair of
+        the same elimination, kept as `self._reduced = (J, factor)` for `multipliers`)."""
         border = np.asarray(border, float)
-        if reduction.available() and self.coll.has_pattern(J):
+        if COMPILED_FACTOR and reduction.available() and self.coll.has_pattern(J):
             f = reduction.BorderedCollocation.from_jacobian(self.coll, J, border)
             self._reduced = (J, f)
             return f
@@ -264,7 +274,11 @@ class CollocationBVP:
         (n_comp + n_tail) whose determinant vanishes exactly where the bordered matrix
         is singular (M_II, the collocation equations for the nodes after t = 0, is a
         discretised initial-value problem and stays invertible), and X = M_II^-1 M_IS
-        for the back substitution of the interior nodes."""
+        for the back substitution of the interior nodes. A Jacobian of `coll`'s pattern
+        is reduced interval by interval (reduction.onto_start: M_II is block lower
+        bidiagonal), any other through SuperLU."""
+        if self.coll.has_pattern(J):
+            return reduction.onto_start(self.coll, J, np.asarray(border, float))
         M = self.coll.bordered(J, border).tocsc()
         n, nu, nc = self.n_comp, self.coll.n_u, self.coll.n_coll
         cols_S = np.r_[np.arange(n), nu + np.arange(self.n_tail)]
