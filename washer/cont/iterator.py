@@ -31,6 +31,7 @@ from washer.auto.codes import Code
 from washer.cont.events import first_zero
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient
+from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
 
 #: A Newton iterate whose correction exceeds this multiple of the first
 #: correction diverges (AUTO's SOLVAE: DELREF = 20 max(...)).
@@ -60,10 +61,6 @@ def adapt_step(ds: float, nit: int, s) -> float:
         f = 1.0
     new = ds * f
     return float(math.copysign(min(abs(new), s.DSMAX), new))
-
-
-class ConvergenceError(RuntimeError):
-    """A corrector (or start correction) did not converge."""
 
 
 @dataclass
@@ -145,62 +142,66 @@ class Continuation:
         radius |ds|, or the plane <x - x_ref, t_ref> = ds). Returns (x, iterations)."""
         s, sysm = self.s, self.sys
         plane = (sysm.arclength == "plane") if plane is None else plane
-        x = np.array(x_pred, dtype=float)
-        delref = None
-        factor = None
         row_plane = sysm.border(t_ref) if plane else None
-        for it in range(1, s.ITNW + 1):
+        ns = getattr(sysm, "n_state", None) if plane else None
+        held = {"factor": None, "delref": None}
+
+        def residual(x):
             try:
-                G = self._residual(x)
-                refactor = factor is None or not plane or it <= max(s.NWTN, 1)
-                if refactor:
-                    # Loci whose Jacobians hold second derivatives of f keep those
-                    # blocks as evaluated at the last converged point through the
-                    # corrector (they move by O(ds)): an inexact Newton matrix, the
-                    # residual and the first-derivative blocks exact, so the point
-                    # converged to is the same; the blocks are refreshed at every
-                    # converged point (evaluate), where tangent and tests need them.
-                    J = self._jacobian(x, frozen=sysm.freezes_second_derivatives)
+                return self._residual(x)
             except ProblemError as exc:
                 # A trial point outside the equations' domain: a failed step.
                 raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
-            if not np.all(np.isfinite(G)):
-                raise ConvergenceError("non-finite residual at a Newton iterate")
+
+        def step(x, G, it):
+            factor = held["factor"]
+            if factor is None or not plane or it <= max(s.NWTN, 1):
+                # Loci whose Jacobians hold second derivatives of f keep those
+                # blocks as evaluated at the last converged point through the
+                # corrector (they move by O(ds)): an inexact Newton matrix, the
+                # residual and the first-derivative blocks exact, so the point
+                # converged to is the same; the blocks are refreshed at every
+                # converged point (evaluate), where tangent and tests need them.
+                try:
+                    J = self._jacobian(x, frozen=sysm.freezes_second_derivatives)
+                except ProblemError as exc:
+                    raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") \
+                        from exc
+                if plane:
+                    factor = self._factor(J, row_plane)
             if plane:
                 c = row_plane @ (x - x_ref) - ds
-                if refactor:
-                    factor = self._factor(J, row_plane)
             else:
                 d = x - x_ref
                 row = 2 * sysm.border(d) / abs(ds)
                 c = (row @ d) / 2 - abs(ds)
                 factor = self._factor(J, row)
-            with np.errstate(all="ignore"):
-                dx = factor.solve(-np.append(G, c))
-            if not np.all(np.isfinite(dx)):
-                raise ConvergenceError("singular Newton matrix")
-            ns = getattr(sysm, "n_state", None) if plane else None
+            held["factor"] = factor
+            return factor.solve(-np.append(G, c))
+
+        def converged(x_old, x, dx, it):
             if ns is not None:
                 # AUTO's NEWTONBV: every free parameter's correction relative to it
                 # within EPSL (the period's too), the profile's largest correction
                 # relative to its largest value before the update within EPSU.
-                du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x[:ns])))
-                x = x + dx
+                du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x_old[:ns])))
                 dl = float(np.max(np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))))
-                done = dl <= s.EPSL and du < s.EPSU
+                if dl <= s.EPSL and du < s.EPSU:
+                    return True
             else:
-                x = x + dx
                 du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
                 dl = abs(dx[-1]) / (1 + abs(x[-1]))
-                done = dl <= s.EPSL and du <= s.EPSU
-            if done:
-                return x, it
+                if dl <= s.EPSL and du <= s.EPSU:
+                    return True
             size = max(du, dl)
-            if delref is None:
-                delref = DIVERGENCE_FACTOR * max(size, 1e-300)
-            elif size > delref:
+            if held["delref"] is None:
+                held["delref"] = DIVERGENCE_FACTOR * max(size, 1e-300)
+            elif size > held["delref"]:
                 raise ConvergenceError("Newton iterates diverge")
-        raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
+            return False
+
+        return newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
+                      exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
 
     def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
@@ -223,25 +224,25 @@ class Continuation:
                     from exc
             if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
                 e = np.linalg.svd(J0)[2][-1]
-        for _ in range(START_ITERATIONS):
+
+        def residual(y):
             try:
-                G = self._residual(x)
-                J = self._jacobian(x)
+                return self._residual(y)
             except ProblemError as exc:
                 raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
-            if not np.all(np.isfinite(G)):
-                raise ConvergenceError("non-finite residual at the start point")
-            if np.max(np.abs(G)) == 0:
-                return x
-            with np.errstate(all="ignore"):
-                dx = self._factor(J, e).solve(np.r_[-G, 0.0])
-            if not np.all(np.isfinite(dx)):
-                raise ConvergenceError("singular Jacobian at the start point")
-            x = x + dx
-            if np.max(np.abs(dx)) / (1 + np.max(np.abs(x[:-1]))) <= s.EPSU:
-                return x
-        raise ConvergenceError("the starting point is not a solution and Newton did not "
-                               f"converge in {START_ITERATIONS} iterations to EPSU")
+
+        def step(y, G, it):
+            try:
+                J = self._jacobian(y)
+            except ProblemError as exc:
+                raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
+            return self._factor(J, e).solve(np.r_[-G, 0.0])
+
+        return newton(residual, step, x, max_iter=START_ITERATIONS, residual_tol=0.0,
+                      converged=lambda y0, y, dx, it:
+                      np.max(np.abs(dx)) / (1 + np.max(np.abs(y[:-1]))) <= s.EPSU,
+                      exhausted="the starting point is not a solution and Newton did not "
+                                f"converge in {START_ITERATIONS} iterations to EPSU")[0]
 
     # -------------------------------------------------------------- tangent
     def tangent(self, J, ref):

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from washer.cont.newton import ConvergenceError, newton
 from washer.machine import kernel, layout
 
 #: Newton iterations per substep. From a secant predictor Newton converges
@@ -123,23 +124,13 @@ def changed_params(P_ref: np.ndarray, P_target: np.ndarray) -> dict:
 
 
 def _newton(res, jac, x0, tol, max_iter):
-    """Plain Newton (no damping: a substep that needs damping is too long).
-    Returns x or None."""
-    x = np.array(x0, dtype=float)
-    for _ in range(max_iter + 1):
-        try:
-            F = res(x)
-        except kernel.KernelError:
-            return None
-        if not np.all(np.isfinite(F)):
-            return None
-        if np.max(np.abs(F)) <= tol * (1 + np.max(np.abs(x))):
-            return x
-        try:
-            x = x - np.linalg.solve(jac(x), F)
-        except (np.linalg.LinAlgError, kernel.KernelError):
-            return None
-    return None
+    """Plain Newton (no damping: a substep that needs damping is too long), the
+    package's one Newton (washer.cont.newton) with a residual test. Returns x or None."""
+    try:
+        return newton(res, lambda x, F, it: np.linalg.solve(jac(x), -F), x0,
+                      max_iter=max_iter, residual_tol=tol)[0]
+    except (ConvergenceError, kernel.KernelError, np.linalg.LinAlgError):
+        return None
 
 
 def follow(res, jac, x_ref, P_ref, P_target, *, tol: float = 1e-11, what: str = "equilibrium",

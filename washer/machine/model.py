@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from washer.cont.newton import ConvergenceError
+from washer.cont.newton import newton as cont_newton
 from washer.machine import kernel, layout
 from washer.machine.equilibria import (YAW_LIMIT, Equilibrium, EquilibriumError, EquilibriumInfo,
                                changed_params, follow, sigma_min, yaw_of)
@@ -22,31 +24,18 @@ ROTATING = ("frozen", "averaged")
 
 
 def newton(residual, jacobian, x0, tol: float = 1e-11, max_iter: int = 50, what: str = "equilibrium"):
-    """Damped Newton for residual(x) = 0 (halving the step while |F| grows).
+    """Damped Newton for residual(x) = 0 (halving the step while |F| grows; a trial
+    point outside the kernel's domain counts as growing): the package's one Newton
+    (washer.cont.newton) with a residual test.
 
     Returns x with max|F(x)| <= tol * (1 + max|x|), or raises EquilibriumError.
     """
-    x = np.array(x0, dtype=float)
-    F = residual(x)
-    for it in range(max_iter):
-        if np.max(np.abs(F)) <= tol * (1 + np.max(np.abs(x))):
-            return x
-        dx = np.linalg.solve(jacobian(x), -F)
-        step, norm0 = 1.0, np.linalg.norm(F)
-        while True:
-            try:
-                Fn = residual(x + step * dx)
-                ok = np.linalg.norm(Fn) < norm0 or step < 1e-3
-            except kernel.KernelError:
-                ok = False
-            if ok:
-                break
-            step /= 2
-            if step < 1e-6:
-                raise EquilibriumError(f"{what}: Newton line search failed at iteration {it}")
-        x, F = x + step * dx, Fn
-    raise EquilibriumError(f"{what}: no convergence in {max_iter} Newton iterations "
-                           f"(residual {np.max(np.abs(F)):.3e})")
+    try:
+        return cont_newton(residual, lambda x, F, it: np.linalg.solve(jacobian(x), -F), x0,
+                           max_iter=max_iter, residual_tol=tol, damped=True,
+                           domain_errors=(kernel.KernelError,))[0]
+    except ConvergenceError as exc:
+        raise EquilibriumError(f"{what}: {exc}") from None
 
 
 def _hanging_guess(params) -> np.ndarray:
