@@ -209,3 +209,29 @@ def test_frc_forced_response(tmp_path_factory):
         assert r.values[-1] == pytest.approx(2 * math.pi / r.values[0], rel=1e-7)
     ref2 = branch_rows(REF / "frc" / "b.frc")
     assert [type_name(r.ty) for r in r2 if r.lab] == [type_name(r.ty) for r in ref2 if r.lab]
+
+
+def test_plp_isola_from_a_fold_locus_point(tmp_path_factory):
+    """iso = run(loci('UZ4'), c='plp.iso') both ways: an orbit (ISW = 1) restarted from a
+    point of the fold locus of cycles (AUTO's own s.loci, label 4: PAR(4) = 2.98629,
+    PAR(1) = 111). The record's free parameters (PAR(4), PERIOD, PAR(1), PAR(NPAR+1)) are
+    not the run's (PAR(4), PERIOD), so its stored direction (the locus's tangent, which
+    moves PAR(1)) is not reused (AUTO's STPNBV1: NODIR = 1): the run starts along its
+    own null vector at the fold and goes round the isola at PAR(1) = 111 to the UZ at
+    PAR(4) = 4 and the fold at 4.72213 (STOP LP1) each way, as in AUTO's b.iso (1e-5:
+    the location tolerance EPSS = 1e-6 with DS, DSMAX of c.plp.iso)."""
+    d = demo_dir(tmp_path_factory, "plp")
+    shutil.copy(DATA / "auto_demos" / "plp" / "autoref" / "s.loci", d / "s.aloci")
+    ref = [r for r in rows(REF / "plp" / "b.iso") if r.lab]
+    got = []
+    for ds, sv in ((None, "isof"), ("-", "isob")):
+        extra = {} if ds is None else {"DS": ds}
+        run_periodic(d / "c.plp.iso", sv, e="plp", s="aloci", IRS=4, **extra)
+        out = [r for r in rows(d / f"b.{sv}") if r.lab and type_name(r.ty) in LOCATED]
+        assert [type_name(r.ty) for r in out] == ["UZ", "LP"]
+        got += [(type_name(r.ty), r.values[0]) for r in out]
+    assert sorted(t for t, _ in got) == sorted(type_name(r.ty) for r in ref) == \
+        ["LP", "LP", "UZ", "UZ"]
+    for t, w in got:
+        exact = [r.values[0] for r in ref if type_name(r.ty) == t]
+        assert min(abs(w - v) for v in exact) <= 1e-5 * w, (t, w, exact)
