@@ -506,6 +506,15 @@ def test_exact_critical_cp_near_averaged_and_far_from_frozen(critical):
     assert abs(abs(critical["critical_exponent"].imag) - abs(w_avg - 2 * np.pi * 10.0)) < 1e-3
 
 
+def test_critical_cp_near_the_averaged_value_is_the_whole_brackets_tr_point(params, critical):
+    """critical_cp looks first within +-0.2 % of the averaged Hopf value; the whole 5 %
+    bracket, continued from its lower end, locates the same TR point: to the location
+    tolerance in C_p (EPSS = 1e-11 on an arclength that is C_p itself, THU = 0)."""
+    av = critical["C_p_averaged"]
+    _, rec = shooting.locate_tr(params, "C_p", (0.95 * av, 1.05 * av))
+    assert abs(rec.par[0] - critical["C_p_exact"]) < shooting.EPS_LOCATE
+
+
 def test_stability_changes_at_the_located_tr_point(params, critical):
     cp = critical["C_p_exact"]
     below = shooting.periodic_response(params.replace(C_p=cp * (1 - 1e-4)))
