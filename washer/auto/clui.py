@@ -63,6 +63,8 @@ class AutoConstants(dict):
             cur = self.get("DS")
             cur = 0.01 if cur is None else float(cur)
             value = -cur if value == "-" else abs(cur)
+        if key in ("SP", "STOP") and isinstance(value, str):
+            value = [value]                      # AUTO accepts STOP='UZ2' for ['UZ2']
         dict.__setitem__(self, key, _copyval(value))
 
     def update(self, d=None, **kw):
