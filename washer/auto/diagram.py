@@ -435,6 +435,8 @@ class Diagram(list):
         for b in branches:
             for i, r in b.labelled():
                 if k < len(sols):
+                    if sols[k].c is None:
+                        sols[k].c = b.c
                     b.solutions[i] = sols[k]
                     k += 1
         if branches and d_path and Path(d_path).exists():
@@ -585,8 +587,27 @@ def _titles(line: str) -> list[str]:
     return [rest[i:i + 19].strip() for i in range(0, len(rest), 19) if rest[i:i + 19].strip()]
 
 
+def header_constants(header: list[str]) -> dict:
+    """The names a b-file header states (e, parnames, unames): AUTO's constants of a
+    diagram loaded from files, so that solutions are indexed by name as after a run."""
+    import ast
+    out = {}
+    for line in header:
+        m = re.match(r"\s*0\s+(parnames|unames)\s*=\s*(\{.*\})\s*$", line)
+        if m:
+            try:
+                out[m.group(1)] = {int(k): v for k, v in ast.literal_eval(m.group(2)).items()}
+            except (ValueError, SyntaxError):
+                pass
+        m = re.search(r"\be\s*=\s*'([^']*)'", line)
+        if m and line.split()[1:2] == ["e"]:
+            out["e"] = m.group(1)
+    return out
+
+
 def read_branches(path, c=None) -> list[Branch]:
-    """Branches of a b-file: a new branch at each header block or change of BR."""
+    """Branches of a b-file: a new branch at each header block or change of BR. Without
+    constants `c`, each branch gets the names its header states (header_constants)."""
     text = _read_text(Path(path), "an AUTO b-file")
     branches: list[Branch] = []
     header: list[str] = []
@@ -607,7 +628,13 @@ def read_branches(path, c=None) -> list[Branch]:
         except ValueError:
             raise AutoFileError(f"{path}: a row that is not numbers: {line.strip()[:60]!r}")
         if header or cur is None or br != cur.BR:
-            cur = Branch(header, titles, c=c)
+            bc = c
+            if bc is None and header:
+                from washer.auto.clui import AutoConstants
+                bc = AutoConstants(header_constants(header))
+            elif bc is None and cur is not None:
+                bc = cur.c
+            cur = Branch(header, titles, c=bc)
             branches.append(cur)
             header = []
         cur.rows.append(Row(br, pt, ty, lab, vals))
