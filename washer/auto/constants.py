@@ -125,7 +125,13 @@ class _Scanner:
                     return items
                 if self.peek() == "":
                     raise self.error("unclosed '{': expected '}'")
-                key = self.value()
+                m = re.compile(r"[A-Za-z_][A-Za-z0-9_()]*(?=\s*:)").match(self.text, self.i)
+                if m and m.group() not in ("None", "True", "False"):
+                    # an unquoted name as a key ({epsilon: [1e-4]}): AUTO's READC takes it
+                    self.i = m.end()
+                    key = m.group()
+                else:
+                    key = self.value()
                 self.skip(commas=False)
                 if self.advance() != ":":
                     raise self.error("expected ':' after a dictionary key")
