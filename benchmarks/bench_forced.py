@@ -119,7 +119,7 @@ def collocation_run(params, crit):
         mu = np.asarray(tr.stability.values)
         print(f"  TR located, C_p 0.09 -> 0.11          : {t_tr:8.3f} s, {len(r.rows)} points, "
               f"C_p = {tr.par[0]:.12f} (shooting {crit['C_p_exact']:.12f}), "
-              f"critical mu = {floquet.critical_pair(mu):.9f}")
+              f"critical mu = {floquet.torus_pair(mu):.9f}")
         t_all, r = best_of(go())
         print(f"  c.washer.machine.forced, C_p 0 -> 0.5         : {t_all:8.3f} s, {len(r.rows)} points")
 

@@ -584,7 +584,7 @@ def test_engine_tr_point_and_multipliers_agree_with_shooting(engine_run, critica
     D = np.abs(mu[:, None] - critical["multipliers"][None, :])
     i, j = linear_sum_assignment(D)
     assert D[i, j].max() < 1e-9
-    assert abs(abs(floquet.critical_pair(mu, trivial=False)) - 1) < 1e-9
+    assert abs(abs(floquet.torus_pair(mu, trivial=False)) - 1) < 1e-9
 
 
 def test_engine_branch_starts_on_the_orbit_and_changes_stability_at_tr(params, engine_run,

@@ -86,11 +86,13 @@ def critical(mu: np.ndarray, trivial: bool = True) -> complex | None:
     return complex(mu[k]) if len(mu) > k else None
 
 
-def critical_pair(mu, trivial: bool = True) -> complex:
+def torus_pair(mu, trivial: bool = True) -> complex:
     """The complex multiplier (Im > 0) closest to the unit circle among the nontrivial
     ones, nan if all are real: the pair whose crossing of |mu| = 1 is a torus (TR)
     bifurcation; the analogue for multipliers mu = exp(lambda T) of the eigenvalue pair
-    closest to the imaginary axis (washer.cont.systems.equilibrium.critical_pair)."""
+    closest to the imaginary axis (washer.cont.systems.equilibrium.hopf_pair). Unlike
+    `critical` (the nontrivial multiplier closest to the circle, real or complex: AUTO's
+    mu_2, which types PD/TR), real multipliers are skipped."""
     mu = sort_multipliers(mu, trivial)[1 if trivial else 0:]
     cpx = mu[mu.imag > 0]
     cpx = cpx[np.abs(cpx.imag) > COMPLEX_TOL * (1 + np.abs(cpx))]

@@ -69,7 +69,7 @@ def critical_curve(params: Params, omegas=None, n: int = 12, omega_max: float = 
             r = {"Omega": float(om), "C_p_exact": 0.0,
                  "C_p_averaged": hopf_or_nan(q, "averaged")[0],
                  "C_p_frozen": hopf_or_nan(q, "frozen")[0],
-                 "critical_multiplier": floquet.critical_pair(
+                 "critical_multiplier": floquet.torus_pair(
                      shooting.periodic_response(q.replace(C_p=0.0)).multipliers, trivial=False)}
         else:
             r = shooting.critical_cp(q, rel_bracket)

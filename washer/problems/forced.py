@@ -208,7 +208,7 @@ def critical_cp(params, rel_bracket: float = 0.05, abs_bracket: float = 1e-3) ->
             bracket = (max(cp_avg - half, 0.0), cp_avg + half)
             r, rec = locate_tr(params, "C_p", bracket,
                                forced.averaged_start(params.replace(C_p=bracket[0])))
-    mu_c = floquet.critical_pair(r.multipliers, trivial=False)
+    mu_c = floquet.torus_pair(r.multipliers, trivial=False)
     return {"Omega": params["Omega"], "C_p_exact": float(rec.par[0]), "C_p_averaged": cp_avg,
             "C_p_frozen": cp_frozen, "multipliers": r.multipliers,
             "critical_multiplier": mu_c, "critical_exponent": np.log(mu_c) / r.T,

@@ -231,7 +231,7 @@ def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> d
         raise PointError(f"critical (floquet): no TR point of the forced response in "
                          f"[{bracket[0]:.6g}, {bracket[1]:.6g}] around the averaged "
                          f"{v:.6g}: {exc}") from None
-    mu = floquet.critical_pair(r.multipliers, trivial=False)
+    mu = floquet.torus_pair(r.multipliers, trivial=False)
     return {"crit_status": "hopf", "crit_value": float(sp.par[PAR_INDEX[parameter] - 1]), "crit_whirl": avg["crit_whirl"],
             "crit_n_hopf": avg["crit_n_hopf"], "crit_source": "floquet",
             "crit_averaged": float(v), "crit_multiplier_angle": float(abs(np.angle(mu)))}

@@ -33,9 +33,9 @@ def is_complex(lam: np.ndarray) -> np.ndarray:
     return np.abs(lam.imag) > IMAG_TOL * (1 + np.abs(lam))
 
 
-def critical_pair(lam: np.ndarray) -> complex | None:
+def hopf_pair(lam: np.ndarray) -> complex | None:
     """The complex eigenvalue closest to the imaginary axis (None if all are real):
-    the pair AUTO's HB test and PAR(11) follow."""
+    the pair AUTO's HB test and PAR(11) follow; for multipliers: floquet.torus_pair."""
     cplx = lam[is_complex(lam)]
     if cplx.size == 0:
         return None
@@ -44,13 +44,13 @@ def critical_pair(lam: np.ndarray) -> complex | None:
 
 def hopf_test(lam: np.ndarray) -> float | None:
     """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
-    mu = critical_pair(lam)
+    mu = hopf_pair(lam)
     return None if mu is None else mu.real
 
 
 def hopf_period(lam: np.ndarray) -> float | None:
     """PAR(11) = 2 pi / |Im| of the pair closest to the imaginary axis (PVLSAE)."""
-    mu = critical_pair(lam)
+    mu = hopf_pair(lam)
     return None if mu is None else float(2 * np.pi / abs(mu.imag))
 
 
@@ -144,11 +144,11 @@ class EquilibriumSystem(AlgebraicSystem):
             return {}
         p = self._p(x)
         A = self.problem.dfdu(x[:-1], p)
-        mu = critical_pair(eigenvalues_sorted(A))
+        mu = hopf_pair(eigenvalues_sorted(A))
         if mu is None:
             return {}
         omega = abs(mu.imag)
         return {"omega": omega, "l1": first_lyapunov(self.problem, x[:-1], p, omega, A)}
 
 
-__all__ = ["EquilibriumSystem", "critical_pair", "eigenvalues_sorted", "hopf_test", "hopf_period"]
+__all__ = ["EquilibriumSystem", "hopf_pair", "eigenvalues_sorted", "hopf_test", "hopf_period"]
