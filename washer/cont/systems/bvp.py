@@ -36,14 +36,12 @@ H2 = 1e-4
 
 
 #: Factorise the Newton and tangent systems with the compiled condensation and block
-#: reduction (washer.cont.reduction) instead of SuperLU. Off: both are accurate to
-#: rounding (the compiled solve with one refinement step, tests/test_reduction.py) and the
-#: compiled one is 2-30x faster, but on ab's family from HB10 (AUTO's ab demo, NTST 70),
-#: whose orbits are under-resolved on the way to the homoclinic end (MAX U(1) > 1),
-#: runs with it stopped at PT 127 or 238 where every SuperLU ordering tried (MMD_AT_PLUS_A,
-#: COLAMD, MMD_ATA, NATURAL) reached AUTO's PERIOD = 1000: kept off until that is
-#: understood.
-COMPILED_FACTOR = False
+#: reduction (washer.cont.reduction) when it is built, instead of SuperLU: the same
+#: solutions to rounding (one refinement step per solve, tests/test_reduction.py), 2-30x
+#: faster per factorisation. (ab's family from HB10, under-resolved near its homoclinic
+#: end, had stopped at PT 127 with it; that was the phase reference after ADAPT, fixed
+#: since: both now reach AUTO's PERIOD = 1000 in 250 points.)
+COMPILED_FACTOR = True
 
 
 class VectorField:
@@ -204,10 +202,11 @@ class CollocationBVP:
 
     # ------------------------------------------------------------------ contract
     def factor(self, J, border: np.ndarray):
-        """[J; border] factorised by SuperLU; with COMPILED_FACTOR, a Jacobian assembled
-        by `coll` goes to the compiled condensation and block reduction
+        """[J; border] factorised: with COMPILED_FACTOR and washer._cont built, a J
+        assembled by `coll` by the compiled condensation and block reduction
         (washer.cont.reduction: the same solves and determinant, and the Floquet pair of
-        the same elimination, kept as `self._reduced = (J, factor)` for `multipliers`)."""
+        the same elimination, kept as `self._reduced = (J, factor)` for `multipliers`);
+        else by SuperLU."""
         border = np.asarray(border, float)
         if COMPILED_FACTOR and reduction.available() and self.coll.has_pattern(J):
             f = reduction.BorderedCollocation.from_jacobian(self.coll, J, border)
