@@ -369,23 +369,26 @@ def test_unstable_over_the_range_is_an_answer(params):
     assert got["crit_status"] == "unstable" and np.isnan(got["crit_value"])
 
 
-def test_margin_fallback_follows_the_whirl_pair_and_counts_its_crossing(params):
-    """At Omega = 9 Hz, m_u = 0.25 kg the crossing (C_p ~ 1.5e-4) lies inside the engine's
-    first step over [0, 3]: the fallback roots the whirl pair's real part. Independent
-    check: the engine itself over [0, 0.01] (steps 200x smaller) finds the HB there, at
-    the same value to its location accuracy (~1e-8 relative of the range)."""
-    from washer.sweep.tasks import critical, whirl_pair
+def test_crossing_on_the_engines_first_steps_is_located_by_the_engine_over_them(params):
+    """At Omega = 9 Hz, m_u = 0.25 kg the crossing (C_p ~ 1.5e-4) lies on the engine's
+    first two steps over [0, 3] (its first written point is C_p = 0.03), where it tests no
+    sign change: the engine run again over [0, 0.03] locates it. Independent check: the
+    root of the stability margin max Re(lambda) (Brent on the rotating-frame eigenvalues),
+    equal to the HB location's accuracy (~1e-8 relative of the range: 1e-9 here), and the
+    crossing pair's frequency there."""
+    from scipy.optimize import brentq
+    from washer.machine.model import Model
+    from washer.sweep.tasks import critical, stability
     p = params.replace(Omega=9.0, m_u=0.25)
     got = critical(p, "C_p", 0.0, 3.0)
-    assert got["crit_source"] == "margin" and got["crit_status"] == "hopf"
+    assert got["crit_source"] == "first steps" and got["crit_status"] == "hopf"
     assert got["crit_n_hopf"] == 1.0
-    fine = critical(p, "C_p", 0.0, 0.01)
-    assert fine["crit_source"] == "HB"
-    assert got["crit_value"] == pytest.approx(fine["crit_value"], abs=1e-9)
-    assert got["crit_whirl"] == pytest.approx(fine["crit_whirl"], rel=1e-6)
-    # The pair followed is the forward whirl (Im just below 2 pi Omega), not the slow yaw.
-    lam = np.array([-0.0012 + 4.45j, 0.0002 + 52.7j, -0.137 + 58.6j])
-    assert whirl_pair(lam, 9.0) == lam[1]
+    root = brentq(lambda c: stability(p.replace(C_p=c))["stab_margin"], 0.0, 0.01,
+                  xtol=1e-15)
+    assert got["crit_value"] == pytest.approx(root, abs=1e-9)
+    m = Model(p.replace(C_p=root))
+    lam = m.eigenvalues(m.rotating_equilibrium())
+    assert got["crit_whirl"] == pytest.approx(abs(lam[np.argmax(lam.real)].imag), rel=1e-6)
 
 
 def test_units_are_in_the_parquet_schema(small_serial):

@@ -46,9 +46,9 @@ critical   the critical value of one parameter at this point: the first Hopf
                          exceeds the clearance or without the option; equal to
                          crit_value where stable throughout. Near the Hopf point only
                          (the normal form): for clearances of a few centimetres
-    crit_source          how it was found: "HB" (the engine's Hopf point), "margin"
-                         (no HB before the engine's first step: the root of the
-                         whirl pair's real part, see _critical_fallback), "ends"
+    crit_source          how it was found: "HB" (the engine's Hopf point), "first steps"
+                         (an HB on the engine's untested first steps, located by the
+                         engine run again over them, see _critical_fallback), "ends"
                          (stable or unstable at both ends, no HB between),
                          "floquet" (engine = "floquet")
 response   a time response (kernel DOPRI5) summarised over the last `window` s:
@@ -201,7 +201,8 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
         return {"crit_status": "hopf", "crit_value": float(hbs[0].par[idx - 1]),
                 "crit_whirl": 2 * math.pi / period if period > 0 else math.nan,
                 "crit_n_hopf": float(len(hbs)), "crit_source": "HB"}
-    return _critical_fallback(params, parameter, lo, hi, res.status)
+    first = float(res.rows[1].par[idx - 1]) if len(res.rows) > 1 else hi
+    return _critical_fallback(params, parameter, lo, hi, res.status, first)
 
 
 #: Half-width of the exact (Floquet) bracket around the averaged critical value:
@@ -237,21 +238,8 @@ def _critical_floquet(params: Params, parameter: str, lo: float, hi: float) -> d
             "crit_averaged": float(v), "crit_multiplier_angle": float(abs(np.angle(mu)))}
 
 
-def whirl_pair(lam: np.ndarray, Omega: float, near: float | None = None) -> complex:
-    """The whirl pair's member with Im > 0 among eigenvalues lam (rotating frame, 1/s):
-    the one whose Im is nearest `near` (rad/s; following a pair found before), else the
-    forward pendulum whirl, the largest Im below 2 pi Omega (a forward whirl at w_g in the
-    ground frame turns at 2 pi Omega - w_g in the rotating frame; the slow yaw mode, Im
-    ~4.5 rad/s and nearly undamped, is never it)."""
-    up = lam[lam.imag > 0]
-    if near is not None:
-        return complex(up[np.argmin(np.abs(up.imag - near))])
-    below = up[up.imag < 2 * math.pi * Omega]
-    return complex(below[np.argmax(below.imag)] if below.size else up[np.argmax(up.real)])
-
-
 def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
-                       status: str) -> dict:
+                       status: str, first: float) -> dict:
     """No HB on the branch. From the stability at the two ends:
 
     - stable at both: the answer "stable" (crit_value = lo: with C_p from 0, stable
@@ -259,10 +247,12 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
       neutral at lo (within NEUTRAL_MARGIN: without an imbalance the whirl pair is
       undamped at C_p = 0) and stable at hi;
     - unstable at both: the answer "unstable" (more than `hi` needed);
-    - unstable at lo, stable at hi: the crossing lies before the engine's first step,
-      where the engine does not test for bifurcations (seen at Omega = 9 Hz, m_u = 0.25
-      kg: crossing at C_p ~ 1.5e-4 with DS = 0.015): the root of the real part of the
-      whirl pair (`whirl_pair`, followed by its frequency from lo) by Brent's method;
+    - unstable at lo, stable at hi: the crossing lies on the engine's first two steps
+      from lo to `first` (its first written point), where it tests no sign change (AUTO's
+      hidden first step and first written interval; seen at Omega = 9 Hz, m_u = 0.25 kg:
+      crossing at C_p ~ 1.5e-4, first = 0.03): the engine again over [lo, first] alone,
+      its steps 1/100 of that, so its HB location finds it (`critical`, recursively: a
+      crossing inside that run's first steps too is found one level down);
     - anything else (or a failed continuation) raises, with the margins at the ends."""
     def eig(v):
         m = Model(params.replace(**{parameter: v}))
@@ -288,23 +278,10 @@ def _critical_fallback(params: Params, parameter: str, lo: float, hi: float,
         return {"crit_status": state(m_lo), "crit_value": float(lo) if m_lo < 0 else math.nan,
                 "crit_whirl": math.nan, "crit_n_hopf": 0.0, "crit_source": "ends"}
     if state(m_lo) == "unstable" and state(m_hi) == "stable" and status == "ok":
-        from scipy.optimize import brentq
-        pair = whirl_pair(lam_lo, params["Omega"])
-        if pair.real <= NEUTRAL_MARGIN:
-            raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: "
-                             f"unstable at {lo:g} through a mode that is not the whirl "
-                             f"({ends})")
-        track = {"im": pair.imag}
-
-        def whirl_re(v):
-            z = whirl_pair(eig(v), params["Omega"], track["im"])
-            track["im"] = z.imag
-            return z.real
-
-        v = brentq(whirl_re, lo, hi, xtol=CRIT_XTOL * (hi - lo), rtol=1e-12)
-        whirl_re(v)
-        return {"crit_status": "hopf", "crit_value": float(v), "crit_whirl": track["im"],
-                "crit_n_hopf": 1.0, "crit_source": "margin"}
+        if lo < first < hi and first - lo > CRIT_XTOL * (hi - lo):
+            got = critical(params, parameter, lo, first)
+            if got["crit_status"] == "hopf":
+                return got | {"crit_source": "first steps"}
     why = f"continuation ended with status {status!r}; " if status != "ok" else ""
     why += f"{state(m_lo)} at {lo:g}, {state(m_hi)} at {hi:g} ({ends})"
     raise PointError(f"critical: no Hopf point for {parameter} in [{lo:g}, {hi:g}]: {why}")
