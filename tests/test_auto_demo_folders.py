@@ -21,8 +21,7 @@ FAST = {"frc", "lrz", "lor", "chu"}
 BP_LOCI = "loci of branch points (ISW = 2 at a BP, ISW = 3) are not in the engine"
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
-    "abcb": "the fold-of-cycles locus stops with no convergence (MX) before AUTO's end; "
-            + BP_LOCI,
+    "abcb": BP_LOCI,
     "apbp": BP_LOCI,
     "lcbp": BP_LOCI,
     "sspg": BP_LOCI,

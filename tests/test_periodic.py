@@ -525,11 +525,12 @@ def test_period_doubling_switch_through_the_runner(tmp_path):
     (-1, [(2.5826424510, 109.0, 10.539411298)]),
 ])
 def test_cycle_fold_locus_reproduces_autos_plp_loci(direction, expect):
-    """ISW = 2 from plp's LP of cycles (label 5; AUTO's FNPL/BCPL/ICPL extended BVP,
-    started from the stored direction instead of AUTO's 5-step generation run) with
-    c.plp.plp's settings (ICP = [4, 1, 11], UZR PAR(1) = 111, UZSTOP 109): the UZ points
-    of AUTO's b.loci, PAR(4) and PERIOD to 1e-7 relative (measured 3e-8; AUTO locates
-    UZ to EPSS = 1e-6)."""
+    """ISW = 2 from plp's LP of cycles (label 5; AUTO's FNPL/BCPL/ICPL extended BVP) with
+    c.plp.plp's settings (ICP = [4, 1, 11], UZR PAR(1) = 111, UZSTOP 109), in AUTO's two
+    stages: the generating run (5 steps, PAR(1) fixed, the normalisation free: the orbit
+    and both parameters stay at the fold), then the locus from its end point, each way:
+    the UZ points of AUTO's b.loci, PAR(4) and PERIOD to 1e-7 relative (measured 3e-8;
+    AUTO locates UZ to EPSS = 1e-6)."""
     from washer.cont.iterator import Continuation
     from washer.cont.systems.cycle_fold import CycleFoldLocus
     spec = importlib.util.spec_from_file_location("plp_eq", DATA / "plp" / "plp.py")
@@ -541,7 +542,26 @@ def test_cycle_fold_locus_reproduces_autos_plp_loci(direction, expect):
                  ISP=1, DS=direction * 0.1 * (1 + 1e-7), DSMIN=1e-4, DSMAX=3.0, ITNW=7,
                  NWTN=3, EPSL=1e-7, EPSU=1e-7, EPSS=1e-6, JAC=1,
                  UZR=((1, 111.0, False), (1, 109.0, True)))
-    sysm = CycleFoldLocus(StartData(P, s, rec.U[0], rec.par, rec, "LP"))
+    gen = CycleFoldLocus(StartData(P, s, rec.U[0], rec.par, rec, "LP"))
+    g = gen.run_settings
+    assert (g.NMX, g.ILP, g.ISP) == (5, 0, 0)
+    points = []
+    for step in Continuation(gen, g):
+        assert step.kind not in ("failed", "special")
+        if step.point is not None and step.kind != "note":
+            points.append(step.point)
+        if len(points) == g.NMX:
+            break
+    end = points[-1]
+    for pt in points:                  # the generating run moves only v's normalisation
+        p = gen.params(pt.x)
+        assert abs(p[3] - rec.par[3]) < 1e-7 * rec.par[3] and p[0] == rec.par[0]
+    sol = gen.solution(end.x, end.tangent)
+    ep = Record(br=4, pt=5, code=59, lab=9, nfpr=len(gen.free), isw=-2, ndim_user=2, ips=2,
+                u=np.asarray(sol.u), par=np.asarray(sol.par), icp=list(gen.free),
+                rldot=list(sol.rldot)[:len(gen.free)], udot=sol.udot, t=sol.t, ntst=sol.ntst,
+                ncol=sol.ncol)
+    sysm = CycleFoldLocus(StartData(P, s, ep.U[0], ep.par, ep, "LPC-curve"))
     found = []
     for k, step in enumerate(Continuation(sysm, s, mode="restart")):
         assert step.kind != "failed" and k < 200

@@ -15,12 +15,15 @@ the period PAR(11), the second parameter (the first ICP entry after ICP(1) that 
 11) and beta (AUTO's PAR(NPAR-1), internal). Unknowns x = (W flattened node-major,
 PAR(11), PAR(p2), beta, PAR(ICP(1))); b-file columns and the L2 norm are those of u.
 
-Start (differs from AUTO, which first runs an ISW = -2 generation of 5 steps from
-v = 0 and restarts from its EP): directly from the LP record's stored direction
-(udot, T-dot, PAR(ICP(1))-dot ~ 0): at a fold of cycles (udot, T-dot) is the null
-vector of the periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T T-dot
-with s setting int <v, v> + beta^2 = c = 1, and Newton (the iterator's corrector)
-refines it. The second derivatives (f_uu v, f_up v) are mixed central differences of
+Start at the LP record (AUTO's INITPS with ITP = 5: ISW = -2, ICP(3) = NPAR + 2): a
+generating run of NMX = 5 steps with the second parameter fixed and the normalisation c
+free in its place (ILP = ISP = 0), from the LP record's stored direction (udot, T-dot,
+PAR(ICP(1))-dot ~ 0): at a fold of cycles (udot, T-dot) is the null vector of the
+periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T T-dot with s setting
+int <v, v> + beta^2 = c = 1, and Newton (the iterator's corrector) refines it; the
+steps only scale (v, beta) with c, so the orbit and the parameters stay at the fold.
+Its end point (EP, a record of this curve) is where the script restarts the locus in
+both directions (AUTO's plp and abcb demos: run(lpstart) and DS='-'). The second derivatives (f_uu v, f_up v) are mixed central differences of
 f in one batched call (steps ~ eps^(1/4), error ~ 1e-8).
 """
 from __future__ import annotations
@@ -42,6 +45,7 @@ NORM = 1.0
 class CycleFoldLocus(CollocationBVP):
     curve_type = 5
     nint = 3
+    _generating = False
 
     def __init__(self, data):
         s = data.settings
@@ -67,12 +71,17 @@ class CycleFoldLocus(CollocationBVP):
         if rec is None or np.ndim(rec.U) != 2 or rec.udot is None or len(rec.rldot) < 2:
             raise ValueError("the fold of cycles is continued from an LP record of a periodic "
                              "branch with its direction (IIS > 0)")
+        self._generating = True
+        self.c_index = len(self.par) + 2            # PAR(NPAR + 2) of the record
+        self.free = [self.p1, 11, self.c_index]
+        self.run_settings = s.with_(NMX=5, ILP=0, ISP=0, ISW=-2)
         self._from_lp(rec)
 
     # ------------------------------------------------------------------ set-up
     def tail_weights(self) -> np.ndarray:
         s = self.settings
-        return np.r_[s.theta_par(11), s.theta_par(self.p2), 1.0, s.theta_par(self.p1)]
+        second = 1.0 if self._generating else s.theta_par(self.p2)       # c: THL 1
+        return np.r_[s.theta_par(11), second, 1.0, s.theta_par(self.p1)]
 
     def _from_lp(self, rec) -> None:
         s, n = self.settings, self.n
@@ -87,8 +96,8 @@ class CycleFoldLocus(CollocationBVP):
         self.set_phase_reference(U, self.par)
         self.set_rotations(U)
         W = np.c_[U, V]
-        self._start = (np.r_[W.ravel(), T, self.par[self.p2 - 1], beta, self.par[self.p1 - 1]],
-                       None)
+        slot = NORM if self._generating else self.par[self.p2 - 1]
+        self._start = (np.r_[W.ravel(), T, slot, beta, self.par[self.p1 - 1]], None)
 
     def _from_curve(self, rec) -> None:
         """A restart at a point of this locus (its record stores W = (u, v) and, after
@@ -122,8 +131,15 @@ class CycleFoldLocus(CollocationBVP):
         """(u (n_nodes, NDIM), v (n_nodes, NDIM), PAR, beta)."""
         W = self.coll.profile(x)
         par = self.par.copy()
-        par[10], par[self.p2 - 1], par[self.p1 - 1] = x[-4], x[-3], x[-1]
+        par[10], par[self.p1 - 1] = x[-4], x[-1]
+        if not self._generating:
+            par[self.p2 - 1] = x[-3]
         return W[:, :self.n], W[:, self.n:], par, float(x[-2])
+
+    def norm_constant(self, x) -> float:
+        """c of int <v, v> + beta^2 = c: an unknown (in the second parameter's slot) in
+        the generating run, else NORM."""
+        return float(x[-3]) if self._generating else NORM
 
     # ------------------------------------------------------------------ contract
     def _at_gauss(self, x):
@@ -145,7 +161,7 @@ class CycleFoldLocus(CollocationBVP):
         w = self.coll.w_node
         ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1),
                 w @ np.sum(v * self.up_old, axis=1),
-                w @ np.sum(v * v, axis=1) + beta ** 2 - NORM]
+                w @ np.sum(v * v, axis=1) + beta ** 2 - self.norm_constant(x)]
         off = self.bc_offset()
         return self.coll.residual_general(W, F, ints, None if off is None else W[0] - W[-1] + off)
 
@@ -163,6 +179,8 @@ class CycleFoldLocus(CollocationBVP):
         dF = np.zeros((4, k, 2 * n))
         dF[0] = np.c_[fg, Av - (beta / T ** 2) * fg]                      # d/dT
         for slot, idx in ((1, self.p2), (3, self.p1)):
+            if slot == 1 and self._generating:
+                continue                                                   # d/dc: integral only
             fp = self.field.fp(ug, par, idx)
             dF[slot] = np.c_[T * fp, T * self.field.fup_v(ug, vg, par, idx) + (beta / T) * fp]
         dF[2] = np.c_[np.zeros_like(fg), fg / T]                          # d/dbeta
@@ -173,6 +191,8 @@ class CycleFoldLocus(CollocationBVP):
         int_u[2, :, n:] = 2 * v
         int_par = np.zeros((3, 4))
         int_par[2, 2] = 2 * beta
+        if self._generating:
+            int_par[2, 1] = -1.0
         return self.coll.jacobian_general(blocks, dF.reshape(4, N, m, 2 * n), int_u, int_par)
 
     def params(self, x):
@@ -183,7 +203,7 @@ class CycleFoldLocus(CollocationBVP):
         return None
 
     def active_tests(self) -> list:
-        s = self.settings
+        s = getattr(self, "run_settings", self.settings)      # the generating run: ILP = 0
         return [int(Code.LP)] if (s.ILP != 0 and "LP" not in s.SP_OFF) else []
 
     def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
@@ -206,7 +226,7 @@ class CycleFoldLocus(CollocationBVP):
         internal parameters (beta, c) appended."""
         u, v, par, beta = self.unpack(x)
         return self.bvp_solution(
-            x, tangent, np.r_[par, beta, NORM],
+            x, tangent, np.r_[par, beta, self.norm_constant(x)],
             lambda t: [float(t[-1]), float(t[-4]), float(t[-3]), float(t[-2])])
 
     def directions(self, x, tangent, code) -> list:
