@@ -96,6 +96,16 @@ class State:
     counters: Counters = field(default_factory=Counters)
 
 
+def _failing_as(what: str, fn):
+    """fn with the equations' failures (ProblemError) raised as ConvergenceError(what)."""
+    def call(*args, **kw):
+        try:
+            return fn(*args, **kw)
+        except ProblemError as exc:
+            raise ConvergenceError(f"{what} ({exc})") from exc
+    return call
+
+
 class Continuation:
     """The points of one branch of `system`, lazily.
 
@@ -146,12 +156,9 @@ class Continuation:
         ns = getattr(sysm, "n_state", None) if plane else None
         held = {"factor": None, "delref": None}
 
-        def residual(x):
-            try:
-                return self._residual(x)
-            except ProblemError as exc:
-                # A trial point outside the equations' domain: a failed step.
-                raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") from exc
+        # A trial point outside the equations' domain: a failed step.
+        residual = _failing_as("equations failed at a Newton iterate", self._residual)
+        jacobian = _failing_as("equations failed at a Newton iterate", self._jacobian)
 
         def step(x, G, it):
             factor = held["factor"]
@@ -162,11 +169,7 @@ class Continuation:
                 # residual and the first-derivative blocks exact, so the point
                 # converged to is the same; the blocks are refreshed at every
                 # converged point (evaluate), where tangent and tests need them.
-                try:
-                    J = self._jacobian(x, frozen=sysm.freezes_second_derivatives)
-                except ProblemError as exc:
-                    raise ConvergenceError(f"equations failed at a Newton iterate ({exc})") \
-                        from exc
+                J = jacobian(x, frozen=sysm.freezes_second_derivatives)
                 if plane:
                     factor = self._factor(J, row_plane)
             if plane:
@@ -225,18 +228,11 @@ class Continuation:
             if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
                 e = np.linalg.svd(J0)[2][-1]
 
-        def residual(y):
-            try:
-                return self._residual(y)
-            except ProblemError as exc:
-                raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
+        residual = _failing_as("the equations fail at the start point", self._residual)
+        jacobian = _failing_as("the equations fail at the start point", self._jacobian)
 
         def step(y, G, it):
-            try:
-                J = self._jacobian(y)
-            except ProblemError as exc:
-                raise ConvergenceError(f"the equations fail at the start point ({exc})") from exc
-            return self._factor(J, e).solve(np.r_[-G, 0.0])
+            return self._factor(jacobian(y), e).solve(np.r_[-G, 0.0])
 
         return newton(residual, step, x, max_iter=START_ITERATIONS, residual_tol=0.0,
                       converged=lambda y0, y, dx, it:
