@@ -201,7 +201,7 @@ def critical_cp(params, rel_bracket: float = 0.05, abs_bracket: float = 1e-3) ->
                 r, rec = locate_tr(params, "C_p", (cp_avg - near, cp_avg + near),
                                    forced.averaged_start(params.replace(C_p=cp_avg - near)),
                                    first_step=near / 4)
-            except ValueError:
+            except (ValueError, ShootingError):     # not there: the whole bracket
                 pass
         if rec is None:
             half = rel_bracket * abs(cp_avg) + abs_bracket
