@@ -253,3 +253,71 @@ def test_general_bvp_starts_from_data(tmp_path):
     assert len(bps) >= 3
     for k, v in enumerate(bps, start=1):
         assert v == pytest.approx(k, abs=located_tol(d / "c.bvp"))
+
+
+@pytest.mark.parametrize("ty, moving, period", [("HB3", 0, 2 * math.pi), ("HB4", 2, math.pi)])
+def test_ty_restarts_a_uz_label_as_a_hopf_point_with_the_period_it_names(tmp_path, ty, moving,
+                                                                          period):
+    """AUTO's TY constant: the restart point is taken to be of the type TY names, and
+    digits after it name the PAR holding the period (TY = 'HB5': PAR(11) = PAR(5), as
+    AUTO's r3b demo starts its Lyapunov families). Two Hopf normal forms in one system,
+    frequencies 1 and 2: at mu = 0 the equilibrium has both pairs +-i, +-2i on the axis.
+    Restarted from the UZ at mu = 0 with IPS = 2 and ISW = -1 (AUTO's INITPS makes an HB
+    start ISW = 1), TY = 'HB3' (PAR(3) = 2 pi) starts the family in (x1, y1), TY = 'HB4'
+    (PAR(4) = pi) the one in (x2, y2): circles of radius sqrt(mu) with the period 2 pi /
+    omega, exact; at the UZSTOP mu = 0.25 the moving pair's max is 0.5 (collocation
+    error of a circle at NTST = 20, NCOL = 4: below 1e-7), the other pair stays 0."""
+    (tmp_path / "hh.py").write_text(
+        "import math\nimport numpy as np\n"
+        "def func(u, par):\n"
+        "    mu = par[0]\n"
+        "    r1 = u[0] ** 2 + u[1] ** 2\n    r2 = u[2] ** 2 + u[3] ** 2\n"
+        "    return np.array([mu * u[0] - u[1] - u[0] * r1, u[0] + mu * u[1] - u[1] * r1,\n"
+        "                     mu * u[2] - 2 * u[3] - u[2] * r2,\n"
+        "                     2 * u[2] + mu * u[3] - u[3] * r2])\n"
+        "def stpnt(u, par):\n"
+        "    u[:] = 0.0\n    par[0] = -0.5\n    par[2] = 2 * math.pi\n    par[3] = math.pi\n")
+    (tmp_path / "c.hh").write_text(
+        "e = 'hh'\nNDIM = 4, IPS = 1, IRS = 0, ILP = 0, ISP = 0\nICP = [1]\nNMX = 40\n"
+        "DS = 0.05, DSMIN = 0.001, DSMAX = 0.1\nUZR = {1: 0.0}\nUZSTOP = {1: 0.3}\n")
+    (tmp_path / "c.hh.po").write_text(
+        "e = 'hh'\nNDIM = 4, IPS = 2, IRS = 2, ILP = 0, ISP = 0, ISW = -1\n"
+        "ICP = [1, 11]\nNTST = 20, NCOL = 4, NMX = 200\n"
+        "DS = 0.01, DSMIN = 0.0001, DSMAX = 0.05\nUZSTOP = {1: 0.25}\n"
+        f"TY = '{ty}'\n")
+    res = run(tmp_path / "c.hh", verbose=False, sv="eq")
+    assert [r.ty for r in res.rows if r.lab] == ["EP", "UZ", "UZ"]
+    assert [r.lab for r in res.rows if r.ty == "UZ"][0] == 2
+    res = run(tmp_path / "c.hh.po", verbose=False, sv="po", s="eq")
+    assert res.status == "ok", res.status
+    end = [r for r in res.rows if r.lab][-1]
+    assert end.ty == "UZ" and end.values[0] == pytest.approx(0.25)
+    maxima = end.values[2:6]                                  # MAX U(1..4)
+    assert end.values[-1] == pytest.approx(period, rel=1e-9)
+    assert maxima[moving] == pytest.approx(0.5, abs=1e-7)
+    other = 2 - moving
+    assert abs(maxima[other]) < 1e-7 and abs(maxima[other + 1]) < 1e-7
+
+
+def test_r3b_circle_of_equilibria_has_autos_three_branch_points(tmp_path, monkeypatch):
+    """AUTO's r3b demo, first run (its constants and Fortran file unchanged): at mu = 0 the
+    unit circle is a circle of equilibria, and the families of the Lagrange points leave
+    it at the angles 60, -60 and 180 degrees: BPs at (x, y) = (1/2, sqrt 3/2),
+    (1/2, -sqrt 3/2), (-1, 0), then the UZ y = 0.991, as AUTO's labels 2-5. The third lies
+    where a location trial lands on the BP itself (Newton's matrix singular there): the
+    trials are taken from the last converged one along its own tangent, as AUTO's LCSPAE
+    steps (it was left unlabelled, so the script's UZ7 did not exist). Positions to the
+    location tolerance EPSS (1 + sqrt|DS DSMAX|) = 1e-4 in arclength (the circle's
+    arclength is the angle)."""
+    from washer.auto import clui
+    for f in ("r3b.f90", "c.r3b"):
+        shutil.copy(DATA / "auto_demos" / "r3b" / f, tmp_path)
+    monkeypatch.chdir(tmp_path)
+    r1 = clui.run("r3b", UZR={"mu": 0.063})
+    sols = [s for s in r1() if s["BR"] == 1]
+    assert [(s["TY"], s["LAB"]) for s in sols] == [("EP", 1), ("BP", 2), ("BP", 3), ("BP", 4),
+                                                   ("UZ", 5)]
+    want = [(0.5, math.sqrt(3) / 2), (0.5, -math.sqrt(3) / 2), (-1.0, 0.0)]
+    for s, (x, y) in zip(sols[1:4], want):
+        u = np.asarray(s.rec.u, float)
+        assert math.hypot(u[0] - x, u[1] - y) < 1e-4, (s["LAB"], u[:2])

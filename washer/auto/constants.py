@@ -36,7 +36,6 @@ STR_KEYS = {"e", "s", "dat", "sv", "TY"}
 IGNORED = {
     "IID": "the d-file is always written at AUTO's level 2",
     "IIS": "the direction is always stored in the s-file (AUTO's IIS = 3)",
-    "TY": "overriding the restart point's type is not implemented",
     "NUNSTAB": "HomCont", "NSTAB": "HomCont", "IEQUIB": "HomCont", "ITWIST": "HomCont",
     "ISTART": "HomCont", "IREV": "HomCont", "IFIXED": "HomCont", "IPSI": "HomCont",
 }

@@ -166,8 +166,25 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
         try:
+            if not from_last and last is not None and position is not None:
+                try:
+                    got = trial(s_new)
+                except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError):
+                    # A trial from the previous point that fails next to a branch point
+                    # (the predictor's error over the whole step against a nearly
+                    # singular Newton matrix) is taken, from then on, from the last
+                    # converged trial, as AUTO's LCSPAE always steps (STEPAE from its
+                    # current point): short steps whose predictor is nearly exact.
+                    from_last = True
+                else:
+                    got = (*got, s_new)
+            else:
+                got = None
             base = (last[0], last[1]) if (from_last and last is not None) else None
-            pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
+            if got is not None and not from_last:
+                pt, q, s_new = got
+            else:
+                pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
             if base is not None and position is not None:
                 s_new = position(pt)
         except LocationFailed:

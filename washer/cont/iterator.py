@@ -371,7 +371,19 @@ class Continuation:
             # 2.2e-4 off with it, 1.2e-7 without).
             p0, s0 = base
             ds = s_ - s0
-            x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
+            try:
+                x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
+            except ConvergenceError:
+                if key not in (Code.BP, Code.BPC):
+                    raise
+                # The trial points of a BP carry prev's tangent (their test borders it),
+                # off by the curvature over the whole step: next to the branch point,
+                # where Newton's matrix is nearly singular, the step from one fails with
+                # it and is taken again along the trial point's own tangent (AUTO's
+                # STEPAE/STEPBV step from their current point with its own direction):
+                # r3b's third BP on its circle of equilibria, the BP of its halo orbits.
+                t0, _ = self.tangent(self._jacobian(p0.x), prev.tangent)
+                x, it = self.correct(p0.x + ds * t0, p0.x, t0, ds)
             if key in (Code.BP, Code.BPC):
                 # A branch point's test is a determinant of the Jacobian bordered by a
                 # direction: the same one, prev's tangent, at every trial, so that its

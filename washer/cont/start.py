@@ -116,11 +116,33 @@ def start_kind(rec) -> str:
     return type_name(base)
 
 
+def restart_type(c, ty: str, par: np.ndarray) -> tuple[str, np.ndarray]:
+    """AUTO's TY constant: the restart point is taken to be of type TY(1:2) (e.g. a UZ
+    label restarted as 'HB' starts periodic orbits there), and digits after the name
+    name the PAR index holding the period (TY = 'HB5': PAR(11) = PAR(5), as AUTO's
+    Hopf starts read it: FFHBX)."""
+    name, digits = ty[:2].upper(), ty[2:].strip()
+    if name not in {"BP", "LP", "HB", "UZ", "PD", "TR", "EP"}:
+        raise RunError(f"{c.source}: TY={ty!r}: the type must start with BP, LP, HB, UZ, PD, "
+                       "TR or EP")
+    if digits:
+        if not digits.isdigit() or not 1 <= int(digits) <= len(par):
+            raise RunError(f"{c.source}: TY={ty!r}: after the type, the index of the PAR "
+                           f"holding the period (1..{len(par)}) was expected")
+        par[10] = par[int(digits) - 1]
+    return name, par
+
+
 def system_for(c, s: Settings, problem, u, par, rec, data=None):
     """The continued system of the start (registry key (IPS, ISW, start kind)) and the
     settings it runs with (restarting a point of a curve continues the curve)."""
     irs = c["IRS"]
     kind = start_kind(rec)
+    ty = str(c["TY"] or "").strip()
+    if ty and rec is not None:
+        kind, par = restart_type(c, ty, par)
+    if s.IPS == 2 and kind == "HB" and s.ISW == -1:
+        s = s.with_(ISW=1)          # INITPS: ISW = 1 when starting from an HB
     # A problem that supplies its period map has its periodic orbits by shooting
     # (washer.cont.systems.shooting), from its stpnt or a record of such a run.
     shooting = s.IPS == 2 and problem.has_flow
