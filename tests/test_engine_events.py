@@ -2,6 +2,7 @@
 weighted arclength (THU), and equations failing at a trial point. (A zero hidden
 before a located one, which linear estimates misorder, is exercised by the
 washer's C_a Hopf curve in test_paper.py.)"""
+import math
 import shutil
 from pathlib import Path
 
@@ -106,3 +107,27 @@ def test_a_location_ends_at_the_last_trial_when_the_failing_correction_is_below_
     pt, s = locate(trial, "BP", trial(0.0)[1], trial(1.0)[1], 1.0, settings)
     assert pt == ("point", s)
     assert abs(s - 0.5) < tol
+
+
+@pytest.mark.parametrize("steep", [1.0, 30.0])
+def test_a_jump_of_the_test_is_not_located_as_a_zero(steep):
+    """A test that jumps across 0 (q = -0.5 + s for s < 0.3, 0.2 + s beyond) is bracketed
+    down to the jump, but the bracket's ends then differ by 0.4 over less than 10
+    tolerances while the whole step changes q by 1.7: not a zero (AUTO's Muller creeps
+    towards such a point and stops at ITMX with 'Possible special point'; tfc's test of
+    BPs of cycles after its Hopf start). A genuine zero, even a steep one (q = tanh of
+    steep (s - 0.3), 30 times the step's mean slope there), is located to tolerance."""
+    from types import SimpleNamespace
+    from washer.cont.events import LocationFailed, locate
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=60, DSMIN=1e-12)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
+
+    def jump(s):
+        return ("point", s), (-0.5 + s) if s < 0.3 else (0.2 + s)
+    with pytest.raises(LocationFailed, match="jump"):
+        locate(jump, "BP", jump(0.0)[1], jump(1.0)[1], 1.0, settings)
+
+    def smooth(s):
+        return ("point", s), math.tanh(steep * (s - 0.3))
+    _, s = locate(smooth, "BP", smooth(0.0)[1], smooth(1.0)[1], 1.0, settings)
+    assert abs(s - 0.3) < tol

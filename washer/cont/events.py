@@ -62,6 +62,10 @@ def _priority(key) -> int:
     return PRIORITY.index(key) if key in PRIORITY else len(PRIORITY)
 
 
+#: A located zero whose bracket's ends differ, per unit of arclength, by more than this
+#: many times the test's change over the whole step is a jump of the test, not a zero.
+JUMP_FACTOR = 1e3
+
 #: A located "zero" whose test value exceeds both bracketing values in
 #: magnitude is a sign change through a pole or a jump (e.g. the first
 #: Lyapunov coefficient through a zero eigenvalue), not a zero: rejected.
@@ -159,6 +163,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     """
     tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
     lo, qlo, hi, qhi = 0.0, q_prev, s_cur, q_cur          # the bracket (as s values)
+    raw = {"lo": q_prev, "hi": q_cur}                      # its ends' values, unscaled
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
@@ -199,11 +204,13 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             break
         if (q < 0) == (qlo < 0):
             lo, qlo = s_new, q
+            raw["lo"] = q
             if side == -1:
                 qhi /= 2
             side = -1
         else:
             hi, qhi = s_new, q
+            raw["hi"] = q
             if side == 1:
                 qlo /= 2
             side = 1
@@ -230,6 +237,17 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
+    width = abs(hi - lo)
+    if 0 < width < 10 * tol and q_cur != q_prev and abs(raw["lo"] - raw["hi"]) / width > \
+            JUMP_FACTOR * abs(q_cur - q_prev) / abs(s_cur):
+        # The bracket closed on a jump, not a zero: the test changes across it as over
+        # a step JUMP_FACTOR times longer (AUTO's Muller iteration, without a bracket,
+        # creeps towards such a point and stops at ITMX: "Possible special point";
+        # tfc's test of BPs of cycles just after its Hopf start, -6.8e-7 at 2e-9 from
+        # the previous point, +5e-7 there).
+        raise LocationFailed(f"sign change through a jump, not a zero (the test changes by "
+                             f"{abs(raw['lo'] - raw['hi']):.3g} across the last bracket of "
+                             f"{width:.3g})")
     if auto_nit is not None and hasattr(pt, "iterations"):
         # The step control after a located point counts the Newton iterations of the
         # trial AUTO ends its location with (the further trials that narrow the
