@@ -57,7 +57,7 @@ def main() -> int:
     args = ap.parse_args()
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     from washer.cont.compiled import load_compiled_problem
-    from washer.cont.problem import load_python_problem
+    from washer.cont.user_files import load_python_problem
     from washer.problems.washer import washer_problem
     cases = [("ab.f90 (compiled)", load_compiled_problem(DATA / "auto_demos" / "ab" / "ab.f90", 2),
               2, 36),

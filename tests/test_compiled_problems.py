@@ -14,7 +14,7 @@ import pytest
 
 from washer.cont.compile import CompileError, build_library, source_file, source_text
 from washer.cont.compiled import load_compiled_problem
-from washer.cont.problem import load_python_problem
+from washer.cont.user_files import load_python_problem
 
 DATA = Path(__file__).parent / "data"
 AB_F90 = DATA / "auto_demos" / "ab" / "ab.f90"

@@ -10,7 +10,7 @@ import pytest
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.auto.constants import Constants, read_constants
-from washer.cont.problem import load_python_problem
+from washer.cont.user_files import load_python_problem
 from washer.cont.runner import build, execute
 from washer.cont.runner import run as run_in_memory
 from washer.cont.settings import Settings

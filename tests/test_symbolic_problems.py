@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.cont.problem import ProblemError, load_python_problem
+from washer.cont.problem import ProblemError
+from washer.cont.user_files import load_python_problem
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"

@@ -36,7 +36,8 @@ from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError,
 from washer.auto.files import AutoFileError, read_b, read_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
-from washer.cont.problem import Problem, ProblemError, load_python_problem
+from washer.cont.problem import Problem, ProblemError
+from washer.cont.user_files import load_user_problem
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.cont.sinks import FileSink, ScreenSink
 from washer import sizes
@@ -79,13 +80,8 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
                               "the branch continues a value the equations do not read",
                               UserWarning, stacklevel=3)
         return washer_problem(e, params=params, source=c.source)
-    if not (Path(folder) / f"{e}.py").exists():
-        # AUTO's own user files: NAME.f90, NAME.f or NAME.c, compiled on first use.
-        from washer.cont.compiled import find_user_file, load_compiled_problem
-        path = find_user_file(e, folder) if "/" not in e and "\\" not in e else None
-        if path is not None:
-            return load_compiled_problem(path, c["NDIM"], name=e)
-    return load_python_problem(e, folder, c["NDIM"])
+    # NAME.py, else AUTO's NAME.f90, NAME.f or NAME.c, compiled on first use.
+    return load_user_problem(e, folder, c["NDIM"])
 
 
 def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,

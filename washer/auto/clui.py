@@ -122,16 +122,15 @@ class Runner:
     def problem(self, e: str, ndim: int):
         """The equations named e in the current folder: NAME.py, else NAME.f90/.f/.c
         (compiled once, cached), or washer's built-in problems (e = 'washer...')."""
-        from washer.cont.compiled import find_user_file, load_compiled_problem
-        from washer.cont.problem import load_python_problem
+        from washer.cont.compiled import load_compiled_problem
+        from washer.cont.user_files import find_problem_file, load_python_problem
         if not e:
             raise AutoError("The equation file argument is missing.")
         folder = Path(".").resolve()
         if e.split(":")[0] == "washer":
             from washer.run import resolve_problem
             return resolve_problem(Constants({"e": e}), folder)
-        py = folder / f"{e}.py"
-        path = py if py.exists() else find_user_file(e, folder)
+        path = find_problem_file(e, folder)
         if path is None:
             raise AutoError(f"No equations file found for: '{e}' (expected {e}.f90, {e}.f, "
                             f"{e}.c or {e}.py in {folder})")

@@ -40,9 +40,7 @@ stencil, not once per point.
 from __future__ import annotations
 
 import copy
-import importlib.util
 import inspect
-from pathlib import Path
 
 import numpy as np
 
@@ -453,33 +451,3 @@ class Problem:
         if not (np.all(np.isfinite(u)) and np.all(np.isfinite(par))):
             raise ProblemError(f"{self.name}: {what} left non-finite values in u or par")
         return u, par
-
-
-def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
-    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls).
-
-    Only a plain name is accepted: the module is looked up beside the
-    constants file, never elsewhere on disk."""
-    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
-        raise ProblemError(f"e='{name}': expected the name of NAME.py beside the constants "
-                           "file (no paths)")
-    path = Path(folder) / f"{name}.py"
-    if not path.exists():
-        raise ProblemError(f"e='{name}': no equations file {path} (expected func(u, par) and "
-                           "stpnt(u, par) there)")
-    spec = importlib.util.spec_from_file_location(f"auto_user_{name}", path)
-    mod = importlib.util.module_from_spec(spec)
-    try:
-        spec.loader.exec_module(mod)
-    except Exception as exc:
-        raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
-    from washer.cont import symbolic
-    if symbolic.is_symbolic(mod):
-        # u, par, f as sympy expressions: generated into C and compiled (symbolic.py)
-        return symbolic.symbolic_problem(mod, path, ndim, name)
-    if not callable(getattr(mod, "func", None)):
-        raise ProblemError(f"{path}: defines no func(u, par) (nor sympy expressions u, par "
-                           "and f)")
-    return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
-                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
-                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None))

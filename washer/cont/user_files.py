@@ -1,0 +1,68 @@
+"""The user's equations from a file beside the constants file (AUTO's e='NAME').
+
+    problem = load_user_problem("ab", folder, ndim=2)
+
+NAME.py wins when it exists: Python functions (func, stpnt, dfdu, dfdp, pvls, bcnd, icnd;
+README "Your own equations") or sympy expressions u, par, f (generated into C and compiled:
+washer.cont.symbolic). Otherwise AUTO's own user file NAME.f90, NAME.f or NAME.c, compiled on
+first use (washer.cont.compiled). Names are plain: a file is looked up beside the constants
+file, never elsewhere on disk.
+"""
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+from washer.cont.problem import Problem, ProblemError
+
+
+def find_problem_file(name: str, folder: Path) -> Path | None:
+    """folder/NAME.py, else AUTO's NAME.f90, NAME.f or NAME.c (runAUTO's order); None if
+    there is none. ProblemError for a name that is not a plain file name."""
+    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
+        raise ProblemError(f"e='{name}': expected the name of NAME.py (or NAME.f90, NAME.f, "
+                           "NAME.c) beside the constants file (no paths)")
+    py = Path(folder) / f"{name}.py"
+    if py.exists():
+        return py
+    from washer.cont.compiled import find_user_file
+    return find_user_file(name, folder)
+
+
+def load_user_problem(name: str, folder: Path, ndim: int) -> Problem:
+    """The Problem of e='NAME' in `folder` (see the module's docstring)."""
+    path = find_problem_file(name, folder)
+    if path is None or path.suffix == ".py":
+        return load_python_problem(name, folder, ndim)
+    from washer.cont.compiled import load_compiled_problem
+    return load_compiled_problem(path, ndim, name=name)
+
+
+def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
+    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls).
+
+    Only a plain name is accepted: the module is looked up beside the
+    constants file, never elsewhere on disk."""
+    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
+        raise ProblemError(f"e='{name}': expected the name of NAME.py beside the constants "
+                           "file (no paths)")
+    path = Path(folder) / f"{name}.py"
+    if not path.exists():
+        raise ProblemError(f"e='{name}': no equations file {path} (expected func(u, par) and "
+                           "stpnt(u, par) there)")
+    spec = importlib.util.spec_from_file_location(f"auto_user_{name}", path)
+    mod = importlib.util.module_from_spec(spec)
+    try:
+        spec.loader.exec_module(mod)
+    except Exception as exc:
+        raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
+    from washer.cont import symbolic
+    if symbolic.is_symbolic(mod):
+        # u, par, f as sympy expressions: generated into C and compiled (symbolic.py)
+        return symbolic.symbolic_problem(mod, path, ndim, name)
+    if not callable(getattr(mod, "func", None)):
+        raise ProblemError(f"{path}: defines no func(u, par) (nor sympy expressions u, par "
+                           "and f)")
+    return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
+                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
+                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None))
