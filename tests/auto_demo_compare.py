@@ -160,7 +160,7 @@ def reference_files(demo: str) -> list[Path]:
                   p.name in ("fort.7", "fort.7.gz"))
 
 
-def run_demo(demo: str, workdir: Path, timeout: float = 1800) -> Result:
+def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     """Copy the demo (without autoref) into workdir, run its script, compare."""
     src = DEMOS / demo
     work = workdir / demo

@@ -26,11 +26,13 @@ EXPECTED_FAIL = {
     "lcbp": BP_LOCI,
     "sspg": BP_LOCI,
     "tfc": BP_LOCI,
-    "fnc": "the BVPs of the slow manifolds stop with no convergence",
+    "fnc": "the canard orbits' BVPs (NTST = 500) started from the manifolds' data do not "
+           "reproduce AUTO's points",
     "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",
-    "pcl": "a restart with a larger NDIM (the system extended through STPNT) is not in the "
-           "engine",
+    "pcl": "the fourth run (Floquet bundle of the extended system) does not end within "
+           "the harness' time limit",
+    "plp": "the isola from loci('UZ4') starts at another fold than AUTO's and fails there",
     "r3b": "6 of 7: on the halo family (b.H1) our steps are longer than AUTO's: we reach the "
            "BP of cycles at PERIOD = 2.66258 at PT 101 and label it, where AUTO's NMX = 137 "
            "ends its run (its EP at 2.66257)",
