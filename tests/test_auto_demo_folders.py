@@ -32,7 +32,6 @@ EXPECTED_FAIL = {
     "ops": "optimisation (IPS = 15) is not supported",
     "pcl": "the fourth run (Floquet bundle of the extended system) does not end within "
            "the harness' time limit",
-    "plp": "the isola from loci('UZ4') starts at another fold than AUTO's and fails there",
     "r3b": "6 of 7: on the halo family (b.H1) our steps are longer than AUTO's: we reach the "
            "BP of cycles at PERIOD = 2.66258 at PT 101 and label it, where AUTO's NMX = 137 "
            "ends its run (its EP at 2.66257)",
