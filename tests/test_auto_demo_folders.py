@@ -26,8 +26,6 @@ EXPECTED_FAIL = {
     "lcbp": BP_LOCI,
     "sspg": BP_LOCI,
     "tfc": BP_LOCI,
-    "fnc": "the canard orbits' BVPs (NTST = 500) started from the manifolds' data do not "
-           "reproduce AUTO's points",
     "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",
     "pcl": "the fourth run (Floquet bundle of the extended system) does not end within "
