@@ -50,7 +50,9 @@ def _params():
 
 @pytest.mark.parametrize("demo", _params())
 def test_demo_folder_matches_auto(demo, tmp_path):
-    r = run_demo(demo, tmp_path)
+    # A demo expected to fall short gets 5 minutes: pcl's fourth run does not end (its
+    # UZSTOP lies inside the untested first step; NMX = 0 sets no limit).
+    r = run_demo(demo, tmp_path, timeout=300 if demo in EXPECTED_FAIL else 1800)
     assert r.returncode == 0, f"{demo}: the script failed:\n{r.log[-3000:]}"
     assert r.auto_points > 0
     assert r.matched == r.auto_points, (f"{demo}: {r.matched} of AUTO's {r.auto_points} "

@@ -37,7 +37,7 @@ from washer.auto.files import AutoFileError, read_b, read_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError
-from washer.cont.user_files import load_user_problem
+from washer.problems.resolve import resolve_problem
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.cont.sinks import FileSink, ScreenSink
 from washer import sizes
@@ -50,38 +50,6 @@ EXIT_LOCKED = 75
 #: What `run` returns: the run in memory (labelled points, every row, status),
 #: with `.files` naming the b./s./d. files written.
 RunResult = Branch
-
-
-def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
-    """The equations named by e: the built-in washer (with `params`, a
-    washer.Params, or the shipped reference set) or NAME.py beside the file."""
-    e = c["e"]
-    if not e:
-        raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py, or AUTO's NAME.f90, "
-                       "NAME.f or NAME.c, beside the file) or e='washer'")
-    if e.split(":")[0] == "washer":
-        from washer.machine.layout import PAR_NAMES
-        from washer.machine.params import ParameterError
-        from washer.problems.washer import forced_start_params, washer_problem
-        # The PAR values of the constants file must be a valid parameter set (m_t > 0,
-        # Omega >= 0, ...), as a parameter file's would: checked here, named by the file.
-        try:
-            start = forced_start_params(c, params)
-        except ParameterError as exc:
-            detail = str(exc).split(": ", 1)[-1]
-            raise RunError(f"{c.given.get('PAR', c.source)}: PAR: {detail}") from None
-        if e == "washer:forced" and c["IRS"] in (0, "0"):
-            params = start                                  # stpnt's orbit at the start PAR
-        for i in c.icp():
-            if i not in PAR_NAMES and i not in (11, 12) and c["ISW"] in (0, 1, -1):
-                warnings.warn(f"{c.given.get('ICP', c.source)}: ICP: PAR({i}) is not a "
-                              f"parameter of e={e!r} (its parameters: "
-                              f"{', '.join(f'{k}={n}' for k, n in PAR_NAMES.items())}): "
-                              "the branch continues a value the equations do not read",
-                              UserWarning, stacklevel=3)
-        return washer_problem(e, params=params, source=c.source)
-    # NAME.py, else AUTO's NAME.f90, NAME.f or NAME.c, compiled on first use.
-    return load_user_problem(e, folder, c["NDIM"])
 
 
 def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,

@@ -3,7 +3,7 @@ language (`from washer.auto import run, load, save, ...`; `python -m washer.auto
 import importlib
 
 _OBJECTS = {"Diagram": "diagram", "Solution": "diagram", "SolutionList": "diagram",
-            "AutoError": "clui", "AutoConstants": "clui"}
+            "AutoError": "autoconstants", "AutoConstants": "autoconstants", "auto": "script"}
 
 
 def __getattr__(name):

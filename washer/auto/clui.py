@@ -27,70 +27,18 @@ import sys
 from pathlib import Path
 
 from washer.auto.constants import DEFAULTS, Constants, ConstantsError, read_constants
+from washer.auto import diagram
+from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
+                                        AutoError)
 from washer.auto.diagram import Diagram, Solution, SolutionList, read_solutions, type_name
 from washer.atomic import save_figure
 
-#: Constants a constants file resets to "default" when it does not set them (parseC's
-#: list); the special keys e, unames, parnames survive a new constants file.
-STANDARD_KEYS = [k for k in DEFAULTS if k not in ("e", "unames", "parnames")]
-SPECIAL_KEYS = ("e", "unames", "parnames", "homcont")
 #: Constants a solution taken from a run does not carry to the next run (bifDiag.nonekeys).
 NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
 #: File name of the unsaved output of a run (AUTO's units 7, 8, 9).
 FORT = ("fort.7", "fort.8", "fort.9")
 #: Engine messages that mean "this kind of run is not done here" (not a user error).
 REFUSED = re.compile(r"not implemented|no continued system|not supported", re.I)
-
-
-class AutoError(RuntimeError):
-    """A command failed (AUTO's AUTORuntimeError)."""
-
-
-class AutoConstants(dict):
-    """AUTO's constants as the CLUI holds them (parseC): every standard key present,
-    None meaning AUTO's default; updates replace values, None included."""
-
-    def __init__(self, other=None, **kw):
-        super().__init__({k: None for k in STANDARD_KEYS})
-        if other is not None:
-            for k, v in dict(other).items():
-                dict.__setitem__(self, k, _copyval(v))
-        if kw:
-            self.update(kw)
-
-    def __setitem__(self, key, value):
-        if key == "DS" and value in ("-", "+"):
-            cur = self.get("DS")
-            cur = 0.01 if cur is None else float(cur)
-            value = -cur if value == "-" else abs(cur)
-        if key in ("SP", "STOP") and isinstance(value, str):
-            value = [value]                      # AUTO accepts STOP='UZ2' for ['UZ2']
-        dict.__setitem__(self, key, _copyval(value))
-
-    def update(self, d=None, **kw):
-        items = dict(d or {})
-        items.update(kw)
-        for k, v in items.items():
-            if k in self or k in SPECIAL_KEYS:
-                self[k] = v
-            elif not str(k).startswith("Active "):
-                raise AutoError(f"Unknown option: {k}")
-
-    def copy(self) -> "AutoConstants":
-        return AutoConstants(self)
-
-    def washer(self, source: str) -> Constants:
-        """The engine's checked Constants (defaults where None)."""
-        c = Constants(source=source)
-        for k, v in self.items():
-            if v is None or k == "homcont":
-                continue
-            c.set(k, v, f"{source}: {k}")
-        return c
-
-
-def _copyval(v):
-    return v.copy() if isinstance(v, (dict, list)) else v
 
 
 def read_auto_constants(name: str) -> AutoConstants:
@@ -128,7 +76,7 @@ class Runner:
             raise AutoError("The equation file argument is missing.")
         folder = Path(".").resolve()
         if e.split(":")[0] == "washer":
-            from washer.run import resolve_problem
+            from washer.problems.resolve import resolve_problem
             return resolve_problem(Constants({"e": e}), folder)
         path = find_problem_file(e, folder)
         if path is None:
@@ -601,10 +549,8 @@ def plot(name=None, **kw):
 _plots = 0
 
 
-def auto(script):
-    """Run another AUTO script (in its own namespace, from the current folder)."""
-    from washer.auto.script import run_script
-    run_script(script)
+# Solutions and diagrams run themselves (AUTO's solution.run(...)) through this module's run.
+diagram._run_command = run
 
 
 def info(s):
@@ -620,5 +566,5 @@ COMMANDS = {
     "changeconstant": ch, "pr": pr, "pc": pr, "printconstant": pr, "sl": sl,
     "solutionget": sl, "dg": dg, "diagramget": dg, "df": df, "deletefort": df, "wait": wait,
     "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
-    "pl": plot, "p2": plot, "splabs": splabs, "info": info, "auto": auto,
+    "pl": plot, "p2": plot, "splabs": splabs, "info": info,
 }

@@ -25,6 +25,15 @@ from washer.atomic import write_text
 from washer.auto.codes import split_code, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _read_record, _read_text, fmt_e,
                                record_text)
+from washer.auto.autoconstants import AutoConstants
+
+
+def _run_command(data, **kw):
+    """The command language's `run`, which washer.auto.clui installs here when it is
+    imported (solutions and diagrams run themselves through it, as AUTO's objects do;
+    the objects stay below the commands that make them)."""
+    raise RuntimeError("solution.run() needs the command language: import washer.auto.clui")
+
 
 
 def type_name(code: int) -> str:
@@ -232,7 +241,6 @@ class Solution:
     def load(self, **kw) -> "Solution":
         """A copy with constants updated (AUTO's AUTOSolution.load): kw 'constants' (an
         AutoConstants) first, then the keywords; IRS becomes this solution's label."""
-        from washer.auto.clui import AutoConstants
         constants = kw.pop("constants", None)
         c = AutoConstants(self.c)
         oldirs = c.get("IRS")
@@ -248,8 +256,8 @@ class Solution:
         return new
 
     def run(self, **kw):
-        from washer.auto.clui import run
-        return run(self, **kw)
+        """AUTO's solution.run(...): the command language's run from this data."""
+        return _run_command(self, **kw)
 
     # ------------------------------------------------------------ writing
     def text(self) -> str:
@@ -472,8 +480,8 @@ class Diagram(list):
         return self().load(**kw)
 
     def run(self, **kw):
-        from washer.auto.clui import run
-        return run(self, **kw)
+        """AUTO's solution.run(...): the command language's run from this data."""
+        return _run_command(self, **kw)
 
     @property
     def c(self):
@@ -630,7 +638,6 @@ def read_branches(path, c=None) -> list[Branch]:
         if header or cur is None or br != cur.BR:
             bc = c
             if bc is None and header:
-                from washer.auto.clui import AutoConstants
                 bc = AutoConstants(header_constants(header))
             elif bc is None and cur is not None:
                 bc = cur.c

@@ -111,10 +111,17 @@ def _register_modules(ns: dict) -> None:
         sys.modules["AUTOclui"] = mod
 
 
+def auto(script):
+    """AUTO's auto(script): run another AUTO script (in its own namespace, from the current
+    folder)."""
+    run_script(script)
+
+
 def namespace() -> dict:
     """The names a script sees: AUTO's commands and aliases, and its objects."""
     ns = {"__name__": "__main__", "__builtins__": __builtins__}
     ns.update(clui.COMMANDS)
+    ns["auto"] = auto
     from washer.auto import diagram
     ns.update(Diagram=diagram.Diagram, Solution=diagram.Solution,
               SolutionList=diagram.SolutionList, AutoError=clui.AutoError)
@@ -146,7 +153,7 @@ def run_script(path, ns: dict | None = None) -> dict:
         name = name if isinstance(name, str) else name[0]
         raise ScriptError(f"{path}:{line}: unknown command or name '{name}' "
                           f"({_source_line(source, line)}): washer's AUTO commands are "
-                          f"{', '.join(sorted(clui.COMMANDS))}") from None
+                          f"{', '.join(sorted(set(clui.COMMANDS) | {'auto'}))}") from None
     except Exception as exc:        # noqa: BLE001 - every failure names the script line
         line = _script_line(exc, path)
         raise ScriptError(f"{path}:{line}: {type(exc).__name__}: {exc} "
