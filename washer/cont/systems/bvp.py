@@ -318,6 +318,12 @@ class CollocationBVP:
         return z
 
     # ------------------------------------------------------------------ output
+    @property
+    def n_shown(self) -> int:
+        """How many of the state's components the b-file's columns describe: NDIM here;
+        a system that extends the user's state (AUTO's NDM < NDIM) says fewer."""
+        return self.ndim
+
     def n2(self) -> int:
         """AUTO's N2: how many MAX U(i) columns the b-file shows (ICP counts at least
         two entries: the period is free on periodic branches)."""
@@ -328,7 +334,7 @@ class CollocationBVP:
         range: L2 norm sqrt(int sum THU_i u_i^2 dt) (RNRMSQ); 1..NDIM: max of U(IPLT);
         -NDIM..-1: min; NDIM+1..2 NDIM: integral of U(IPLT - NDIM); 2 NDIM+1..3 NDIM: L2
         norm of U(IPLT - 2 NDIM)."""
-        n, iplt = self.ndim, self.settings.IPLT
+        n, iplt = self.n_shown, self.settings.IPLT
         w = self.coll.w_node
         iab = abs(iplt)
         if iplt > 0 and iab <= n:
@@ -343,7 +349,7 @@ class CollocationBVP:
         return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
 
     def column_titles(self) -> list:
-        n, iplt = self.ndim, self.settings.IPLT
+        n, iplt = self.n_shown, self.settings.IPLT
         iab = abs(iplt)
         if iplt > 0 and iab <= n:
             first = f"MAX U({iab})"

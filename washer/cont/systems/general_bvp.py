@@ -383,43 +383,14 @@ class BoundaryValueProblem(CollocationBVP):
         return out
 
     # ------------------------------------------------------------------ output
-    def measure(self, U) -> float:
-        """The b-file's second column by IPLT (STPLBV), as for periodic orbits, over the
-        user's components (NDM)."""
-        n, iplt = self.ndm, self.settings.IPLT
-        w = self.w_node
-        iab = abs(iplt)
-        if iplt > 0 and iab <= n:
-            return float(np.max(U[:, iab - 1]))
-        if iplt < 0 and iab <= n:
-            return float(np.min(U[:, iab - 1]))
-        if n < iplt <= 2 * n:
-            return float(w @ U[:, iplt - n - 1])
-        if 2 * n < iplt <= 3 * n:
-            return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
-        thu = self.settings.theta_u(n)
-        return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
+    @property
+    def n_shown(self) -> int:
+        """The b-file's columns describe the user's components (AUTO's NDM)."""
+        return self.ndm
 
     def n2(self) -> int:
         nicp = len(self.settings.ICP)
         return 0 if nicp > 7 else max(0, min(self.ndm, 7 - nicp))
-
-    def column_titles(self) -> list:
-        n, iplt = self.ndm, self.settings.IPLT
-        iab = abs(iplt)
-        if iplt > 0 and iab <= n:
-            first = f"MAX U({iab})"
-        elif iplt < 0 and iab <= n:
-            first = f"MIN U({iab})"
-        elif n < iplt <= 2 * n:
-            first = f"INTEGRAL U({iplt - n})"
-        elif 2 * n < iplt <= 3 * n:
-            first = f"L2-NORM U({iplt - 2 * n})"
-        else:
-            first = "L2-NORM"
-        un = self.unames
-        return [first] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
-                          for i in range(1, self.n2() + 1)]
 
     def solution(self, x, tangent) -> Solution:
         U, _ = self.unpack(x)
