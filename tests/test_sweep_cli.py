@@ -137,7 +137,7 @@ name = "crit"
 sample = "grid"
 kinds = ["critical"]
 [study.vary]
-m_u = {from = 0.5, to = 2.0, n = 6}
+m_u = {from = 0.5, to = 2.0, n = 12}
 [study.critical]
 parameter = "C_p"
 from = 0.0
@@ -162,7 +162,7 @@ def test_ctrl_c_stops_a_serial_sweep_and_records_nothing_wrong(tmp_path):
     deadline = time.monotonic() + 120
     while not list((out / "parts").glob("part-*.parquet")) and time.monotonic() < deadline:
         time.sleep(0.05)
-    time.sleep(0.3)                                   # inside the next point
+    time.sleep(0.05)                                  # inside the next point
     proc.send_signal(signal.SIGINT)
     t0 = time.monotonic()
     _, err = proc.communicate(timeout=60)
@@ -170,11 +170,11 @@ def test_ctrl_c_stops_a_serial_sweep_and_records_nothing_wrong(tmp_path):
     assert time.monotonic() - t0 < 3, "Ctrl-C took too long"
     assert "interrupted" in err and "Traceback" not in err
     parts = ResultStore(out).read_parts()
-    assert 1 <= len(parts) < 6
+    assert 1 <= len(parts) < 12
     assert (parts["status"] == "ok").all(), parts[["status", "error"]]
     # The re-run computes only the rest, and what was kept equals an uninterrupted sweep.
     df = run(spec, serial=True, out=out, plot=False)
-    assert len(df) == 6 and df["id"].is_unique
+    assert len(df) == 12 and df["id"].is_unique
     fresh = run(spec, serial=True, out=tmp_path / "fresh", plot=False).set_index("id")
     cols = ["crit_value", "crit_source"]
     assert fresh.loc[parts["id"], cols].equals(parts.set_index("id")[cols])
@@ -187,3 +187,20 @@ def test_local_cluster_announces_its_dashboard(tmp_path, caplog):
     run(_spec(tmp_path), n_workers=1, out=tmp_path / "o", plot=False)
     msgs = [r.getMessage() for r in caplog.records]
     assert any(m.startswith("Dask dashboard") and "http://" in m for m in msgs), msgs
+
+
+def test_ctrl_c_after_the_last_point_is_exit_130_without_a_traceback(tmp_path, monkeypatch,
+                                                                       capsys):
+    """Ctrl-C while the table is consolidated (every point done): the parts are kept, the
+    command says so in one line and exits 130."""
+    from washer.sweep import results
+
+    def interrupted(self, *a, **k):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(results.ResultStore, "consolidate", interrupted)
+    out = tmp_path / "o"
+    assert main([str(_spec(tmp_path)), "--serial", "--no-plot", "--no-progress",
+                 "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert "interrupted" in err and "Traceback" not in err
+    assert list((out / "parts").glob("part-*.parquet"))

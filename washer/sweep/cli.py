@@ -96,6 +96,12 @@ def main(argv: list[str] | None = None) -> int:
     except SweepInterrupted as exc:
         print(f"\n{exc}", file=sys.stderr)
         return 130
+    except KeyboardInterrupt:
+        # After the last point (while the table is consolidated or the maps drawn): the
+        # parts are complete, a re-run only rebuilds the table.
+        print(f"\ninterrupted: the finished points are kept in {out / 'parts'} (re-run the "
+              "same command to write the table and maps)", file=sys.stderr)
+        return 130
     except (SizeError, OutputError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
