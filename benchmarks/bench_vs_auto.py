@@ -3,7 +3,7 @@
     python benchmarks/bench_vs_auto.py [--quick] [--repeat N] [--only NAME,...] [--against REV]
 
 Every case runs its chain of runs on AUTO-07p (installed `auto-07p`, one OpenMP thread,
-the demos' Fortran sources in benchmarks/auto_demos/) and on washer, with the same
+the demos' Fortran sources in tests/data/auto_demos/) and on washer, with the same
 constants files and the same overrides; how each side is timed is in
 benchmarks/side_by_side.py (AUTO: its "Total Time" per run; washer: the run() call,
 files written; points: the rows of each side's b-file; minimum of N back-to-back
@@ -45,12 +45,12 @@ LRZ2 = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DS=0.1, DSMAX=2.0,
 LRZ_PO = dict(IPS=2, ICP=["rho", "PERIOD"], NMX=35, NPR=2, DS=0.5)
 
 AB_FILES = [(DATA / "ab" / "ab.py", "ab.py"), (DATA / "ab" / "c.ab", "c.ab"),
-            (DEMOS / "ab.f90", "ab.f90")]
+            (DEMOS / "ab" / "ab.f90", "ab.f90")]
 LRZ_FILES = [(DATA / "lrz" / "lrz.py", "lrz.py"), (DATA / "lrz" / "c.lrz", "c.lrz"),
-             (DEMOS / "lrz.f90", "lrz.f90")]
+             (DEMOS / "lrz" / "lrz.f90", "lrz.f90")]
 CHU_FILES = [(DATA / "chu" / "chu.py", "chu.py"), (REF / "periodic" / "chu" / "c.chu", "c.chu"),
-             (DEMOS / "chu.f90", "chu.f90")]
-ABPO_FILES = [(DATA / "ab_demo" / "ab.py", "ab.py"), (DEMOS / "ab.f90", "ab.f90")] + [
+             (DEMOS / "chu" / "chu.f90", "chu.f90")]
+ABPO_FILES = [(DATA / "ab_demo" / "ab.py", "ab.py"), (DEMOS / "ab" / "ab.f90", "ab.f90")] + [
     (REF / "periodic" / "ab" / f"c.ab.{k}", f"c.ab.{k}") for k in (1, 2, 3)]
 WASHER_FILES = [(ROOT / "auto_constants" / f, f)
                 for f in ("c.washer", "c.washer.hopf.Omega", "c.washer.po")]

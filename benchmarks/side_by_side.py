@@ -2,7 +2,7 @@
 
 A case is a short chain of runs written once (`Step`) and played on both sides:
 * AUTO-07p (the installed `auto-07p` CLUI, OMP_NUM_THREADS=1, the demo's Fortran
-  source from benchmarks/auto_demos/) runs a generated `.auto` script; its time for a
+  source from tests/data/auto_demos/) runs a generated `.auto` script; its time for a
   run is the "Total Time" line AUTO prints for it (the continuation and its fort.7/8/9
   files, without the CLUI's start-up and the compilation);
 * washer runs the same chain through `washer.run.run` in a worker process; its time
@@ -28,7 +28,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-DEMOS = Path(__file__).resolve().parent / "auto_demos"
+DEMOS = Path(__file__).resolve().parent.parent / "tests" / "data" / "auto_demos"
 ENV_1 = dict(os.environ, OMP_NUM_THREADS="1")
 
 

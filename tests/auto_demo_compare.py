@@ -9,7 +9,7 @@ parameter PAR(ICP(1)) within AUTO's location tolerance and the same period (PAR(
 the b-file shows it.
 
 Location tolerance: AUTO (and washer) stop locating a zero when the arclength correction is
-below EPSS (1 + sqrt(|DS DSMAX|)) (AUTO.md 0); the tangent is unit in a norm in which
+below EPSS (1 + sqrt(|DS DSMAX|)) (docs/auto.md section 0); the tangent is unit in a norm in which
 PAR(ICP(1)) has weight 1 (THL), so each engine's parameter is within that distance of the
 exact zero, and the two within twice it. EPSS, DS, DSMAX are read from the header of AUTO's
 own b-file branch. The period has no weight in the arclength of periodic orbits (THL

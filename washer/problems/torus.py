@@ -22,7 +22,7 @@ down to C_p = 0 (or any stop).
 
 What it gives beside the averaged rotating frame's periodic orbits (first-order averaging,
 `auto_constants/c.washer.po`): no averaging at all. The 2 Omega harmonic that averaging
-drops (Cardan angles do not rotate like a vector, MODEL.md section 4) grows like tilt^2,
+drops (Cardan angles do not rotate like a vector, docs/model.md section 4) grows like tilt^2,
 and the whirl tilts tens of degrees at C_p = 0.
 
 Rotation number and whirl frequency. The circle's angle theta is oriented so that the
