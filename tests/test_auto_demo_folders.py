@@ -22,7 +22,6 @@ BP_LOCI = "loci of branch points (ISW = 2 at a BP, ISW = 3) are not in the engin
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
     "abcb": BP_LOCI,
-    "apbp": BP_LOCI,
     "lcbp": BP_LOCI,
     "sspg": BP_LOCI,
     "tfc": BP_LOCI,

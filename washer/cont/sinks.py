@@ -42,7 +42,7 @@ class FileSink:
         s, c, sysm = run.settings, run.constants, run.system
         curve = sysm.curve_type
         self.files.header(c, sysm.n_eq if s.IPS in (0, 1) else s.NDIM, s.NPAR, run.titles, curve,
-                          {2: "LP", 3: "HB"}.get(curve, ""), irs=run.irs_label,
+                          {1: "BP", 2: "LP", 3: "HB", 6: "BP"}.get(curve, ""), irs=run.irs_label,
                           nfpr=len(sysm.free), ds=s.DS, dsmin=s.DSMIN, dsmax=s.DSMAX)
 
     def branch_start(self, br: int) -> None:

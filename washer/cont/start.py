@@ -31,9 +31,10 @@ def settings_for(c, problem) -> tuple[Settings, object]:
     if s.NDIM != problem.ndim:
         raise RunError(f"{c.source}: NDIM={s.NDIM} but the equations '{problem.name}' have "
                          f"{problem.ndim} unknowns")
-    if s.ISW not in (1, -1, 2):
-        raise RunError(f"{c.source}: ISW={s.ISW} is not implemented (1, -1 and 2 are: "
-                         "ISW = 3 loci of branch points in generic systems are not)")
+    if s.ISW not in (1, -1, 2, 3):
+        raise RunError(f"{c.source}: ISW={s.ISW}: expected 1, -1 (branch switching), 2 "
+                         "(the locus of a special point) or 3 (the branch-point locus of a "
+                         "generic problem)")
     for key in ("LAB", "IBR"):
         if c[key] < 0:
             raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 "
@@ -106,10 +107,12 @@ def start_kind(rec) -> str:
     if rec is None:
         return ""
     base, curve = split_code(rec.code)
-    if curve in (2, 3) and np.ndim(rec.u) == 1:
-        return {2: "LP-curve", 3: "HB-curve"}[curve]
+    if curve in (1, 2, 3) and np.ndim(rec.u) == 1:
+        return {1: "BP-curve", 2: "LP-curve", 3: "HB-curve"}[curve]
     if curve == 5 and rec.ips == 4:
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
+    if curve == 6 and rec.ips == 4:
+        return "BP-curve"            # a point of the branch-point locus of a BVP
     if curve in (5, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
         # a point of a locus of folds, period doublings or tori of cycles
         return {5: "LPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
@@ -157,10 +160,14 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
         raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart "
                          f"at an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
+    if s.ISW == 3 and kind not in ("BP", "BP-curve"):
+        raise RunError(f"{c.source}: ISW=3 continues the branch points of a generic problem: "
+                       f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")
     if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
         s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
+    # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
     isw_key = -1 if s.ISW == -1 and kind == "BP" else \
-        (2 if s.ISW == 2 or kind.endswith("curve") else 1)
+        (2 if s.ISW in (2, 3) or kind.endswith("curve") else 1)
     if kind in CYCLE_CURVES and s.ISW != 2:
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:

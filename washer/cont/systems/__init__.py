@@ -4,6 +4,7 @@ registry `washer.cont.system.SYSTEMS` (each module registers its classes).
 equilibrium  f(u, par) = 0 in one parameter (IPS = 0, 1; AUTO's FUNI)
 fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
 hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
+branch_point the branch-point locus (ISW = 2 or 3 from BP; FNBP)
 periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
 cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
 cycle_loci   the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR)
