@@ -33,11 +33,37 @@ def test_reads_auto_demo_constants_with_names_and_defaults(tmp_path):
     ("ICP = [1, 2", "c.x:1: unclosed '['"),
     ("DS 0.1", "c.x:1: expected '=' after DS"),
     ("e = 'ab", "unterminated string"),
-    ("2 1 0 1  NDIM,IPS,IRS,ILP", "old positional constants format"),
+    ("2 1 0 1  NDIM,IPS,IRS,ILP", "c.x:2: the file ends where the old positional format "
+                                   "expects NICP"),
+    ("2 1 0 1\n2 1", "c.x:2: expected NICP >= 1 followed by NICP parameter indices"),
+    ("2 1 0 1\n1 1\n15 4.5", "c.x:3: NCOL expects an integer, got '4.5'"),
 ])
 def test_malformed_constants(tmp_path, text, message):
     with pytest.raises(ConstantsError, match=message.replace("[", r"\[")):
         read_constants(_c(tmp_path, text))
+
+
+#: AUTO's enz demo constants in the old positional format (tabs and trailing comments
+#: as shipped), after a KEY = value line, which AUTO's parseC also accepts first.
+OLD_FORMAT = ("unames = {1: 's1'}\n"
+              "2 1 0 1\t\t\t\tNDIM,IPS,IRS,ILP\n1 1   \t\t\t\tNICP,(ICP(I),I=1,NICP)\n"
+              "15 4 3 1 1 0 0 0 \t\tNTST,NCOL,IAD,ISP,ISW,IPLT,NBC,NINT\n"
+              "250 0 35 0 50 \t\t\tNMX,RL0,RL1,A0,A1\n"
+              "250 -1 2 8 5 3 0\t\tNPR,MXBF,IID,ITMX,ITNW,NWTN,JAC\n"
+              "1e-07 1e-07 1e-05 \t\tEPSL,EPSU,EPSS\n0.1 0.01 0.25 1 \t\tDS,DSMIN,DSMAX,IADS\n"
+              "1 \t\t\t\tNTHL,/((I,THL(I)),I=1,NTHL)\n11 0.0\n0 \t\t\t\tNTHU\n"
+              "2 \t\t\t\tNUZR,/((I,UZR(I)),I=1,NUZR)\n2 1\n2 5D0\n")
+
+
+def test_reads_auto_old_positional_constants(tmp_path):
+    c = read_constants(_c(tmp_path, OLD_FORMAT))
+    assert (c["NDIM"], c["IPS"], c["IRS"], c["ILP"], c.icp()) == (2, 1, 0, 1, [1])
+    assert (c["NTST"], c["NCOL"], c["ISP"], c["NINT"]) == (15, 4, 1, 0)
+    assert (c["NMX"], c["RL0"], c["RL1"], c["A1"]) == (250, 0.0, 35.0, 50.0)
+    assert (c["NPR"], c["MXBF"], c["ITMX"], c["ITNW"], c["JAC"]) == (250, -1, 8, 5, 0)
+    assert (c["EPSL"], c["EPSS"], c["DS"], c["DSMAX"], c["IADS"]) == (1e-7, 1e-5, 0.1, 0.25, 1)
+    assert c["THL"] == {11: 0.0} and c["THU"] == {} and c["unames"] == {1: "s1"}
+    assert c["UZR"] == {2: [1.0, 5.0]}          # two rows for PAR(2): two values
 
 
 def test_overrides():

@@ -94,6 +94,16 @@ def test_label_selection_on_autos_own_files():
         bd("HB99")
 
 
+def test_splabs_reads_a_solution_file_by_name(tmp_path, monkeypatch):
+    # AUTO's splabs('mu', 'LP') reads s.mu (the cusp demo passes a name)
+    monkeypatch.chdir(tmp_path)
+    bd = _diagram("frc", "frc")
+    clui.save(bd, "x")
+    for ty in {s["TY"] for s in bd()}:
+        labs = [s["LAB"] for s in bd() if s["TY"] == ty]
+        assert clui.splabs("x", ty) == clui.splabs(bd, ty) == labs
+
+
 def test_relabel_and_save_roundtrip(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     bd = _diagram("frc", "0") + _diagram("frc", "frc")

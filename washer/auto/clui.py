@@ -467,7 +467,10 @@ def pr(parameter=None):
 
 
 def splabs(s, typename):
-    """Labels of the solutions of type typename in s."""
+    """Labels of the solutions of type typename in s: a solution list, a diagram, or
+    a name (s.NAME, as AUTO's splabs reads it)."""
+    if isinstance(s, str):
+        s = sl(s)
     return [x["LAB"] for x in (s if isinstance(s, SolutionList) else s())
             if x["TY"] == typename]
 

@@ -164,19 +164,92 @@ class _Scanner:
             out.append(c)
 
 
+#: The rows of AUTO's old positional constants format after NDIM..ILP and ICP
+#: (python/auto/parseC.py line_comments): a row may hold fewer values (the others keep
+#: their defaults) and anything after its last value is a comment.
+OLD_ROWS = (("NTST", "NCOL", "IAD", "ISP", "ISW", "IPLT", "NBC", "NINT"),
+            ("NMX", "RL0", "RL1", "A0", "A1"),
+            ("NPR", "MXBF", "IID", "ITMX", "ITNW", "NWTN", "JAC"),
+            ("EPSL", "EPSU", "EPSS"),
+            ("DS", "DSMIN", "DSMAX", "IADS"))
+
+
+def _old_number(word: str, key: str, where: str):
+    """One value of the old format: an integer for AUTO's I-N names, else a Fortran real."""
+    try:
+        if key[0] in "IJKLMN":
+            return int(word)
+        return float(word.replace("d", "e").replace("D", "e"))
+    except ValueError:
+        kind = "an integer" if key[0] in "IJKLMN" else "a number"
+        raise ConstantsError(f"{where}: {key} expects {kind}, got {word!r}") from None
+
+
+def parse_old(lines: list[str], first: int, source: str) -> list[tuple[str, object, int]]:
+    """Statements (key, value, line) of AUTO's old positional format (parseC.read):
+    NDIM IPS IRS ILP / NICP ICP(1..NICP) / the OLD_ROWS / NTHL, then NTHL rows `I THL(I)`,
+    likewise THU and UZR. lines[first] is the first positional row (line first + 1)."""
+    out: list[tuple[str, object, int]] = []
+    pos = first
+
+    def row(what: str, need: int) -> tuple[list[str], int]:
+        nonlocal pos
+        if pos >= len(lines):
+            raise ConstantsError(f"{source}:{pos + 1}: the file ends where the old "
+                                 f"positional format expects {what}")
+        words, n = lines[pos].replace(",", " ").split(), pos + 1
+        pos += 1
+        if len(words) < need:
+            raise ConstantsError(f"{source}:{n}: expected {what}, found {lines[n - 1]!r}")
+        return words, n
+
+    def index(word: str):
+        try:
+            return int(word)
+        except ValueError:
+            return word                 # a name from parnames
+
+    words, n = row("NDIM IPS IRS ILP", 4)
+    for key, word in zip(("NDIM", "IPS", "IRS", "ILP"), words):
+        out.append((key, index(word) if key == "IRS" else
+                    _old_number(word, key, f"{source}:{n}"), n))
+    words, n = row("NICP and the NICP indices of ICP", 1)
+    nicp = _old_number(words[0], "NICP", f"{source}:{n}")
+    if nicp < 1 or len(words) < 1 + nicp:
+        raise ConstantsError(f"{source}:{n}: expected NICP >= 1 followed by NICP parameter "
+                             f"indices, found {lines[n - 1]!r}")
+    out.append(("ICP", [index(w) for w in words[1:1 + nicp]], n))
+    for keys in OLD_ROWS:
+        words, n = row(" ".join(keys), 1)
+        out += [(k, _old_number(w, k, f"{source}:{n}"), n) for k, w in zip(keys, words)]
+    for key in ("THL", "THU", "UZR"):
+        words, n = row(f"N{key}, the number of {key} rows that follow", 1)
+        count = _old_number(words[0], "N" + key, f"{source}:{n}")
+        entries: dict = {}
+        for _ in range(count):
+            words, m = row(f"a {key} row: a parameter index and a value", 2)
+            k, v = index(words[0]), _old_number(words[1], key, f"{source}:{m}")
+            if key == "UZR" and k in entries:       # repeated index: a list of values
+                prev = entries[k]
+                entries[k] = (prev if isinstance(prev, list) else [prev]) + [v]
+            else:
+                entries[k] = v
+        out.append((key, entries, n))
+    return out
+
+
 def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, int]]:
-    """Statements (key, value, line) of a constants file in the new format."""
+    """Statements (key, value, line) of a constants file: KEY = value statements, and,
+    from the first line that starts with a digit on, AUTO's old positional format
+    (AUTO's parseC reads both so: new-style lines such as parnames may come first)."""
     sc = _Scanner(text, source)
-    sc.skip()
-    if sc.peek().isdigit():
-        raise sc.error("this is AUTO's old positional constants format; it is not supported "
-                       "here: convert it to KEY = value statements (AUTO's CLUI does so with "
-                       "`c = parseC(...); c.write(...)`)")
     out = []
     while True:
         sc.skip()
         if sc.peek() == "":
             return out
+        if sc.peek().isdigit():
+            return out + parse_old(text.splitlines(), sc.line - 1, source)
         line = sc.line
         key = sc.word()
         sc.skip(newlines=False, commas=False)
