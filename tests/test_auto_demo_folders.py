@@ -23,7 +23,6 @@ BP_LOCI = "loci of branch points (ISW = 2 at a BP, ISW = 3) are not in the engin
 EXPECTED_FAIL = {
     "abcb": BP_LOCI,
     "lcbp": BP_LOCI,
-    "sspg": BP_LOCI,
     "tfc": BP_LOCI,
     "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",

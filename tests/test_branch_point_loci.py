@@ -58,3 +58,61 @@ def test_algebraic_branch_point_locus_closed_form(tmp_path, isw):
             assert abs(phi1) == pytest.approx(1.0, abs=1e-8)
             assert u2 == pytest.approx(p2, abs=1e-8)
     assert ends == {-1, 1}
+
+
+# u'' + p1 u + u^3 = 0 (u1 = u, u2 = u'), u(0) = 0, u'(1) = p2 u(1) [+ p3 in the ODE]:
+# the trivial branch u = 0 has a BP where the linearisation u'' + p1 u = 0 has a
+# solution sin(k t), k = sqrt(p1), with k cos k = p2 sin k (kept by u -> -u for p3 = 0).
+ROBIN = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], -par[0] * u[0] - u[0] ** 3 - par[2]])
+def stpnt(u, par, t=0.0):
+    par[:3] = [1.0, 0.0, 0.0]
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[1] - par[1] * u1[0]])
+'''
+
+
+@pytest.mark.parametrize("isw", [2, 3])
+def test_bvp_branch_point_locus_closed_form(tmp_path, isw):
+    """The BP locus of a BVP (IPS = 4), ISW = 2 (b free) and ISW = 3 (PAR(3) free): the
+    generating run at the first BP of the trivial branch (k = pi/2, p2 = 0), then both
+    ways to p2 = -1 and 0.9; on every point sqrt(p1) cos sqrt(p1) = p2 sin sqrt(p1),
+    u = 0 and b (or p3) = 0. Tolerance 1e-9: the collocation error of the eigenvalue
+    at NTST = 20, NCOL = 4 (O(h^8): pi^2 / 4 - p1 is 3e-14 at the BP), the central
+    differences of f_u in the extended system (truncation h^2 = 3.6e-11 for u^3) and
+    Newton (quadratic, stopped at EPSL = 1e-8 corrections) stay below it; a step of
+    1e-4 there shifted the locus by 1e-8."""
+    (tmp_path / "rob.py").write_text(ROBIN)
+    (tmp_path / "c.rob").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=20, NCOL=4, "
+                                    "ILP=1, ISP=2, NMX=40, DS=0.05, DSMAX=0.2, NPAR=3, "
+                                    "UZSTOP={1: 3.0}\n")
+    r1 = run(tmp_path / "c.rob", e="rob", sv="rob", verbose=False)
+    bp = r1("BP1")
+    assert bp.par[0] == pytest.approx(np.pi ** 2 / 4, abs=1e-9)
+    icp = [1, 2] if isw == 2 else [1, 2, 3]
+    gen = run(tmp_path / "c.rob", e="rob", s="rob", IRS=bp.lab, ICP=icp, ISW=isw, sv="gen",
+              verbose=False)
+    assert [(s.ty, s.code, s.pt) for s in gen.specials] == [("EP", 69, 5)]
+    end = gen.specials[-1]
+    # the generating run grows the adjoint only: p1 and p2 stay at the BP
+    assert end.par[0] == pytest.approx(bp.par[0], abs=1e-8) and abs(end.par[1]) < 1e-8
+    ends = set()
+    for ds in (0.05, -0.05):
+        r = run(tmp_path / "c.rob", e="rob", s="gen", IRS=end.lab, ICP=icp, ISW=isw, DS=ds,
+                NMX=200, UZSTOP={2: [-1.0, 0.9]}, sv="loc", verbose=False)
+        assert r.status == "ok"
+        assert [(s.ty, s.code) for s in r.specials] == [("UZ", -64)]
+        ends.add(round(r.specials[-1].par[1], 1))
+        for row in r.rows:
+            k = np.sqrt(row.par[0])
+            assert k * np.cos(k) - row.par[1] * np.sin(k) == pytest.approx(0, abs=1e-9)
+            assert abs(row.par[2]) < 1e-9                          # p3 (ISW = 3) stays 0
+        rec = r.specials[-1]
+        # b = PAR(NPAR + NBC + NINT + NFPX + 2) = PAR(8) stays 0 (ISW = 2)
+        assert abs(rec.par[7]) < 1e-9
+        assert np.max(np.abs(rec.u[:, :2])) < 1e-8                # u = 0 on the locus
+        assert np.max(np.abs(rec.u[:, 2:])) > 1e-3                # the adjoint w is not
+    assert ends == {-1.0, 0.9}

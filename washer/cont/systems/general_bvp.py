@@ -76,7 +76,7 @@ class BoundaryValueProblem(CollocationBVP):
         if nfpr < 1:
             raise ValueError(f"NBC = {self.nbc}, NINT = {self.nint}, NDIM = {n}: NBC + NINT - "
                              f"NDIM + 1 = {nfpr} free parameters; expected at least 1")
-        if len(s.ICP) < nfpr:
+        if len(s.ICP) < nfpr and getattr(self, "_free", None) is None:
             raise ValueError(f"NBC + NINT - NDIM + 1 = {nfpr} free parameters, but ICP = "
                              f"{list(s.ICP)} names {len(s.ICP)}")
         self.nfpr = nfpr
