@@ -172,3 +172,26 @@ def test_mobius_tr_locus_restarts_from_its_own_point(tr_locus, mobius):
         b, a = r.values[0], r.values[-1]
         assert a == pytest.approx(0.0, abs=COLLOCATION)
         assert r.par[11] == pytest.approx(math.pi - math.sqrt(-b), abs=COLLOCATION)
+
+
+def test_mobius_tr_locus_with_a_third_parameter_keeps_the_angle(tr_locus, mobius):
+    """ICP = [b, a, w, PERIOD] at a restart on the torus locus (four entries: AUTO's
+    INITPS frees ICP(1..4) as given): the frequency w = PAR(3) takes the angle's place,
+    so theta = PAR(12) stays at its value pi - sqrt(3) from the UZ at b = -3, and the
+    locus a = 0 continues with sqrt(-b) T = pi - theta and T w = 2 pi (the cycle's
+    period), down to the UZSTOP b = -6. (With the angle free, as before, T would stay 1.)"""
+    res = run(mobius / "c.mobius.trloc", verbose=False, sv="trloc3", s="trloc",
+              IRS="UZ1", ICP=[2, 1, 3, 11], UZSTOP={2: -6.0})
+    assert res.status == "ok"
+    assert [r.code for r in res.rows if r.lab] == [-84]
+    assert res.rows[-1].values[0] == pytest.approx(-6.0)
+    # the angle as the s-file stores it (10 digits) at the UZ, located to within tol
+    theta = res.rows[0].par[11]
+    assert theta == pytest.approx(math.pi - math.sqrt(3.0),
+                                  abs=located_tol(mobius / "c.mobius.trloc") + 1e-9)
+    for r in res.rows:
+        b, a = r.values[0], r.par[0]
+        assert a == pytest.approx(0.0, abs=COLLOCATION)
+        assert r.par[11] == theta
+        assert math.sqrt(-b) * r.par[10] == pytest.approx(math.pi - theta, abs=1e-8)
+        assert r.par[10] * r.par[2] == pytest.approx(2 * math.pi, abs=1e-8)

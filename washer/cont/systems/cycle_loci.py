@@ -9,7 +9,9 @@ period doubling (NDIM -> 2 NDIM, NINT = 2; free PAR(ICP(1)), PAR(11), PAR(ICP(2)
     u(0) - u(1) = 0,  v(0) + v(1) = 0                          (multiplier -1)
     int <u - u_old, u'_old> dt = 0,  int <v, v> dt - 1 = 0
 
-torus (NDIM -> 3 NDIM, NINT = 3; free PAR(ICP(1)), PAR(11), PAR(12) = theta, PAR(ICP(2))):
+torus (NDIM -> 3 NDIM, NINT = 3; free PAR(ICP(1)), PAR(11), PAR(12) = theta, PAR(ICP(2));
+a restart at a point of the locus with four or more ICP entries frees ICP(1..4) as
+given, as AUTO's INITPS: with a third parameter there, theta stays fixed):
     u' = T f,  v' = T f_u v,  w' = T f_u w
     u(0) - u(1) = 0
     v(1) - cos(theta) v(0) + sin(theta) w(0) = 0                (v + i w is multiplied
@@ -90,6 +92,17 @@ class _CycleLocus(CollocationBVP):
         if rec is None or np.ndim(rec.U) != 2 or len(rec.U) < 2:
             raise ValueError(f"the {name} locus starts from a {data.kind or 'special'} record "
                              "of a periodic branch")
+        self.p3 = None
+        if self.has_theta and data.kind.endswith("-curve") and len(icp) >= 4 \
+                and 12 not in icp[:4]:
+            # AUTO's INITPS: a restart given NICP >= 4 frees ICP(1..4) as given, so a
+            # third parameter takes the angle's place and the angle stays fixed (the
+            # tor demo's "3-parameter branch fixing the angle").
+            extra = [i for i in icp[:4] if i not in (self.p1, self.p2, 11)]
+            if extra:
+                self.p3 = extra[0]
+                self.xpar = [self.p3 if i == 12 else i for i in self.xpar]
+                self.free = [self.p3 if i == 12 else i for i in self.free]
         if data.kind.endswith("-curve"):
             self._from_curve(rec)
         else:
@@ -186,7 +199,8 @@ class _CycleLocus(CollocationBVP):
         dF = np.zeros((len(self.xpar), k, m * n))
         dF[0, :, :n] = fg                                              # d/dT
         slots = {i: j for j, i in enumerate(self.xpar)}
-        for idx in (self.p2, self.p1):
+        moved = [self.p2, self.p1] + ([self.p3] if self.p3 is not None else [])
+        for idx in moved:
             dF[slots[idx], :, :n] = T * self.field.fp(ug, par, idx)
         for cp in range(1, m):
             sl = slice(cp * n, (cp + 1) * n)
@@ -194,7 +208,7 @@ class _CycleLocus(CollocationBVP):
             D[:, sl, :n] = T * self.field.fuu_v(ug, vg, par)
             D[:, sl, sl] = T * A
             dF[0, :, sl] = np.einsum("kij,kj->ki", A, vg)
-            for idx in (self.p2, self.p1):
+            for idx in moved:
                 dF[slots[idx], :, sl] = T * self.field.fup_v(ug, vg, par, idx)
         blocks = self.coll.local_blocks(1.0, D.reshape(N, c, m * n, m * n))
         int_u = np.zeros((m, len(W), m * n))
@@ -352,8 +366,9 @@ class TorusLocus(_CycleLocus):
         B1 = np.block([[-I, Z, Z], [Z, I, Z], [Z, Z, I]])
         v0, w0 = W0[n:2 * n], W0[2 * n:]
         Bp = np.zeros((3 * n, len(self.xpar)))
-        Bp[n:2 * n, 1] = s * v0 + c * w0                   # d/d theta (slot 1 of xpar)
-        Bp[2 * n:, 1] = s * w0 - c * v0
+        if 12 in self.xpar:                                 # (a fixed angle has no column)
+            Bp[n:2 * n, 1] = s * v0 + c * w0               # d/d theta (slot 1 of xpar)
+            Bp[2 * n:, 1] = s * w0 - c * v0
         return B0, B1, Bp
 
     def _integrals(self, W):
@@ -386,5 +401,6 @@ class TorusLocus(_CycleLocus):
         out = {}
         if Code.LPC in codes:
             out[int(Code.LPC)] = self._lp(tangent)
-        out.update(floquet.torus_resonance_tests(float(x[self.coll.n_u + 1]), codes))
+        theta = float(x[self.coll.n_u + 1]) if 12 in self.xpar else float(self.par[11])
+        out.update(floquet.torus_resonance_tests(theta, codes))
         return out
