@@ -27,6 +27,15 @@ def test_reads_auto_demo_constants_with_names_and_defaults(tmp_path):
     assert c["UZR"] == {1: [1, 2]} and c["DS"] == 0.01
 
 
+def test_list_of_pairs_keeps_every_user_value_of_an_index(tmp_path):
+    # AUTO's older form of UZR (nag demo): one pair per value, the index repeated; each
+    # value is a UZ, none replaces another. THL pairs name each index once.
+    c = read_constants(_c(tmp_path, "UZR = [[1, 0.0], [1, 0.25], [-2, 3], [1, 1.0]]\n"
+                                    "THL = [[11, 0.0]]"))
+    assert c.par_values("UZR") == [(1, 0.0), (1, 0.25), (1, 1.0), (-2, 3.0)]
+    assert c["THL"] == {11: 0.0}
+
+
 @pytest.mark.parametrize("text,message", [
     ("NDIM = 2\nFOO = 3", "c.x:2: unknown AUTO constant FOO"),
     ("NDIM = 2\nNMX = 1.5", "c.x:2: NMX expects an integer"),

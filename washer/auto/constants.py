@@ -305,8 +305,9 @@ def check_value(key: str, value, where: str):
                         f"in quotes, like {key}=['HB3'] (the 3rd Hopf point) or ['LP0'], "
                         f"got {entry!r}")
     else:   # dicts
-        if isinstance(value, list) and key in NUMBER_DICTS:
-            value = dict(value) if all(isinstance(v, list) and len(v) == 2 for v in value) else value
+        if isinstance(value, list) and key in NUMBER_DICTS and \
+                all(isinstance(v, list) and len(v) == 2 for v in value):
+            value = _pairs_dict(key, value)
         if not isinstance(value, dict):
             raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
         if key in NUMBER_DICTS:
@@ -320,6 +321,21 @@ def check_value(key: str, value, where: str):
                     raise ConstantsError(f"{where}: {key}[{k}] expects a name in quotes, "
                                          f"got {n!r}")
     return value
+
+
+def _pairs_dict(key: str, pairs: list) -> dict:
+    """AUTO's older list form [[i, v], ...] as a dict. UZR and UZSTOP may name one
+    index several times (UZR = [[1, 0.25], [1, 0.75]]: a UZ at each value), so their
+    values are gathered in a list; for the others the last pair wins, as in AUTO."""
+    out: dict = {}
+    for k, v in pairs:
+        if key in ("UZR", "UZSTOP") and k in out:
+            prev = out[k]
+            out[k] = (prev if isinstance(prev, list) else [prev]) + \
+                (v if isinstance(v, list) else [v])
+        else:
+            out[k] = v
+    return out
 
 
 def _check_number_dict(key: str, value: dict, where: str) -> None:
