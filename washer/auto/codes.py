@@ -65,8 +65,17 @@ def split_code(code: int) -> tuple[int, int]:
     return (mag % 10) * (1 if code > 0 else -1), mag // 10
 
 
+#: Written codes with names of their own (LBTYPE): the codim-2 points of maps' loci
+#: found by the multiplier test, fold-flip (LPD), fold-Neimark-Sacker (LTR),
+#: flip-Neimark-Sacker (PTR) and double Neimark-Sacker (TTR); AUTO names these codes
+#: so whichever curve they are on.
+_CURVE_NAMES = {23: "LTR", 83: "LTR", 77: "PTR", 87: "PTR", 28: "LPD", 78: "LPD", 88: "TTR"}
+
+
 def type_name(code: int) -> str:
-    """'HB', 'UZ', 'GH', 'BT', ... for any written code, including curve codes."""
+    """'HB', 'UZ', 'GH', 'BT', 'LPD', ... for any written code, including curve codes."""
+    if int(code) in _CURVE_NAMES:
+        return _CURVE_NAMES[int(code)]
     base, curve = split_code(code)
     if base == -2 and curve == 3:
         return "GH"

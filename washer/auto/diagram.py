@@ -596,11 +596,19 @@ def _titles(line: str) -> list[str]:
 
 
 def header_constants(header: list[str]) -> dict:
-    """The names a b-file header states (e, parnames, unames): AUTO's constants of a
-    diagram loaded from files, so that solutions are indexed by name as after a run."""
+    """The names a b-file header states (e, parnames, unames) and its DS: AUTO's constants
+    of a diagram loaded from files, so that solutions are indexed by name as after a run
+    and merge() sees which way each branch ran (forward and backward runs from one
+    start, written with DS and DS = '-', are joined)."""
     import ast
     out = {}
     for line in header:
+        m = re.match(r"\s*0\s+DS\s*=\s*([-+0-9.EeDd]+)", line)
+        if m:
+            try:
+                out["DS"] = float(m.group(1).replace("D", "E").replace("d", "e"))
+            except ValueError:
+                pass
         m = re.match(r"\s*0\s+(parnames|unames)\s*=\s*(\{.*\})\s*$", line)
         if m:
             try:

@@ -46,6 +46,15 @@ class SettingsWarning(UserWarning):
     """A constant without effect in this run (a weight on an index it does not have)."""
 
 
+def split_type_entry(entry: str) -> tuple[str, str]:
+    """An SP/STOP entry as (type, count digits): the count starts at the first digit or
+    '-' from the third character on (AUTO's CHECKSP/INITSTOPCNTS: SCAN(SP(I)(3:), ...)),
+    so 'R11' is the first R1, 'HB3' the third HB, 'LPD1' the first LPD, 'LP0' none."""
+    head, tail = entry[:2], entry[2:]
+    cut = next((i for i, ch in enumerate(tail) if ch in "-0123456789"), len(tail))
+    return (head + tail[:cut]).upper(), tail[cut:]
+
+
 @dataclass(frozen=True)
 class Settings:
     """Everything the iterator, events and systems read. Field names are AUTO's,
@@ -208,11 +217,10 @@ class Settings:
                                     f"1..NPAR={npar}")
         stop, off, on = {}, set(), set()
         for entry in list(c["STOP"]):
-            name = entry.rstrip("0123456789").upper()
-            stop[name] = int(entry[len(name):] or 1)
+            name, num = split_type_entry(entry)
+            stop[name] = int(num or 1)
         for entry in list(c["SP"]):
-            name = entry.rstrip("0123456789").upper()
-            num = entry[len(name):]
+            name, num = split_type_entry(entry)
             if num == "0":
                 off.add(name)
             else:

@@ -16,7 +16,11 @@ PT < 0 when all are. The test function of PD and TR (FNHBDS) is log|mu| of the
 multiplier closest to the unit circle among those that are not positive reals;
 its type at the zero (TPSPAE) is PD when that multiplier is a negative real
 (|arg mu - pi| <= sqrt(EPSS)), TR when it is complex (|arg mu| > sqrt(EPSS)),
-and it is accepted only if NINS changed. At TR points PAR(12) holds the angle
+and it is accepted only if NINS changed. It is ONE test whatever the kind of the
+multiplier at either end of a step: a real multiplier leaving through -1 and the
+pair it then forms with another negative one (the Henon map's PD at beta = 0.633
+and the collision just after it) both lie inside one step, and the zero is
+typed where it is located. At TR points PAR(12) holds the angle
 arg mu. LP and BP are AUTO's algebraic tests (FNLPAE, FNBPAE) on F.
 """
 from __future__ import annotations
@@ -28,6 +32,7 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont.problem import Problem
 from washer.cont.system import Stability, StartData, register
+from washer.cont.floquet import torus_resonance_tests
 from washer.cont.linalg import null_vectors, orient
 from washer.cont.systems._algebraic import AlgebraicSystem
 from washer.cont.systems._loci import LocusSystem
@@ -184,19 +189,31 @@ class FixedPoints(EquilibriumSystem):
         return map_stability(np.asarray(J)[:, :self.ndim])
 
     def active_tests(self) -> list:
-        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("PD", Code.PD),
-                                        ("TR", Code.TR))
-                if self.settings.detects(name)]
+        # PD and TR are one test (FNHBDS), keyed PD and typed where it vanishes.
+        tests = [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
+                 if self.settings.detects(name)]
+        if self.settings.detects("PD") or self.settings.detects("TR"):
+            tests.append(Code.PD)
+        return tests
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         out = self._lp_bp(tangent, factor, codes)
-        if Code.PD in codes or Code.TR in codes:
+        if Code.PD in codes:
             loc = critical(stability.log)
-            kind = map_type(loc, self.settings.EPSS)
-            for code in (Code.PD, Code.TR):
-                if code in codes:
-                    out[code] = float(loc.real) if kind == code else None
+            out[Code.PD] = None if loc is None else float(loc.real)
         return out
+
+    def located_code(self, key, point) -> int:
+        """PD or TR for a zero of the combined test, by the critical multiplier at the
+        located point (TPSPAE); a zero whose multiplier is neither (|arg mu| below
+        sqrt(EPSS)) keeps the kind nearest its argument."""
+        if key != Code.PD or point.stability is None:
+            return key
+        loc = critical(point.stability.log)
+        kind = map_type(loc, self.settings.EPSS)
+        if kind == Code.NONE:
+            kind = Code.PD if loc is not None and abs(loc.imag) > math.pi / 2 else Code.TR
+        return kind
 
     def accept(self, code, prev, cur) -> bool:
         if code in (Code.PD, Code.TR):
@@ -218,8 +235,60 @@ class FixedPoints(EquilibriumSystem):
         return {}
 
 
+def locus_multipliers(A: np.ndarray, n_curve: int) -> tuple[complex | None, int]:
+    """STABEQ with N = n_curve + 1 on a locus of maps (PVLSDS with ITPST != 0): of the
+    log-multipliers log(mu) of D f^k = A + I, the n_curve closest to the imaginary axis
+    (|log|mu|| smallest) are the curve's own (+1 on folds, -1 on flips, the pair on
+    Neimark-Sacker curves); LOC is the next one, real or complex. NINS counts those with
+    log|mu| <= tol, the curve's own counted as inside. Returns (log mu at LOC, NINS)."""
+    lg = log_multipliers(A)
+    n = len(A)
+    tol = 1e-5 if n % 2 == 0 and abs(np.trace(A)) < 1e-7 * np.max(np.abs(A), initial=0.0) \
+        else 0.0
+    chosen: list[int] = []
+    for _ in range(n_curve + 1):
+        best, arev = None, math.inf
+        for i in range(n):
+            # AR <= AREV: among equals the last one in the sorted order
+            if i not in chosen and abs(lg[i].real) <= arev:
+                best, arev = i, abs(lg[i].real)
+        if best is None:
+            return None, n
+        chosen.append(best)
+    own = chosen[:-1]
+    nins = sum(1 for i in range(n) if lg[i].real <= tol or i in own)
+    return complex(lg[chosen[-1]]), nins
+
+
+#: TPSPAE on the loci of maps: (curve type, kind of the multiplier at LOC) -> the base
+#: code written (LBITP: LPD 8, LTR 3, PTR 7, TTR 8; curve_code makes 28, 78, 23, 83,
+#: 77, 87, 88), None where AUTO labels nothing.
+_LOCUS_KIND = {(2, "flip"): 8, (2, "torus"): 3, (2, "fold"): None,
+               (7, "flip"): None, (7, "torus"): 7, (7, "fold"): 8,
+               (8, "flip"): 7, (8, "torus"): 8, (8, "fold"): 3}
+
+
+def multiplier_kind(lg_loc: complex, epss: float) -> str:
+    """'flip' (|arg mu - pi| <= sqrt(EPSS)), 'torus' (arg mu > sqrt(EPSS)) or 'fold'."""
+    arg = abs(lg_loc.imag)
+    if abs(arg - math.pi) <= math.sqrt(epss):
+        return "flip"
+    return "torus" if arg > math.sqrt(epss) else "fold"
+
+
 class _MapLocus:
-    """Loci of maps: the user's f replaced by F = f^k - u; no stability."""
+    """Loci of maps: the user's f replaced by F = f^k - u. Their codim-2 points
+    (FNCSDS): the resonances (FNRNDS: R1 on folds and R2 on flips where the curve's
+    multiplier is double, BT-like, FNBTAE <w, phi>; R1..R4 on Neimark-Sacker curves
+    by the angle) and, from the multiplier test FNHBDS, a second multiplier on the
+    unit circle: fold-flip LPD, fold-Neimark-Sacker LTR, flip-Neimark-Sacker PTR,
+    double Neimark-Sacker TTR (TPSPAE by the curve and the multiplier's argument,
+    accepted only where NINS changed)."""
+
+    #: Multipliers on the unit circle that define the curve (STABEQ's N - 1).
+    n_curve = 1
+    #: Code of the multiplier test's key (typed where located).
+    MULT = Code.TR
 
     @staticmethod
     def map_start(start: StartData) -> StartData:
@@ -229,14 +298,71 @@ class _MapLocus:
         return StartData(iterated_problem(start.problem), start.settings, start.u, par,
                          start.record, start.kind, start.unames)
 
+    def _codim2_on(self) -> bool:
+        # CHECKSP: R1..R4, LPD, LTR, PTR, TTR of maps whenever ISP != 0
+        return self.settings.ISP != 0
+
+    def resonance_codes(self) -> list:
+        return []
+
     def active_tests(self) -> list:
-        # AUTO's codim-2 points of maps (R1..R4, LPD, LTR, PTR, TTR) are not located
-        # here; folds of the curve and branch points are.
-        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
-                if self.settings.detects(name)]
+        tests = [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
+                 if self.settings.detects(name)]
+        if self._codim2_on():
+            tests += self.resonance_codes() + [self.MULT]
+        return tests
+
+    def stability(self, x, J):
+        """NINS of the locus (the curve's own multipliers inside) for the multiplier
+        test's rule; never 'stable' (AUTO writes PT > 0 on loci)."""
+        A = self.problem.dfdu(x[:self.ndim], self._p(x))
+        lg, nins = locus_multipliers(A, self.n_curve)
+        st = Stability(values=np.exp(log_multipliers(A)), n_stable=nins, stable=False,
+                       kind="multipliers")
+        st.log = lg
+        return st
+
+    def resonance_tests(self, x, codes) -> dict:
+        return {}
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
-        return self._lp_bp(tangent, factor, codes)
+        out = self._lp_bp(tangent, factor, codes)
+        out.update(self.resonance_tests(x, codes))
+        if self.MULT in codes:
+            # FNHBDS is 0 (no test) where TPSPAE names no point for the multiplier at
+            # LOC: the flip multiplier on a flip curve (its double -1 is R2), a real
+            # positive one on a fold curve (R1)
+            lg = None if stability is None else stability.log
+            out[self.MULT] = None if lg is None or self._locus_kind(lg) is None \
+                else float(lg.real)
+        return out
+
+    def _locus_kind(self, lg: complex) -> int | None:
+        return _LOCUS_KIND[(self.curve_type, multiplier_kind(lg, self.settings.EPSS))]
+
+    def accept(self, code, prev, cur) -> bool:
+        if code == self.MULT:
+            if prev.stability is None or cur.stability is None:
+                return False
+            return prev.stability.n_stable != cur.stability.n_stable
+        return True
+
+    def located_code(self, key, point) -> int:
+        if key != self.MULT or point.stability is None or point.stability.log is None:
+            return key
+        kind = self._locus_kind(point.stability.log)
+        return key if kind is None else kind
+
+    def _bt(self, x, shift: float) -> float:
+        """FNBTAE: <w, phi> with w the left null vector of F_u + shift I (the curve's
+        matrix), oriented as at the previous point: zero where the multiplier is double."""
+        n = self.ndim
+        A = self.problem.dfdu(x[:n], self._p(x)) + shift * np.eye(n)
+        w = null_vectors(A.T, 1)[:, 0]
+        if getattr(self, "w_ref", None) is not None and len(self.w_ref) == n \
+                and w @ self.w_ref < 0:
+            w = -w
+        return float(w @ x[n:2 * n])
 
 
 @register(-1, 2, "LP")
@@ -246,6 +372,13 @@ class MapFoldLocus(_MapLocus, FoldSystem):
 
     def __init__(self, start: StartData):
         FoldSystem.__init__(self, self.map_start(start))
+
+    def resonance_codes(self) -> list:
+        return [Code.R1]
+
+    def resonance_tests(self, x, codes) -> dict:
+        """R1 (1:1 resonance): the multiplier +1 is double (FNBTAE on F_u)."""
+        return {Code.R1: self._bt(x, 0.0)} if Code.R1 in codes else {}
 
 
 @register(-1, 2, "PD")
@@ -266,7 +399,8 @@ class MapPDLocus(_MapLocus, FoldSystem):
         phi = null_vectors(self.problem.dfdu(u, self.par) + self.SHIFT * np.eye(n), 1)[:, 0]
         ext = np.r_[u, phi / np.linalg.norm(phi), self.par[self.free[1] - 1]]
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
-        self.w_ref = np.zeros(n)
+        self.w_ref = null_vectors((self.problem.dfdu(u, self.par)
+                                   + self.SHIFT * np.eye(n)).T, 1)[:, 0]
         self._t0 = None
 
     def residual(self, x):
@@ -282,7 +416,16 @@ class MapPDLocus(_MapLocus, FoldSystem):
         return J
 
     def update(self, x, tangent):
-        """Nothing moves: the fold's left null vector (CP, BT tests) is not used here."""
+        """The left null vector of F_u + 2 I moves (the sign of the R2 test)."""
+        n = self.ndim
+        self.w_ref = self._w(self.problem.dfdu(x[:n], self._p(x)) + self.SHIFT * np.eye(n))
+
+    def resonance_codes(self) -> list:
+        return [Code.R2]
+
+    def resonance_tests(self, x, codes) -> dict:
+        """R2 (1:2 resonance): the multiplier -1 is double (FNBTAE on F_u + 2 I)."""
+        return {Code.R2: self._bt(x, self.SHIFT)} if Code.R2 in codes else {}
 
 
 @register(-1, 2, "TR")
@@ -297,7 +440,15 @@ class MapTorusLocus(_MapLocus, LocusSystem):
     of the TR point and is written to PAR(12). The Jacobian is by central
     differences of these equations (maps are small)."""
     curve_type = 8
+    n_curve = 2
     freezes_second_derivatives = False
+
+    def resonance_codes(self) -> list:
+        return [Code.R1, Code.R4, Code.R3, Code.R2]
+
+    def resonance_tests(self, x, codes) -> dict:
+        """R1..R4: the angle theta of the multipliers through 0, pi/2, 2 pi/3, pi (FNRNDS)."""
+        return torus_resonance_tests(float(x[2 * self.ndim]), codes)
 
     def __init__(self, start: StartData):
         start = self.map_start(start)
