@@ -464,6 +464,37 @@ def test_restart_with_more_components(tmp_path):
     assert uz.U.shape[1] == 3
 
 
+GROWTH = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[1] * u[0]])
+def stpnt(u, par, t=0.0):
+    par[0], par[1] = 0.0, -1.0
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u0[0] - u1[0]])
+def icnd(u, uold, udot, upold, par):
+    return np.array([u[0] - par[0]])
+'''
+
+
+def test_start_direction_without_the_first_parameter(tmp_path):
+    """u' = p2 u, u(0) = u(1), int u dt = p1: the trivial branch u = 0, p1 = 0 moves in
+    p2 alone, so the start direction has no PAR(ICP(1)) component (as the eigenfunction
+    branch of AUTO's c2c demo, ICP = [11, 12, 10], moves PAR(12) alone) and must be the
+    Jacobian's null vector, not a solve bordered by PAR(ICP(1)). The constants u = c,
+    p1 = c cross it at p2 = 0: a BP."""
+    (tmp_path / "gro.py").write_text(GROWTH)
+    (tmp_path / "c.gro").write_text("NDIM=1, IPS=4, ICP=[1, 2], NBC=1, NINT=1, NTST=5, NCOL=3, "
+                                    "ILP=0, ISP=2, NMX=50, DS=0.1, DSMAX=0.2, NPAR=2, "
+                                    "UZSTOP={2: 1.0}\n")
+    r = run(tmp_path / "c.gro", e="gro", sv="gro", verbose=False)
+    tol = 2e-4 * (1 + math.sqrt(0.1 * 0.2))
+    assert r.status == "ok" and [s.ty for s in r.specials] == ["EP", "BP", "UZ"]
+    assert abs(r("BP1").par[1]) <= tol and r("UZ1").par[1] == pytest.approx(1.0)
+    assert all(abs(row.par[0]) <= 1e-9 for row in r.rows)
+
+
 @pytest.mark.slow
 def test_man_demo(tmp_path):
     """man: the Lorenz stable manifold grown as orbits from a circle around the origin

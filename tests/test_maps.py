@@ -212,6 +212,74 @@ def test_map_fold_locus(tmp_path):
         assert row.U[0] == pytest.approx(-q / 2, abs=1e-6)
 
 
+HENON = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], par[0] - par[1] * u[0] - u[1] ** 2])
+def stpnt(u, par, t=0.0):
+    par[0], par[1] = 2.0, 0.0
+    u[:] = 1.0
+'''
+
+
+def test_henon_codim2_points_closed_form(tmp_path):
+    """The Henon map (x, y) -> (y, a - b x - y^2), fixed points x = y, y^2 + (1 + b) y = a,
+    multipliers mu^2 + 2 y mu + b = 0 (product b). Along a = 2 the PD (mu = -1) is at
+    2 y = 1 + b with 3 y^2 = a, b = 2 sqrt(2/3) - 1, and the TR at b = 1 (|mu|^2 = b).
+    The Neimark-Sacker locus is b = 1 with cos(theta) = -y, y = -1 + sqrt(1 + a): the
+    resonances R1 (theta = 0), R4 (pi/2), R3 (2 pi/3), R2 (pi) at a = -1, 0, 5/4, 3.
+    The flip locus (2 y = 1 + b, a = 3 y^2) has R2 at (3, 1) and the fold-flip LPD
+    where the other multiplier -b is +1: (0, -1); the fold locus (2 y = -(1 + b),
+    a = -y^2) has R1 at (-1, 1) and LPD where the other multiplier b is -1: (0, -1)."""
+    (tmp_path / "hen.py").write_text(HENON)
+    (tmp_path / "c.hen").write_text(
+        "NDIM=2, IPS=-1, ICP=[2], ILP=1, ISP=1, NMX=200, DS=0.02, DSMIN=5e-4, DSMAX=0.1, "
+        "NPAR=3, EPSL=1e-6, EPSU=1e-6, EPSS=1e-4, STOP=['TR1'], UZSTOP={1: [-2.0, 4.0], 2: [-3.0, 3.0]}\n")
+    tol = location_tolerance(read_constants(tmp_path / "c.hen"))
+    r = run(tmp_path / "c.hen", e="hen", sv="beta", verbose=False)
+    assert [s.ty for s in r.specials] == ["EP", "PD", "TR"]
+    assert abs(r("PD1").par[1] - (2 * math.sqrt(2 / 3) - 1)) <= tol
+    assert abs(r("TR1").par[1] - 1.0) <= tol
+
+    def locus(irs, ds, sv, **kw):
+        return run(tmp_path / "c.hen", e="hen", s="beta", IRS=irs, ICP=[1, 2], ISW=2, ILP=0,
+                   DS=ds, sv=sv, verbose=False, **kw)
+
+    found = {}
+    for ds in (0.02, -0.02):
+        loc = locus("TR1", ds, "ns", STOP=["R11", "R21"])
+        assert loc.status == "ok"
+        for s in loc.specials:
+            found.setdefault(s.ty, []).append(s.par[0])
+        for row in loc.rows:        # on the locus to Newton's tolerance EPSL
+            assert row.par[1] == pytest.approx(1.0, abs=1e-6)
+    for ty, a in (("R1", -1.0), ("R4", 0.0), ("R3", 1.25), ("R2", 3.0)):
+        assert len(found[ty]) == 1 and abs(found[ty][0] - a) <= tol, (ty, found)
+    # the run towards R1 stops there (STOP 'R11' is the first R1, not an 'R' count of 11)
+    assert found["R1"] and "EP" not in [s.ty for s in loc.specials]
+
+    for irs, expect in (("PD1", {"R2": (3.0, 1.0), "LPD": (0.0, -1.0)}),):
+        seen = {}
+        for ds in (0.02, -0.02):
+            for s in locus(irs, ds, "pd").specials:
+                seen[s.ty] = (s.par[0], s.par[1])
+        for ty, (a, b) in expect.items():
+            assert seen[ty][0] == pytest.approx(a, abs=tol) and \
+                seen[ty][1] == pytest.approx(b, abs=tol), (ty, seen)
+
+    r4 = run(tmp_path / "c.hen", e="hen", ICP=[1], DS=-0.02, STOP=["LP1"], sv="alpha",
+             verbose=False)
+    seen = {}
+    for ds in (0.02, -0.02):
+        for s in run(tmp_path / "c.hen", e="hen", s="alpha", IRS="LP1", ICP=[1, 2], ISW=2,
+                     ILP=0, DS=ds, sv="lp", verbose=False).specials:
+            seen[s.ty] = (s.par[0], s.par[1])
+    assert r4("LP1").par[0] == pytest.approx(-0.25, abs=tol)
+    for ty, (a, b) in {"R1": (-1.0, 1.0), "LPD": (0.0, -1.0)}.items():
+        assert seen[ty][0] == pytest.approx(a, abs=tol) and \
+            seen[ty][1] == pytest.approx(b, abs=tol), (ty, seen)
+
+
 @pytest.mark.parametrize("ips", [5, 7, 9, 11, 12, 14, 15, 16, 17])
 def test_unsupported_problem_types_are_refused(tmp_path, ips):
     (tmp_path / "fold.py").write_text(FOLD_MAP)

@@ -298,6 +298,14 @@ class BoundaryValueProblem(CollocationBVP):
             with np.errstate(all="ignore"):
                 z = self.factor(J, e).solve(e)
             good = np.all(np.isfinite(z)) and np.max(np.abs(z)) < 1e12
+            if good:
+                # A null vector of J, not the rounding of a singular border: where the
+                # branch's direction has no PAR(ICP(1)) component (c2c's third run: the
+                # trivial eigenfunction branch moves PAR(12) alone, PAR(11) = ICP(1)
+                # stays), the bordered solve returns a vector with |J z| ~ 1e-4 |J| |z|.
+                scale = float(abs(J).max()) if J.shape[0] else 1.0
+                good = float(np.linalg.norm(J @ z)) <= \
+                    math.sqrt(np.finfo(float).eps) * max(scale, 1.0) * float(np.linalg.norm(z))
         except (RuntimeError, np.linalg.LinAlgError, ValueError):
             good = False
         if not good:
