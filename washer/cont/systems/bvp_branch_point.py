@@ -44,7 +44,10 @@ import math
 from types import SimpleNamespace
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
+from washer.cont.linalg import PERMC_SPEC
 from washer.cont.problem import Problem
 from washer.cont.system import StartData, register
 from washer.cont.systems.general_bvp import BoundaryValueProblem
@@ -211,6 +214,25 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
                    jac=0, bcnd=bcnd, icnd=icnd)
 
 
+def tall_null_vector(M) -> np.ndarray:
+    """The unit right singular vector of the smallest singular value of a sparse
+    matrix M (m x k, m >= k) that is nearly rank-deficient by one (the discretised
+    adjoint at a located BP): inverse iteration on M^T M (sparse, banded for a
+    collocation matrix) shifted by 1e-13 of its largest entry, where a dense SVD
+    would cost O(m k^2). The shift is far below the next singular value squared, so
+    each iteration gains that ratio; rounding in M^T M (~eps |M|^2) moves the vector
+    by ~eps over that gap."""
+    A = (M.T @ M).tocsc()
+    shift = 1e-13 * abs(A).max()
+    lu = spla.splu((A + shift * sp.identity(A.shape[0], format="csc")).tocsc(),
+                   permc_spec=PERMC_SPEC)
+    z = np.ones(A.shape[0]) / math.sqrt(A.shape[0])
+    for _ in range(4):
+        z = lu.solve(z)
+        z /= np.linalg.norm(z)
+    return z
+
+
 @register(4, 2, "BP")
 @register(4, 2, "BP-curve")
 class BVPBranchPointLocus(BoundaryValueProblem):
@@ -269,10 +291,7 @@ class BVPBranchPointLocus(BoundaryValueProblem):
         cols_w = (np.arange(nn)[:, None] * 2 * n + n + np.arange(n)[None, :]).ravel()
         cols_p = np.array([slot[i] for i in lay.psi + lay.d])
         cols = np.r_[cols_w, cols_p]
-        M = J[:, cols]
-        rows = np.flatnonzero(np.asarray(abs(M).sum(axis=1)).ravel() > 0)
-        _, _, Vt = np.linalg.svd(M[rows].toarray())
-        z = Vt[-1]
+        z = tall_null_vector(J[:, cols])
         W = z[:len(cols_w)].reshape(nn, n)
         psi = z[len(cols_w):len(cols_w) + len(lay.psi)]
         norm2 = float(self.w_node @ np.sum(W * W, axis=1) + psi @ psi)
