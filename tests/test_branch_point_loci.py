@@ -2,9 +2,13 @@
 driven through `washer.run` on problems whose loci are known in closed form."""
 from __future__ import annotations
 
+import gzip
+from pathlib import Path
+
 import numpy as np
 import pytest
 
+from b_rows import branch_rows
 from washer.run import run
 
 # u1' = u1 (p1 - u2^2 - u1^2) [+ p3], u2 = p2: the trivial branch u1 = 0 has a
@@ -116,3 +120,64 @@ def test_bvp_branch_point_locus_closed_form(tmp_path, isw):
         assert np.max(np.abs(rec.u[:, :2])) < 1e-8                # u = 0 on the locus
         assert np.max(np.abs(rec.u[:, 2:])) > 1e-3                # the adjoint w is not
     assert ends == {-1.0, 0.9}
+
+
+# AUTO's sspg demo (size-structured plant growth) in Python: u1' = -u2,
+# u2' = -u1 u2 - m u2, u1(1) = 0, u2(0) = s u1(0), m = PAR(1), s = PAR(2). On the
+# trivial branch the linearisation u2 = c e^(-m t), u1 = c (e^(-m t) - e^(-m)) / m
+# meets the second condition where s (1 - e^(-m)) = m: the BP locus in closed form.
+SSPG = '''
+import numpy as np
+def func(u, par):
+    return np.array([-u[1], -u[0] * u[1] - par[0] * u[1]])
+def stpnt(u, par, t=0.0):
+    par[:2] = [1.0, 4.0]
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u1[0], -u0[1] + par[1] * u0[0]])
+'''
+SSPG_C = ("NDIM=2, IPS=4, ICP=[1], NTST=100, NCOL=4, IAD=3, ISP=2, ILP=1, NBC=2, NINT=0, "
+          "NMX=50, NPR=10, DS=0.01, DSMAX=0.1, NPAR=2\n")
+DATA = Path(__file__).parent / "data"
+
+
+def _on_sspg_locus(m, s):
+    return s * (1 - np.exp(-m)) - m
+
+
+@pytest.mark.slow
+def test_sspg_locus_closed_form_auto_and_restart_from_auto(tmp_path):
+    """The sspg demo's runs (its constants) in Python: BP1 of the trivial branch on
+    4 (1 - e^-m) = m (located to EPSS), the generating run and the locus forward and
+    backward, every point on s (1 - e^-m) = m to 1e-9 (the profiles are exponentials,
+    resolved far below that at NTST = 100; Newton converges quadratically). AUTO's own
+    b-file rows of the same runs (10 digits) lie on it to 1e-8: AUTO and washer agree.
+    Restarted from AUTO-07p's generating-run record (4n components (u, w, v1, v2) and
+    its parameter layout, tests/data/bvp_bp, written by auto-07p 0.9.x on the demo),
+    the locus is the same."""
+    (tmp_path / "sspg.py").write_text(SSPG)
+    (tmp_path / "c.sspg").write_text(SSPG_C)
+    r1 = run(tmp_path / "c.sspg", e="sspg", sv="sspg", verbose=False)
+    bp = r1("BP1")
+    assert _on_sspg_locus(bp.par[0], 4.0) == pytest.approx(0, abs=1e-5)
+    sw = run(tmp_path / "c.sspg", e="sspg", s="sspg", IRS=bp.lab, ICP=[1, 2], ISW=2,
+             sv="sw", verbose=False)
+    assert [(s.ty, s.br, s.pt) for s in sw.specials] == [("EP", 2, 5)]
+    for ds in (0.01, -0.01):
+        r = run(tmp_path / "c.sspg", e="sspg", s="sw", IRS=sw.specials[-1].lab, ICP=[1, 2],
+                ISW=2, DS=ds, sv="loc", verbose=False)
+        assert [(s.ty, s.br, s.pt) for s in r.specials if s.ty] == [("EP", 2, 50)]
+        for row in r.rows:
+            assert _on_sspg_locus(row.par[0], row.par[1]) == pytest.approx(0, abs=1e-9)
+    for name in ("b.sspg.2.fw", "b.sspg.2.bw"):
+        rows = branch_rows(DATA / "auto_demos" / "sspg" / "autoref" / name)
+        assert len(rows) == 50
+        for row in rows:
+            assert _on_sspg_locus(row.values[0], row.values[-1]) == pytest.approx(0, abs=1e-8)
+    with gzip.open(DATA / "bvp_bp" / "s.sspg.2.sw.gz", "rb") as f:
+        (tmp_path / "s.auto").write_bytes(f.read())
+    r = run(tmp_path / "c.sspg", e="sspg", s="auto", IRS=8, ICP=[1, 2], ISW=2, sv="fromauto",
+            verbose=False)
+    assert r.status == "ok" and len(r.rows) == 50
+    for row in r.rows:
+        assert _on_sspg_locus(row.par[0], row.par[1]) == pytest.approx(0, abs=1e-9)
