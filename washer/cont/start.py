@@ -97,7 +97,7 @@ def start_values(c, s: Settings, problem, rec, data=None) -> tuple[np.ndarray, n
 
 
 #: Start kinds of points of the loci of cycles (IPS = 2, ISW = 2).
-CYCLE_CURVES = ("LPC-curve", "PD-curve", "TR-curve")
+CYCLE_CURVES = ("LPC-curve", "BPC-curve", "PD-curve", "TR-curve")
 
 
 def start_kind(rec) -> str:
@@ -113,9 +113,9 @@ def start_kind(rec) -> str:
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
     if curve == 6 and rec.ips == 4:
         return "BP-curve"            # a point of the branch-point locus of a BVP
-    if curve in (5, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
-        # a point of a locus of folds, period doublings or tori of cycles
-        return {5: "LPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
+    if curve in (5, 6, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
+        # a point of a locus of folds, branch points, period doublings or tori of cycles
+        return {5: "LPC-curve", 6: "BPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
     return type_name(base)
 
 
@@ -160,7 +160,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
         raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart "
                          f"at an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
-    if s.ISW == 3 and kind not in ("BP", "BP-curve"):
+    if s.ISW == 3 and kind not in ("BP", "BP-curve", "BPC-curve"):
         raise RunError(f"{c.source}: ISW=3 continues the branch points of a generic problem: "
                        f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")
     if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
@@ -168,7 +168,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
     isw_key = -1 if s.ISW == -1 and kind == "BP" else \
         (2 if s.ISW in (2, 3) or kind.endswith("curve") else 1)
-    if kind in CYCLE_CURVES and s.ISW != 2:
+    if kind in CYCLE_CURVES and s.ISW not in (2, 3):
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:
         ctor = lookup(s.IPS, isw_key, "shooting" if shooting else kind)
@@ -196,7 +196,7 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         return c["IBR"]
     if rec is None or s.ISW < 0:
         return mbr + 1
-    if s.IPS == 2 and s.ISW == 2 and kind in ("LP", "PD", "TR", "BP"):
+    if s.IPS == 2 and s.ISW in (2, 3) and kind in ("LP", "PD", "TR", "BP"):
         # A locus of cycles started at its special point: AUTO's INITPS makes that run
         # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1
