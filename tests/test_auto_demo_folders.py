@@ -18,12 +18,15 @@ from auto_demo_compare import all_demos, run_demo
 #: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
 FAST = {"frc", "lrz", "lor", "chu"}
 
-BP_LOCI = "loci of branch points (ISW = 2 at a BP, ISW = 3) are not in the engine"
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
-    "abcb": BP_LOCI,
-    "lcbp": BP_LOCI,
-    "tfc": BP_LOCI,
+    "abcb": "20 of 22: the one-parameter cycle family of run 2 misses AUTO's LP and BP of "
+            "cycles at PAR(1) = 0.3462, 0.3458",
+    "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0) "
+            "AUTO ends with MX and a BP, ours with the UZSTOP and an LP",
+    "tfc": "11 of 18: run 5 misses the first of AUTO's two BPs of cycles (next to a fold), "
+           "so run 6 cannot start from BP2; the BP locus ends at a fold where AUTO's two "
+           "runs type the point BP and LP, ours BP twice",
     "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "ops": "optimisation (IPS = 15) is not supported",
     "pcl": "the fourth run (Floquet bundle of the extended system) does not end within "

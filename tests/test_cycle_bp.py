@@ -1,0 +1,98 @@
+"""Loci of branch points of cycles (IPS = 2, ISW = 2 and 3 from a BP label) against a
+closed form: tests/data/circlebp, two families of circles r = p1 and r = exp(p2) of the
+planar system r' = r g(r), theta' = 1 + r^2 with g = (r - p1)(exp(p2) - r) + p3.
+
+A circle r* is a zero of g, period T = 2 pi / (1 + r*^2). A BP of cycles is where the
+orbit's Jacobian in (u, p1, T) loses rank: for circles, where g(r*) = 0, g_r(r*) = 0 and
+g_p1(r*) = 0 (the radial equation is the only one that depends on p1; T is fixed by r*).
+sympy solves that below: r* = p1 = exp(p2), p3 = 0, so along the whole locus (ISW = 2 in
+(p1, p2), ISW = 3 in (p1, p2, p3)) p1 = exp(p2), p3 = 0, max U(1) = p1 and
+T = 2 pi / (1 + p1^2).
+
+Tolerance 1e-6: Newton stops when the last correction is below EPSL = EPSU = 1e-7
+relative (the error after it is far smaller), the orthogonality conditions use f_p by
+central differences (~1e-9 relative), the circle's collocation error at NTST = 20,
+NCOL = 4 is below 1e-10.
+"""
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from washer.auto.constants import read_constants
+from washer.cont.start import RunError
+from washer.run import run
+
+DATA = Path(__file__).parent / "data" / "circlebp"
+TOL = 1e-6
+
+
+def test_closed_form_locus():
+    """The BP conditions of the circles solved by sympy: r = p1 = exp(p2), p3 = 0."""
+    r, p1, p2, p3 = sp.symbols("r p1 p2 p3", real=True)
+    g = (r - p1) * (sp.exp(p2) - r) + p3
+    sols = sp.solve([g, sp.diff(g, r), sp.diff(g, p1)], [r, p1, p3], dict=True)
+    assert sols == [{r: sp.exp(p2), p1: sp.exp(p2), p3: 0}]
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    d = tmp_path_factory.mktemp("circlebp")
+    for f in DATA.iterdir():
+        shutil.copy(f, d)
+    return d
+
+
+@pytest.fixture(scope="module")
+def family(folder):
+    one = run(folder / "c.circlebp", verbose=False, sv="one")
+    assert one.status == "ok"
+    return one
+
+
+def test_bp_of_cycles(family, folder):
+    """The circle r = 1 meets the family r = p1 at p1 = 1 (T = pi there). The Jacobian is
+    singular at the BP, so the located orbit's radius is as uncertain as the location
+    (tol), and T = 2 pi / (1 + r^2) moves by pi per unit of r there."""
+    c = read_constants(folder / "c.circlebp")
+    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    (bp,) = [r for r in family.rows if r.lab and r.ty == "BP"]
+    assert bp.values[0] == pytest.approx(1.0, abs=tol)
+    assert bp.par[10] == pytest.approx(math.pi, abs=2 * math.pi * tol)
+
+
+@pytest.mark.parametrize("isw, icp", [(2, [1, 2, 11]), (3, [1, 2, 3, 11])])
+def test_bp_locus(family, folder, isw, icp):
+    """From BP1: the generating run (5 points, ending with EP, written with the curve's
+    codes 6x) puts the orbit on the exact BP; the locus from its EP, both ways, follows
+    p1 = exp(p2), p3 = 0, r = p1, T = 2 pi / (1 + p1^2)."""
+    cfile = folder / "c.circlebp.loc"
+    gen = run(cfile, verbose=False, sv=f"gen{isw}", restart=family, ISW=isw, ICP=icp)
+    assert gen.status == "ok"
+    assert len(gen.rows) == 5
+    ep = gen.rows[-1]
+    assert (ep.ty, ep.code) == ("EP", 69)
+    assert ep.values[0] == pytest.approx(1.0, abs=TOL)
+    reached = []
+    for ds in (0.05, -0.05):
+        loc = run(cfile, verbose=False, sv=f"loc{isw}", restart=gen, IRS=ep.lab, ISW=isw,
+                  ICP=icp, DS=ds, NMX=25)
+        assert loc.status == "ok"
+        assert [r.code for r in loc.rows if r.lab] == [69]
+        for row in loc.rows:
+            p1 = row.values[0]
+            assert p1 == pytest.approx(math.exp(row.par[1]), abs=TOL)
+            assert row.par[2] == pytest.approx(0.0, abs=TOL)
+            assert row.values[2] == pytest.approx(p1, abs=TOL)          # MAX U(1) = r
+            assert row.par[10] == pytest.approx(2 * math.pi / (1 + p1 ** 2), abs=TOL)
+        reached.append(loc.rows[-1].values[0])
+    assert reached[0] > 1.9 and reached[1] < 0.35
+
+
+def test_isw3_needs_a_branch_point(family, folder):
+    """ISW = 3 (the generic BP locus) from a label that is no BP: a clear error."""
+    with pytest.raises(RunError, match="ISW=3 continues the branch points"):
+        run(folder / "c.circlebp.loc", verbose=False, sv="bad", restart=family, IRS="UZ1",
+            ISW=3, ICP=[1, 2, 3, 11])
