@@ -122,6 +122,51 @@ def test_bvp_branch_point_locus_closed_form(tmp_path, isw):
     assert ends == {-1.0, 0.9}
 
 
+
+# The same equation with an integral condition int (u + u^3) dt = p4 and p4 in the
+# Robin condition u'(1) = p2 u(1) + p4: two parameters (p1, p4) on the BVP's branch
+# (NFPX = 2). On u = 0 the kernel sin(k t), p4 = (1 - cos k) / k gives the BP locus
+# k cos k - p2 sin k - (1 - cos k) / k = 0; the integral's multiplier psi_g is not 0
+# there (it carries p4's condition), so the g-terms of the adjoint are exercised.
+ROBIN_INT = ROBIN.replace("par[:3] = [1.0, 0.0, 0.0]", "par[:4] = [0.5, 0.0, 0.0, 0.0]") \
+    .replace("u1[1] - par[1] * u1[0]", "u1[1] - par[1] * u1[0] - par[3]") + \
+    """def icnd(u, uold, udot, upold, par):
+    return np.array([u[0] + u[0] ** 3 - par[3]])
+"""
+
+
+def test_bvp_branch_point_locus_with_an_integral_condition(tmp_path):
+    """ISW = 2, ICP = [1, 4, 2] from the BP of the trivial branch in (p1, p4): both
+    ways to p2 = -1 and 0.4, every point on the closed form to 1e-9 (as above; at
+    NTST = 10 the collocation error is still below it: 2e-14 at the BP), p4 = 0,
+    and the integral's adjoint multiplier psi_g = PAR(7) nonzero."""
+    (tmp_path / "robi.py").write_text(ROBIN_INT)
+    (tmp_path / "c.robi").write_text("NDIM=2, IPS=4, ICP=[1, 4], NBC=2, NINT=1, NTST=10, "
+                                     "NCOL=4, ILP=1, ISP=2, NMX=40, DS=0.05, DSMAX=0.2, "
+                                     "NPAR=4, UZSTOP={1: 3.0}\n")
+
+    def on_locus(p1, p2):
+        k = np.sqrt(p1)
+        return k * np.cos(k) - p2 * np.sin(k) - (1 - np.cos(k)) / k
+    r1 = run(tmp_path / "c.robi", e="robi", sv="robi", verbose=False)
+    bp = r1("BP1")
+    assert on_locus(bp.par[0], 0.0) == pytest.approx(0, abs=1e-9)
+    gen = run(tmp_path / "c.robi", e="robi", s="robi", IRS=bp.lab, ICP=[1, 4, 2], ISW=2,
+              sv="gen", verbose=False)
+    ends = set()
+    for ds in (0.05, -0.05):
+        r = run(tmp_path / "c.robi", e="robi", s="gen", IRS=gen.specials[-1].lab,
+                ICP=[1, 4, 2], ISW=2, DS=ds, NMX=200, UZSTOP={2: [-1.0, 0.4]}, sv="loc",
+                verbose=False)
+        assert [(s.ty, s.code) for s in r.specials] == [("UZ", -64)]
+        ends.add(round(r.specials[-1].par[1], 1))
+        for row in r.rows:
+            assert on_locus(row.par[0], row.par[1]) == pytest.approx(0, abs=1e-9)
+            assert abs(row.par[3]) < 1e-9
+        # psi = PAR(5..7) (two boundary conditions, one integral), a = PAR(8)
+        assert abs(r.specials[-1].par[6]) > 1e-2
+    assert ends == {-1.0, 0.4}
+
 # AUTO's sspg demo (size-structured plant growth) in Python: u1' = -u2,
 # u2' = -u1 u2 - m u2, u1(1) = 0, u2(0) = s u1(0), m = PAR(1), s = PAR(2). On the
 # trivial branch the linearisation u2 = c e^(-m t), u1 = c (e^(-m t) - e^(-m)) / m
