@@ -22,8 +22,8 @@ FAST = {"frc", "lrz", "lor", "chu"}
 EXPECTED_FAIL = {
     "abcb": "20 of 22: the one-parameter cycle family of run 2 misses AUTO's LP and BP of "
             "cycles at PAR(1) = 0.3462, 0.3458",
-    "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0) "
-            "AUTO ends with MX and a BP, ours with the UZSTOP and an LP",
+    "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
+            "a degenerate end, AUTO ends with MX and a BP, ours with a BP and an LP",
     "tfc": "11 of 18: run 5 misses the first of AUTO's two BPs of cycles (next to a fold), "
            "so run 6 cannot start from BP2; the BP locus ends at a fold where AUTO's two "
            "runs type the point BP and LP, ours BP twice",

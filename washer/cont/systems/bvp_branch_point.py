@@ -44,10 +44,8 @@ import math
 from types import SimpleNamespace
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
-from washer.cont.linalg import PERMC_SPEC
+from washer.cont.linalg import tall_null_vector
 from washer.cont.problem import Problem
 from washer.cont.system import StartData, register
 from washer.cont.systems.general_bvp import BoundaryValueProblem
@@ -212,25 +210,6 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
     return Problem(2 * n, func, func_batch=func_batch, name=problem.name, npar=lay.npar,
                    pvls=problem._pvls, parnames=problem.parnames, unames=problem.unames,
                    jac=0, bcnd=bcnd, icnd=icnd)
-
-
-def tall_null_vector(M) -> np.ndarray:
-    """The unit right singular vector of the smallest singular value of a sparse
-    matrix M (m x k, m >= k) that is nearly rank-deficient by one (the discretised
-    adjoint at a located BP): inverse iteration on M^T M (sparse, banded for a
-    collocation matrix) shifted by 1e-13 of its largest entry, where a dense SVD
-    would cost O(m k^2). The shift is far below the next singular value squared, so
-    each iteration gains that ratio; rounding in M^T M (~eps |M|^2) moves the vector
-    by ~eps over that gap."""
-    A = (M.T @ M).tocsc()
-    shift = 1e-13 * abs(A).max()
-    lu = spla.splu((A + shift * sp.identity(A.shape[0], format="csc")).tocsc(),
-                   permc_spec=PERMC_SPEC)
-    z = np.ones(A.shape[0]) / math.sqrt(A.shape[0])
-    for _ in range(4):
-        z = lu.solve(z)
-        z /= np.linalg.norm(z)
-    return z
 
 
 @register(4, 2, "BP")

@@ -57,6 +57,7 @@ import math
 import numpy as np
 
 from washer.auto.codes import Code
+from washer.cont.linalg import tall_null_vector
 from washer.cont.system import Solution, register
 from washer.cont.systems.bvp import H2, CollocationBVP, VectorField, onto_mesh, stored_profile
 
@@ -199,8 +200,7 @@ class CycleBranchPointLocus(CollocationBVP):
         nu = self.coll.n_u
         cols = np.r_[np.nonzero(np.arange(nu) % n2 >= n)[0],
                      nu + self.xpar.index(self.i_phi3)]
-        M = J[rows][:, cols].toarray()
-        z = np.linalg.svd(M)[2][-1]
+        z = tall_null_vector(J[rows][:, cols])
         return z[:-1].reshape(-1, n), float(z[-1])
 
     # ------------------------------------------------------------------ helpers
