@@ -291,9 +291,12 @@ def check_value(key: str, value, where: str):
         if not isinstance(value, list) or not value:
             raise ConstantsError(f"{where}: ICP expects a list of parameter indices or names")
         for i in value:
-            if isinstance(i, bool) or not isinstance(i, (int, str)) or isinstance(i, int) and i < 1:
+            # -21..-31: optimality conditions of IPS = 15 (checked against IPS by icp()).
+            if isinstance(i, bool) or not isinstance(i, (int, str)) or \
+                    isinstance(i, int) and i < 1 and not -31 <= i <= -21:
                 raise ConstantsError(f"{where}: ICP entries are parameter indices >= 1 "
-                                     f"(PAR(1), PAR(2), ...) or names, got {i!r}")
+                                     f"(PAR(1), PAR(2), ...) or names (or, with IPS = 15, "
+                                     f"-21..-31: optimality conditions), got {i!r}")
     elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
         if not isinstance(value, list):
             raise ConstantsError(f"{where}: {key} expects a list")
@@ -440,13 +443,24 @@ class Constants(dict):
         raise ConstantsError(f"{self.source}: unknown state name {key!r}; unames = {self['unames']}")
 
     def icp(self) -> list[int]:
-        """ICP as 1-based PAR indices (names resolved); every entry >= 1."""
+        """ICP as 1-based PAR indices (names resolved); every entry >= 1, except that
+        optimisation of periodic solutions (IPS = 15) takes entries -(20 + k), k = 1..11:
+        the optimality condition of PAR(k), whose value PAR(20 + k) is fixed (AUTO's
+        AUTOOP, optimization.f90)."""
         out = [self.par_index(k) for k in self["ICP"]]
         where = self.given.get('ICP', self.source)
         for k, i in zip(self["ICP"], out):
+            if i < 1 and self["IPS"] == 15 and -31 <= i <= -21:
+                continue
+            if i < 1 and self["IPS"] == 15:
+                raise ConstantsError(f"{where}: ICP entry {k!r}: with IPS = 15 a negative entry "
+                                     "-(20 + k) names the optimality condition of PAR(k), "
+                                     "k = 1..11 (-21..-31)")
             if i < 1:
                 raise ConstantsError(f"{where}: ICP entry {k!r} is "
-                                     f"PAR({i}): continuation parameters are PAR(1), PAR(2), ...")
+                                     f"PAR({i}): continuation parameters are PAR(1), PAR(2), ..."
+                                     " (negative entries are optimality conditions of IPS = 15 "
+                                     "only)")
         seen: dict[int, object] = {}
         for k, i in zip(self["ICP"], out):
             if i in seen:

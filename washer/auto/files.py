@@ -358,7 +358,7 @@ class OutputFiles:
     def header(self, c, ndim_internal: int, npar: int, column_titles: list[str],
                curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,
                nfpr: int | None = None, ds: float | None = None, dsmin: float | None = None,
-               dsmax: float | None = None) -> None:
+               dsmax: float | None = None, active: list | None = None) -> None:
         """The run's header block (io.f90:STHD), in AUTO-07p's exact layout.
 
         c: the user's constants; ndim_internal, npar: NDIM and NPAR as the
@@ -366,8 +366,10 @@ class OutputFiles:
         IPS=1); irs: the restart label actually used (default: IRS if it is a
         number, else 0); nfpr: number of free parameters (default 2 on |ISW|=2
         curves, else 1); ds, dsmin, dsmax: the engine's step sizes (default the
-        user's). Where an internal value differs from the user's, AUTO lists the
-        user's under 'User-specified constants, where different from above'.
+        user's); active: the run's internal ICP(1..NFPR) where it is not the user's
+        (IPS = 15 appends PAR(10), PAR(13), PAR(14)). Where an internal value differs
+        from the user's, AUTO lists the user's under 'User-specified constants, where
+        different from above'.
         The block is written with the first point (`row`), never alone.
         """
         user_irs = c["IRS"] if isinstance(c["IRS"], int) else None
@@ -425,7 +427,7 @@ class OutputFiles:
         lines.append("   0   User-specified parameter" + (":       " if len(icp_user) == 1 else
                      "s:      ") + "".join(f"   {i}" if isinstance(i, int) else f" '{i}'"
                                            for i in icp_user))
-        active = c.icp()[:nfpr]
+        active = list(active) if active is not None else c.icp()[:nfpr]
         lines.append("   0   Active continuation parameter" + (":  " if nfpr == 1 else "s: ")
                      + "".join(f" '{names[i]}'" if i in names else f"   {i}" for i in active))
         if curve_type:

@@ -57,6 +57,8 @@ void washer_icnd_batch(int k, int ndim, const double *par, const int *icp, int n
                        const double *upold, double *fi, double *scratch);
 void washer_fopt(int ndim, const double *u, const int *icp, const double *par, int ijac,
                  double *fs, double *dfdu, double *dfdp);
+void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, int par_stride,
+                       const int *icp, double *fs, double *scratch);
 """
 
 _ffi = FFI()
@@ -243,6 +245,20 @@ class CompiledUser:
                              _dptr(np.ascontiguousarray(u1, float)), 0, _dptr(fb), _dptr(dbc))
         return fb
 
+    def fopt_batch(self, us, pars) -> np.ndarray:
+        """AUTO's FOPT (the objective of IPS = 5 and 15, value only) at the rows of us
+        (k, NDIM); pars (k, NPAR) or (NPAR,) -> (k,)."""
+        if not self.has["fopt"]:
+            raise ProblemError(f"{self.path}: defines no FOPT (the objective "
+                               "FOPT(NDIM,U,ICP,PAR,IJAC,FS,DFDU,DFDP) of IPS = 5 and 15)")
+        us = np.ascontiguousarray(us, dtype=float)
+        k = us.shape[0]
+        pars, npar, stride = self._pars(pars, k)
+        fs = np.empty(k)
+        self.lib.washer_fopt_batch(k, self.ndim, _dptr(us), _dptr(pars), stride,
+                                   self._icp_ptr, _dptr(fs), self._scratch_for(npar))
+        return fs
+
     def icnd_batch(self, par, nint: int, u, uold, udot, upold) -> np.ndarray:
         """AUTO's ICND at k points (k, NDIM) each -> (k, NINT) integrands."""
         arrs = [np.ascontiguousarray(a, dtype=float) for a in (u, uold, udot, upold)]
@@ -266,7 +282,8 @@ class CompiledProblem(Problem):
                          dfdu_batch=user.dfdu_batch, func_batch=user.func_batch,
                          pvls=user.pvls if user.has["pvls"] else None,
                          bcnd=self._no_bcnd if user.has["bcnd"] else None,
-                         icnd=self._no_icnd if user.has["icnd"] else None)
+                         icnd=self._no_icnd if user.has["icnd"] else None,
+                         fopt_batch=user.fopt_batch if user.has["fopt"] else None)
 
     # BCND and ICND need NBC / NINT, which the Problem passes to its methods: the
     # methods below call the compiled routines; the callables above only mark them present.

@@ -355,3 +355,13 @@ void washer_fopt(int ndim, const double *u, const int *icp, const double *par, i
     user.fopt(ndim, u, icp, par, ijac, fs, dfdu, dfdp);
 #endif
 }
+
+/* The objective FOPT (IJAC = 0: the value only) at k points: us (k, ndim) rows, pars
+   (k, par_stride) rows (par_stride = 0: one PAR for all) -> fs (k,). */
+void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, int par_stride,
+                       const int *icp, double *fs, double *scratch)
+{
+    for (int i = 0; i < k; i++)
+        washer_fopt(ndim, us + (size_t)i * ndim, icp, pars + (size_t)i * par_stride, 0,
+                    fs + i, scratch, scratch + ndim);
+}

@@ -24,6 +24,9 @@ User problems live in NAME.py beside the constants file (e='NAME'):
                                   # solution uold(t), the branch direction udot(t)
                                   # and upold(t) = f(uold(t)) (for phase conditions);
                                   # the engine integrates them over [0, 1]
+    def fopt(u, par): ...         # optimisation (IPS = 5, 15), AUTO's FOPT: the scalar
+                                  # objective at the state u (NDIM,) (its derivatives
+                                  # are taken by central differences)
 
 Periodically forced problems may supply their flow over one forcing period beside
 func, `flow(u0, par, index)` -> (phi_T(u0) (NDIM,), monodromy matrix (NDIM, NDIM),
@@ -73,8 +76,9 @@ class Problem:
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
-                 bcnd=None, icnd=None, flow=None):
+                 bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None):
         self.ndim, self.name, self.npar = ndim, name, npar
+        self._fopt, self._fopt_batch = fopt, fopt_batch
         self._flow = flow
         self._bcnd, self._icnd = bcnd, icnd
         self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
@@ -94,6 +98,33 @@ class Problem:
     @property
     def has_pvls(self) -> bool:
         return self._pvls is not None
+
+    @property
+    def has_fopt(self) -> bool:
+        """Whether the problem has an objective (AUTO's FOPT, IPS = 5 and 15)."""
+        return self._fopt is not None or self._fopt_batch is not None
+
+    def fopt_many(self, us, pars) -> np.ndarray:
+        """The objective FOPT at k points: us (k, ndim), pars (k, npar) or (npar,) -> (k,)."""
+        us = np.asarray(us, dtype=float)
+        pars = np.asarray(pars, dtype=float)
+        if not self.has_fopt:
+            raise ProblemError(f"{self.name}: no objective: optimisation (IPS = 5, 15) needs "
+                               "fopt(u, par) (AUTO's FOPT)")
+        if self._fopt_batch is not None:
+            out = self._call(self._fopt_batch, "fopt", us, pars)
+        else:
+            if pars.ndim == 1:
+                pars = np.broadcast_to(pars, (len(us), len(pars)))
+            try:
+                out = np.array([float(self._fopt(u, p)) for u, p in zip(us, pars)])
+            except Exception as exc:
+                raise ProblemError(f"{self.name}: fopt(u, par) failed: "
+                                   f"{type(exc).__name__}: {exc}") from exc
+        if out.shape != (len(us),) or not np.all(np.isfinite(out)):
+            raise ProblemError(f"{self.name}: fopt(u, par) returned non-finite or non-scalar "
+                               "values; expected one finite number per point")
+        return out
 
     @property
     def has_flow(self) -> bool:

@@ -29,7 +29,6 @@ UNSUPPORTED_IPS = {
     11: "spatially uniform solutions of a parabolic PDE",
     12: "travelling waves of a parabolic PDE",
     14: "time evolution of a parabolic PDE with periodic boundary conditions",
-    15: "optimisation of periodic solutions",
     16: "time evolution of a parabolic PDE with user boundary conditions",
     17: "stationary states of a parabolic PDE",
 }
@@ -67,6 +66,10 @@ class Settings:
     IPS: int = _D["IPS"]
     ISW: int = _D["ISW"]
     ICP: tuple = tuple(_D["ICP"])          # 1-based PAR indices, principal first
+    #: IPS = 15: the k of ICP's entries -(20 + k), PAR(k)'s optimality conditions with
+    #: fixed values PAR(20 + k), in ICP's order (AUTO's ICP(NFPR + 1..)); ICP holds the
+    #: positive entries only.
+    OPT_ICP: tuple = ()
     NDIM: int = _D["NDIM"]
     NPAR: int = _D["NPAR"]
     DS: float = _D["DS"] * PERTURB
@@ -176,11 +179,21 @@ class Settings:
             where = getattr(c, "given", {}).get("NTST", src)
             raise SettingsError(f"{where}: NTST = {c['NTST']}: IPS = {c['IPS']} solves on a "
                                 "mesh of NTST intervals: expected NTST >= 1")
-        icp = tuple(c.icp())
-        for i in icp:
-            if i < 1:
-                raise SettingsError(f"{src}: ICP = {c['ICP']}: parameter indices start at 1")
+        icp_all = tuple(c.icp())
         ips = c["IPS"]
+        icp = tuple(i for i in icp_all if i > 0)
+        opt_icp = tuple(-i - 20 for i in icp_all if i < 0)
+        if opt_icp and ips != 15 or not icp:
+            raise SettingsError(f"{src}: ICP = {c['ICP']}: parameter indices start at 1")
+        if ips == 15 and len(opt_icp) != len(icp) - 1:
+            # AUTOOP: NFPR = (positive entries) + 3 free parameters (with PAR(10), the
+            # objective, and the multipliers PAR(13), PAR(14)) for NINT = NFPR - 1
+            # integrals: the phase, the objective, the adjoint's norm and one optimality
+            # condition per negative entry.
+            raise SettingsError(
+                f"{c.given.get('ICP', src)}: ICP = {c['ICP']}: IPS = 15 needs one negative "
+                f"entry -(20 + k) (the optimality condition of PAR(k)) fewer than positive "
+                f"entries: {len(icp)} positive, so {len(icp) - 1} negative, got {len(opt_icp)}")
         if ips in UNSUPPORTED_IPS:
             raise SettingsError(f"{src}: IPS = {ips} ({UNSUPPORTED_IPS[ips]}) is not supported "
                                 "yet")
@@ -189,7 +202,9 @@ class Settings:
             npar = max(npar, 11)             # PAR(11) holds the period (INIT2)
         if ips == 2 or (ips == -1 and c["ISP"] != 0):
             npar = max(npar, 12)             # PAR(12): torus angle
-        npar = max(npar, max(icp))
+        npar = max(npar, max(abs(i) for i in icp_all))
+        if ips == 15:
+            npar = max(npar, 14)             # PAR(12..14): the adjoint's norm, kappa, gamma
         thl = {c.par_index(k): float(v) for k, v in c["THL"].items()}
         if ips in (2, 12) and "THL" not in getattr(c, "given", {}):
             thl = {11: 0.0}
@@ -228,7 +243,7 @@ class Settings:
                 if num:
                     stop[name] = int(num)
         isw = c["ISW"] if c["ISW"] != 0 else 1
-        return cls(IPS=ips, ISW=isw, ICP=icp, NDIM=c["NDIM"], NPAR=npar,
+        return cls(IPS=ips, ISW=isw, ICP=icp, OPT_ICP=opt_icp, NDIM=c["NDIM"], NPAR=npar,
                    DS=ds * PERTURB, DSMIN=dsmin / PERTURB, DSMAX=dsmax * PERTURB,
                    IADS=c["IADS"], NMX=c["NMX"], NPR=c["NPR"], ITMX=c["ITMX"], ITNW=c["ITNW"],
                    NWTN=c["NWTN"], EPSL=c["EPSL"], EPSU=c["EPSU"], EPSS=c["EPSS"],

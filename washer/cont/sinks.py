@@ -43,7 +43,8 @@ class FileSink:
         curve = sysm.curve_type
         self.files.header(c, sysm.n_eq if s.IPS in (0, 1) else s.NDIM, s.NPAR, run.titles, curve,
                           {1: "BP", 2: "LP", 3: "HB", 6: "BP"}.get(curve, ""), irs=run.irs_label,
-                          nfpr=len(sysm.free), ds=s.DS, dsmin=s.DSMIN, dsmax=s.DSMAX)
+                          nfpr=len(sysm.free), ds=s.DS, dsmin=s.DSMIN, dsmax=s.DSMAX,
+                          active=getattr(sysm, "header_icp", None))
 
     def branch_start(self, br: int) -> None:
         self.files.branch_start()

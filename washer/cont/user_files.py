@@ -39,7 +39,8 @@ def load_user_problem(name: str, folder: Path, ndim: int) -> Problem:
 
 
 def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
-    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls).
+    """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls,
+    bcnd, icnd, fopt).
 
     Only a plain name is accepted: the module is looked up beside the
     constants file, never elsewhere on disk."""
@@ -65,4 +66,5 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
                            "and f)")
     return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
                    getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
-                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None))
+                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None),
+                   fopt=getattr(mod, "fopt", None))
