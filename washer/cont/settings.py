@@ -23,7 +23,6 @@ PERTURB = 1 + 1e-7
 
 #: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
 UNSUPPORTED_IPS = {
-    5: "algebraic optimisation with FOPT",
     7: "boundary value problems with Floquet multipliers",
     9: "homoclinic and heteroclinic orbits (HomCont)",
     11: "spatially uniform solutions of a parabolic PDE",

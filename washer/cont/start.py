@@ -200,7 +200,9 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         # A locus of cycles started at its special point: AUTO's INITPS makes that run
         # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1
-    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB"):
+    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB") or \
+            (s.IPS == 5 and kind == "LP"):
+        # (IPS = 5: the extremum continued in one parameter more from its LP)
         return rec.lab
     return abs(rec.br)
 
@@ -219,5 +221,7 @@ def column_titles(c, s: Settings, system) -> list:
     """The b-file's titles: PAR(ICP(1)), the system's columns, the other free parameters
     (PERIOD for PAR(11) unless the constants name it), as parnames names them."""
     pn = {int(k): v for k, v in c["parnames"].items()}
+    if s.IPS in (5, 15) and 10 not in pn:
+        pn[10] = "FOPT"                 # AUTO's title of the objective PAR(10)
     return [pn.get(s.ICP[0], f"PAR({s.ICP[0]})")] + list(system.column_titles()) + \
         [("PERIOD" if i == 11 and 11 not in pn else pn.get(i, f"PAR({i})")) for i in s.ICP[1:]]

@@ -1,0 +1,109 @@
+"""Algebraic optimisation (IPS = 5) against extrema solved with sympy.
+
+tests/data/optcusp/optcusp.py: FOPT = u + p1 - p1^2 - p2^2 on the cusp surface
+u^3 - p1 u - p2 = 0 (its docstring states the conditions). The first run (IRS = 0, NFPR = 2:
+p1 free) follows the curve p1 = u^2 - p2 / u at p2 = 0.1 and its LP in PAR(10) is the
+extremum of FOPT along it; the second, from that LP (NFPR = 3: the extremum in p1
+continued in p2, with the Lagrange multipliers), has its LP at the extremum over the
+surface, where grad FOPT = lambda grad f. sympy reduces both to polynomials in u and finds
+their real roots; the multipliers the record stores (v, v0) give lambda = -v / v0.
+
+Tolerance: a located LP lies within AUTO's location tolerance EPSS (1 + sqrt|DS DSMAX|)
+in arclength of the exact fold, the tangent being unit in a norm in which every unknown
+has weight 1: each coordinate is within that distance.
+"""
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from washer.auto.constants import read_constants
+from washer.cont.runner import RunError
+from washer.run import run
+
+DATA = Path(__file__).parent / "data" / "optcusp"
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    d = tmp_path_factory.mktemp("optcusp")
+    for f in DATA.iterdir():
+        shutil.copy(f, d)
+    return d
+
+
+@pytest.fixture(scope="module")
+def runs(folder):
+    c = folder / "c.optcusp"
+    r1 = run(c, verbose=False, sv="1")
+    r2 = run(c, verbose=False, s="1", sv="2", IRS="LP1")
+    assert r1.status == r2.status == "ok"
+    return r1, r2
+
+
+def tol(folder) -> float:
+    c = read_constants(folder / "c.optcusp")
+    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+
+
+def real_roots(expr, u):
+    num = sp.numer(sp.together(expr))
+    return [sp.N(r, 30) for r in sp.Poly(num, u).real_roots()]
+
+
+def test_extremum_along_the_curve(runs, folder):
+    r1, _ = runs
+    u = sp.symbols("u")
+    p2 = sp.Rational(1, 10)
+    p1 = u ** 2 - p2 / u
+    phi = u + p1 - p1 ** 2 - p2 ** 2
+    # the curve's branch through the start u = 1 (u > 0); FOPT's critical points on it
+    roots = [r for r in real_roots(sp.diff(phi, u), u) if r > 0]
+    (lp,) = [r for r in r1.rows if r.ty == "LP"]
+    best = min(roots, key=lambda r: abs(float(r) - lp.u[0]))
+    t = tol(folder)
+    assert lp.values[0] == pytest.approx(float(phi.subs(u, best)), abs=t)      # PAR(10)
+    assert lp.u[0] == pytest.approx(float(best), abs=t)
+    assert lp.par[0] == pytest.approx(float(p1.subs(u, best)), abs=t)
+    assert lp.par[1] == 0.1
+    # NFPR = 2: the record stores (u, PAR(1)), the free parameters PAR(10), PAR(1)
+    assert len(lp.u) == 2 and lp.u[1] == lp.par[0] and lp.icp == [10, 1]
+    assert r1.titles[0] == "FOPT"
+
+
+def test_extremum_over_the_surface(runs, folder):
+    r1, r2 = runs
+    # Lagrange: 1 = l (3 u^2 - p1), 1 - 2 p1 = -l u, -2 p2 = -l, and f = 0, reduced to u
+    u = sp.symbols("u")
+    p2 = (u ** 3 - u / 2) / (1 + u ** 2)
+    p1 = (1 + 2 * p2 * u) / 2
+    (root,) = real_roots(2 * p2 * (3 * u ** 2 - p1) - 1, u)      # one critical point
+    P1, P2 = p1.subs(u, root), p2.subs(u, root)
+    (lp,) = [r for r in r2.rows if r.ty == "LP"]
+    t = tol(folder)
+    assert lp.values[0] == pytest.approx(float(root + P1 - P1 ** 2 - P2 ** 2), abs=t)
+    assert lp.u[0] == pytest.approx(float(root), abs=t)
+    assert lp.par[0] == pytest.approx(float(P1), abs=t)
+    assert lp.par[1] == pytest.approx(float(P2), abs=t)
+    # NFPR = 3: the record stores (u, v, v0, PAR(1), PAR(2)); lambda = -v / v0 = 2 p2
+    x, v, v0, q1, q2 = lp.u
+    assert (q1, q2) == (lp.par[0], lp.par[1])
+    assert v * v + v0 * v0 == pytest.approx(1.0, abs=1e-8)
+    assert -v / v0 == pytest.approx(2 * lp.par[1], abs=1e-7)
+    # the restart's branch is the LP's label (AUTO's NEWLAB for IPS = 5 at an LP)
+    (lp1,) = [r for r in r1.rows if r.ty == "LP"]
+    assert lp.icp == [10, 1, 2] and lp.br == lp1.lab
+
+
+def test_refusals(folder):
+    c = folder / "c.optcusp"
+    with pytest.raises(RunError, match="ICP\\(1\\) is PAR\\(10\\)"):
+        run(c, verbose=False, files=False, ICP=[1, 2])
+    with pytest.raises(RunError, match="NFPR = 2 free parameters"):
+        run(c, verbose=False, files=False, ICP=[10])
+    eq = run(c, verbose=False, files=False, IPS=1, ICP=[1], NMX=3)
+    with pytest.raises(RunError, match="label of an IPS = 5 run"):
+        run(c, verbose=False, files=False, restart=eq, IRS="EP1")
