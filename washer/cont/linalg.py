@@ -126,6 +126,28 @@ def null_vectors(A: np.ndarray, k: int) -> np.ndarray:
     return Vt[-k:].T
 
 
+def tall_null_vector(M) -> np.ndarray:
+    """The unit right singular vector of the smallest singular value of a sparse
+    matrix M (m x k, m >= k) that is nearly rank-deficient by one (the collocated
+    adjoint equations at a located BP of a BVP or of cycles): inverse iteration on
+    M^T M (sparse, banded for a collocation matrix) shifted by 1e-13 of its largest
+    entry, where a dense SVD would cost O(m k^2). The shift is far below the next singular value squared, so
+    each iteration gains that ratio; rounding in M^T M (~eps |M|^2) moves the vector
+    by ~eps over that gap."""
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+    M = sp.csr_matrix(M)
+    A = (M.T @ M).tocsc()
+    shift = 1e-13 * abs(A).max()
+    lu = spla.splu((A + shift * sp.identity(A.shape[0], format="csc")).tocsc(),
+                   permc_spec=PERMC_SPEC)
+    z = np.ones(A.shape[0]) / np.sqrt(A.shape[0])
+    for _ in range(4):
+        z = lu.solve(z)
+        z /= np.linalg.norm(z)
+    return z
+
+
 def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
     """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
     if it is negligible, the first non-negligible component positive."""
