@@ -74,11 +74,25 @@ def test_mobius_multipliers_closed_form():
         assert mu == pytest.approx(want, abs=1e-7)
 
 
+def generated(res):
+    """The label of the EP a generating run ends with (AUTO: "Restart at EP label")."""
+    assert res.status == "ok"
+    lab = [r for r in res.rows if r.lab]
+    assert [r.ty for r in lab] == ["EP"] and len(res.rows) == 5         # NMX = 5
+    return lab[-1].lab
+
+
 @pytest.fixture(scope="module")
 def tr_locus(mobius):
+    """TR1, then the locus as AUTO computes it: the generating run from TR1 (5 steps that
+    scale the eigenfunction) and the locus restarted at its EP. The generating run moves
+    the first parameter with the second fixed: with b first, the whole locus a = 0 would
+    solve it (the cycle does not depend on b), so it runs with ICP = [a, b]."""
     one = run(mobius / "c.mobius.tr", verbose=False, sv="tr")
     assert one.status == "ok"
-    loc = run(mobius / "c.mobius.trloc", verbose=False, sv="trloc", s="tr")
+    gen = run(mobius / "c.mobius.trloc", verbose=False, sv="trgen", s="tr", ICP=[1, 2])
+    loc = run(mobius / "c.mobius.trloc", verbose=False, sv="trloc", s="trgen",
+              IRS=generated(gen))
     assert loc.status == "ok"
     return one, loc
 
@@ -113,7 +127,9 @@ def test_mobius_pd_locus(mobius):
     assert one.status == "ok"
     (pd,) = labelled(one, "PD")
     assert pd.values[0] == pytest.approx(-0.5, abs=located_tol(mobius / "c.mobius.pd"))
-    loc = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdloc", s="pd")
+    gen = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdgen", s="pd")
+    loc = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdloc", s="pdgen",
+              IRS=generated(gen))
     assert loc.status == "ok"
     lab = [r for r in loc.rows if r.lab]
     assert [r.code for r in lab] == [-76, -74]
@@ -127,8 +143,9 @@ def test_mobius_pd_locus(mobius):
 
 @pytest.mark.slow
 def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
-    """The washer's exact stability boundary continued directly as a TR locus in
-    (Omega, C_p) (auto_constants/c.washer.forced.tr, from the TR of c.washer.forced)
+    """The washer's exact stability boundary continued as a TR locus in (Omega, C_p)
+    (auto_constants/c.washer.forced.tr: its generating run from the TR of
+    c.washer.forced, then the locus from the generating run's EP)
     against washer.problems.forced.critical_cp, an independent route (shooting of the
     forced response with an adaptive integrator at 1e-10, its TR located in C_p alone)
     at the locus's UZ points Omega = 11 and 12 Hz: the same C_p to 1e-8 (collocation at
@@ -142,8 +159,9 @@ def test_washer_torus_locus_matches_one_parameter_locations(tmp_path):
     one = run(tmp_path / "c.washer.forced", verbose=False, sv="forced",
               UZSTOP={"C_p": [0.0, 0.12]})
     assert one.status == "ok"
-    loc = run(tmp_path / "c.washer.forced.tr", verbose=False, sv="trloc", s="forced",
-              PAR={}, UZR={"Omega": [11.0]})
+    gen = run(tmp_path / "c.washer.forced.tr", verbose=False, sv="trgen", s="forced", PAR={})
+    loc = run(tmp_path / "c.washer.forced.tr", verbose=False, sv="trloc", s="trgen",
+              PAR={}, UZR={"Omega": [11.0]}, IRS=generated(gen))
     assert loc.status == "ok"
     uz = [r for r in loc.rows if r.lab]
     assert [r.ty for r in uz] == ["UZ", "UZ"]

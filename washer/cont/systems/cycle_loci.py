@@ -22,14 +22,18 @@ Unknowns x = (W (n_nodes, m NDIM) flattened node-major, PAR(11), [PAR(12),] PAR(
 PAR(ICP(1))), m = 2 or 3. The second derivatives f_uu v, f_up v in the Jacobian are
 mixed central differences of f in batched calls (as the cycle-fold locus).
 
-Start (differs from AUTO, which first runs an ISW = -2 generation of 5 steps from
-v = 0 and needs a restart from its EP; the locus proper is the same system): directly
-from the PD / TR record, the eigenfunction computed from the collocation's own
+Start at the PD / TR record: the eigenfunction computed from the collocation's own
 fundamental solution (collocation.fundamental_solution): v(t) = Phi(t) e with e the
 eigenvector of the monodromy matrix Phi(1) for the multiplier closest to -1 (PD) or,
 for TR, the one with Im > 0 closest to the unit circle (theta = its argument, which the
-TR record stores as PAR(12)); normalised to int <v, v> (+ <w, w>) = 1, the norm AUTO
-keeps fixed as PAR(NPAR) (written after PAR(NPAR) in the s-record, as the cycle fold's).
+TR record stores as PAR(12)); normalised to int <v, v> (+ <w, w>) = 1. As AUTO's
+(INITPS: ISW = -2, STPNPD / STPNTR with the norm PAR(NPAR) free), that run is a
+generating run of NMX = 5 steps (ILP = ISP = 0) with the second parameter fixed and the
+norm c of int <v, v> (+ <w, w>) = c free in its place: its direction scales the
+eigenfunction (the orbit and the parameters stay at the bifurcation), and its end point
+(EP, a record of this locus) is where the locus proper restarts (AUTO's pen and tor
+demos: "generate starting data", then run(t)), with c fixed at NORM (written after
+PAR(NPAR) in the s-record, as the cycle fold's).
 
 Special points, base codes (written with the tens digit 7 or 8: 75, -76, -87, ...):
 * LP (5): the locus folds with respect to PAR(ICP(1)) (ILP != 0): the tangent's
@@ -106,11 +110,32 @@ class _CycleLocus(CollocationBVP):
         if data.kind.endswith("-curve"):
             self._from_curve(rec)
         else:
+            # The generating run: the norm c (PAR(NPAR + 1) of the record) is free in
+            # the second parameter's place.
+            self._generating = True
+            self.c_index = len(self.par) + 1
+            self.xpar = [self.c_index if i == self.p2 else i for i in self.xpar]
+            self.free = [self.c_index if i == self.p2 else i for i in self.free]
+            self.run_settings = s.with_(NMX=5, ILP=0, ISP=0, ISW=-2)
             self._from_record(rec)
 
     # ------------------------------------------------------------------ set-up
+    _generating = False
+
     def tail_weights(self) -> np.ndarray:
-        return np.array([self.settings.theta_par(i) for i in self.xpar])
+        # c of the generating run has AUTO's default weight THL = 1
+        return np.array([1.0 if self._generating and i == self.c_index
+                         else self.settings.theta_par(i) for i in self.xpar])
+
+    def _par_value(self, i: int) -> float:
+        """The start value of the unknown of slot i (c starts at NORM)."""
+        return NORM if self._generating and i == self.c_index else self.par[i - 1]
+
+    def norm_constant(self, x) -> float:
+        """c of int <v, v> (+ <w, w>) = c: an unknown in the generating run, else NORM."""
+        if self._generating:
+            return float(x[self.coll.n_u + self.xpar.index(self.c_index)])
+        return NORM
 
     def _from_record(self, rec) -> None:
         s, n = self.settings, self.n
@@ -125,7 +150,7 @@ class _CycleLocus(CollocationBVP):
         self.set_rotations(U)
         self.V_old = V.copy()
         W = np.c_[U, V]
-        self._start = (np.r_[W.ravel(), [self.par[i - 1] for i in self.xpar]], None)
+        self._start = (np.r_[W.ravel(), [self._par_value(i) for i in self.xpar]], None)
 
     def _from_curve(self, rec) -> None:
         """A restart at a point of this locus (its record stores W = (u, v[, w]) and the
@@ -167,7 +192,8 @@ class _CycleLocus(CollocationBVP):
         W = self.coll.profile(x)
         par = self.par.copy()
         for i, val in zip(self.xpar, x[self.coll.n_u:]):
-            par[i - 1] = val
+            if i <= len(par):                  # (not c, PAR(NPAR + 1), of the generating run)
+                par[i - 1] = val
         return W, par
 
     def _at_gauss(self, x):
@@ -186,7 +212,8 @@ class _CycleLocus(CollocationBVP):
         F = np.concatenate(parts, axis=1).reshape(N, c, m * n)
         u = W[:, :n]
         w = self.coll.w_node
-        ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1)] + self._integrals(W)
+        ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1)] + \
+            self._integrals(W, self.norm_constant(x))
         return self.coll.residual_general(W, F, ints, self._bc(W[0], W[-1], par))
 
     def jacobian(self, x):
@@ -199,7 +226,9 @@ class _CycleLocus(CollocationBVP):
         dF = np.zeros((len(self.xpar), k, m * n))
         dF[0, :, :n] = fg                                              # d/dT
         slots = {i: j for j, i in enumerate(self.xpar)}
-        moved = [self.p2, self.p1] + ([self.p3] if self.p3 is not None else [])
+        # (d/dc of the generating run: the norm integral's -1 only)
+        moved = ([self.p1] if self._generating else [self.p2, self.p1]) + \
+            ([self.p3] if self.p3 is not None else [])
         for idx in moved:
             dF[slots[idx], :, :n] = T * self.field.fp(ug, par, idx)
         for cp in range(1, m):
@@ -214,9 +243,11 @@ class _CycleLocus(CollocationBVP):
         int_u = np.zeros((m, len(W), m * n))
         int_u[0, :, :n] = self.up_old
         self._integral_rows(W, int_u)
+        int_par = np.zeros((m, len(self.xpar)))
+        if self._generating:
+            int_par[m - 1, slots[self.c_index]] = -1.0                 # the norm row's - c
         return self.coll.jacobian_general(blocks, dF.reshape(len(self.xpar), N, c, m * n),
-                                          int_u, np.zeros((m, len(self.xpar))),
-                                          self._bc_jac(W[0], par))
+                                          int_u, int_par, self._bc_jac(W[0], par))
 
     def params(self, x):
         W, par = self.unpack(x)
@@ -229,7 +260,11 @@ class _CycleLocus(CollocationBVP):
         return None
 
     def active_tests(self) -> list:
-        return [int(Code.LPC)] if self.settings.detects("LP") else []
+        return [int(Code.LPC)] if self._run_settings().detects("LP") else []
+
+    def _run_settings(self):
+        """The constants the run goes by (the generating run's ILP = ISP = 0)."""
+        return getattr(self, "run_settings", self.settings)
 
     def _lp(self, tangent):
         return None if tangent is None else float(tangent[-1])
@@ -256,7 +291,8 @@ class _CycleLocus(CollocationBVP):
         def rldot(t):
             t_par = dict(zip(self.xpar, t[self.coll.n_u:]))
             return [float(t_par[i]) for i in self.free]
-        return self.bvp_solution(x, tangent, np.r_[self.params(x), NORM], rldot)
+        return self.bvp_solution(x, tangent, np.r_[self.params(x), self.norm_constant(x)],
+                                 rldot)
 
     def directions(self, x, tangent, code) -> list:
         return []
@@ -289,16 +325,16 @@ class PeriodDoublingLocus(_CycleLocus):
         return (np.block([[I, Z], [Z, I]]), np.block([[-I, Z], [Z, I]]),
                 np.zeros((2 * n, len(self.xpar))))
 
-    def _integrals(self, W):
+    def _integrals(self, W, c):
         v = W[:, self.n:]
-        return [self.coll.w_node @ np.sum(v * v, axis=1) - NORM]
+        return [self.coll.w_node @ np.sum(v * v, axis=1) - c]
 
     def _integral_rows(self, W, int_u):
         int_u[1, :, self.n:] = 2 * W[:, self.n:]
 
     def active_tests(self) -> list:
         out = super().active_tests()
-        if self.settings.detects("PD") and self.n > 2:
+        if self._run_settings().detects("PD") and self.n > 2:
             out.append(int(Code.R2))
         return out
 
@@ -371,11 +407,11 @@ class TorusLocus(_CycleLocus):
             Bp[2 * n:, 1] = s * w0 - c * v0
         return B0, B1, Bp
 
-    def _integrals(self, W):
+    def _integrals(self, W, c):
         v, w = self._vw(W)
         vo, wo = self._vw_old()
         wn = self.coll.w_node
-        return [wn @ np.sum(v * wo - w * vo, axis=1), wn @ np.sum(v * v + w * w, axis=1) - NORM]
+        return [wn @ np.sum(v * wo - w * vo, axis=1), wn @ np.sum(v * v + w * w, axis=1) - c]
 
     def _integral_rows(self, W, int_u):
         n = self.n
@@ -392,7 +428,7 @@ class TorusLocus(_CycleLocus):
 
     def active_tests(self) -> list:
         out = super().active_tests()
-        if self.settings.detects("TR") and self.n > 2:
+        if self._run_settings().detects("TR") and self.n > 2:
             out += [code for code, _ in floquet.RESONANCES]
         return out
 
