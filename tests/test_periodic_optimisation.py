@@ -130,3 +130,28 @@ def test_negative_icp_entries(tmp_path):
     # IPS = 15 starts from a stored periodic orbit
     with pytest.raises(RunError, match="stored periodic orbit"):
         run(c, verbose=False, files=False, IPS=15, ICP=[1, 11, -21])
+
+
+ROTOR = '''
+import math
+def func(u, par):
+    return [par[0], -u[1]]
+def stpnt(u, par, t=0.0):
+    par[0], par[10] = 1.0, 2 * math.pi
+    u[0], u[1] = 2 * math.pi * t, 0.0
+def fopt(u, par):
+    return u[1]
+'''
+
+
+def test_rotating_orbits_are_refused(tmp_path):
+    """theta' = PAR(1), v' = -v: theta gains 2 pi over a period (AUTO's NRTN), which the
+    extended system does not carry: refused by name rather than solved wrongly."""
+    (tmp_path / "rotor.py").write_text(ROTOR)
+    (tmp_path / "c.rotor").write_text("e = 'rotor'\nNDIM=2, IPS=2, ICP=[1, 11], NMX=3, "
+                                      "NTST=10, NCOL=4, ISP=0, ILP=0\n")
+    orbits = run(tmp_path / "c.rotor", verbose=False, sv="rotor")
+    assert orbits.status == "ok"
+    with pytest.raises(RunError, match="rotates"):
+        run(tmp_path / "c.rotor", verbose=False, files=False, restart=orbits, IRS=1,
+            IPS=15, ICP=[1, 11, -21])

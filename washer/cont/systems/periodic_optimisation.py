@@ -112,11 +112,16 @@ class PeriodicOptimisation(BoundaryValueProblem):
         self.header_icp = list(self._free)
         par = np.zeros(max(s.NPAR, len(data.par)))
         par[:len(data.par)] = data.par
+        mesh_r, U_r, _ = stored_profile(rec, n)
+        if np.any(np.rint((U_r[-1] - U_r[0]) / (2 * np.pi)) != 0):
+            # BCPS's rotations (NRTN) are not carried into the extended system here.
+            raise ValueError("the stored orbit rotates (u(1) - u(0) is a nonzero multiple of "
+                             "2 pi in some component): optimisation of rotating orbits is "
+                             "not supported")
         if int(getattr(rec, "nfpr", 0) or 0) < 6:
             # STPNPO: the objective of the stored orbit on its own mesh, then PAR(12..NPAR)
             # = 0 (the adjoint's size, the multipliers and the optimality values); w = 0 (the
             # base widens the stored profile with zeros), no stored direction.
-            mesh_r, U_r, _ = stored_profile(rec, n)
             par[9] = float(mesh_r.node_weights() @ user.fopt_many(U_r, par))
             par[11:] = 0.0
             rec = _without_direction(rec)
