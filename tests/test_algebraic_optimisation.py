@@ -107,3 +107,29 @@ def test_refusals(folder):
     eq = run(c, verbose=False, files=False, IPS=1, ICP=[1], NMX=3)
     with pytest.raises(RunError, match="label of an IPS = 5 run"):
         run(c, verbose=False, files=False, restart=eq, IRS="EP1")
+
+
+SYMBOLIC = '''
+import sympy as sp
+u = sp.symbols("x")
+par = sp.symbols("p1 p2")
+x, (p1, p2) = u, par
+f = [x ** 3 - p1 * x - p2]
+def stpnt(u, par):
+    u[0], par[0], par[1] = 1.0, 0.9, 0.1
+def fopt(u, par):
+    return u[0] + par[0] - par[0] ** 2 - par[1] ** 2
+'''
+
+
+def test_symbolic_equations_take_fopt(runs, folder, tmp_path):
+    """The same problem with f as sympy expressions (compiled) and fopt a plain function:
+    the same extremum along the curve."""
+    r1, _ = runs
+    (tmp_path / "symcusp.py").write_text(SYMBOLIC)
+    shutil.copy(folder / "c.optcusp", tmp_path / "c.optcusp")
+    r = run(tmp_path / "c.optcusp", verbose=False, files=False, e="symcusp")
+    (lp,) = [x for x in r.rows if x.ty == "LP"]
+    (ref,) = [x for x in r1.rows if x.ty == "LP"]
+    assert lp.values[0] == pytest.approx(ref.values[0], abs=tol(folder))
+    assert lp.u == pytest.approx(ref.u, abs=tol(folder))

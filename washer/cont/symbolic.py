@@ -8,7 +8,7 @@ NAME.py beside the constants file defines, instead of func:
     par = sp.symbols("rho beta sigma")      # PAR(1), PAR(2), ... ({i: symbol} also works)
     f = [sigma * (y - x), rho * x - y - x * z, x * y - beta * z]
     def stpnt(u, par): ...                  # optional, numeric, as for any NAME.py
-    # pvls, bcnd, icnd: optional functions as for any NAME.py
+    # pvls, bcnd, icnd, fopt: optional functions as for any NAME.py
 
 `f` may also be a sympy Matrix. The expressions are differentiated by sympy, the
 common subexpressions of f, f_u and f_p shared (one sympy.cse over all of them) and
@@ -197,7 +197,9 @@ class SymbolicProblem(Problem):
 def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
     """The Problem of a symbolic NAME.py (see the module docstring)."""
     from washer.cont.compile import build_library, source_text
-    u_syms = list(mod.u)
+    import sympy
+    # one state variable may be given as a Symbol, as `par` may (sp.symbols("x"))
+    u_syms = [mod.u] if isinstance(mod.u, sympy.Symbol) else list(mod.u)
     exprs = list(mod.f)
     if len(u_syms) != ndim or len(exprs) != ndim:
         raise ProblemError(f"{path}: NDIM = {ndim} but u has {len(u_syms)} symbols and f "
@@ -238,5 +240,6 @@ def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
 
     return SymbolicProblem(ndim, func, getattr(mod, "stpnt", None), dfdu, dfdp, name=name,
                            pvls=getattr(mod, "pvls", None), bcnd=getattr(mod, "bcnd", None),
-                           icnd=getattr(mod, "icnd", None), dfdu_batch=dfdu_batch,
+                           icnd=getattr(mod, "icnd", None), fopt=getattr(mod, "fopt", None),
+                           dfdu_batch=dfdu_batch,
                            func_batch=func_batch, compiled=c)
