@@ -96,3 +96,43 @@ def test_isw3_needs_a_branch_point(family, folder):
     with pytest.raises(RunError, match="ISW=3 continues the branch points"):
         run(folder / "c.circlebp.loc", verbose=False, sv="bad", restart=family, IRS="UZ1",
             ISW=3, ICP=[1, 2, 3, 11])
+
+
+def test_isoperiodic_locus_on_autos_curve(tmp_path):
+    """The tfc demo's run 6: the BP locus of cycles at fixed period (ICP = [3, 1, 6]: the
+    orthogonality conditions against PAR(3) and PAR(1), not the period) from AUTO's own
+    BP2 record of run 5 (tests/data/tfc_bp/s.tfc.5.gz, label 24). Every point of ours
+    lies on AUTO's curve (its b.tfc.6.fw, all 50 rows, by a cubic spline in PAR(3)):
+    measured 1.5e-10 in PAR(1), 1e-12 in PAR(6); 1e-8 allowed (AUTO prints 11 digits,
+    the spline through rows <= 0.006 apart in PAR(3) errs by ~h^4 f''''/384, and both
+    engines stop Newton at EPSL = 1e-9)."""
+    import gzip
+
+    import numpy as np
+    from scipy.interpolate import CubicSpline
+
+    from washer.auto.files import read_b
+    demo = Path(__file__).parent / "data" / "auto_demos" / "tfc"
+    for f in ("tfc.f90", "c.tfc"):
+        shutil.copy(demo / f, tmp_path)
+    with gzip.open(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz", "rb") as src:
+        (tmp_path / "s.tfc.5").write_bytes(src.read())
+    # the constants run 6 inherits in tfc.auto (runs 2, 3, 5), then its own
+    kw = dict(e="tfc", IPS=2, IPLT=1, EPSL=1e-9, EPSU=1e-9, EPSS=1e-7, ITMX=12,
+              UZR={6: 0.013}, ILP=0, NMX=50, NPR=10, THL={}, ICP=[3, 1, 6], ISW=2, DS=0.01,
+              DSMAX=0.1)
+    sw = run(tmp_path / "c.tfc", verbose=False, sv="sw", s="tfc.5", IRS=24, **kw)
+    assert sw.status == "ok" and [r.code for r in sw.rows if r.lab] == [69]
+    fw = run(tmp_path / "c.tfc", verbose=False, sv="fw", restart=sw,
+             IRS=sw.rows[-1].lab, **kw)
+    assert fw.status == "ok"
+    assert [r.code for r in fw.rows if r.lab] == [64, 64, 64, 64, 69]
+    auto = np.array([r.values for br in read_b(demo / "autoref" / "b.tfc.6.fw")
+                     for r in br])
+    auto = auto[np.argsort(auto[:, 0])]
+    p1, p6 = CubicSpline(auto[:, 0], auto[:, -2]), CubicSpline(auto[:, 0], auto[:, -1])
+    inside = [r for r in fw.rows if auto[0, 0] <= r.values[0] <= auto[-1, 0]]
+    assert len(inside) == 50
+    for r in inside:
+        assert r.values[-2] == pytest.approx(float(p1(r.values[0])), abs=1e-8)
+        assert r.values[-1] == pytest.approx(float(p6(r.values[0])), abs=1e-8)
