@@ -464,6 +464,40 @@ def test_restart_with_more_components(tmp_path):
     assert uz.U.shape[1] == 3
 
 
+BRATU_TWICE = '''
+import numpy as np
+def func(u, par):
+    return np.array([u[1], -par[0] * np.exp(u[0]), u[3], -par[0] * np.exp(u[2])])
+def stpnt(u, par, t=0.0):
+    u[2:4] = u[0:2]              # the restart's new components: a copy of the stored ones
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[0], u0[2], u1[2]])
+'''
+
+
+def test_restart_extends_the_system_through_stpnt(tmp_path):
+    """A BVP restarted with more components than the stored solution calls stpnt at each
+    stored point with the stored values in place and keeps what it puts in the new
+    components (AUTO's READBV: c2c's stpnt copies the cycle and its eigenfunction into
+    U(7:12) when NDIM grows from 6 to 12). Bratu's problem, restarted as two copies of
+    itself: the restart's first point is the stored solution twice, its L2-norm sqrt(2)
+    times the stored one (with zeros in the new components the start would not be a
+    solution and its norm the stored one)."""
+    (tmp_path / "b2.py").write_text(BRATU_2)
+    (tmp_path / "b4.py").write_text(BRATU_TWICE)
+    (tmp_path / "c.b2").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=10, NCOL=4, "
+                                   "ILP=0, ISP=0, NMX=100, DS=0.1, DSMAX=0.5, NPAR=2, "
+                                   "UZSTOP={1: 1.0}\n")
+    (tmp_path / "c.b4").write_text("NDIM=4, IPS=4, ICP=[1], NBC=4, NINT=0, NTST=10, NCOL=4, "
+                                   "ILP=0, ISP=0, NMX=3, DS=0.1, DSMAX=0.5, NPAR=2\n")
+    r2 = run(tmp_path / "c.b2", e="b2", sv="b2", verbose=False)
+    r4 = run(tmp_path / "c.b4", e="b4", s="b2", IRS=r2.specials[-1].lab, sv="b4", verbose=False)
+    assert r4.status == "ok"
+    stored, first = r2.rows[-1], r4.rows[0]
+    assert first.par[0] == pytest.approx(1.0, abs=1e-12)
+    assert first.values[1] == pytest.approx(math.sqrt(2) * stored.values[1], rel=1e-9)  # L2
+
+
 GROWTH = '''
 import numpy as np
 def func(u, par):

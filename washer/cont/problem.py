@@ -466,6 +466,37 @@ class Problem:
             raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values in u")
         return U
 
+    def extend_profile(self, U, par, times) -> np.ndarray:
+        """AUTO's READBV/READLB for a system extended at a restart (NDIM larger than the
+        stored solution's k components): stpnt(u, p, t) at each stored point, u holding
+        the stored values then zeros and p a copy of PAR (not written back), and only
+        the components beyond k kept (c2c's stpnt copies the cycle and its
+        eigenfunction into U(7:12) when NDIM grows from 6 to 12). Without stpnt the
+        extension is 0. U: (m, k), times (m,); returns (m, ndim)."""
+        U = np.asarray(U, dtype=float)
+        m, k = U.shape
+        out = np.zeros((m, self.ndim))
+        out[:, :k] = U[:, :self.ndim]
+        if k >= self.ndim or self._stpnt is None:
+            return out
+        p = np.array(par, dtype=float)
+        for j, t in enumerate(times):
+            u = out[j].copy()
+            try:
+                if self.stpnt_has_time:
+                    self._stpnt(u, p, float(t))
+                else:
+                    self._stpnt(u, p)
+            except Exception as exc:
+                raise ProblemError(f"{self.name}: stpnt(u, par, t) failed extending the "
+                                   f"restart to NDIM = {self.ndim} at t = {t}: "
+                                   f"{type(exc).__name__}: {exc}") from exc
+            out[j, k:] = u[k:]
+        if not np.all(np.isfinite(out)):
+            raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values "
+                               "extending the restart")
+        return out
+
     def start(self, npar: int, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """AUTO's STPNT: the starting state (ndim,) and parameters (npar,); a stpnt
         with the time argument is called at `t` (in [0, 1])."""

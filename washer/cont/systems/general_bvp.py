@@ -148,13 +148,17 @@ class BoundaryValueProblem(CollocationBVP):
     def _from_record(self, rec) -> None:
         """STPNBV1 + ADAPT2: the stored solution on the run's mesh."""
         s, n = self.settings, self.ndim
-        U_r = _widen(np.asarray(rec.U, float)[:, :n], n)
+        U_r = np.asarray(rec.U, float)[:, :n]
         ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
         if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
             raise ValueError(f"BVP restart: record with {len(U_r)} points but NTST = {ntst_r}, "
                              f"NCOL = {ncol_r} in its header")
         t_r = getattr(rec, "t", None)
         t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
+        if U_r.shape[1] < n and self.ndm == n:
+            # READBV: an extended system's new components from stpnt (0 without one)
+            U_r = self.problem.extend_profile(U_r, self.par, t_r)
+        U_r = _widen(U_r, n)
         mesh_r = col.Mesh(t_r[::ncol_r].copy(), ncol_r)
         ud_r = None
         if rec.udot is not None:
