@@ -79,6 +79,7 @@ class Problem:
                  bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None):
         self.ndim, self.name, self.npar = ndim, name, npar
         self._fopt, self._fopt_batch = fopt, fopt_batch
+        self._fopt_vectorised = None      # does fopt accept (ndim, k) arrays? (checked once)
         self._flow = flow
         self._bcnd, self._icnd = bcnd, icnd
         self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
@@ -116,14 +117,40 @@ class Problem:
         else:
             if pars.ndim == 1:
                 pars = np.broadcast_to(pars, (len(us), len(pars)))
-            try:
-                out = np.array([float(self._fopt(u, p)) for u, p in zip(us, pars)])
-            except Exception as exc:
-                raise ProblemError(f"{self.name}: fopt(u, par) failed: "
-                                   f"{type(exc).__name__}: {exc}") from exc
+            out = None
+            if self._fopt_vectorised is not False and len(us) >= VECTORISE_MIN:
+                out = self._fopt_at_once(us, pars)
+            if out is None:
+                try:
+                    out = np.array([float(self._fopt(u, p)) for u, p in zip(us, pars)])
+                except Exception as exc:
+                    raise ProblemError(f"{self.name}: fopt(u, par) failed: "
+                                       f"{type(exc).__name__}: {exc}") from exc
         if out.shape != (len(us),) or not np.all(np.isfinite(out)):
             raise ProblemError(f"{self.name}: fopt(u, par) returned non-finite or non-scalar "
                                "values; expected one finite number per point")
+        return out
+
+    def _fopt_at_once(self, us, pars):
+        """fopt at k points in one call with u (ndim, k), par (npar, k), as func's
+        `_call_vectorised`: checked once against separate calls, off for good on any
+        failure or mismatch (then None)."""
+        try:
+            with np.errstate(all="ignore"):
+                out = np.asarray(self._fopt(us.T, pars.T), dtype=float)
+            if out.shape != (len(us),):
+                raise ValueError("shape")
+        except Exception:
+            self._fopt_vectorised = False
+            return None
+        if self._fopt_vectorised is None:
+            try:
+                ref = np.array([float(self._fopt(u, p)) for u, p in zip(us, pars)])
+            except Exception:
+                self._fopt_vectorised = False
+                return None
+            self._fopt_vectorised = bool(np.allclose(ref, out, rtol=1e-14, atol=0))
+            return ref
         return out
 
     @property
