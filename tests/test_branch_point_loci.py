@@ -3,6 +3,9 @@ driven through `washer.run` on problems whose loci are known in closed form."""
 from __future__ import annotations
 
 import gzip
+import os
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -226,3 +229,34 @@ def test_sspg_locus_closed_form_auto_and_restart_from_auto(tmp_path):
     assert r.status == "ok" and len(r.rows) == 50
     for row in r.rows:
         assert _on_sspg_locus(row.par[0], row.par[1]) == pytest.approx(0, abs=1e-9)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("auto-07p") is None or shutil.which("gfortran") is None,
+                    reason="AUTO-07p (auto-07p and gfortran) is not installed")
+def test_auto07p_restarts_from_washers_generating_run(tmp_path):
+    """AUTO-07p itself continues sspg's BP locus from washer's generating-run record
+    (its s-record header carries NPARI = 5, the internal parameters psi, a, d, b after
+    the user's NPAR = 2, in AUTO's layout): AUTO's 50 points lie on s (1 - e^-m) = m to
+    1e-8 (its 10-digit output) and end at its EP, PT 50."""
+    (tmp_path / "sspg.py").write_text(SSPG)
+    (tmp_path / "c.sspg").write_text(SSPG_C)
+    r1 = run(tmp_path / "c.sspg", e="sspg", sv="sspg", verbose=False)
+    sw = run(tmp_path / "c.sspg", e="sspg", s="sspg", IRS=r1("BP1").lab, ICP=[1, 2], ISW=2,
+             sv="ours", verbose=False)
+    assert (tmp_path / "s.ours").read_text().split("\n")[0].split()[12] == "5"
+    demo = DATA / "auto_demos" / "sspg"
+    auto = tmp_path / "auto"
+    auto.mkdir()
+    for name in ("sspg.f90", "c.sspg"):
+        shutil.copy(demo / name, auto / name)
+    shutil.copy(tmp_path / "s.ours", auto / "s.ours")
+    (auto / "r.auto").write_text(f"run('sspg', s='ours', IRS={sw.specials[-1].lab}, "
+                                 "ICP=[1, 2], ISW=2, NMX=50, NPR=10, sv='fw')\n")
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    subprocess.run(["auto-07p", "r.auto"], cwd=auto, env=env, capture_output=True,
+                   timeout=600, check=True)
+    rows = branch_rows(auto / "b.fw")
+    assert len(rows) == 50 and (rows[-1].ty, rows[-1].pt) == (69, 50)       # EP on curve 6
+    for row in rows:
+        assert _on_sspg_locus(row.values[0], row.values[-1]) == pytest.approx(0, abs=1e-8)

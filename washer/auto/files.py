@@ -208,7 +208,7 @@ def _record_text_algebraic(rec: Record) -> str:
     if has_dir:
         nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + (n + 6) // 7
     head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
-            f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{0:5d}"
+            f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]
     vals = [0.0] + list(rec.u)
@@ -234,7 +234,7 @@ def _record_text_bvp(rec: Record) -> str:
     if has_dir:
         nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + ((n + 6) // 7) * ntpl
     head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
-            f"{ntpl:8d}{n + 1:6d}{nrow:8d}{rec.ntst:5d}{rec.ncol:5d}{npar:5d}{0:5d}"
+            f"{ntpl:8d}{n + 1:6d}{nrow:8d}{rec.ntst:5d}{rec.ncol:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]
     lines += _block_rows(np.column_stack([t, U]))      # t-blocks: t, U(1..NDIM)
@@ -603,6 +603,7 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
                              ("NROWPR", nrowpr, 1), ("NPAR", npar, 0)):
         if value < low:
             raise AutoFileError(f"{where}: header field {name} = {value}, expected >= {low}")
+    npari = h[12] if len(h) > 12 else 0
     ndim_user = h[13] if len(h) > 13 else nar - 1
     ips = h[14] if len(h) > 14 else 1
     if i + 1 + nrowpr > len(lines):
@@ -642,7 +643,7 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
     par = np.array(numbers(pos, nrowpr, npar, "the parameters PAR(1..NPAR)"))
     t = np.array(tvals[::nar]) if ntpl > 1 else None
     return Record(br, ntot, itp, lab, nfpr, isw, ndim_user, ips, U, par, icp, rldot, udot,
-                  t=t, ntst=ntst, ncol=ncol), nrowpr
+                  t=t, ntst=ntst, ncol=ncol, npari=npari), nrowpr
 
 
 def find_record(records: list[Record], irs) -> Record:

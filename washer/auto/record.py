@@ -31,6 +31,8 @@ class Record:
     stable : sign of PT (True -> written negative); None = not defined.
     stability : eigenvalues or multipliers (washer.cont.system.Stability) or None.
     info : extra results (first Lyapunov coefficient 'l1' at HB, its criticality).
+    npari : AUTO's NPARI (s-record field 13): how many of the last PAR are a locus'
+        internal unknowns (AUTO reads the user's NPAR as NPAR - NPARI on a restart).
     """
     br: int
     pt: int
@@ -52,6 +54,7 @@ class Record:
     stable: bool | None = None
     stability: object = None                     # washer.cont.system.Stability
     info: dict = field(default_factory=dict)
+    npari: int = 0
 
     @property
     def ty(self) -> str:

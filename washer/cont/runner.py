@@ -70,7 +70,7 @@ class _Executor:
                      u=np.asarray(sol.u), par=np.asarray(sol.par), icp=list(sysm.free),
                      rldot=list(sol.rldot)[:len(sysm.free)], udot=sol.udot, t=sol.t, ntst=sol.ntst,
                      ncol=sol.ncol, values=values, stable=stable, stability=point.stability,
-                     info=info or {})
+                     info=info or {}, npari=getattr(sysm, "npari", 0))
         self.run.branch.rows.append(out)
         self.emit("point", out, point)
         return out

@@ -252,6 +252,9 @@ class BVPBranchPointLocus(BoundaryValueProblem):
                                   ntst=base.mesh.ntst, ncol=base.mesh.ncol, udot=None,
                                   rldot=[], icp=[])
         self.ndm = n
+        # AUTO's NPARI: the internal parameters after the user's NPAR (psi, a, d, b),
+        # written in the s-records so that AUTO-07p restarts from them.
+        self.npari = lay.npar - s.NPAR
         super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
         self._generating = None
         if generating:
