@@ -66,7 +66,7 @@ class Layout:
         self.n, self.nbc0, self.nnt0 = n, nbc0, nnt0
         self.nfpx = nbc0 + nnt0 - n + 1
         k = nbc0 + nnt0
-        base = npar_user
+        base = self.nuser = npar_user
         self.psi = [base + i for i in range(1, k + 1)]
         self.a = base + k + 1
         self.d = [base + k + 1 + i for i in range(1, self.nfpx + 1)]
@@ -163,6 +163,8 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
     def func(W, par):
         return func_batch(np.asarray(W, float)[None, :], np.asarray(par, float)[None, :])[0]
 
+    last_jb = {}
+
     def bcnd(W0, W1, par):
         u0, w0, u1, w1 = W0[:n], W0[n:], W1[:n], W1[n:]
         psi_b = par[ipsi[:nbc0]]
@@ -170,12 +172,16 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
         if not generic:
             b = b + par[lay.b - 1] * psi_b
         z = np.r_[u0, u1, par[pidx]]
-
-        def fb(zz):
-            p = par.copy()
-            p[pidx] = zz[2 * n:]
-            return problem.bcnd(zz[:n], zz[n:2 * n], p, nbc0)
-        Jb = _central(fb, z, range(len(z)))                     # (nbc0, 2n + NFPX)
+        # b's Jacobian depends on (u(0), u(1), p) only: the Newton matrix's differences
+        # in w, psi, d, b (most of its columns) reuse the last one.
+        key = (z.tobytes(), par[:lay.nuser].tobytes())
+        if last_jb.get("key") != key:
+            def fb(zz):
+                p = par.copy()
+                p[pidx] = zz[2 * n:]
+                return problem.bcnd(zz[:n], zz[n:2 * n], p, nbc0)
+            last_jb["key"], last_jb["Jb"] = key, _central(fb, z, range(len(z)))
+        Jb = last_jb["Jb"]                                      # (nbc0, 2n + NFPX)
         return np.r_[b, -w0 + Jb[:, :n].T @ psi_b, w1 + Jb[:, n:2 * n].T @ psi_b,
                      par[np.array(lay.d) - 1] + Jb[:, 2 * n:].T @ psi_b]
 
