@@ -218,10 +218,21 @@ def first_label(c, records, mlab: int | None = None) -> int:
 
 
 def column_titles(c, s: Settings, system) -> list:
-    """The b-file's titles: PAR(ICP(1)), the system's columns, the other free parameters
-    (PERIOD for PAR(11) unless the constants name it), as parnames names them."""
+    """The b-file's titles: PAR(ICP(1)), the system's columns, the other free parameters,
+    each as AUTO's HEADNG names it: the parnames name, else PERIOD for PAR(11) where
+    IPS > 0 and not 4 or 7 (periodic orbits: not general BVPs, maps or algebraic
+    problems), FOPT for PAR(10) with IPS 5 or 15, TIME for PAR(14) with IPS 14 or 16,
+    else PAR(i)."""
     pn = {int(k): v for k, v in c["parnames"].items()}
-    if s.IPS in (5, 15) and 10 not in pn:
-        pn[10] = "FOPT"                 # AUTO's title of the objective PAR(10)
-    return [pn.get(s.ICP[0], f"PAR({s.ICP[0]})")] + list(system.column_titles()) + \
-        [("PERIOD" if i == 11 and 11 not in pn else pn.get(i, f"PAR({i})")) for i in s.ICP[1:]]
+
+    def title(i: int) -> str:
+        if i in pn:
+            return pn[i]
+        if i == 11 and s.IPS > 0 and s.IPS not in (4, 7):
+            return "PERIOD"
+        if i == 10 and s.IPS in (5, 15):
+            return "FOPT"
+        if i == 14 and s.IPS in (14, 16):
+            return "TIME"
+        return f"PAR({i})"
+    return [title(s.ICP[0])] + list(system.column_titles()) + [title(i) for i in s.ICP[1:]]
