@@ -260,3 +260,21 @@ def test_auto07p_restarts_from_washers_generating_run(tmp_path):
     assert len(rows) == 50 and (rows[-1].ty, rows[-1].pt) == (69, 50)       # EP on curve 6
     for row in rows:
         assert _on_sspg_locus(row.values[0], row.values[-1]) == pytest.approx(0, abs=1e-8)
+
+
+def test_branch_point_loci_refuse_what_they_cannot_start(tmp_path):
+    """Clear errors naming the constants file: too few ICP for the locus (two for
+    ISW = 2 on a BVP with one free parameter, three for ISW = 3), and ISW = 3 away from
+    a BP."""
+    from washer.cont.start import RunError
+    (tmp_path / "rob.py").write_text(ROBIN)
+    (tmp_path / "c.rob").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=10, NCOL=4, "
+                                    "ISP=2, NMX=40, DS=0.05, DSMAX=0.2, NPAR=3, "
+                                    "UZSTOP={1: 3.0}\n")
+    run(tmp_path / "c.rob", e="rob", sv="rob", verbose=False)
+    for kw, message in ((dict(IRS="BP1", ICP=[1], ISW=2), r"ICP needs 2 entries, got \[1\]"),
+                        (dict(IRS="BP1", ICP=[1, 2], ISW=3), r"ICP needs 3 entries"),
+                        (dict(IRS="UZ1", ICP=[1, 2, 3], ISW=3), "restart at a BP label, got UZ")):
+        with pytest.raises(RunError, match=message) as err:
+            run(tmp_path / "c.rob", e="rob", s="rob", sv="x", verbose=False, **kw)
+        assert "c.rob" in str(err.value)
