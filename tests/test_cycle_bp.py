@@ -136,3 +136,67 @@ def test_isoperiodic_locus_on_autos_curve(tmp_path):
     for r in inside:
         assert r.values[-2] == pytest.approx(float(p1(r.values[0])), abs=1e-8)
         assert r.values[-1] == pytest.approx(float(p6(r.values[0])), abs=1e-8)
+
+
+def _system(folder, cfile, records, **kw):
+    """The continued system a run of `cfile` with `kw` starts with (through the same
+    start resolution as every run)."""
+    from washer.auto.files import read_s
+    from washer.cont.runner import build
+    from washer.cont.user_files import load_user_problem
+    c = read_constants(folder / cfile)
+    for k, v in kw.items():
+        c.set(k, v)
+    problem = load_user_problem(c["e"], folder, c["NDIM"])
+    return build(c, problem, read_s(folder / f"s.{records}"))[0].system
+
+
+@pytest.mark.parametrize("case", ["circle", "tfc"])
+@pytest.mark.parametrize("generating", [True, False])
+def test_jacobian_is_the_residuals_derivative(tmp_path, generating, case):
+    """The analytic Jacobian of the extended system (second derivatives of f by mixed
+    differences) against central differences of its residual, in the generating run and
+    on the locus (ISW = 3): on the circles (the period free: orthogonality to f and to
+    f_p1, whose derivative in p2 is -exp(p2) x) and on tfc's BP2 at NTST = 6 (fixed
+    period, ICP = [3, 1, 6, 2]: orthogonality to f_p3 and f_p1), at a point with the
+    adjoint (phi, phi3) of order 1 and b = 0.3 (the identity holds anywhere; at the start
+    phi is |DS| small and its terms would hide below the tolerance). Steps 1e-4 (1 + |x|):
+    truncation ~1e-8, and the residual's own differences (f_p, step 1e-7) round to ~1e-9
+    of f, ~1e-5 over that step; measured at most 1.4e-7 of the largest entry, 1e-6
+    allowed (a wrong sign of the f_pq term, or a 1 % error in f_uu^T phi, fails it)."""
+    import gzip
+
+    import numpy as np
+    if case == "circle":
+        for f in DATA.iterdir():
+            shutil.copy(f, tmp_path)
+        run(tmp_path / "c.circlebp", verbose=False, sv="one")
+        cfile, records = "c.circlebp.loc", "one"
+        kw = dict(ICP=[1, 2, 3, 11], ISW=3, NTST=6, IRS="BP1")
+    else:
+        demo = Path(__file__).parent / "data" / "auto_demos" / "tfc"
+        for f in ("tfc.f90", "c.tfc"):
+            shutil.copy(demo / f, tmp_path)
+        with gzip.open(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz") as src:
+            (tmp_path / "s.tfc.5").write_bytes(src.read())
+        cfile, records = "c.tfc", "tfc.5"
+        kw = dict(e="tfc", IPS=2, ILP=0, NTST=6, THL={}, ICP=[3, 1, 6, 2], ISW=3, DS=0.01,
+                  DSMAX=0.1, IRS=24)
+    if not generating:
+        sw = run(tmp_path / cfile, verbose=False, sv="sw", s=records, **kw)
+        kw["IRS"], records = sw.rows[-1].lab, "sw"
+    sysm = _system(tmp_path, cfile, records, **kw)
+    assert sysm._generating is generating
+    x0 = sysm.start()[0].copy()
+    n, nu = sysm.n, sysm.coll.n_u
+    x0[:nu].reshape(-1, 2 * n)[:, n:] /= np.abs(x0[:nu].reshape(-1, 2 * n)[:, n:]).max()
+    x0[nu + sysm.xpar.index(sysm.i_phi3)] = 0.7
+    if sysm.with_b:
+        x0[nu + sysm.xpar.index(sysm.i_b)] = 0.3
+    J = sysm.jacobian(x0).toarray()
+    fd = np.empty_like(J)
+    for j in range(len(x0)):
+        e = np.zeros(len(x0))
+        e[j] = 1e-4 * (1 + abs(x0[j]))
+        fd[:, j] = (sysm.residual(x0 + e) - sysm.residual(x0 - e)) / (2 * e[j])
+    assert np.abs(J - fd).max() <= 1e-6 * np.abs(J).max()

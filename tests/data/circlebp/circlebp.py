@@ -24,6 +24,17 @@ def func(u, par):
     return np.array([x * g - w * y, y * g + w * x])
 
 
+def dfdu(u, par):
+    p1, p2, p3 = par[0], par[1], par[2]
+    x, y = u
+    r = math.sqrt(x * x + y * y)
+    g = (r - p1) * (math.exp(p2) - r) + p3
+    w = 1 + r * r
+    gr = (math.exp(p2) + p1 - 2 * r) / r              # g_r / r (w_r / r = 2)
+    return np.array([[g + x * x * gr - 2 * x * y, x * y * gr - w - 2 * y * y],
+                     [x * y * gr + w + 2 * x * x, g + y * y * gr + 2 * x * y]])
+
+
 def stpnt(u, par, t=0.0):
     # on the circle r = exp(p2) = 1, where r = p1 = 0.5 is the other family
     par[0], par[1], par[2] = 0.5, 0.0, 0.0
