@@ -165,6 +165,10 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
                        f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")
     if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
         s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
+    if s.ISW == 1 and kind == "BP-curve" and abs(rec.isw) in (2, 3):
+        # ... a branch-point locus as it was computed: non-generic (2) or generic (3),
+        # which its stored unknowns mean (b or PAR(ICP(3)))
+        s = s.with_(ISW=abs(rec.isw))
     # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
     isw_key = -1 if s.ISW == -1 and kind == "BP" else \
         (2 if s.ISW in (2, 3) or kind.endswith("curve") else 1)
