@@ -3,8 +3,9 @@ every special point of every b-file AUTO wrote (tests/data/auto_demos/NAME/autor
 
 A special point is a labelled b-file row other than a regular NPR output (RG). Ours matches
 AUTO's when it has the same type and branch number in the same label order (the two
-sequences are aligned, so one extra or missing point costs only itself), and, for located
-points (every type but EP and MX, whose place is the step history's), the same continuation
+sequences are aligned for the most agreeing pairs, so one extra or missing point costs only
+itself), and, for located points (every type but EP and MX, whose place is the step
+history's), the same continuation
 parameter PAR(ICP(1)) within AUTO's location tolerance and the same period (PAR(11)) where
 the b-file shows it.
 
@@ -20,7 +21,6 @@ PERIOD = 1000 in the ab demo is 999.88; the exact value is the UZ value itself).
 """
 from __future__ import annotations
 
-import difflib
 import gzip
 import math
 import os
@@ -126,6 +126,40 @@ def same_value(o: Point, a: Point) -> str | None:
     return None
 
 
+#: Weights of the alignment: a pair of the same type and branch whose located values agree
+#: outweighs any number of pairs whose values differ (so an extra or missing point costs
+#: only itself, whichever point it is).
+AGREE, SAME_KEY = 1000, 1
+
+
+def align(a: list[Point], o: list[Point]) -> list[tuple[int, int]]:
+    """The pairs (i, j) of AUTO's points a[i] and ours o[j], in order on both sides, of the
+    same type and branch, that make the most pairs whose values agree (`same_value`), then
+    the most pairs: a weighted longest common subsequence (dynamic programming)."""
+    n, m = len(a), len(o)
+    score = [[0] * (m + 1) for _ in range(n + 1)]
+    for i in range(n - 1, -1, -1):
+        for j in range(m - 1, -1, -1):
+            best = max(score[i + 1][j], score[i][j + 1])
+            if a[i].key == o[j].key:
+                w = AGREE if same_value(o[j], a[i]) is None else SAME_KEY
+                best = max(best, score[i + 1][j + 1] + w)
+            score[i][j] = best
+    pairs, i, j = [], 0, 0
+    while i < n and j < m:
+        if a[i].key == o[j].key:
+            w = AGREE if same_value(o[j], a[i]) is None else SAME_KEY
+            if score[i][j] == score[i + 1][j + 1] + w:
+                pairs.append((i, j))
+                i, j = i + 1, j + 1
+                continue
+        if score[i][j] == score[i + 1][j]:
+            i += 1
+        else:
+            j += 1
+    return pairs
+
+
 def compare_files(ours: Path | None, ref: Path) -> tuple[list[Point], set[int], list[str]]:
     """AUTO's points of ref, the indices of those ours matches, and the differences."""
     a = points(ref, True)
@@ -135,22 +169,23 @@ def compare_files(ours: Path | None, ref: Path) -> tuple[list[Point], set[int], 
     if not o:
         return a, matched, [f"{ref.name}: no output file" if ours is None or not ours.exists()
                             else f"{ref.name}: no special points"]
-    sm = difflib.SequenceMatcher(a=[p.key for p in a], b=[p.key for p in o], autojunk=False)
-    for tag, i1, i2, j1, j2 in sm.get_opcodes():
-        if tag == "equal":
-            for i, j in zip(range(i1, i2), range(j1, j2)):
-                bad = same_value(o[j], a[i])
-                if bad is None:
-                    matched.add(i)
-                else:
-                    why.append(f"{a[i].file} {a[i].ty}{a[i].lab} br {a[i].br}: {bad}")
-                if o[j].lab != a[i].lab:
-                    # label numbers count the NPR outputs before a point, which follow the
-                    # step history: a note, not a mismatch
-                    notes.append(f"{a[i].file} {a[i].ty}: label {o[j].lab} vs AUTO {a[i].lab}")
-        else:
-            why.append(f"{a[i1].file if i1 < len(a) else o[j1].file}: AUTO "
-                       f"{[p.key for p in a[i1:i2]]} vs ours {[p.key for p in o[j1:j2]]}")
+    i0 = j0 = 0
+    for i, j in align(a, o) + [(len(a), len(o))]:
+        if i > i0 or j > j0:
+            # points between two pairs: AUTO's and ours that have no counterpart
+            why.append(f"{a[i0].file if i0 < len(a) else o[j0].file}: AUTO "
+                       f"{[p.key for p in a[i0:i]]} vs ours {[p.key for p in o[j0:j]]}")
+        if i < len(a) and j < len(o):
+            bad = same_value(o[j], a[i])
+            if bad is None:
+                matched.add(i)
+            else:
+                why.append(f"{a[i].file} {a[i].ty}{a[i].lab} br {a[i].br}: {bad}")
+            if o[j].lab != a[i].lab:
+                # label numbers count the NPR outputs before a point, which follow the
+                # step history: a note, not a mismatch
+                notes.append(f"{a[i].file} {a[i].ty}: label {o[j].lab} vs AUTO {a[i].lab}")
+        i0, j0 = i + 1, j + 1
     return a, matched, why + notes[:1]
 
 

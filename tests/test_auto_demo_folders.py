@@ -27,16 +27,14 @@ EXPECTED_FAIL = {
     "tfc": "11 of 18: run 5 misses the first of AUTO's two BPs of cycles (next to a fold), "
            "so run 6 cannot start from BP2; the BP locus ends at a fold where AUTO's two "
            "runs type the point BP and LP, ours BP twice",
-    "int": "the fold locus of the BVP has one UZ more and one less than AUTO's",
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
-    "ops": "18 of 23: AUTO stops (MX) where run 5's curve of extrema reaches the Hopf point, "
-           "washer continues through it; run 6 locates one UZ more than AUTO (past AUTO's MX), "
-           "which the type alignment pairs with AUTO's first",
+    "ops": "22 of 23: run 5's curve of extrema ends at a Hopf point, where AUTO stops (MX); "
+           "washer passes through it and retraces the curve",
     "pcl": "the fourth run (Floquet bundle of the extended system) does not end within "
            "the harness' time limit",
-    "enz": "9 of 11: AUTO's Newton takes ITNW iterations at step 3 of the branch from the "
-           "BP (we converge faster) and halves the step; the step histories then differ",
+    "enz": "10 of 11: where the branch from the BP passes the pitchfork again AUTO labels an "
+           "LP and a BP one step apart, we the BP only",
     "tor": "20 of 24: at an LP of cycles where the BP test also changes sign AUTO's BP "
            "location fails and the point stays LP (ours: BP); the step histories then differ",
     "phs": "2 of 4: a UZ on RL1 (AUTO's located point lies beyond it: EP); the UZ at "
@@ -45,9 +43,6 @@ EXPECTED_FAIL = {
            "100396, ours at 100000",
     "ppp": "46 of 58: AUTO's GH at a one-point jump of its test (12), AUTO's HB7 and a BP "
            "of cycles off the independently solved values",
-    "r3b": "6 of 7: on the halo family (b.H1) our steps are longer than AUTO's: we reach the "
-           "BP of cycles at PERIOD = 2.66258 at PT 101 and label it, where AUTO's NMX = 137 "
-           "ends its run (its EP at 2.66257)",
 }
 
 
