@@ -200,3 +200,29 @@ def test_jacobian_is_the_residuals_derivative(tmp_path, generating, case):
         e[j] = 1e-4 * (1 + abs(x0[j]))
         fd[:, j] = (sysm.residual(x0 + e) - sysm.residual(x0 - e)) / (2 * e[j])
     assert np.abs(J - fd).max() <= 1e-6 * np.abs(J).max()
+
+
+@pytest.mark.parametrize("isw, icp", [(2, [1, 2, 11]), (3, [1, 2, 3, 11])])
+def test_restart_from_autos_generating_record(tmp_path, isw, icp):
+    """AUTO-07p's own record of its generating run (lcbp, s.lcbp.2.sw, written by AUTO
+    here: 4 NDIM components (u, phi, v, w), PAR(13..21) = phi3, a, b, q, r, c1, c2)
+    restarts our locus: (u, phi) are its first 2 NDIM components and phi3, a, b sit at
+    AUTO's places. lcbp's circles have radius PAR(1) and PAR(2) and period 1, so its BP
+    locus is PAR(1) = PAR(2) = r (PAR(3) = 0); checked to Newton's tolerance."""
+    import gzip
+    demo = Path(__file__).parent / "data" / "auto_demos" / "lcbp"
+    for f in ("lcbp.f90", "c.lcbp"):
+        shutil.copy(demo / f, tmp_path)
+    with gzip.open(Path(__file__).parent / "data" / "lcbp_bp" / "s.lcbp.2.sw.gz") as src:
+        (tmp_path / "s.lcbp.2.sw").write_bytes(src.read())
+    loc = run(tmp_path / "c.lcbp", verbose=False, sv="loc", s="lcbp.2.sw", e="lcbp", IRS=8,
+              ISW=isw, ICP=icp, NMX=15, DS=0.01)
+    assert loc.status == "ok"
+    assert [r.code for r in loc.rows if r.lab] == [64, 69]
+    assert loc.rows[-1].values[0] > 2.4
+    for row in loc.rows:
+        p1 = row.values[0]
+        assert row.par[1] == pytest.approx(p1, abs=TOL)
+        assert row.values[2] == pytest.approx(p1, abs=TOL)          # MAX U(1) = r
+        assert row.par[2] == pytest.approx(0.0, abs=TOL)
+        assert row.par[10] == pytest.approx(1.0, abs=TOL)
