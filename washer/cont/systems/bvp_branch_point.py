@@ -66,7 +66,8 @@ class Layout:
         self.n, self.nbc0, self.nnt0 = n, nbc0, nnt0
         self.nfpx = nbc0 + nnt0 - n + 1
         k = nbc0 + nnt0
-        base = self.nuser = npar_user
+        # after every user parameter (NPAR, or an ICP entry beyond it)
+        base = self.nuser = max([npar_user] + list(icp))
         self.psi = [base + i for i in range(1, k + 1)]
         self.a = base + k + 1
         self.d = [base + k + 1 + i for i in range(1, self.nfpx + 1)]
@@ -85,7 +86,6 @@ class Layout:
 
 def _central(fun, z, cols, h_rel=DIR_STEP):
     """Columns d fun / d z_j (j in cols) by central differences, steps h_rel (1 + |z_j|)."""
-    f0 = None
     out = []
     for j in cols:
         h = h_rel * (1 + abs(z[j]))
@@ -93,7 +93,7 @@ def _central(fun, z, cols, h_rel=DIR_STEP):
         zp[j] += h
         zm[j] -= h
         out.append((fun(zp) - fun(zm)) / (2 * h))
-    return np.array(out).T if out else f0
+    return np.array(out).T
 
 
 def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
@@ -260,7 +260,7 @@ class BVPBranchPointLocus(BoundaryValueProblem):
         self.ndm = n
         # AUTO's NPARI: the internal parameters after the user's NPAR (psi, a, d, b),
         # written in the s-records so that AUTO-07p restarts from them.
-        self.npari = lay.npar - s.NPAR
+        self.npari = lay.npar - lay.nuser
         super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
         self._generating = None
         if generating:
