@@ -13,7 +13,8 @@ Location tolerance: AUTO (and washer) stop locating a zero when the arclength co
 below EPSS (1 + sqrt(|DS DSMAX|)) (docs/auto.md section 0); the tangent is unit in a norm in which
 PAR(ICP(1)) has weight 1 (THL), so each engine's parameter is within that distance of the
 exact zero, and the two within twice it. EPSS, DS, DSMAX are read from the header of AUTO's
-own b-file branch. The period has no weight in the arclength of periodic orbits (THL
+own b-file branch (the branches a run switches to, MXBF, have only column titles and keep
+the run's constants). The period has no weight in the arclength of periodic orbits (THL
 {11: 0}), so the tolerance does not bound it: it is compared at 1e-3 relative (AUTO's UZ at
 PERIOD = 1000 in the ab demo is 999.88; the exact value is the UZ value itself).
 
@@ -93,13 +94,15 @@ def points(path: Path, reference: bool) -> list[Point]:
     finally:
         os.unlink(tmp.name)
     out = []
-    header: list[str] = []
+    # A run's header precedes its first branch only: the branches it switched to (MXBF)
+    # follow with a header of column titles, and keep the run's constants.
+    const = {"EPSS": 1e-5, "DS": 0.01, "DSMAX": 0.1}
     for b in branches:
-        if b.header:
-            header = b.header
-        epss = _header_value(header, "EPSS") or 1e-5
-        ds = abs(_header_value(header, "DS") or 0.01)
-        dsmax = abs(_header_value(header, "DSMAX") or 0.1)
+        for key in const:
+            v = _header_value(b.header, key) if b.header else None
+            if v is not None:
+                const[key] = v
+        epss, ds, dsmax = const["EPSS"], abs(const["DS"]), abs(const["DSMAX"])
         tol = 2 * epss * (1 + math.sqrt(ds * dsmax))
         titles = b.titles
         k_per = None

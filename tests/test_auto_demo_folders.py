@@ -41,8 +41,8 @@ EXPECTED_FAIL = {
            "PERIOD = 1e8 (the period has no weight in the arclength)",
     "vhb": "3 of 4: the UZ at PERIOD = 1e5 (no weight in the arclength): AUTO's lies at "
            "100396, ours at 100000",
-    "ppp": "46 of 58: AUTO's GH at a one-point jump of its test (12), AUTO's HB7 and a BP "
-           "of cycles off the independently solved values",
+    "ppp": "47 of 58: AUTO's GH at a one-point jump of its test (10), and a BP of cycles "
+           "AUTO places off the independently known value",
 }
 
 
