@@ -92,26 +92,20 @@ class VectorField:
     def fuu_adjoint(self, U: np.ndarray, Phi: np.ndarray, par: np.ndarray) -> np.ndarray:
         """The matrices d/du (f_u(u)^T phi) at the rows of U, Phi (k, NDIM) -> (k, NDIM,
         NDIM) ([:, row, column]; the Hessian of phi . f, symmetric): `fuu_v` along each
-        unit vector e_i gives the i-th row's second derivatives of f."""
+        unit vector e_i (one batched call for all i) gives the i-th row's second
+        derivatives of f."""
         k, n = U.shape
-        out = np.empty((k, n, n))
-        for i in range(n):
-            E = np.zeros((k, n))
-            E[:, i] = 1.0
-            out[:, i, :] = np.einsum("kl,klj->kj", Phi, self.fuu_v(U, E, par))
-        return out
+        M = self.fuu_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par)
+        return np.einsum("kl,iklj->kij", Phi, M.reshape(n, k, n, n))
 
     def fup_adjoint(self, U: np.ndarray, Phi: np.ndarray, par: np.ndarray,
                     index: int) -> np.ndarray:
         """d/dp (f_u(u)^T phi) for p = PAR(index) at the rows of U, Phi -> (k, NDIM):
-        component i is phi . (d f_u / dp) e_i (`fup_v` along each unit vector)."""
+        component i is phi . (d f_u / dp) e_i (`fup_v` along each unit vector, one
+        batched call)."""
         k, n = U.shape
-        out = np.empty((k, n))
-        for i in range(n):
-            E = np.zeros((k, n))
-            E[:, i] = 1.0
-            out[:, i] = np.sum(Phi * self.fup_v(U, E, par, index), axis=1)
-        return out
+        M = self.fup_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par, index)
+        return np.einsum("kl,ikl->ki", Phi, M.reshape(n, k, n))
 
     def fup_v(self, U: np.ndarray, V: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
         """d/dp (f_u(u) v) for p = PAR(index) at the rows of U, V -> (k, NDIM), by mixed
