@@ -232,6 +232,9 @@ def _execute(sol: Solution) -> Diagram:
             # commands that need its results fail with their own message).
             print(f"error: {exc}", file=sys.stderr, flush=True)
             _runner.refused.append(str(exc))
+            # The run's d-file (AUTO's diagnostics) says why there is no output.
+            Path(f"d.{sv}" if sv else FORT[2]).write_text(
+                f"   0     0 NOTE:run not done: {exc}\n")
             bd = Diagram()
             bd.status = f"refused: {exc}"
             return bd
@@ -266,7 +269,9 @@ def run(data=None, sv=None, ap=None, **kw) -> Diagram:
     res = _execute(sol)
     sv = _runner.constants.get("sv")
     _runner.constants["sv"] = None
-    if sv:
+    if sv and str(getattr(res, "status", "")).startswith("refused"):
+        print(f"Nothing to save to b.{sv}, s.{sv}: d.{sv} says why")
+    elif sv:
         print(f"Saving to b.{sv}, s.{sv}, and d.{sv} ... done")
         if ap is not None:
             append(sv, ap)
