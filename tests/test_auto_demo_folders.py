@@ -24,9 +24,9 @@ EXPECTED_FAIL = {
             "cycles at PAR(1) = 0.3462, 0.3458",
     "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
             "a degenerate end, AUTO ends with MX and a BP, ours with a BP and an LP",
-    "tfc": "11 of 18: run 5 misses the first of AUTO's two BPs of cycles (next to a fold), "
-           "so run 6 cannot start from BP2; the BP locus ends at a fold where AUTO's two "
-           "runs type the point BP and LP, ours BP twice",
+    "tfc": "12 of 18: run 5 misses the first of AUTO's two BPs of cycles (at a fold tip), "
+           "so run 6 cannot start from BP2; where the BP locus meets a fold AUTO's forward "
+           "run labels BP a little earlier, ours LP",
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
     "ops": "22 of 23: run 5's curve of extrema ends at a Hopf point, where AUTO stops (MX); "

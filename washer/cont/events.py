@@ -43,8 +43,10 @@ SIMULTANEOUS = 1e-6
 
 
 #: AUTO's order among tests that vanish at the same point (LCSPAE: first come,
-#: first served in its test order, a bifurcation overriding UZ, CP overriding LP).
-PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.BPC, Code.LPC,
+#: first served in its test order, a bifurcation overriding UZ, CP overriding LP). For
+#: BVPs LCSPBV's order is FNCSBV's: ITEST 1 the fold (LPC), 2 the branch point (BPC),
+#: 3 PD/TR (tfc's BP locus meets a fold at PAR(6) = 0.0173913: AUTO's restart types it LP).
+PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.LPC, Code.BPC,
             Code.PD, Code.TR)
 
 
