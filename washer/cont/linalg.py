@@ -155,26 +155,3 @@ def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray
         return t if t[lam_index] > 0 else -t
     big = np.flatnonzero(np.abs(t) > 1e-8 * np.max(np.abs(t)))
     return t if t[big[0]] > 0 else -t
-
-
-def tall_null_vector(M) -> np.ndarray:
-    """The unit right singular vector of the smallest singular value of a sparse
-    matrix M (m x k, m >= k) that is nearly rank-deficient by one (the discretised
-    adjoint at a located BP): inverse iteration on M^T M (sparse, banded for a
-    collocation matrix) shifted by 1e-13 of its largest entry, where a dense SVD
-    would cost O(m k^2). The shift is far below the next singular value squared, so
-    each iteration gains that ratio; rounding in M^T M (~eps |M|^2) moves the vector
-    by ~eps over that gap. Used for the adjoint at the BPs of BVPs and of cycles."""
-    import math
-
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-    A = (M.T @ M).tocsc()
-    shift = 1e-13 * abs(A).max()
-    lu = spla.splu((A + shift * sp.identity(A.shape[0], format="csc")).tocsc(),
-                   permc_spec=PERMC_SPEC)
-    z = np.ones(A.shape[0]) / math.sqrt(A.shape[0])
-    for _ in range(4):
-        z = lu.solve(z)
-        z /= np.linalg.norm(z)
-    return z
