@@ -46,6 +46,9 @@ class CycleFoldLocus(CollocationBVP):
     curve_type = 5
     nint = 3
     _generating = False
+    #: AUTO's NPARI: beta and c follow PAR(1..NPAR) in the record (AUTO-07p restarts
+    #: read the user's NPAR as NPAR - NPARI, and beta, c after it).
+    npari = 2
 
     def __init__(self, data):
         s = data.settings

@@ -68,6 +68,8 @@ class _CycleLocus(CollocationBVP):
     angle slot and the boundary conditions."""
     copies = 2
     curve_type = 7
+    #: AUTO's NPARI: the eigenfunction's norm follows PAR(1..NPAR) in the record.
+    npari = 1
     has_theta = False
     general_bc = True
 

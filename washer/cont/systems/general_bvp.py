@@ -567,6 +567,9 @@ class BVPFoldLocus(BoundaryValueProblem):
                                   ntst=base.mesh.ntst, ncol=base.mesh.ncol, udot=None,
                                   rldot=[], icp=[])
         self.ndm = n
+        # AUTO's NPARI: the norm's PAR(NPAR + 1) is internal (AUTO-07p restarts read the
+        # user's NPAR as NPAR - NPARI).
+        self.npari = 1
         super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
 
 

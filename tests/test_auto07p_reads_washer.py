@@ -1,0 +1,134 @@
+"""AUTO-07p itself reading what washer writes: its Python parsers (parseB, parseS,
+parseBandS) read every b- and s-file of demos run by washer with the same labels and
+types, and AUTO-07p continues a locus from washer's s-records of it.
+
+The s-record header's NPARI (field 13) is what AUTO-07p needs of an extended system's
+record: it reads the user's NPAR as NPAR - NPARI and finds the locus' internal
+parameters after it. Skipped with a message where AUTO-07p is not installed.
+"""
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from b_rows import branch_rows
+from washer.auto.files import read_b, read_s
+
+ROOT = Path(__file__).resolve().parents[1]
+DEMOS = Path(__file__).parent / "data" / "auto_demos"
+AUTO_PYTHON = Path("/usr/lib/auto-07p/python")
+HAVE_AUTO = shutil.which("auto-07p") is not None and shutil.which("gfortran") is not None
+
+pytestmark = pytest.mark.slow
+
+
+def _washer_demo(tmp_path_factory, demo: str) -> Path:
+    """The demo folder run by washer's CLUI (`python -m washer.auto DEMO.auto`)."""
+    work = tmp_path_factory.mktemp("w") / demo
+    shutil.copytree(DEMOS / demo, work, ignore=shutil.ignore_patterns("autoref"))
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1")
+    subprocess.run([sys.executable, "-m", "washer.auto", f"{demo}.auto"], cwd=work, env=env,
+                   check=True, capture_output=True, timeout=900)
+    return work
+
+
+@pytest.fixture(scope="module")
+def plp(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "plp")
+
+
+@pytest.fixture(scope="module")
+def integral(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "int")
+
+
+def _auto_parse(folder: Path, names: list[str]) -> dict:
+    import json
+    code = ("import sys, json\nsys.path.insert(0, %r)\n"
+            "from auto import parseB, parseS, parseBandS\n"
+            "out = {}\n"
+            "for name in sys.argv[1:]:\n"
+            "    kind, base = name.split('.', 1)\n"
+            "    if kind == 'b':\n"
+            "        b = parseB.parseB(name)\n"
+            "        out[name] = [[b.getLabel(l)['TY name'], l] for l in b.getLabels()]\n"
+            "    else:\n"
+            "        s = parseS.parseS(name)\n"
+            "        out[name] = [[x['Type name'], x['Label'], x['NPARI'], x['NDIM'], x['IPS']]\n"
+            "                     for x in s]\n"
+            "        bs = parseBandS.parseBandS('b.' + base, name)\n"
+            "        out['bs.' + base] = [[p['TY name'], p['LAB']] for p in\n"
+            "                             [bs.getLabel(l) for l in bs.getLabels()]]\n"
+            "print(json.dumps(out))\n" % str(AUTO_PYTHON))
+    r = subprocess.run([sys.executable, "-c", code, *names], cwd=folder, capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    return json.loads(r.stdout)
+
+
+@pytest.mark.skipif(not AUTO_PYTHON.exists(), reason="AUTO-07p's Python tools not installed")
+@pytest.mark.parametrize("demo", ["plp", "integral"])
+def test_autos_parsers_read_every_file_washer_writes(demo, request):
+    """Every b- and s-file of the demo's runs (equilibria, cycles, the Hopf locus and the
+    fold locus of cycles of plp; the BVP and its fold locus of int): AUTO's parseB and
+    parseS list the labels and types washer's own readers find, parseBandS pairs them,
+    and parseS reads each record's NPARI, NDIM and IPS as washer's reader does. (The
+    records' values are not read: parseS's data reader fails under numpy 2 on AUTO's own
+    files too, comparing an array with [].)"""
+    folder = request.getfixturevalue(demo)
+    names = sorted(p.name for p in folder.iterdir()
+                   if p.name[:2] in ("b.", "s.") and p.stat().st_size > 0
+                   and not p.name.endswith("~"))
+    assert any(n.startswith("s.") for n in names)
+    got = _auto_parse(folder, names)
+    for name in names:
+        if name.startswith("b."):
+            ours = [[r.ty and _ty(r.ty), r.lab] for b in read_b(folder / name) for r in b
+                    if r.lab]
+            assert got[name] == ours, name
+        else:
+            recs = read_s(folder / name)
+            assert got[name] == [[r.ty, r.lab, r.npari, r.ndim_user, r.ips] for r in recs], name
+            if (folder / ("b." + name[2:])).exists():
+                assert [lab for _, lab in got["bs." + name[2:]]] == [r.lab for r in recs]
+
+
+def _ty(code: int) -> str:
+    from washer.auto.codes import type_name
+    return type_name(code)
+
+
+@pytest.mark.skipif(not HAVE_AUTO, reason="AUTO-07p (auto-07p and gfortran) is not installed")
+def test_auto07p_continues_washers_fold_of_cycles_locus(plp, tmp_path):
+    """AUTO-07p restarts plp's fold locus of cycles (c.plp.plp: PAR(4), PAR(1), period)
+    from washer's record of it (s.loci, its UZ at PAR(1) = 111, label 4) and follows the
+    same curve: it passes PAR(1) = 111 again where washer's own run did (UZ5), within
+    twice the location tolerance EPSS (1 + sqrt(DS DSMAX)) (each engine within it, PAR(4)
+    having weight 1 in the arclength), and the period to 1e-6 relative. The records
+    carry NPARI = 2 (beta and the norm constant after the user's NPAR), without which
+    AUTO-07p's restart takes washer's beta for a user parameter and stops (MX) at once."""
+    recs = {r.lab: r for r in read_s(plp / "s.loci")}
+    start = recs[4]
+    assert start.ty == "UZ" and start.curve_type == 5 and start.par[0] == pytest.approx(111)
+    head = (plp / "s.loci").read_text().splitlines()
+    fold_heads = [h.split() for h in head if len(h.split()) == 16 and h.split()[2] == "-54"]
+    assert fold_heads and all(h[12] == "2" for h in fold_heads)
+    auto = tmp_path / "auto"
+    auto.mkdir()
+    for name in ("plp.f90", "c.plp.plp"):
+        shutil.copy(DEMOS / "plp" / name, auto / name)
+    shutil.copy(plp / "s.loci", auto / "s.ours")
+    (auto / "r.auto").write_text("run(e='plp', c='plp.plp', s='ours', IRS=4, NMX=30, sv='x')\n")
+    subprocess.run(["auto-07p", "r.auto"], cwd=auto, env=dict(os.environ, OMP_NUM_THREADS="1"),
+                   capture_output=True, timeout=600, check=True)
+    rows = branch_rows(auto / "b.x")
+    uz = [r for r in rows if r.lab and r.ty == -54]
+    assert len(rows) == 30 and len(uz) == 1
+    ours = [r for r in branch_rows(plp / "b.loci") if r.lab == 5][0]
+    assert ours.ty == -54
+    tol = 1e-6 * (1 + (0.1 * 3.0) ** 0.5)          # c.plp.plp: EPSS, DS, DSMAX
+    assert uz[0].values[0] == pytest.approx(ours.values[0], abs=2 * tol)      # PAR(4)
+    assert uz[0].values[-1] == pytest.approx(ours.values[-1], rel=1e-6)       # period
