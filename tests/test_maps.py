@@ -234,7 +234,8 @@ def test_henon_codim2_points_closed_form(tmp_path):
     (tmp_path / "hen.py").write_text(HENON)
     (tmp_path / "c.hen").write_text(
         "NDIM=2, IPS=-1, ICP=[2], ILP=1, ISP=1, NMX=200, DS=0.02, DSMIN=5e-4, DSMAX=0.1, "
-        "NPAR=3, EPSL=1e-6, EPSU=1e-6, EPSS=1e-4, STOP=['TR1'], UZSTOP={1: [-2.0, 4.0], 2: [-3.0, 3.0]}\n")
+        "NPAR=3, EPSL=1e-6, EPSU=1e-6, EPSS=1e-4, STOP=['TR1'], "
+        "UZSTOP={1: [-2.0, 4.0], 2: [-3.0, 3.0]}\n")
     tol = location_tolerance(read_constants(tmp_path / "c.hen"))
     r = run(tmp_path / "c.hen", e="hen", sv="beta", verbose=False)
     assert [s.ty for s in r.specials] == ["EP", "PD", "TR"]
