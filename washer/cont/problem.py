@@ -97,6 +97,11 @@ class Problem:
         return p
 
     @property
+    def has_dfdu(self) -> bool:
+        """Whether f_u is the user's own (JAC != 0 and a Jacobian given), not differences."""
+        return self.jac != 0 and (self._dfdu is not None or self._dfdu_batch is not None)
+
+    @property
     def has_pvls(self) -> bool:
         return self._pvls is not None
 

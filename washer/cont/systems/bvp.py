@@ -91,19 +91,36 @@ class VectorField:
 
     def fuu_adjoint(self, U: np.ndarray, Phi: np.ndarray, par: np.ndarray) -> np.ndarray:
         """The matrices d/du (f_u(u)^T phi) at the rows of U, Phi (k, NDIM) -> (k, NDIM,
-        NDIM) ([:, row, column]; the Hessian of phi . f, symmetric): `fuu_v` along each
-        unit vector e_i (one batched call for all i) gives the i-th row's second
-        derivatives of f."""
+        NDIM) ([:, row, column]; the Hessian of phi . f, symmetric). With the user's f_u:
+        its central differences, AUTO's step FD_STEP (1 + |u_j|) (FNPBP differences its
+        extended system so; the steps stay below a small orbit's size, where the mixed
+        differences of f, steps ~1e-4, straddle a non-smooth |u|: lcbp's circles shrinking
+        to their Hopf point); else `fuu_v` along each unit vector (one batched call)."""
         k, n = U.shape
+        if getattr(self.problem, "has_dfdu", False):
+            h = FD_STEP * (1 + np.abs(U))                                   # (k, n)
+            E = np.eye(n)[None] * h[:, :, None]                             # (k, j, n)
+            pts = np.concatenate([U[:, None] + E, U[:, None] - E], axis=1).reshape(-1, n)
+            A = self.fu(pts, par).reshape(k, 2, n, n, n)                    # [k, +-, j, l, i]
+            dA = (A[:, 0] - A[:, 1]) / (2 * h[:, :, None, None])
+            return np.einsum("kl,kjli->kij", Phi, dA)
         M = self.fuu_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par)
         return np.einsum("kl,iklj->kij", Phi, M.reshape(n, k, n, n))
 
     def fup_adjoint(self, U: np.ndarray, Phi: np.ndarray, par: np.ndarray,
                     index: int) -> np.ndarray:
         """d/dp (f_u(u)^T phi) for p = PAR(index) at the rows of U, Phi -> (k, NDIM):
-        component i is phi . (d f_u / dp) e_i (`fup_v` along each unit vector, one
-        batched call)."""
+        component i is phi . (d f_u / dp) e_i. With the user's f_u: its central
+        difference in p (step FD_STEP (1 + |p|)); else `fup_v` along each unit vector
+        (one batched call)."""
         k, n = U.shape
+        if getattr(self.problem, "has_dfdu", False):
+            h = FD_STEP * (1 + abs(par[index - 1]))
+            pp, pm = np.array(par, float), np.array(par, float)
+            pp[index - 1] += h
+            pm[index - 1] -= h
+            dA = (self.fu(U, pp) - self.fu(U, pm)) / (2 * h)
+            return np.einsum("kl,kli->ki", Phi, dA)
         M = self.fup_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par, index)
         return np.einsum("kl,ikl->ki", Phi, M.reshape(n, k, n))
 

@@ -47,8 +47,10 @@ Special points, base codes written with the tens digit 6: LP (65) where the locu
 in PAR(ICP(1)) (ILP), BP (66) by the determinant of the reduced extended Jacobian
 (`bvp.CollocationBVP.bp_function`, AUTO's FNBPBV; ISP >= 2).
 
-Second derivatives (f_uu^T phi, f_up^T phi, f_pq) are mixed central differences of f in
-batched calls (`bvp.VectorField`; steps ~ eps^(1/4), error ~ 1e-8).
+Second derivatives in the Jacobian: f_uu^T phi and f_up^T phi are central differences of
+the user's f_u with AUTO's step 1e-7 (1 + |u|) (as FNPBP differences its system), or, without
+f_u (JAC = 0), mixed differences of f (steps ~ eps^(1/4), error ~ 1e-8); f_pq the latter
+(`bvp.VectorField`).
 """
 from __future__ import annotations
 
