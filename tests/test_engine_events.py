@@ -131,3 +131,39 @@ def test_a_jump_of_the_test_is_not_located_as_a_zero(steep):
         return ("point", s), math.tanh(steep * (s - 0.3))
     _, s = locate(smooth, "BP", smooth(0.0)[1], smooth(1.0)[1], 1.0, settings)
     assert abs(s - 0.3) < tol
+
+
+def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
+    """AUTO's LCSPAE / LCSPBV take the fold test before the branch-point test: where both
+    change sign over a step, the fold is located first, even if the BP test's linear
+    estimate puts its zero earlier (next to a BP of cycles its determinant may creep
+    from -1e-18 to 1e-15: tor's symmetric cycles); the BP is then looked for only
+    between the previous point and the fold. Here the BP's zero (s = 0.3) lies beyond
+    the fold's (s = 0.1): the step's special point is the fold, the first trial is the
+    fold's."""
+    from types import SimpleNamespace
+    from washer.auto.codes import Code
+    from washer.cont.branch import Point
+    from washer.cont.events import first_zero
+    settings = SimpleNamespace(EPSS=1e-8, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-6)
+    tests = {Code.LPC: lambda s: 0.01 - 0.1 * s, Code.BPC: lambda s: 1e-15 * (s - 0.3)}
+
+    def point(s, values=None):
+        return Point(np.array([s]), np.array([1.0]), None,
+                     values or {k: f(s) for k, f in tests.items()})
+    prev = point(0.0, {Code.LPC: 0.01, Code.BPC: -1e-18})
+    cur = point(1.0, {Code.LPC: -0.09, Code.BPC: 1e-15})
+    tried = []
+
+    def trial(s, key, base=None):
+        tried.append(key)
+        return point(s), tests[key](s)
+
+    def refresh(p):
+        p.tests = {k: f(p.x[0]) for k, f in tests.items()}
+    sp, key, same = first_zero(prev, cur, 1.0, settings, trial=trial,
+                               accepted=lambda k, a, b: True, refresh=refresh,
+                               inner=lambda a, b: float(a @ b), note=lambda text: None,
+                               curve_type=0)
+    assert tried[0] == Code.LPC and key == Code.LPC and same == []
+    assert sp.x[0] == pytest.approx(0.1, abs=1e-8)

@@ -289,6 +289,14 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             break
         keys.sort(key=lambda k: linear_fraction(prev.tests[k], target.tests[k]))
         key = keys[0]
+        if found is None and key in (Code.BP, Code.BPC):
+            # AUTO's LCSPAE / LCSPBV take the fold test before the branch-point test:
+            # where both change sign over a step the fold is located first (the BP only
+            # if it lies between the previous point and the fold): next to a BP the
+            # linear estimate of its determinant's zero is no guide to the order.
+            folds = [k for k in keys if k in (Code.LP, Code.LPC)]
+            if folds:
+                key = folds[0]
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base), key,
                               prev.tests[key], target.tests[key], span, settings,
