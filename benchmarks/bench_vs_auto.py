@@ -23,19 +23,32 @@ tests/data/auto_reference):
   ab_po       ab's seven periodic families from every HB of the p1-branches (ab.auto)
   lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
               expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
-washer-only (no AUTO column; skipped with --quick):
-  washer_fig3     the equilibrium branch in C_p (c.washer, NDIM 12)
-  washer_fig4     its Hopf curve in (C_p, Omega) (c.washer.hopf.Omega)
-  washer_whirl    the whirl's periodic orbits (c.washer.po, NDIM 12, NTST 30)
+the washer's own model (skipped with --quick), AUTO-07p running the same compiled
+equations: washer.problems.auto07p builds AUTO's C user file washer.c, whose FUNC calls
+the washer kernel's washer_rhs_rot / washer_jac_rot (analytic f_u and f_p, JAC = 1 on
+both sides), linked into washer.exe once per benchmark run (the kernel's objects cached
+in ~/.cache/washer/auto07p); both sides read the same constants files auto_constants/
+c.washer* (NTST, DS, DSMAX, EPS*, NMX, THU, UZSTOP unchanged):
+  washer_fig3     the equilibrium branch in C_p from 0 to the UZ at 0.5 (c.washer, NDIM 12)
+  washer_fig4     its Hopf curve from HB1 in (C_p, Omega) to the UZ at Omega = 15 Hz
+                  (c.washer.hopf.Omega; AUTO's rows include the GH points it locates)
+  washer_whirl    the whirl's periodic orbits from HB1 to C_p = 0 (c.washer.po, NTST 30)
+The ratio to read for the washer is us per point on the same stretch of curve: point
+counts differ a little (step control, located special points).
 """
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
+import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from side_by_side import DEMOS, ROOT, Case, Step, compare, report  # noqa: E402
+
+if str(ROOT) not in sys.path:          # washer.problems.auto07p builds AUTO's washer.exe
+    sys.path.insert(0, str(ROOT))
 
 DATA = ROOT / "tests" / "data"
 REF = DATA / "auto_reference"
@@ -84,14 +97,30 @@ CASES += [
          LRZ_FILES, washer_files=SYM),
 ]
 WASHER_CASES = [
-    Case("washer_fig3", [Step("washer", "washer", "washer")], WASHER_FILES, auto=False),
+    Case("washer_fig3", [Step("washer", "washer", "washer")], WASHER_FILES),
     Case("washer_fig4", [Step("washer", "washer", "washer", timed=False),
                          Step("hopf", "washer.hopf.Omega", "washer", start="washer", irs="HB1")],
-         WASHER_FILES, auto=False),
+         WASHER_FILES),
     Case("washer_whirl", [Step("washer", "washer", "washer", timed=False),
                           Step("po", "washer.po", "washer", start="washer", irs="HB1")],
-         WASHER_FILES, auto=False),
+         WASHER_FILES),
 ]
+
+
+def with_auto_washer(cases: list, folder: Path) -> list:
+    """The washer cases given AUTO-07p's washer.c / washer.o / washer.exe, built once into
+    `folder`; without AUTO-07p they stay washer-only (a message says so)."""
+    mine = [c for c in cases if c in WASHER_CASES]
+    if not mine:
+        return cases
+    from washer.problems import auto07p
+    if not auto07p.installed():
+        print("auto-07p is not installed: the washer cases run without AUTO's column")
+        return [dataclasses.replace(c, auto=False) if c in mine else c for c in cases]
+    print("building AUTO-07p's washer.exe (the kernel's objects are cached) ...", flush=True)
+    auto07p.build_executable(folder)
+    files = [(folder / f"washer{ext}", f"washer{ext}") for ext in (".c", ".o", ".exe")]
+    return [dataclasses.replace(c, auto_files=files) if c in mine else c for c in cases]
 
 
 def main(argv=None) -> int:
@@ -108,7 +137,9 @@ def main(argv=None) -> int:
         if unknown:
             ap.error(f"unknown case(s) {sorted(unknown)}")
         cases = [c for c in CASES + WASHER_CASES if c.name in names]
-    rows = compare(cases, repeat=a.repeat, against=a.against)
+    with tempfile.TemporaryDirectory(prefix="bench_washer_exe_") as tmp:
+        cases = with_auto_washer(cases, Path(tmp))
+        rows = compare(cases, repeat=a.repeat, against=a.against)
     print(report(rows, a.against))
     return 0
 

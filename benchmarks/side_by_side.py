@@ -56,13 +56,15 @@ class Step:
 @dataclass
 class Case:
     """A named chain. files: (source, name) copied into the run folder; auto: whether
-    AUTO-07p can run it (False for the washer's own model); washer_files: copied after
-    `files` on washer's side only (its own NAME.py and constants of the same equations)."""
+    AUTO-07p can run it; washer_files: copied after `files` on washer's side only (its
+    own NAME.py and constants of the same equations); auto_files: copied after `files`
+    on AUTO's side only, in their order (a prebuilt user file: NAME.c, NAME.o, NAME.exe)."""
     name: str
     steps: list
     files: list
     auto: bool = True
     washer_files: list = field(default_factory=list)
+    auto_files: list = field(default_factory=list)
 
 
 # ----------------------------------------------------------------------------- AUTO side
@@ -137,7 +139,7 @@ def b_points(path: Path) -> int:
 def case_folder(case: Case, parent: Path) -> Path:
     d = parent / case.name
     d.mkdir(parents=True, exist_ok=True)
-    for src, name in case.files:
+    for src, name in list(case.files) + list(case.auto_files):
         shutil.copy(src, d / name)
     return d
 
