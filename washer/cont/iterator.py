@@ -43,6 +43,13 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
+#: BVPs: the last Newton iteration's Jacobian serves as the Jacobian at the converged
+#: point when the converging correction was within this fraction of EPSU (profile) and
+#: EPSL (parameters), i.e. ~1e-9 relative with AUTO's 1e-7: below the rounding error of
+#: a central-difference Jacobian itself (eps / h ~ 2e-9 for h = 1e-7). (A correction
+#: anywhere within EPSU was too much: ab's family from HB10, near its homoclinic end,
+#: then ended with MX short of its UZSTOP.)
+REUSE_FRACTION = 1e-2
 #: A UZ test value |PAR(i) - value| below this fraction of 1 + |value| is rounding:
 #: the parameter is on the value (no sign change is seen there).
 UZ_ROUNDING = 1e-13
@@ -132,6 +139,9 @@ class Continuation:
         self.counters = Counters()
         self.failure = "No convergence with minimum step size"
         self._located_J = None
+        # (x, J): the corrector's last Jacobian, evaluated at the iterate from which the
+        # converging correction to x was taken (BVPs only; see `correct`).
+        self._newton_J = None
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -154,7 +164,7 @@ class Continuation:
         plane = (sysm.arclength == "plane") if plane is None else plane
         row_plane = sysm.border(t_ref) if plane else None
         ns = getattr(sysm, "n_state", None) if plane else None
-        held = {"factor": None, "delref": None}
+        held = {"factor": None, "delref": None, "fresh": None}
 
         # A trial point outside the equations' domain: a failed step.
         residual = _failing_as("equations failed at a Newton iterate", self._residual)
@@ -170,8 +180,11 @@ class Continuation:
                 # converged to is the same; the blocks are refreshed at every
                 # converged point (evaluate), where tangent and tests need them.
                 J = jacobian(x, frozen=sysm.freezes_second_derivatives)
+                held["fresh"] = None if sysm.freezes_second_derivatives else (x, J)
                 if plane:
                     factor = self._factor(J, row_plane)
+            else:
+                held["fresh"] = None
             if plane:
                 c = row_plane @ (x - x_ref) - ds
             else:
@@ -190,6 +203,8 @@ class Continuation:
                 du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x_old[:ns])))
                 dl = float(np.max(np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))))
                 if dl <= s.EPSL and du < s.EPSU:
+                    held["small"] = du <= REUSE_FRACTION * s.EPSU and \
+                        dl <= REUSE_FRACTION * s.EPSL
                     return True
             else:
                 du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
@@ -203,8 +218,20 @@ class Continuation:
                 raise ConvergenceError("Newton iterates diverge")
             return False
 
-        return newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
-                      exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
+        x, it = newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
+                       exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
+        # BVPs: the Jacobian of the last iteration, when it was evaluated at the iterate
+        # the converging correction started from and that correction was below
+        # REUSE_FRACTION of the tolerances, serves as the Jacobian at x (tangent,
+        # Floquet multipliers, tests): the two points, and so the Jacobians, differ by
+        # less than a difference Jacobian's own rounding. AUTO's CONTBV evaluates one
+        # more Jacobian at x; on collocation systems that is the cost of a whole Newton
+        # iteration (f_u at NTST NCOL points). Algebraic systems recompute it as
+        # SOLVAE does.
+        fresh = held["fresh"]
+        self._newton_J = (x, fresh[1]) if sysm.arclength == "plane" and fresh is not None \
+            and held.get("small") else None
+        return x, it
 
     def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
@@ -291,7 +318,9 @@ class Continuation:
     def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
         """A converged point: tangent, stability and the test values `keys`
         (all active tests and UZ values when None)."""
-        J = self._jacobian(x)
+        reuse = self._newton_J
+        self._newton_J = None
+        J = reuse[1] if reuse is not None and reuse[0] is x else self._jacobian(x)
         if tangent is None:
             t, factor = self.tangent(J, ref)
         else:

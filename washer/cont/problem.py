@@ -76,7 +76,8 @@ class Problem:
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
-                 bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None):
+                 bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None,
+                 dfdp_batch=None):
         self.ndim, self.name, self.npar = ndim, name, npar
         self._fopt, self._fopt_batch = fopt, fopt_batch
         self._fopt_vectorised = None      # does fopt accept (ndim, k) arrays? (checked once)
@@ -85,6 +86,7 @@ class Problem:
         self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
+        self._dfdp_batch = dfdp_batch
         self._vectorised = None       # does func accept (ndim, k) arrays? (checked once)
         self.parnames = dict(parnames or {})
         self.unames = dict(unames or {})
@@ -317,6 +319,26 @@ class Problem:
         pts[:, n + idx, idx] -= h
         F = self.func_many(pts.reshape(-1, n), np.repeat(pars, 2 * n, axis=0)).reshape(k, 2 * n, n)
         return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))
+
+    @property
+    def has_dfdp_batch(self) -> bool:
+        """Whether dfdp_many uses the user's batched dfdp (supplied, JAC = 1)."""
+        return self._dfdp_batch is not None and self.jac == 1
+
+    def dfdp_many(self, us, pars, index: int) -> np.ndarray:
+        """d f / d PAR(index) at k points from the user's dfdp_batch (JAC = 1): us (k, ndim),
+        pars (k, npar) -> (k, ndim)."""
+        if not self.has_dfdp_batch:
+            raise ProblemError(f"{self.name}: no batched dfdp (dfdp_batch with JAC = 1)")
+        us = np.asarray(us, dtype=float)
+        out = self._call(self._dfdp_batch, "dfdp_batch", us, pars)
+        if out.ndim != 3 or out.shape[:2] != (len(us), self.ndim) or out.shape[2] < index:
+            raise ProblemError(f"{self.name}: dfdp_batch returned shape {out.shape}, expected "
+                               f"({len(us)}, {self.ndim}, >= {index})")
+        col = out[:, :, index - 1]
+        if not np.all(np.isfinite(col)):
+            raise ProblemError(f"{self.name}: dfdp_batch returned non-finite values")
+        return col
 
     def dfdp(self, u, par, indices) -> np.ndarray:
         """Columns d f / d PAR(i) for the 1-based `indices`, shape (ndim, len(indices))."""

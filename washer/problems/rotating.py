@@ -53,8 +53,32 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
     def dfdu(u, par):
         return jac(u, par)[0].copy()
 
+    # jac_rot_batch returns J and Jp together: the collocation Jacobian asks for f_u and
+    # then f_p at the same points; one kernel call serves both.
+    last_batch = {"key": None, "val": None}
+
+    def jac_batch(us, pars):
+        us, pars = np.ascontiguousarray(us, float), np.asarray(pars, float)
+        key = (us.shape, us.tobytes(), pars.shape, pars.tobytes())
+        if last_batch["key"] != key:
+            last_batch["key"] = None
+            last_batch["val"] = kernel.jac_rot_batch(us, kernel_params_many(pars), frame)
+            last_batch["key"] = key
+        return last_batch["val"]
+
     def dfdu_batch(us, pars):
-        return kernel.jac_rot_batch(np.ascontiguousarray(us), kernel_params_many(pars), frame)[0]
+        return jac_batch(us, pars)[0].copy()
+
+    def dfdp_batch(us, pars):
+        Jp = jac_batch(us, pars)[1]
+        out = np.zeros((len(Jp), 12, np.shape(pars)[-1]))
+        for i, name in PAR_NAMES.items():
+            if i <= out.shape[2]:
+                out[:, :, i - 1] = Jp[:, :, cols[name]]
+        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
+            out[:, :, 0] += Jp[:, :, cols[name]]
+            out[:, :, layout.PAR_INDEX[name] - 1] = 0.0
+        return out
 
     def dfdp(u, par):
         Jp = jac(u, par)[1]
@@ -74,7 +98,7 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
         u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
-                   func_batch=func_batch, parnames=dict(PAR_NAMES))
+                   func_batch=func_batch, dfdp_batch=dfdp_batch, parnames=dict(PAR_NAMES))
 
 
 def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,

@@ -63,10 +63,14 @@ class VectorField:
         return self.problem.dfdu_many(U, np.broadcast_to(par, (len(U), len(par))))
 
     def fp(self, U: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
-        """d f / d PAR(index) at the rows of U -> (k, NDIM): central differences in two
-        batched calls (a per-point analytic dfdp costs k calls: on the washer, 8640 kernel
-        calls took 40 % of a run; the difference quotient is accurate to ~1e-9 relative,
-        ample for Newton's parameter column)."""
+        """d f / d PAR(index) at the rows of U -> (k, NDIM): the user's batched dfdp
+        (JAC = 1, one call for all rows; the washer's kernel returns it with f_u), else
+        central differences in two batched calls (a per-point analytic dfdp costs k
+        calls: on the washer, 8640 kernel calls took 40 % of a run; the difference
+        quotient is accurate to ~1e-9 relative, ample for Newton's parameter column)."""
+        if self.problem.has_dfdp_batch:
+            U = np.asarray(U, float)
+            return self.problem.dfdp_many(U, np.broadcast_to(par, (len(U), len(par))), index)
         h = FD_STEP * (1 + abs(par[index - 1]))
         pp, pm = np.array(par, float), np.array(par, float)
         pp[index - 1] += h

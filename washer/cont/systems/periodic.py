@@ -296,19 +296,23 @@ class PeriodicOrbits(CollocationBVP):
         self._stab_cache = None
 
     # ------------------------------------------------------------------ Floquet
-    def _blocks_at(self, x):
+    def _blocks_at(self, x, J=None):
+        """The collocation blocks of the Jacobian at x: of J when J is the last one
+        assembled (the corrector's, serving as the Jacobian at x), else evaluated."""
         cached = getattr(self, "_last_blocks", None)
-        if cached is not None and cached[0].shape == x.shape and np.array_equal(cached[0], x):
+        if cached is not None and ((J is not None and cached[2] is J) or (
+                cached[0].shape == x.shape and np.array_equal(cached[0], x))):
             return cached[1]
         self.jacobian(x)
         return self._last_blocks[1]
 
-    def multipliers(self, x: np.ndarray) -> np.ndarray:
+    def multipliers(self, x: np.ndarray, J=None) -> np.ndarray:
         """Floquet multipliers at x in AUTO's order, from the condensed collocation
         blocks of the Jacobian at x (CONPAR + REDUCE + FLOWKM): the pair of the compiled
         factorisation of that Jacobian when it was factorised (the tangent at a
-        converged point), else a condensation of its blocks."""
-        blocks = self._blocks_at(x)
+        converged point), else a condensation of its blocks. J: the Jacobian at x
+        when known (`_blocks_at`)."""
+        blocks = self._blocks_at(x, J)
         reduced = getattr(self, "_reduced", None)
         if reduced is not None and reduced[0] is self._last_blocks[2]:
             P0, P1 = reduced[1].floquet_pair()
@@ -324,7 +328,7 @@ class PeriodicOrbits(CollocationBVP):
         if (cached is not None and cached[1] == self._suspended and cached[0].shape == x.shape
                 and np.array_equal(cached[0], x)):
             return cached[2]
-        out = floquet.stability(self.multipliers(x), self.ndim, self._suspended)
+        out = floquet.stability(self.multipliers(x, J), self.ndim, self._suspended)
         self._stab_cache = (np.array(x), self._suspended, out)
         return out
 
