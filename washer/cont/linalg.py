@@ -57,7 +57,7 @@ class DenseFactor:
                 x = np.linalg.solve(self.M, rhs)
         except np.linalg.LinAlgError:
             x = np.full(len(rhs), np.nan)
-        if not np.all(np.isfinite(x)):
+        if not np.isfinite(x).all():
             # Exactly at a branch point the Newton matrix is singular but the
             # system is consistent: take the minimum-norm least-squares step.
             x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]
@@ -70,7 +70,11 @@ class DenseFactor:
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:
     """Default `factor`: LU of [J; border] for dense J."""
-    return DenseFactor(np.vstack([np.asarray(J), border]))
+    J = np.asarray(J)
+    M = np.empty((len(J) + 1, J.shape[1]))
+    M[:-1] = J
+    M[-1] = border
+    return DenseFactor(M)
 
 
 class SparseFactor:

@@ -42,13 +42,13 @@ def newton(residual, step, x0, *, max_iter: int, residual_tol: float | None = No
     for it in range(1, max_iter + 1):
         if F is None:
             F = residual(x)
-        if not np.all(np.isfinite(F)):
+        if not np.isfinite(F).all():
             raise ConvergenceError("non-finite residual at a Newton iterate")
         if residual_tol is not None and np.max(np.abs(F)) <= residual_tol * (1 + np.max(np.abs(x))):
             return x, it - 1
         with np.errstate(all="ignore"):
             dx = step(x, F, it)
-        if not np.all(np.isfinite(dx)):
+        if not np.isfinite(dx).all():
             raise ConvergenceError("singular Newton matrix")
         x_old = x
         if damped:

@@ -92,16 +92,22 @@ class HopfSystem(LocusSystem):
             d_phase = Fv @ vo - Fvo @ v
             self._second = (d_g, d_phase)
         J = np.zeros((2 * n + 2, 2 * n + 3))
-        # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2).
-        cols_s = np.concatenate((np.arange(n), [2 * n + 2, 2 * n + 1]))
+        # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2); the
+        # derivative blocks come in the order (u, p1, p2).
         J[:n, :n] = A
         J[:n, 2 * n + 2] = fp[:, 0]
         J[:n, 2 * n + 1] = fp[:, 1]
-        J[n:2 * n, cols_s] = d_g
-        J[n:2 * n, n:2 * n] = A @ A + kappa * np.eye(n)
+        J[n:2 * n, :n] = d_g[:, :n]
+        J[n:2 * n, 2 * n + 2] = d_g[:, n]
+        J[n:2 * n, 2 * n + 1] = d_g[:, n + 1]
+        AA = A @ A
+        AA.flat[::n + 1] += kappa                  # A^2 + kappa I
+        J[n:2 * n, n:2 * n] = AA
         J[n:2 * n, 2 * n] = v
         J[2 * n, n:2 * n] = 2 * v
-        J[2 * n + 1, cols_s] = d_phase
+        J[2 * n + 1, :n] = d_phase[:n]
+        J[2 * n + 1, 2 * n + 2] = d_phase[n]
+        J[2 * n + 1, 2 * n + 1] = d_phase[n + 1]
         J[2 * n + 1, n:2 * n] = w
         return J
 
