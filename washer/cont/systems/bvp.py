@@ -52,10 +52,21 @@ class VectorField:
 
     def __init__(self, problem, ndim: int):
         self.problem, self.ndim = problem, ndim
+        self._last_f = None
 
     def f(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
-        """f at the rows of U (k, NDIM) -> (k, NDIM)."""
-        return self.problem.func_many(np.asarray(U, float), par)
+        """f at the rows of U (k, NDIM) -> (k, NDIM). The last call's values are kept:
+        Newton's Jacobian (its PERIOD column T f) asks for f at the Gauss points of the
+        iterate whose residual has just asked for them; a copy is returned."""
+        U = np.asarray(U, float)
+        par = np.asarray(par, float)
+        key = (U.shape, U.tobytes(), par.shape, par.tobytes())
+        last = self._last_f
+        if last is not None and last[0] == key:
+            return last[1].copy()
+        F = self.problem.func_many(U, par)
+        self._last_f = (key, F.copy())
+        return F
 
     def fu(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
         """f_u at the rows of U -> (k, NDIM, NDIM)."""
