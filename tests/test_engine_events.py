@@ -40,6 +40,24 @@ def test_a_stop_next_to_another_zero_still_stops(ab):
     assert res.specials[-1].ty == "UZ"
 
 
+def test_a_located_point_at_nmx_or_outside_the_window_is_the_end_point(ab):
+    """AUTO's STPLAE / STPLBV: a point at PT = NMX, or with PAR(ICP(1)) outside RL0..RL1,
+    ends the branch as its EP, a located one too (its type is overridden). The UZ at
+    PAR(1) = 0.1 is located at some PT k; with NMX = k the same point is the EP, and with
+    RL1 just below its value (the located point lies beyond it) as well."""
+    res = run(ab, verbose=False, UZR={1: 0.1}, DS=0.05, DSMAX=0.05, NMX=20, ISP=0, ILP=0)
+    (uz,) = [r for r in res.rows if r.lab and r.ty == "UZ"]
+    k = abs(uz.pt)
+    at_nmx = run(ab, verbose=False, UZR={1: 0.1}, DS=0.05, DSMAX=0.05, NMX=k, ISP=0, ILP=0)
+    last = at_nmx.rows[-1]
+    assert abs(last.pt) == k and last.ty == "EP" and last.values[0] == pytest.approx(0.1)
+    assert [r.ty for r in at_nmx.rows if r.lab].count("UZ") == 0
+    beyond = run(ab, verbose=False, UZR={1: 0.1}, RL1=0.1 - 1e-9, DS=0.05, DSMAX=0.05,
+                 NMX=20, ISP=0, ILP=0)
+    assert beyond.rows[-1].ty == "EP" and abs(beyond.rows[-1].pt) == k
+    assert beyond.rows[-1].values[0] == pytest.approx(0.1)
+
+
 def test_thu_reweights_the_step(ab):
     # U(2) dominates ab's arclength at the start; weighted down, the same
     # number of steps of the same DS covers more of the parameter.

@@ -122,27 +122,39 @@ class _Executor:
                 # Bifurcation points carry the previous point's stability ("for
                 # plotter", AUTO); user points their own.
                 stable = _stable(p) if base == Code.UZ else _stable(step.prev)
-                self.labelled(br, pt, p, base, stable, True, self.info_at(p, base))
-                self.counts[name] = self.counts.get(name, 0) + 1
                 if base == Code.BP and sysm.arclength == "sphere" and self.s.MXBF != 0 \
                         and self.n_bp < abs(self.s.MXBF):
                     self.n_bp += 1
                     self.bp_queue.append((p.x.copy(), p.tangent.copy()))
-                if self._stops(base, name, step.key) or (s.NMX > 0 and pt >= s.NMX):
+                if self._ends_here(p, pt):
+                    # AUTO's STPLAE / STPLBV: a located point at PT = NMX or outside the
+                    # RL0..RL1, A0..A1 window ends the branch and is written as its EP.
+                    self.labelled(br, pt, p, Code.EP, stable, True)
+                    return
+                self.labelled(br, pt, p, base, stable, True, self.info_at(p, base))
+                self.counts[name] = self.counts.get(name, 0) + 1
+                if self._stops(base, name, step.key):
                     return
                 continue
             # A regular point: end point (window, NMX), NPR label, or plain.
-            lam = p.x[-1]
-            sol_measure = None
-            outside = not (s.RL0 <= lam <= s.RL1)
-            if not outside and (s.A0 > -1e307 or s.A1 < 1e307):
-                sol_measure = sysm.solution(p.x, p.tangent).columns[0]
-                outside = not (s.A0 <= sol_measure <= s.A1)
-            if outside or (s.NMX > 0 and pt >= s.NMX):
+            if self._ends_here(p, pt):
                 self.labelled(br, pt, p, Code.EP, _stable(p), True)
                 return
             npr = s.NPR > 0 and pt % s.NPR == 0
             self.labelled(br, pt, p, Code.RG if npr else Code.NONE, _stable(p), npr)
+
+    def _ends_here(self, p: Point, pt: int) -> bool:
+        """The branch ends at its pt-th point p: PT = NMX, or PAR(ICP(1)) outside
+        RL0..RL1, or the b-file's measure outside A0..A1 (AUTO's STPLAE / STPLBV)."""
+        s = self.s
+        if s.NMX > 0 and pt >= s.NMX:
+            return True
+        if not (s.RL0 <= p.x[-1] <= s.RL1):
+            return True
+        if s.A0 > -1e307 or s.A1 < 1e307:
+            measure = self.run.system.solution(p.x, p.tangent).columns[0]
+            return not (s.A0 <= measure <= s.A1)
+        return False
 
     def _stops(self, base: int, name: str, key) -> bool:
         s = self.s
