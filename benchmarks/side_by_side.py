@@ -9,6 +9,10 @@ A case is a short chain of runs written once (`Step`) and played on both sides:
   for a run is the wall time of the `run()` call (constants, restart file, the
   continuation, b./s./d. files), after one untimed pass over every case (imports and
   first calls are not the engine, as AUTO's compilation is not).
+Beside these wall times, each side's CPU time of the same runs: AUTO's executable's
+(user + system, of the process the CLUI starts, through AUTO_COMMAND_PREFIX and a small
+wrapper), washer's process time of its run() calls. On a shared, loaded machine the
+CPU times are the steadier figures (a run's wall time includes the waits for a core).
 Both sides write b.<sv>; the points of a run are the rows of that b-file, counted by
 one function for both. Every repetition runs AUTO, then washer (and, with --against,
 an older washer from a git worktree) back to back; per side the minimum over the
@@ -101,23 +105,36 @@ def _auto_script(case: Case) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: Runs AUTO's executable (the CLUI's AUTO_COMMAND_PREFIX) and writes its CPU time to
+#: stderr: one line per run, in the order of the runs.
+CPU_WRAPPER = """import resource, subprocess, sys
+rc = subprocess.call(sys.argv[1:])
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+sys.stderr.write("BENCH_CPU %.6f\\n" % (r.ru_utime + r.ru_stime))
+sys.exit(rc)
+"""
+
+
 def run_auto(case: Case, folder: Path) -> dict:
     """Run a case's chain with AUTO-07p in `folder` (already holding its files);
-    returns sv -> seconds (AUTO's Total Time)."""
+    returns sv -> (seconds (AUTO's Total Time), CPU seconds of its executable)."""
     (folder / "bench.auto").write_text(_auto_script(case))
-    r = subprocess.run(["auto-07p", "bench.auto"], cwd=folder, env=ENV_1, stdin=subprocess.DEVNULL,
+    (folder / "bench_cpu.py").write_text(CPU_WRAPPER)
+    env = dict(ENV_1, AUTO_COMMAND_PREFIX=f"{sys.executable} {folder / 'bench_cpu.py'}")
+    r = subprocess.run(["auto-07p", "bench.auto"], cwd=folder, env=env, stdin=subprocess.DEVNULL,
                        capture_output=True, text=True, timeout=600)
     log = r.stdout + r.stderr
-    times, last = {}, None
-    for line in log.splitlines():
+    cpu = [float(x) for x in re.findall(r"^BENCH_CPU (\S+)$", r.stderr, re.M)]
+    times, last, k = {}, None, 0
+    for line in r.stdout.splitlines():
         m = re.match(r"\s*Total Time\s+(\S+)", line)
         if m:
             last = float(m.group(1))
             continue
         m = re.match(r"Saving to b\.(\S+?),", line)
         if m and last is not None:
-            times[m.group(1)] = last
-            last = None
+            times[m.group(1)] = (last, cpu[k] if k < len(cpu) else None)
+            last, k = None, k + 1
     if r.returncode != 0 or not times:
         raise RuntimeError(f"AUTO-07p failed on {case.name}:\n{log[-2000:]}")
     return times
@@ -144,17 +161,20 @@ def case_folder(case: Case, parent: Path) -> Path:
     return d
 
 
-def totals(case: Case, folder: Path, times: dict) -> tuple[float, int]:
-    """(seconds, points) of a case's timed runs, from sv -> seconds and the b-files."""
-    t, n = 0.0, 0
+def totals(case: Case, folder: Path, times: dict) -> tuple[float, int, float | None]:
+    """(seconds, points, CPU seconds or None) of a case's timed runs, from sv -> (seconds,
+    CPU seconds) and the b-files."""
+    t, n, cpu = 0.0, 0, 0.0
     for s in case.steps:
         if not s.timed:
             continue
         names = [k for k in times if k == s.sv or (s.each and re.fullmatch(rf"{s.sv}_\d+", k))]
         for k in names:
-            t += times[k]
+            wall, c = times[k]
+            t += wall
+            cpu = None if cpu is None or c is None else cpu + c
             n += b_points(folder / f"b.{k}")
-    return t, n
+    return t, n, cpu
 
 
 # ----------------------------------------------------------------------------- washer side
@@ -183,7 +203,7 @@ print(json.dumps(out))
 
 def play_washer(case: Case, d: Path) -> dict:
     """Run a case's chain with washer.run.run in the folder d (created, filled);
-    returns sv -> seconds of each run() call."""
+    returns sv -> (seconds, CPU seconds) of each run() call."""
     import time
     from washer.run import run
     d.mkdir(parents=True, exist_ok=True)
@@ -207,9 +227,9 @@ def play_washer(case: Case, d: Path) -> dict:
             kw = dict(s.ov, e=s.e, sv=sv)
             if start is not None:
                 kw.update(s=start, IRS=lab)
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             runs[sv] = run(d / f"c.{s.c}", verbose=False, **kw)
-            times[sv] = time.perf_counter() - t0
+            times[sv] = (time.perf_counter() - t0, time.process_time() - c0)
     return times
 
 
@@ -253,6 +273,7 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
     old_tree = worktree(against) if against else None
     try:
         best: dict = {}
+        best_cpu: dict = {}
         errors: dict = {}
         if use_auto:                      # compile every demo once, untimed
             for c in cases:
@@ -281,16 +302,20 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
                     else:
                         sides[side][c.name] = totals(c, folder / "timed" / c.name, res[c.name])
             for side, per_case in sides.items():
-                for name, (t, n) in per_case.items():
+                for name, (t, n, cpu) in per_case.items():
                     key = (name, side)
                     if key not in best or t < best[key][0]:
                         best[key] = (t, n)
+                    if cpu is not None and (key not in best_cpu or cpu < best_cpu[key][0]):
+                        best_cpu[key] = (cpu, n)
         rows = []
         for c in cases:
             row = {"case": c.name, "errors": {s: e for (n, s), e in errors.items() if n == c.name}}
             for side in ("washer", "old", "auto"):
                 if (c.name, side) in best:
                     row[side] = best[(c.name, side)]
+                if (c.name, side) in best_cpu:
+                    row[side + "_cpu"] = best_cpu[(c.name, side)]
             rows.append(row)
         return rows
     finally:
@@ -302,11 +327,13 @@ def compare(cases: list, repeat: int = 3, against: str | None = None) -> list[di
 
 def report(rows: list[dict], against: str | None = None) -> str:
     """The table: per case and side points and microseconds per point; ratios washer /
-    AUTO (and old / new with --against)."""
+    AUTO (and old / new with --against); then washer's and AUTO's CPU time per point and
+    their ratio."""
     head = f"{'case':24s} {'points':>13s} {'washer us/pt':>13s}"
     if against:
         head += f" {against[:10] + ' us/pt':>17s} {'speed-up':>8s}"
     head += f" {'AUTO us/pt':>11s} {'washer/AUTO':>11s}"
+    head += f" {'cpu us/pt':>10s} {'AUTO cpu':>9s} {'cpu w/A':>8s}"
     out = [head]
     for r in rows:
         if "washer" not in r:
@@ -329,5 +356,12 @@ def report(rows: list[dict], against: str | None = None) -> str:
             line += f" {pa:11.1f} {per / pa:10.1f}x"
         else:
             line += f" {'-':>11s} {'-':>11s}"
+        if "washer_cpu" in r:
+            cw, nw = r["washer_cpu"]
+            line += f" {1e6 * cw / max(nw, 1):10.1f}"
+            if "auto_cpu" in r:
+                ca, na = r["auto_cpu"]
+                pc = 1e6 * ca / max(na, 1)
+                line += f" {pc:9.1f} {1e6 * cw / max(nw, 1) / pc:7.2f}x"
         out.append(f"{r['case']:24s} {pts:>13s} {per:13.1f}" + line)
     return "\n".join(out)
