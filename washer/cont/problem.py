@@ -38,7 +38,10 @@ Built-in problems may also pass batched callables, `func_batch(us, pars)`
 NDIM)): every finite-difference stencil of the engine (Jacobians, the second
 and third derivatives of the first Lyapunov coefficient) is evaluated as one
 batched call, so a compiled right-hand side pays the Python overhead once per
-stencil, not once per point.
+stencil, not once per point. With `dfdu_batch` and `dfdp_batch` (JAC = 1) the second
+derivatives of the fold and Hopf loci are differences of those analytic Jacobians
+along the few vectors they are needed on (2 Jacobians per vector), not second
+differences of f (4 (NDIM + 2) values of f per vector).
 """
 from __future__ import annotations
 
@@ -58,6 +61,10 @@ FD_STEP = 1e-7
 VECTORISE_MIN = 12
 #: Step of the second-derivative stencils, about eps^(1/4) (see second_derivatives).
 SECOND_STEP = 1.2e-4
+#: Step of the central differences of analytic Jacobians (second_derivatives with
+#: dfdu_batch and dfdp_batch), about eps^(1/3): truncation h^2 |f_uuuu| / 6 and
+#: rounding eps |f_u| / h both ~1e-11 relative.
+JACOBIAN_STEP = 6e-6
 
 
 class ProblemError(RuntimeError):
@@ -407,10 +414,13 @@ class Problem:
         ws: (m, ndim). Returns (ndim + len(par_indices), m, ndim). Steps are
         eps^(1/4) scaled (central O(h^2) truncation ~1e-8 against rounding
         eps / (h k) ~1e-8); a derivative of f costs one f per point here,
-        where differencing Jacobians costs a Jacobian per point."""
+        where differencing Jacobians costs a Jacobian per point (but see
+        _second_from_jacobians: batched analytic Jacobians, differenced along each w_k)."""
         u = np.asarray(u, dtype=float)
         par = np.asarray(par, dtype=float)
         ws = np.atleast_2d(np.asarray(ws, dtype=float))
+        if self._dfdu_batch is not None and self.has_dfdp_batch:
+            return self._second_from_jacobians(u, par, ws, par_indices)
         n, m, q = self.ndim, len(ws), len(par_indices)
         ns = n + q
         h = SECOND_STEP * (1 + np.abs(np.r_[u, par[[i - 1 for i in par_indices]]]))
@@ -432,6 +442,32 @@ class Problem:
         F = self.func_many(us.reshape(-1, n), ps.reshape(-1, len(par))).reshape(ns, m, 4, n)
         num = F[:, :, 0] - F[:, :, 1] - F[:, :, 2] + F[:, :, 3]
         return num / (4 * h[:, None, None] * k[None, :, None])
+
+    def _second_from_jacobians(self, u, par, ws, par_indices) -> np.ndarray:
+        """second_derivatives from batched analytic Jacobians (dfdu_batch, dfdp_batch,
+        JAC = 1): f_zz[e_s, w] = d/de of column s of [f_u, f_PAR(par_indices)] at
+        (u + e w, par), central differences with step JACOBIAN_STEP (1 + max|u|) / max|w|,
+        the 2 len(ws) points in one batched call of each. Shape (n + q, m, n)."""
+        n, m = self.ndim, len(ws)
+        k = JACOBIAN_STEP * (1 + np.max(np.abs(u))) / np.maximum(np.max(np.abs(ws), axis=1),
+                                                                   1e-300)
+        kw = k[:, None] * ws
+        us = np.concatenate((u + kw, u - kw))
+        pars = np.repeat(par[None, :], 2 * m, axis=0)
+        fu = self._call(self._dfdu_batch, "dfdu_batch", us, pars)
+        fp = self._call(self._dfdp_batch, "dfdp_batch", us, pars)
+        q = max(par_indices, default=0)
+        if fu.shape != (2 * m, n, n) or fp.ndim != 3 or fp.shape[:2] != (2 * m, n) \
+                or fp.shape[2] < q:
+            raise ProblemError(f"{self.name}: dfdu_batch, dfdp_batch returned shapes "
+                               f"{fu.shape}, {fp.shape}, expected ({2 * m}, {n}, {n}) and "
+                               f"({2 * m}, {n}, >= {q})")
+        D = np.concatenate((fu, fp[:, :, [i - 1 for i in par_indices]]), axis=2)
+        if not np.all(np.isfinite(D)):
+            raise ProblemError(f"{self.name}: dfdu_batch or dfdp_batch returned non-finite "
+                               "values")
+        T = (D[:m] - D[m:]) / (2 * k[:, None, None])          # (m, n, n + q): [k, i, s]
+        return np.transpose(T, (2, 0, 1))
 
     def pvls(self, u, par) -> np.ndarray:
         """PAR after the user's pvls(u, par) (a copy; unchanged without pvls)."""
