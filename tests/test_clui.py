@@ -35,6 +35,21 @@ def test_python2_print_statements_become_calls():
     compile(out, "x", "exec")          # valid Python 3
 
 
+def test_autos_shorthand_lines_become_calls(tmp_path, monkeypatch):
+    # AUTO's processShorthand (its tutorial script: "cd /tmp", "! rm -rf test",
+    # ld(verbose="no")); a name followed by an assignment or a call stays Python.
+    assert translate("! rm -rf test\n") == "shell('rm -rf test')\n"
+    assert translate("  shell echo a\n") == "  shell('echo a')\n"
+    assert translate("cd ..\nls\ncat c.ab\n") == "cd('..')\nls()\ncat('c.ab')\n"
+    assert translate("mkdir d\ncp a b\n") == "shell('mkdir d')\nshell('cp a b')\n"
+    for python in ("cd = 3\n", "ls(dir)\n", "cp('a', 'b')\n", "rm += 1\n"):
+        assert translate(python) == python
+    monkeypatch.chdir(tmp_path)
+    Path("s.auto").write_text('ld(verbose="no")\nmkdir sub\ncd sub\n! touch here\ncd ..\n')
+    run_script("s.auto")
+    assert Path("sub/here").exists()
+
+
 def test_unknown_command_names_it_and_the_line(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     Path("x.auto").write_text('print "start"\n\nfrobnicate("ab")\n')

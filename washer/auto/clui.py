@@ -94,6 +94,11 @@ class Runner:
 _runner = Runner()
 
 
+#: Options of AUTO's runner (runAUTO.py) that change only how AUTO logs and builds.
+RUNNER_OPTIONS = ("verbose", "log", "err", "redir", "makefile", "clean", "auto_dir",
+                  "demos_dir", "dir", "executable", "command")
+
+
 def _abbrev(kw: dict) -> dict:
     """AUTO's long option names (equation, constants, solution) to the short ones."""
     out = dict(kw)
@@ -110,6 +115,10 @@ def _configure(data=None, **kw) -> Solution:
     R = _runner
     kw = _abbrev(kw)
     kw.pop("h", None)
+    # AUTO's runner options about its own screen log and build (ld(verbose="no") in its
+    # tutorial script): washer's output does not depend on them.
+    for option in RUNNER_OPTIONS:
+        kw.pop(option, None)
     resolved = {}
     missing_s = None
     for short, reader in (("c", read_auto_constants), ("s", _read_s)):

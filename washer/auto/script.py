@@ -3,7 +3,10 @@
 AUTO's CLUI runs its scripts as Python with its commands predefined and accepts
 Python 2 `print` statements (`print "text"`, `print a, b`, `print x,`). They are
 rewritten here into calls, token by token, keeping every line where it was, so
-messages name the script's own line numbers.
+messages name the script's own line numbers. Before that, each line goes through AUTO's
+shorthand (interactiveBindings.processShorthand): `! cmd` and `shell cmd` run cmd in the
+shell, `ls`, `cd DIR`, `cat FILE` call those commands, and `rm`, `mkdir`, `rmdir`,
+`clear`, `less` lines (and `cp`/`mv` ones that are not calls) go to the shell.
 """
 from __future__ import annotations
 
@@ -21,8 +24,42 @@ class ScriptError(RuntimeError):
     """A script stopped: the message names the script, the line and the cause."""
 
 
+#: AUTO's shorthand words (interactiveBindings.processShorthand).
+SHORT_COMMANDS = ("ls", "cd", "cat")
+SHORT_UNIX = ("clear", "less", "mkdir", "rmdir", "rm")
+SHORT_DUPLICATES = ("cp", "mv")
+#: Second words that make a line Python (an operator or keyword after a name).
+PYTHON_WORDS = ("in", "is", "and", "or", "if", "else", "for", "not", "+=", "-=", "*=",
+                "/=", "==", "!=", "<", ">", "<=", ">=", "+", "*", "/", "%", "**", "-")
+
+
+def shorthand(line: str) -> str:
+    """One script line with AUTO's shorthand made a call (see the module docstring);
+    any other line unchanged. A word followed by '(' or an assignment stays Python."""
+    words = line.split()
+    if not words:
+        return line
+    indent = line[:len(line) - len(line.lstrip())]
+    body = line.strip()
+    if body.startswith("!"):
+        return f"{indent}shell({body[1:].strip()!r})"
+    if len(words) > 1 and (words[1][0] in "(=[,:" or words[1] in PYTHON_WORDS):
+        return line                     # a call, an assignment, an expression: Python
+    if words[0] == "shell" and len(words) > 1:
+        return f"{indent}shell({body[5:].strip()!r})"
+    if words[0] in SHORT_UNIX or (words[0] in SHORT_DUPLICATES and
+                                  (len(words) != 2 or words[1].startswith("-"))):
+        return f"{indent}shell({body!r})"
+    if words[0] in SHORT_COMMANDS and len(words) <= 2:
+        return f"{indent}{words[0]}({words[1]!r})" if len(words) == 2 else f"{indent}{words[0]}()"
+    return line
+
+
 def translate(source: str) -> str:
-    """Python 2 print statements -> print() calls; everything else unchanged."""
+    """AUTO's shorthand lines -> calls; Python 2 print statements -> print() calls;
+    everything else unchanged."""
+    source = "".join(shorthand(ln[:len(ln.rstrip("\r\n"))]) + ln[len(ln.rstrip("\r\n")):]
+                     for ln in source.splitlines(keepends=True))
     lines = source.splitlines(keepends=True)
     try:
         tokens = list(tokenize.generate_tokens(io.StringIO(source).readline))
