@@ -50,6 +50,19 @@ def test_autos_shorthand_lines_become_calls(tmp_path, monkeypatch):
     assert Path("sub/here").exists()
 
 
+def test_diagnostic_queries_print_the_d_file_lines(tmp_path, monkeypatch, capsys):
+    # AUTO's ev/fl/hb/lp/bp/it/nt/sp/ss print the d-file lines with their word; plot3
+    # (AUTO's 3D viewer) notes that it draws nothing, and the script goes on.
+    monkeypatch.chdir(tmp_path)
+    Path("d.x").write_text("   1     2         Eigenvalue  1:  -1.0E+00\n"
+                           "   1     2 NOTE:Retrying step\n")
+    Path("q.auto").write_text("ev('x')\nnt('x')\np3('x')\nhb = 3\n")
+    ns = run_script("q.auto")
+    out = capsys.readouterr().out
+    assert "Eigenvalue  1" in out and "NOTE:Retrying" in out and "3D viewer" in out
+    assert out.count("Eigenvalue") == 1 and ns["hb"] == 3       # a name is still a name
+
+
 def test_unknown_command_names_it_and_the_line(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     Path("x.auto").write_text('print "start"\n\nfrobnicate("ab")\n')

@@ -574,6 +574,31 @@ def info(s):
     sys.stdout.write(s)
 
 
+def query_diagnostic(diagnostic: str, name=None) -> None:
+    """AUTO's queryDiagnostic: print the lines of d.NAME (fort.9 without a name) that
+    contain the word diagnostic."""
+    path = Path(f"d.{name}" if name else FORT[2])
+    if not path.exists():
+        raise AutoError(f"no diagnostics file {path}")
+    for line in path.read_text().splitlines():
+        if diagnostic in line:
+            print(line)
+    print()
+
+
+def _diagnostic(word: str, what: str):
+    def command(name=None):
+        query_diagnostic(word, name)
+    command.__name__ = what
+    command.__doc__ = f"Print the {what} lines of d.NAME (fort.9): AUTO's command of that name."
+    return command
+
+
+def plot3(name=None, **kw):
+    """AUTO's 3D viewer (plaut04) needs a display: headless runs note it and go on."""
+    print(f"plot3({name!r}): AUTO's 3D viewer is not part of washer; nothing drawn")
+
+
 #: Every command under AUTO's names and aliases.
 COMMANDS = {
     "run": run, "r": run, "rn": run, "load": load, "ld": load, "loadbd": loadbd, "bd": loadbd,
@@ -584,4 +609,14 @@ COMMANDS = {
     "solutionget": sl, "dg": dg, "diagramget": dg, "df": df, "deletefort": df, "wait": wait,
     "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
     "pl": plot, "p2": plot, "splabs": splabs, "info": info,
+    "plot3": plot3, "p3": plot3, "queryDiagnostic": query_diagnostic,
 }
+#: AUTO's diagnostic queries (AUTOCommands.py: branchpoint ... stepsize): the word each
+#: looks for in the d-file, and the command's names.
+DIAGNOSTICS = {"BP": ("branchpoint", "bp", "br"), "Eigenvalue": ("eigenvalue", "ev", "eg"),
+               "Mult": ("floquet", "fl"), "Hopf": ("hopf", "hp", "hb"),
+               "Iterations": ("iterations", "it"), "Fold": ("limitpoint", "lm", "lp"),
+               "NOTE": ("note", "nt"), "SPB": ("secondaryperiod", "sp", "sc"),
+               "Step": ("stepsize", "ss", "st")}
+COMMANDS.update({alias: _diagnostic(word, names[0])
+                 for word, names in DIAGNOSTICS.items() for alias in names})
