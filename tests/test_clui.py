@@ -50,6 +50,33 @@ def test_autos_shorthand_lines_become_calls(tmp_path, monkeypatch):
     assert Path("sub/here").exists()
 
 
+def test_delete_and_keep_labels_as_autos_dsp_ksp_dlb_klb(tmp_path, monkeypatch):
+    # AUTO's int demo b/s files: EP UZ UZ LP UZ UZ EP. dsp/ksp drop the type with the
+    # label, dlb/klb keep it on the row (AUTO's deleteLabel; outputs checked against
+    # AUTO-07p's on the ab equations: the same BR, PT, TY, LAB columns).
+    monkeypatch.chdir(tmp_path)
+    bd = _diagram("int", "int")
+    assert [x["TY"] for x in bd()] == ["EP", "UZ", "UZ", "LP", "UZ", "UZ", "EP"]
+    clui.save(bd, "x")
+
+    def rows(name):
+        return [(r.ty, r.lab) for b in Diagram.read(f"b.{name}") for r in b.rows if r.ty]
+
+    def types(name):
+        return [x["TY"] for x in Diagram.read(f"b.{name}", f"s.{name}")()]
+    clui.dsp("UZ", "x", "y")
+    assert types("y") == ["EP", "LP", "EP"] and len(clui.sl("y")) == 3
+    assert all(lab for ty, lab in rows("y"))                 # no UZ type left on a row
+    clui.ksp(["LP"], "x", "z")
+    assert types("z") == ["LP"]
+    clui.dlb(None, "x", "w")                                 # BP LP HB PD TR EP MX
+    assert types("w") == ["UZ"] * 4 and (5, 0) in rows("w") and (9, 0) in rows("w")
+    clui.klb(2, "x", "v")
+    assert [x["LAB"] for x in clui.sl("v")] == [2]
+    assert [x["TY"] for x in clui.dsp(bd, "UZ")()] == ["EP", "LP", "EP"]
+    assert [x["TY"] for x in clui.ksp(bd(), ["EP"])] == ["EP", "EP"]
+
+
 def test_diagnostic_queries_print_the_d_file_lines(tmp_path, monkeypatch, capsys):
     # AUTO's ev/fl/hb/lp/bp/it/nt/sp/ss print the d-file lines with their word; plot3
     # (AUTO's 3D viewer) notes that it draws nothing, and the script goes on.

@@ -30,7 +30,8 @@ from washer.auto.constants import DEFAULTS, Constants, ConstantsError, read_cons
 from washer.auto import diagram
 from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
                                         AutoError)
-from washer.auto.diagram import Diagram, Solution, SolutionList, read_solutions, type_name
+from washer.auto.diagram import (Diagram, Solution, SolutionList, label_selector, read_solutions,
+                                  type_name)
 from washer.atomic import save_figure
 
 #: Constants a solution taken from a run does not carry to the next run (bifDiag.nonekeys).
@@ -385,6 +386,48 @@ def _transform_files(name1, name2, how: str) -> None:
         new.write(name2)
 
 
+def _delete_labels(typenames, name1, name2, keep: bool, keep_type: bool):
+    """AUTO's deleteLabel: FUNC(x, list) returns a copy of the diagram or solution list
+    x; FUNC(list, 'xxx'[, 'yyy']) rewrites b./s.xxx (or writes b./s.yyy);
+    FUNC(list) works on fort.7/8."""
+    if isinstance(typenames, (Diagram, SolutionList)):
+        select = label_selector(name1)
+        if isinstance(typenames, Diagram):
+            return typenames.delete_labels(select, keep, keep_type)
+        return SolutionList(s for s in typenames if bool(select(s)) == keep)
+    select = label_selector(typenames)
+    src = _names(name1) if name1 else list(FORT)
+    new = Diagram.read(*src).delete_labels(select, keep, keep_type)
+    if name2 is None:
+        for p in src[:2]:
+            if os.path.exists(p):
+                shutil.copy(p, p + "~")
+        new.write(src)
+    else:
+        new.write(name2)
+    print("Deleting labels done" if not keep else "Keeping labels done")
+
+
+def dsp(typenames=None, name1=None, name2=None):
+    """Delete special points (default: BP LP HB PD TR EP MX), their types too."""
+    return _delete_labels(typenames, name1, name2, keep=False, keep_type=False)
+
+
+def ksp(typenames=None, name1=None, name2=None):
+    """Keep only the special points listed (default: BP LP HB PD TR EP MX)."""
+    return _delete_labels(typenames, name1, name2, keep=True, keep_type=False)
+
+
+def dlb(typenames=None, name1=None, name2=None):
+    """Delete labels (default: BP LP HB PD TR EP MX), keeping their types in the b-file."""
+    return _delete_labels(typenames, name1, name2, keep=False, keep_type=True)
+
+
+def klb(typenames=None, name1=None, name2=None):
+    """Keep only the labels listed, the others' types kept in the b-file."""
+    return _delete_labels(typenames, name1, name2, keep=True, keep_type=True)
+
+
 def relabel(name1=None, name2=None):
     """relabel(x): a copy of diagram x with labels 1, 2, ...; relabel('name'): the files."""
     if name1 is not None and not isinstance(name1, str):
@@ -610,6 +653,7 @@ COMMANDS = {
     "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
     "pl": plot, "p2": plot, "splabs": splabs, "info": info,
     "plot3": plot3, "p3": plot3, "queryDiagnostic": query_diagnostic,
+    "dsp": dsp, "ksp": ksp, "dlb": dlb, "klb": klb,
 }
 #: AUTO's diagnostic queries (AUTOCommands.py: branchpoint ... stepsize): the word each
 #: looks for in the d-file, and the command's names.

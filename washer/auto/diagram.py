@@ -346,6 +346,21 @@ def _selects(s: Solution, key, _lst) -> bool:
     return _match_type(k[0], s.rec.code) and k[1] is None
 
 
+#: The special points AUTO's dsp/ksp/dlb/klb mean without a list (deleteLabel).
+SPECIAL_TYPES = ("BP", "LP", "HB", "PD", "TR", "EP", "MX")
+
+
+def label_selector(typenames):
+    """AUTO's deleteLabel list as a predicate of a Solution: None (SPECIAL_TYPES), a
+    label number, a type name ('UZ'), a list of those, or a predicate itself."""
+    if typenames is None:
+        typenames = list(SPECIAL_TYPES)
+    if callable(typenames) and not isinstance(typenames, str):
+        return typenames
+    items = list(typenames) if isinstance(typenames, (list, tuple)) else [typenames]
+    return lambda sol: any(_selects(sol, k, None) for k in items)
+
+
 class Branch:
     """One branch of a b-file (AUTO's AUTOBranch): header lines, column titles, rows;
     labelled rows carry their Solution; `c` the constants of the run that made it."""
@@ -496,6 +511,26 @@ class Diagram(list):
             for i, r in nb.labelled():
                 r.lab = lab
                 lab += 1
+            out.append(nb)
+        return Diagram(out)
+
+    def delete_labels(self, select, keep: bool = False, keep_type: bool = False) -> "Diagram":
+        """A copy without the labels whose Solution `select` accepts (keep: without the
+        others): their rows lose the label and their s-records go; the type code stays on
+        the row only with keep_type (AUTO's dlb/klb, for plotting; dsp/ksp drop it)."""
+        out = []
+        mbr = max((abs(b.BR) for b in self), default=0)
+        mlab = max(self.getLabels() or [0])
+        for b in self:
+            nb = b.copy()
+            listed = {id(sol.row): sol for sol in b.solution_list(mbr, mlab)}
+            for i, r in nb.labelled():
+                sol = listed.get(id(b.rows[i]))
+                if sol is None or bool(select(sol)) != keep:
+                    r.lab = 0
+                    nb.solutions.pop(i, None)
+                    if not keep_type:
+                        r.ty = 0
             out.append(nb)
         return Diagram(out)
 
