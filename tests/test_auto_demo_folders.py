@@ -23,10 +23,10 @@ EXPECTED_FAIL = {
     "abcb": "20 of 22: the one-parameter cycle family of run 2 misses AUTO's LP and BP of "
             "cycles at PAR(1) = 0.3462, 0.3458",
     "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
-            "a degenerate end, AUTO ends with MX and a BP, ours with a BP and an LP",
-    "tfc": "12 of 18: run 5 misses the first of AUTO's two BPs of cycles (at a fold tip), "
-           "so run 6 cannot start from BP2; where the BP locus meets a fold AUTO's forward "
-           "run labels BP a little earlier, ours LP",
+            "a degenerate end, AUTO ends with MX and a BP, ours with two LPs",
+    "tfc": "15 of 18: run 5's first BP of cycles, a fold's tip, lies 3.8e-5 before AUTO's; "
+           "the iso-periodic BP locus turns back at that tip where AUTO labels BP; where the "
+           "BP locus meets a fold AUTO's forward run labels BP a little earlier, ours LP",
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
     "ops": "22 of 23: run 5's curve of extrema ends at a Hopf point, where AUTO stops (MX); "

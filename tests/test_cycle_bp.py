@@ -261,3 +261,23 @@ def test_adjoint_second_derivatives_both_ways():
         assert np.abs(got - want).max() <= 1e-7 * np.abs(want).max()
         got_p = field.fup_adjoint(U, Phi, par, 2)
         assert np.abs(got_p - want_p).max() <= 1e-7 * np.abs(want_p).max()
+
+
+def test_bp_test_of_cycles_takes_the_phase_condition_at_the_point(tmp_path):
+    """The BP test of periodic orbits borders the Jacobian whose phase row is taken at the
+    point itself (PeriodicOrbits._own_phase): the same matrix as the Jacobian after the
+    point became the phase reference, whatever the reference was before."""
+    import numpy as np
+    for f in DATA.iterdir():
+        shutil.copy(f, tmp_path)
+    run(tmp_path / "c.circlebp", verbose=False, sv="one")
+    sysm = _system(tmp_path, "c.circlebp", "one", IRS="UZ1", NTST=6)
+    x0 = sysm.start()[0]
+    x1 = x0.copy()
+    x1[:sysm.coll.n_u] *= 1.1                       # not the phase reference's profile
+    own = sysm._own_phase(x1).toarray()
+    U, par = sysm.unpack(x1)
+    sysm.set_phase_reference(U, par)
+    want = sysm.jacobian(x1).toarray()
+    assert np.abs(own - want).max() <= 1e-12 * np.abs(want).max()
+    assert np.abs(sysm._own_phase(x1, sysm.jacobian(x1)).toarray() - want).max() == 0

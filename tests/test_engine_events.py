@@ -185,3 +185,28 @@ def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
                                curve_type=0)
     assert tried[0] == Code.LPC and key == Code.LPC and same == []
     assert sp.x[0] == pytest.approx(0.1, abs=1e-8)
+
+
+def test_a_zero_of_high_order_is_located_where_the_test_has_vanished():
+    """At a zero of high order Muller's iteration only creeps (tfc's iso-periodic family:
+    a pitchfork of cycles at the tip of a fold, its BP test ~ the cube of the distance):
+    q(s) = (s - 0.3)^3 is not located to the tolerance within ITMX = 14, but its last
+    trial's q has fallen below ZERO_FACTOR times the step's end values, which places it
+    within (ZERO_FACTOR max|q|)^(1/3) of the zero: located there, not dropped."""
+    from types import SimpleNamespace
+
+    import washer.cont.events as events
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=14, DSMIN=1e-12)
+
+    def cubic(s):
+        return ("point", s), (s - 0.3) ** 3
+    q0, q1 = cubic(0.0)[1], cubic(1.0)[1]
+    pt, s = events.locate(cubic, "BP", q0, q1, 1.0, settings)
+    assert abs(s - 0.3) <= (events.ZERO_FACTOR * max(abs(q0), abs(q1))) ** (1 / 3)
+    saved = events.ZERO_FACTOR
+    try:
+        events.ZERO_FACTOR = 0.0              # the rule off: the location runs out of ITMX
+        with pytest.raises(events.LocationFailed, match="ITMX"):
+            events.locate(cubic, "BP", q0, q1, 1.0, settings)
+    finally:
+        events.ZERO_FACTOR = saved

@@ -68,6 +68,13 @@ def _priority(key) -> int:
 #: many times the test's change over the whole step is a jump of the test, not a zero.
 JUMP_FACTOR = 1e3
 
+#: A location that runs out of ITMX iterations with its last trial's test this far below
+#: its values at the ends of the step has found the zero: at a zero of high order
+#: Muller's iteration only creeps (tfc's iso-periodic family: a pitchfork of cycles at
+#: the tip of a fold, where the BP test goes as the cube of the distance and each trial
+#: gains a factor 3, from 1e-5 to 3e-11 in ITMX = 12).
+ZERO_FACTOR = 1e-6
+
 #: A located "zero" whose test value exceeds both bracketing values in
 #: magnitude is a sign change through a pole or a jump (e.g. the first
 #: Lyapunov coefficient through a zero eigenvalue), not a zero: rejected.
@@ -170,6 +177,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
     best = last = auto_nit = None
+    zero = False
     side = 0                  # which end moved last (Illinois: halve the stale end)
     for _ in range(max(settings.ITMX, 1)):
         try:
@@ -234,13 +242,17 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             # tolerance): ADPTDS then sees this trial's Newton count.
             auto_nit = getattr(pt, "iterations", None)
         s_new = cand
+    if best is None and last is not None and \
+            abs(last[2]) <= ZERO_FACTOR * max(abs(q_prev), abs(q_cur)):
+        best, zero = last, True        # crept onto a zero of high order: it is there
     if best is None:
         raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations")
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
     width = abs(hi - lo)
-    if 0 < width < 10 * tol and q_cur != q_prev and abs(raw["lo"] - raw["hi"]) / width > \
+    if not zero and 0 < width < 10 * tol and q_cur != q_prev and \
+            abs(raw["lo"] - raw["hi"]) / width > \
             JUMP_FACTOR * abs(q_cur - q_prev) / abs(s_cur):
         # The bracket closed on a jump, not a zero: the test changes across it as over
         # a step JUMP_FACTOR times longer (AUTO's Muller iteration, without a bracket,

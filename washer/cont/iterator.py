@@ -420,6 +420,13 @@ class Continuation:
                 pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it)
             else:
                 pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
+        elif key == Code.BPC:
+            # The first trial of a BP of a BVP too: bordered by prev's tangent, as the
+            # later ones, so that all trials evaluate one function (its own tangent,
+            # oriented along a secant to a Newton iterate that may have slipped onto
+            # the crossing branch, flipped the test's sign at abcb's BP of cycles).
+            x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent, s_)
+            pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it)
         else:
             pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)

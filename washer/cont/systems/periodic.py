@@ -342,11 +342,29 @@ class PeriodicOrbits(CollocationBVP):
 
         def bp():
             try:
-                return self.bp_function(J if J is not None else self.jacobian(x), tangent)
+                return self.bp_function(self._own_phase(x, J), tangent)
             except RuntimeError:
                 return None
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
                                       self.ndim, bp, floquet.spb_kinds(self.settings))
+
+    def _own_phase(self, x: np.ndarray, J=None):
+        """The Jacobian at x with its phase row taken at x itself (u'_old = T f(u(x)))
+        instead of at the previous point: the BP test is then a function of the point and
+        its tangent alone. With the previous point's reference its sign can differ at one
+        and the same point: a step across a sharp fold (tfc's iso-periodic family at
+        PAR(3) = 0.73608, a pitchfork whose side branch it is) moves u'_old far from
+        u'(x), and the test jumped where the reference changed."""
+        J = self.jacobian(x) if J is None else J
+        if not self.coll.has_pattern(J):
+            return J
+        U, par = self.unpack(x)
+        J = J.copy()
+        row = self.coll.n_coll + self.coll.nbc
+        pos = np.flatnonzero(J.indices == row)             # one entry per column, in order
+        up = self.period(par) * self.field.f(U, par)
+        J.data[pos] = np.r_[(self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)]
+        return J
 
     def located_code(self, key, point) -> int:
         """PD or TR for a zero of the combined test, as TPSPBV types the located point."""
