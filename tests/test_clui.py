@@ -74,6 +74,7 @@ def test_delete_and_keep_labels_as_autos_dsp_ksp_dlb_klb(tmp_path, monkeypatch):
     clui.klb(2, "x", "v")
     assert [x["LAB"] for x in clui.sl("v")] == [2]
     assert [x["TY"] for x in clui.dsp(bd, "UZ")()] == ["EP", "LP", "EP"]
+    assert clui.COMMANDS["bt"]("x").getLabels() == bd.getLabels()     # b. and s.x
     assert [x["TY"] for x in clui.ksp(bd(), ["EP"])] == ["EP", "EP"]
 
 
@@ -121,6 +122,13 @@ def test_a_run_not_done_says_why_in_its_d_file_and_the_script_goes_on(tmp_path, 
     for d in ("d.hom", "fort.9"):
         assert "run not done" in Path(d).read_text() and "IPS = 9" in Path(d).read_text()
     assert not Path("b.hom").exists() and len(clui._runner.refused) == 2
+
+
+def test_cn_reads_a_constants_file(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    shutil.copy(DEMOS / "ab" / "c.ab.1", tmp_path)
+    c = clui.cn("ab.1")
+    assert c["NDIM"] == 2 and c["ICP"] == [2] and c["DS"] is not None
 
 
 def test_constants_follow_autos_none_means_default():

@@ -312,6 +312,13 @@ def sl(name=None) -> SolutionList:
     return SolutionList(read_solutions(f"s.{name}" if name else "fort.8"))
 
 
+def cn(name=None) -> AutoConstants:
+    """AUTO's cn (constantsget): the constants of c.NAME (the runner's without a name)."""
+    if name is None:
+        return _runner.constants.copy()
+    return read_auto_constants(name)
+
+
 def dg(name=None) -> Diagram:
     """The bifurcation diagram of b.NAME alone."""
     return Diagram.read(f"b.{name}" if name else "fort.7")
@@ -653,7 +660,8 @@ COMMANDS = {
     "cat": cat, "ls": ls, "cd": cd, "shell": shell, "quit": quit, "q": quit, "plot": plot,
     "pl": plot, "p2": plot, "splabs": splabs, "info": info,
     "plot3": plot3, "p3": plot3, "queryDiagnostic": query_diagnostic,
-    "dsp": dsp, "ksp": ksp, "dlb": dlb, "klb": klb,
+    "dsp": dsp, "ksp": ksp, "dlb": dlb, "klb": klb, "cn": cn, "constantsget": cn,
+    "bt": loadbd, "diagramandsolutionget": loadbd,
 }
 #: AUTO's diagnostic queries (AUTOCommands.py: branchpoint ... stepsize): the word each
 #: looks for in the d-file, and the command's names.
