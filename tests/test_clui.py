@@ -131,6 +131,11 @@ def test_cn_reads_a_constants_file(tmp_path, monkeypatch):
     assert c["NDIM"] == 2 and c["ICP"] == [2] and c["DS"] is not None
 
 
+def test_homcont_constants_commands_change_the_runners_constants():
+    clui.COMMANDS["hch"]("IEQUIB", -1)
+    assert clui.COMMANDS["hpr"]("IEQUIB") == -1
+
+
 def test_constants_follow_autos_none_means_default():
     c = clui.AutoConstants(DS=0.02, NMX=40, e="ab", parnames={1: "a"})
     c["DS"] = "-"

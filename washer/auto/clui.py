@@ -662,6 +662,8 @@ COMMANDS = {
     "plot3": plot3, "p3": plot3, "queryDiagnostic": query_diagnostic,
     "dsp": dsp, "ksp": ksp, "dlb": dlb, "klb": klb, "cn": cn, "constantsget": cn,
     "bt": loadbd, "diagramandsolutionget": loadbd,
+    # HomCont's constants (h-file keys IEQUIB, NUNSTAB, ...) live with the others here
+    "hch": ch, "hpr": pr,
 }
 #: AUTO's diagnostic queries (AUTOCommands.py: branchpoint ... stepsize): the word each
 #: looks for in the d-file, and the command's names.
