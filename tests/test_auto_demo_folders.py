@@ -68,3 +68,27 @@ def test_demo_folder_matches_auto(demo, tmp_path):
     assert r.auto_points > 0
     assert r.matched == r.auto_points, (f"{demo}: {r.matched} of AUTO's {r.auto_points} "
                                         "special points matched:\n" + "\n".join(r.problems[:20]))
+
+
+def _readme_table():
+    """README's per-demo table: {demo: (matched, AUTO's)} and the total row's pair."""
+    import re
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    rows, total = {}, None
+    for line in text.splitlines():
+        m = re.match(r"\| (\*\*total\*\*|[a-z0-9]+) \|[^|]*\| (?:\*\*)?(\d+) / (\d+)", line)
+        if m and m[1] == "**total**":
+            total = (int(m[2]), int(m[3]))
+        elif m:
+            rows[m[1]] = (int(m[2]), int(m[3]))
+    return rows, total
+
+
+def test_readme_demo_table_agrees_with_folders_and_expected_failures():
+    """The table has a row per demo folder, its total is the sum of its rows, and the
+    demos it shows short of AUTO's count are exactly the expected failures."""
+    rows, total = _readme_table()
+    assert sorted(rows) == all_demos()
+    assert total == (sum(m for m, _ in rows.values()), sum(a for _, a in rows.values()))
+    assert sorted(d for d, (m, a) in rows.items() if m < a) == sorted(EXPECTED_FAIL)
