@@ -4,12 +4,21 @@ registry `washer.cont.system.SYSTEMS` (each module registers its classes).
 equilibrium  f(u, par) = 0 in one parameter (IPS = 0, 1; AUTO's FUNI)
 fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
 hopf         the Hopf locus in two parameters (ISW = 2 from HB; FNHB)
-branch_point the branch-point locus (ISW = 2 or 3 from BP; FNBP)
+branch_point the branch-point locus of algebraic problems (ISW = 2 or 3 from BP; FNBP)
+algebraic_optimisation
+             extrema of FOPT on f = 0 (IPS = 5; FNC1, FNC2)
 periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
 cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
 cycle_loci   the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR)
+cycle_bp     the locus of branch points of cycles (IPS = 2, ISW = 2 or 3; FNPBP)
 bvp          the collocation base of periodic orbits and their loci (registers nothing)
-general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching
+general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching, and
+             their fold locus (ISW = 2 from LP; FNBL)
+bvp_branch_point
+             the branch-point locus of general BVPs (IPS = 4, ISW = 2 or 3; FNBBP)
+periodic_optimisation
+             optimisation of periodic orbits (IPS = 15; FNPO, BCPS, ICPO)
+shooting     periodic orbits of a problem that supplies its period map (IPS = 2)
 maps         fixed points of maps (IPS = -1; FNDS), PD switching, fold/PD/NS loci
 timeint      time integration by implicit Euler steps (IPS = -2; FNTI)
 circles      invariant circles of maps (Fourier collocation), born at a Neimark-Sacker point;
