@@ -393,3 +393,37 @@ def test_washer_icp_outside_its_parameters_warns(tmp_path):
     with pytest.warns(UserWarning, match=r"c.w:3: ICP: PAR\(30\) is not a parameter of "
                                          r"e='washer'"):
         run(c, verbose=False)
+
+
+# ------------------------------------------------ restarts and ICP of the loci
+def test_icp_errors_name_the_icp_line(tmp_path):
+    c = read_constants(_c(tmp_path, "NDIM = 3\nIPS = 15\n\nICP = ['foo']\n"))
+    with pytest.raises(ConstantsError, match="unknown parameter 'foo'") as err:
+        c.icp()
+    assert str(err.value).startswith(f"{tmp_path / 'c.x'}:4:")
+    c = read_constants(_c(tmp_path, "NDIM = 3\nIPS = 15\nICP = [3, 11, 12, 22, -22, -22, -31]\n"))
+    with pytest.raises(ConstantsError, match=r"names the optimality condition -22 twice") as err:
+        c.icp()
+    assert str(err.value).startswith(f"{tmp_path / 'c.x'}:3:")
+
+
+def test_isw2_at_a_regular_label_names_the_labels_it_takes(tmp_path):
+    from washer.run import RunError, run
+    c = _ab(tmp_path)
+    run(c, verbose=False, sv="eq")
+    with pytest.raises(RunError, match=r"ISW=2 .* restart at an LP, HB, BP, PD or TR label, "
+                                       r"got EP \(IRS='EP1'\)") as err:
+        run(c, verbose=False, s="eq", sv="loc", IRS="EP1", ISW=2, ICP=[1, 2])
+    assert str(err.value).startswith(f"{c}:")
+
+
+def test_missing_system_lists_what_exists_for_that_ips():
+    """IPS = 5 has no ISW = 2 system: the refusal says what IPS = 5 does, not the
+    whole registry."""
+    import washer.cont.systems  # noqa: F401  (fills the registry)
+    from washer.cont.system import lookup
+    with pytest.raises(KeyError) as err:
+        lookup(5, 2, "LP")
+    msg = err.value.args[0]
+    assert "IPS=5, ISW=2 starting at 'LP'" in msg and "with IPS=5: ISW=1 from any point" in msg
+    assert "IPS=2" not in msg

@@ -414,11 +414,13 @@ class Constants(dict):
         return c
 
     # ----------------------------------------------------------------- names
-    def par_index(self, key) -> int:
+    def par_index(self, key, where: str | None = None) -> int:
         """1-based PAR index of an integer or a name (parnames, 'PERIOD' = 11);
-        a leading '-' on a name gives a negative index."""
+        a leading '-' on a name gives a negative index. `where` (file:line) names the
+        place in errors, else the constants' source."""
+        where = where or self.source
         if isinstance(key, bool):
-            raise ConstantsError(f"{self.source}: bad parameter index {key!r}")
+            raise ConstantsError(f"{where}: bad parameter index {key!r}")
         if isinstance(key, int):
             return key
         if isinstance(key, str):
@@ -431,7 +433,7 @@ class Constants(dict):
                     return int(i) * sign
             if re.fullmatch(r"PAR\(\d+\)", name):
                 return int(name[4:-1]) * sign
-        raise ConstantsError(f"{self.source}: unknown parameter {key!r}; parnames = "
+        raise ConstantsError(f"{where}: unknown parameter {key!r}; parnames = "
                              f"{self['parnames']}")
 
     def u_index(self, key) -> int:
@@ -447,8 +449,8 @@ class Constants(dict):
         optimisation of periodic solutions (IPS = 15) takes entries -(20 + k), k = 1..11:
         the optimality condition of PAR(k), whose value PAR(20 + k) is fixed (AUTO's
         AUTOOP, optimization.f90)."""
-        out = [self.par_index(k) for k in self["ICP"]]
         where = self.given.get('ICP', self.source)
+        out = [self.par_index(k, where) for k in self["ICP"]]
         for k, i in zip(self["ICP"], out):
             if i < 1 and self["IPS"] == 15 and -31 <= i <= -21:
                 continue
@@ -464,7 +466,8 @@ class Constants(dict):
         seen: dict[int, object] = {}
         for k, i in zip(self["ICP"], out):
             if i in seen:
-                raise ConstantsError(f"{where}: ICP = {self['ICP']} names PAR({i}) twice "
+                what = f"PAR({i})" if i > 0 else f"the optimality condition {i}"
+                raise ConstantsError(f"{where}: ICP = {self['ICP']} names {what} twice "
                                      f"({seen[i]!r} and {k!r}): each free parameter once")
             seen[i] = k
         return out

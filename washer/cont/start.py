@@ -159,7 +159,8 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
                          f"(IRS={irs!r})")
     if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
         raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart "
-                         f"at an LP or HB label, got {kind or 'a regular point'} (IRS={irs!r})")
+                         f"at an LP, HB, BP, PD or TR label, got {kind or 'a regular point'} "
+                         f"(IRS={irs!r})")
     if s.ISW == 3 and kind not in ("BP", "BP-curve", "BPC-curve"):
         raise RunError(f"{c.source}: ISW=3 continues the branch points of a generic problem: "
                        f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")

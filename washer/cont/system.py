@@ -218,6 +218,9 @@ def lookup(ips: int, isw: int, kind: str):
     for key in ((ips, isw, kind), (ips, isw, "*")):
         if key in SYSTEMS:
             return SYSTEMS[key]
-    known = ", ".join(f"IPS={i} ISW={w} from {k}" for i, w, k in sorted(SYSTEMS, key=str))
+    # What exists for this IPS (the whole registry is a page long).
+    same = sorted(((w, k) for i, w, k in SYSTEMS if i == ips), key=str)
+    known = ", ".join(f"ISW={w} from {'any point' if k == '*' else k}" for w, k in same) \
+        or "none"
     raise KeyError(f"no continued system for IPS={ips}, ISW={isw} starting at "
-                   f"'{kind or 'a regular point'}' (implemented: {known})")
+                   f"'{kind or 'a regular point'}' (with IPS={ips}: {known})")
