@@ -68,6 +68,15 @@ class AlgebraicSystem:
         return (x,) + vectors
 
     # ------------------------------------------------------------- tests
+    def active_tests(self) -> list:
+        """LP and BP where the constants detect them (a system with more tests, or
+        other ones, says so itself)."""
+        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
+                if self.settings.detects(name)]
+
+    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
+        return self._lp_bp(tangent, factor, codes)
+
     def _lp_bp(self, tangent, factor, codes) -> dict:
         out = {}
         if Code.LP in codes:

@@ -226,14 +226,6 @@ class AlgebraicOptimisation(AlgebraicSystem):
     def stability(self, x, J):
         return None
 
-    def active_tests(self) -> list:
-        from washer.auto.codes import Code
-        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
-                if self.settings.detects(name)]
-
-    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
-        return self._lp_bp(tangent, factor, codes)
-
     def solution(self, x, tangent) -> Solution:
         """The b-row (L2 norm of u, U(i)) and the record: AUTO's internal U, its
         direction, RLDOT = d PAR(ICP(1..NFPR)) / ds."""

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.auto.codes import Code
 from washer.cont.linalg import null_vectors
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems._loci import LocusSystem
@@ -154,14 +153,6 @@ class BranchPointLocus(LocusSystem):
 
     def update(self, x, tangent):
         """Nothing moves along the locus."""
-
-    # ------------------------------------------------------------------ tests
-    def active_tests(self) -> list:
-        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP))
-                if self.settings.detects(name)]
-
-    def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
-        return self._lp_bp(tangent, factor, codes)
 
     # ------------------------------------------------------------------ output
     def solution(self, x, tangent) -> Solution:
