@@ -32,6 +32,8 @@ c.washer* (NTST, DS, DSMAX, EPS*, NMX, THU, UZSTOP unchanged):
   washer_fig3     the equilibrium branch in C_p from 0 to the UZ at 0.5 (c.washer, NDIM 12)
   washer_fig4     its Hopf curve from HB1 in (C_p, Omega) to the UZ at Omega = 15 Hz
                   (c.washer.hopf.Omega; AUTO's rows include the GH points it locates)
+  washer_fig4_isp0  the same with ISP = 0 on both sides: no test functions (no first
+                  Lyapunov coefficient, no GH location), the continuation alone
   washer_whirl    the whirl's periodic orbits from HB1 to C_p = 0 (c.washer.po, NTST 30)
 The ratio to read for the washer is us per point on the same stretch of curve: point
 counts differ a little (step control, located special points).
@@ -101,6 +103,9 @@ WASHER_CASES = [
     Case("washer_fig4", [Step("washer", "washer", "washer", timed=False),
                          Step("hopf", "washer.hopf.Omega", "washer", start="washer", irs="HB1")],
          WASHER_FILES),
+    Case("washer_fig4_isp0", [Step("washer", "washer", "washer", timed=False),
+                              Step("hopf", "washer.hopf.Omega", "washer", start="washer",
+                                   irs="HB1", ov=dict(ISP=0))], WASHER_FILES),
     Case("washer_whirl", [Step("washer", "washer", "washer", timed=False),
                           Step("po", "washer.po", "washer", start="washer", irs="HB1")],
          WASHER_FILES),
