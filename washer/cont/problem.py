@@ -40,8 +40,8 @@ and third derivatives of the first Lyapunov coefficient) is evaluated as one
 batched call, so a compiled right-hand side pays the Python overhead once per
 stencil, not once per point. With `dfdu_batch` and `dfdp_batch` (JAC = 1) the second
 derivatives of the fold and Hopf loci are differences of those analytic Jacobians
-along the few vectors they are needed on (2 Jacobians per vector), not second
-differences of f (4 (NDIM + 2) values of f per vector).
+along the few vectors they are needed on (1 Jacobian per vector, forward from the point's
+own), not second differences of f (4 (NDIM + 2) values of f per vector).
 """
 from __future__ import annotations
 
@@ -61,10 +61,12 @@ FD_STEP = 1e-7
 VECTORISE_MIN = 12
 #: Step of the second-derivative stencils, about eps^(1/4) (see second_derivatives).
 SECOND_STEP = 1.2e-4
-#: Step of the central differences of analytic Jacobians (second_derivatives with
-#: dfdu_batch and dfdp_batch), about eps^(1/3): truncation h^2 |f_uuuu| / 6 and
-#: rounding eps |f_u| / h both ~1e-11 relative.
-JACOBIAN_STEP = 6e-6
+#: Step of the forward differences of analytic Jacobians (second_derivatives with
+#: dfdu_batch and dfdp_batch): truncation h |f_uuu| / 2 ~1e-7 relative, rounding
+#: eps |f_u| / h ~1e-9 |f_u| / |f_uu| (~1e-7 on the stiff washer, where |f_u| is ~100
+#: times |f_uu|). The loci's Newton matrices need no more; central differences would
+#: give 1e-11 for twice the Jacobians.
+JACOBIAN_STEP = 1e-7
 
 
 class ProblemError(RuntimeError):
@@ -446,27 +448,28 @@ class Problem:
     def _second_from_jacobians(self, u, par, ws, par_indices) -> np.ndarray:
         """second_derivatives from batched analytic Jacobians (dfdu_batch, dfdp_batch,
         JAC = 1): f_zz[e_s, w] = d/de of column s of [f_u, f_PAR(par_indices)] at
-        (u + e w, par), central differences with step JACOBIAN_STEP (1 + max|u|) / max|w|,
-        the 2 len(ws) points in one batched call of each. Shape (n + q, m, n)."""
+        (u + e w, par), forward differences with step JACOBIAN_STEP (1 + max|u|) / max|w|
+        from the Jacobians at (u, par) themselves (dfdu, dfdp: the loci ask for them at the
+        same point first, so a problem that remembers its last point computes them once),
+        the len(ws) points in one batched call of each. Shape (n + q, m, n)."""
         n, m = self.ndim, len(ws)
         k = JACOBIAN_STEP * (1 + np.max(np.abs(u))) / np.maximum(np.max(np.abs(ws), axis=1),
                                                                    1e-300)
-        kw = k[:, None] * ws
-        us = np.concatenate((u + kw, u - kw))
-        pars = np.repeat(par[None, :], 2 * m, axis=0)
+        us = u + k[:, None] * ws
+        pars = np.repeat(par[None, :], m, axis=0)
         fu = self._call(self._dfdu_batch, "dfdu_batch", us, pars)
         fp = self._call(self._dfdp_batch, "dfdp_batch", us, pars)
         q = max(par_indices, default=0)
-        if fu.shape != (2 * m, n, n) or fp.ndim != 3 or fp.shape[:2] != (2 * m, n) \
-                or fp.shape[2] < q:
+        if fu.shape != (m, n, n) or fp.ndim != 3 or fp.shape[:2] != (m, n) or fp.shape[2] < q:
             raise ProblemError(f"{self.name}: dfdu_batch, dfdp_batch returned shapes "
-                               f"{fu.shape}, {fp.shape}, expected ({2 * m}, {n}, {n}) and "
-                               f"({2 * m}, {n}, >= {q})")
+                               f"{fu.shape}, {fp.shape}, expected ({m}, {n}, {n}) and "
+                               f"({m}, {n}, >= {q})")
         D = np.concatenate((fu, fp[:, :, [i - 1 for i in par_indices]]), axis=2)
         if not np.all(np.isfinite(D)):
             raise ProblemError(f"{self.name}: dfdu_batch or dfdp_batch returned non-finite "
                                "values")
-        T = (D[:m] - D[m:]) / (2 * k[:, None, None])          # (m, n, n + q): [k, i, s]
+        base = np.hstack((self.dfdu(u, par), self.dfdp(u, par, par_indices)))
+        T = (D - base) / k[:, None, None]                      # (m, n, n + q): [k, i, s]
         return np.transpose(T, (2, 0, 1))
 
     def pvls(self, u, par) -> np.ndarray:
