@@ -281,3 +281,20 @@ def test_bp_test_of_cycles_takes_the_phase_condition_at_the_point(tmp_path):
     want = sysm.jacobian(x1).toarray()
     assert np.abs(own - want).max() <= 1e-12 * np.abs(want).max()
     assert np.abs(sysm._own_phase(x1, sysm.jacobian(x1)).toarray() - want).max() == 0
+
+
+def test_pvls_on_the_locus_receives_the_orbit(tmp_path):
+    """On the BP locus of cycles the user's pvls receives what it receives on the
+    periodic branch: an Orbit with GETP's helpers. PAR(5) = u.norm(1), the L2 norm of
+    x(t) = r cos(2 pi t) over the period, is r / sqrt(2), r = MAX U(1) (1 on the family,
+    p1 on the locus); the collocation's quadrature is exact for its piecewise
+    polynomials, so the norm is as exact as the circle itself (TOL)."""
+    for f in DATA.iterdir():
+        shutil.copy(f, tmp_path)
+    with open(tmp_path / "circlebp.py", "a") as fh:
+        fh.write("\n\ndef pvls(u, par):\n    par[4] = u.norm(1)\n")
+    one = run(tmp_path / "c.circlebp", verbose=False, sv="one")
+    gen = run(tmp_path / "c.circlebp.loc", verbose=False, sv="gen", restart=one)
+    assert gen.status == "ok" and len(gen.rows) == 5
+    for row in one.rows + gen.rows:
+        assert row.par[4] == pytest.approx(row.values[2] / math.sqrt(2), abs=TOL)

@@ -29,6 +29,7 @@ from washer.cont import collocation as col
 from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.problem import FD_STEP
+from washer.cont.pvls import Orbit
 from washer.cont.system import Solution
 
 #: Relative step of the mixed second differences of f (eps^(1/4)).
@@ -213,6 +214,21 @@ class CollocationBVP:
 
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
+
+    def pvls_params(self, U: np.ndarray, par: np.ndarray, period: float, multipliers=None,
+                    problem=None) -> np.ndarray:
+        """PAR after the user's PVLS on the node values U (NTPL, k) (AUTO's PVLSBV), a copy;
+        par itself without one. Every system on this base passes the same thing: a
+        `washer.cont.pvls.Orbit` with this mesh, the period and GETP's helpers (a compiled
+        PVLS's GETP then integrates on the adapted mesh). `multipliers`: the Floquet
+        multipliers or a callable giving them (GETP's EIG, STA), else None; `problem`:
+        whose pvls (default the system's problem)."""
+        problem = self.problem if problem is None else problem
+        if not getattr(problem, "has_pvls", False):
+            return par
+        orbit = Orbit.of(U, self.mesh.node_times(), self.coll.w_node, period, self.mesh.ntst,
+                         self.mesh.ncol, multipliers)
+        return problem.pvls(orbit, par)
 
     @property
     def n_state(self) -> int:

@@ -253,9 +253,7 @@ class _CycleLocus(CollocationBVP):
 
     def params(self, x):
         W, par = self.unpack(x)
-        if getattr(self.problem, "has_pvls", False):
-            par = self.problem.pvls(W[:, :self.n], par)
-        return par
+        return self.pvls_params(W[:, :self.n], par, par[10])
 
     def stability(self, x, J=None):
         """No stability on ISW = 2 curves (AUTO writes PT > 0 there)."""

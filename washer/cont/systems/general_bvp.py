@@ -43,7 +43,6 @@ import numpy as np
 
 from washer.auto.codes import Code
 from washer.cont import collocation as col
-from washer.cont.pvls import Orbit
 from washer.cont.problem import Problem
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
@@ -274,11 +273,7 @@ class BoundaryValueProblem(CollocationBVP):
 
     def params(self, x):
         U, par = self.unpack(x)
-        if getattr(self.problem, "has_pvls", False):
-            orbit = Orbit.of(U, self.mesh.node_times(), self.w_node, par[10] if len(par) > 10
-                             else 0.0, self.mesh.ntst, self.mesh.ncol, None)
-            par = self.problem.pvls(orbit, par)
-        return par
+        return self.pvls_params(U, par, par[10] if len(par) > 10 else 0.0)
 
     def start(self):
         x0 = self._start[0]

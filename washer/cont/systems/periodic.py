@@ -54,7 +54,6 @@ if TYPE_CHECKING:                  # annotations only; imported where used
 
 from washer.cont import collocation as col
 from washer.cont import floquet
-from washer.cont.pvls import Orbit
 from washer.auto.codes import Code
 from washer.cont.system import Solution, Stability, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
@@ -265,14 +264,11 @@ class PeriodicOrbits(CollocationBVP):
         bv0, bv1, the multipliers and the stable count, computed on first use; None
         with ISP = 0)."""
         U, par = self.unpack(x)
-        if getattr(self.problem, "has_pvls", False):
-            def multipliers():
-                st = self.stability(x) if self.settings.ISP != 0 else None
-                return None if st is None else st.values
-            orbit = Orbit.of(U, self.mesh.node_times(), self.coll.w_node, self.period(par),
-                             self.mesh.ntst, self.mesh.ncol, multipliers)
-            par = self.problem.pvls(orbit, par)
-        return par
+
+        def multipliers():
+            st = self.stability(x) if self.settings.ISP != 0 else None
+            return None if st is None else st.values
+        return self.pvls_params(U, par, self.period(par), multipliers)
 
     def update(self, x: np.ndarray, tangent: np.ndarray) -> None:
         """CONTBV's STUPBV: the accepted profile becomes the phase condition's

@@ -50,7 +50,6 @@ from __future__ import annotations
 import numpy as np
 
 from washer.cont.problem import FD_STEP, Problem
-from washer.cont.pvls import Orbit
 from washer.cont.system import StartData, register
 from washer.cont.systems.bvp import H2, VectorField, stored_profile
 from washer.cont.systems.general_bvp import BoundaryValueProblem
@@ -253,11 +252,7 @@ class PeriodicOptimisation(BoundaryValueProblem):
     def params(self, x):
         """PAR at x, with the user's PVLS applied (on the whole profile W, as AUTO's)."""
         U, par = self.unpack(x)
-        if self.user.has_pvls:
-            orbit = Orbit.of(U, self.mesh.node_times(), self.w_node, par[10], self.mesh.ntst,
-                             self.mesh.ncol, None)
-            par = self.user.pvls(orbit, par)
-        return par
+        return self.pvls_params(U, par, par[10], problem=self.user)
 
 
 def _without_direction(rec):
