@@ -20,8 +20,7 @@ FAST = {"frc", "lrz", "lor", "chu", "opt"}
 
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
-    "abcb": "16 of 22: run 4's BP of cycles (test ~1e-14) is taken for a jump, so run 5 "
-            "cannot start; run 2 misses AUTO's LP and BP at its tip PAR(1) = 0.3462",
+    "abcb": "20 of 22: run 2 misses AUTO's LP and BP at its tip PAR(1) = 0.3462",
     "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
             "a degenerate end, AUTO ends with MX and a BP, ours with a UZ and MX",
     "tfc": "15 of 18: run 5's first BP of cycles, a fold's tip, lies 3.8e-5 before AUTO's; "

@@ -315,12 +315,17 @@ class Continuation:
         return orient(t, len(t) - 1, self.s.EPSL, x[-1])
 
     # ----------------------------------------------------------- evaluation
-    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
+    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0,
+                 exact: bool = False) -> Point:
         """A converged point: tangent, stability and the test values `keys`
-        (all active tests and UZ values when None)."""
+        (all active tests and UZ values when None). exact: the Jacobian evaluated at x
+        itself, never the corrector's last one (location trials: their test values
+        decide the bracket, and a test near its rounding level, abcb's BP of cycles at
+        ~1e-14, changes sign with the ~1e-9 difference between the two)."""
         reuse = self._newton_J
         self._newton_J = None
-        J = reuse[1] if reuse is not None and reuse[0] is x else self._jacobian(x)
+        J = reuse[1] if reuse is not None and reuse[0] is x and not exact \
+            else self._jacobian(x)
         if tangent is None:
             t, factor = self.tangent(J, ref)
         else:
@@ -349,10 +354,10 @@ class Continuation:
         return out
 
     # ----------------------------------------------------------------- step
-    def _step(self, p: Point, ds, keys=None):
+    def _step(self, p: Point, ds, keys=None, exact: bool = False):
         """The continuation step of arclength ds from p (predictor + corrector)."""
         x, it = self.correct(p.x + ds * p.tangent, p.x, p.tangent, ds)
-        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it)
+        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it, exact=exact)
 
     def _retrying_step(self, p: Point, ds):
         """AUTO's STEPAE: on failure halve the step and retry, until below DSMIN.
@@ -417,18 +422,20 @@ class Continuation:
                 # A branch point's test is a determinant of the Jacobian bordered by a
                 # direction: the same one, prev's tangent, at every trial, so that its
                 # values along the location are one function.
-                pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it)
+                pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it,
+                                   exact=True)
             else:
-                pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
+                pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it, exact=True)
         elif key == Code.BPC:
             # The first trial of a BP of a BVP too: bordered by prev's tangent, as the
             # later ones, so that all trials evaluate one function (its own tangent,
             # oriented along a secant to a Newton iterate that may have slipped onto
             # the crossing branch, flipped the test's sign at abcb's BP of cycles).
             x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent, s_)
-            pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it)
+            pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it,
+                               exact=True)
         else:
-            pt = self._step(prev, s_, keys=[key])
+            pt = self._step(prev, s_, keys=[key], exact=True)
         return pt, pt.tests.get(key)
 
     def _accepted(self, key, prev, cur) -> bool:
