@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 
+from washer.auto.codes import Code
 from washer.cont import collocation as col
 from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
@@ -355,6 +356,23 @@ class CollocationBVP:
         M_R = M[nc:]
         Sc = M_R[:, cols_S].toarray() - M_R[:, cols_I] @ X
         return Sc, X
+
+    def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
+        """The fold (LPC: the PAR(ICP(1))-component of the tangent) and branch-point
+        (BPC: `bp_function`) tests of a BVP's branch, AUTO's FNLPBV and FNBPBV; None where
+        there is no tangent yet or the reduced matrix could not be factorised. Systems
+        with other tests (cycles: PD, TR) define their own."""
+        codes = self.active_tests() if codes is None else [int(c) for c in codes]
+        out = {}
+        if Code.LPC in codes:
+            out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
+        if Code.BPC in codes:
+            try:
+                out[int(Code.BPC)] = None if tangent is None else self.bp_function(
+                    J if J is not None else self.jacobian(x), tangent)
+            except RuntimeError:
+                out[int(Code.BPC)] = None
+        return out
 
     def bp_function(self, J, tangent: np.ndarray) -> float:
         """The BP test of BVPs: det of the bordered Jacobian reduced onto the boundary

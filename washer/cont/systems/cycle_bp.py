@@ -347,19 +347,6 @@ class CycleBranchPointLocus(CollocationBVP):
             out.append(int(Code.BPC))
         return out
 
-    def test_functions(self, x, tangent, J, stability, factor, codes=None) -> dict:
-        codes = self.active_tests() if codes is None else [int(c) for c in codes]
-        out = {}
-        if Code.LPC in codes:
-            out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
-        if Code.BPC in codes:
-            try:
-                out[int(Code.BPC)] = None if tangent is None else self.bp_function(
-                    J if J is not None else self.jacobian(x), tangent)
-            except RuntimeError:
-                out[int(Code.BPC)] = None
-        return out
-
     def accept(self, code, prev, cur) -> bool:
         return True
 
