@@ -115,6 +115,10 @@ def _corrupt(tmp_path, edit) -> Path:
      "the parameters PAR(1..NPAR) should hold 11 numbers"),
     (lambda L: "".join(L).encode()[:300] + b"\xff\xfe" + "".join(L).encode()[300:], 6,
      "not UTF-8"),
+    (lambda L: [L[0].replace("   11    0    2", "   11   12    2")] + L[1:], 1,
+     "NPARI = 12, expected 0..NPAR = 11"),
+    (lambda L: [L[0].replace("   11    0    2", "   11   -1    2")] + L[1:], 1,
+     "NPARI = -1, expected 0..NPAR = 11"),
 ])
 def test_corrupt_s_files_are_clear_errors(tmp_path, edit, line, message):
     p = _corrupt(tmp_path, edit)

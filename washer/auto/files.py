@@ -604,6 +604,9 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
         if value < low:
             raise AutoFileError(f"{where}: header field {name} = {value}, expected >= {low}")
     npari = h[12] if len(h) > 12 else 0
+    if not 0 <= npari <= npar:
+        raise AutoFileError(f"{where}: header field NPARI = {npari}, expected 0..NPAR = {npar} "
+                            "(the internal parameters among the NPAR stored)")
     ndim_user = h[13] if len(h) > 13 else nar - 1
     ips = h[14] if len(h) > 14 else 1
     if i + 1 + nrowpr > len(lines):
