@@ -12,6 +12,7 @@ Compared, per point located by a condition (not by the step history):
   to 1e-5 relative (2 pi / Im(lambda) at C_p within that bound);
 * every labelled point of AUTO's Hopf curve is a Hopf point of washer's equations:
   washer's f(u, p) ~ 0 and washer's f_u(u, p) has the eigenvalue pair +-i 2 pi / PAR(11).
+* the frozen frame (c.washer.frozen, AUTO's user file built with frame='frozen'): the HB.
 Needs the installed AUTO-07p (`auto-07p`, Debian's package) and a C/C++ compiler;
 building the kernel's objects takes a minute or two the first time (cached).
 """
@@ -123,3 +124,23 @@ def test_autos_hopf_curve_points_are_hopf_points_of_washers_equations(runs):
         k = np.argmin(np.abs(lam - 1j * omega))
         # Newton's EPSL, EPSU 1e-7 relative, times a condition number of ~10
         assert abs(lam[k] - 1j * omega) <= 1e-6 * omega, (r.lab, lam[k], omega)
+
+
+def test_frozen_frame_hopf_point_agrees(tmp_path):
+    """frame='frozen' (e='washer:frozen'): AUTO's HB in C_p is washer's."""
+    for name in ("auto", "washer"):
+        (tmp_path / name).mkdir()
+        shutil.copy(CONSTANTS / "c.washer.frozen", tmp_path / name / "c.washer.frozen")
+    d = tmp_path / "auto"
+    auto07p.build_executable(d, frame="frozen", name="washer_frozen")
+    (d / "frozen.auto").write_text("run(e='washer_frozen', c='washer.frozen', sv='frozen')\n")
+    r = subprocess.run(["auto-07p", "frozen.auto"], cwd=d, capture_output=True, text=True,
+                       env=dict(os.environ, OMP_NUM_THREADS="1"), stdin=subprocess.DEVNULL,
+                       timeout=600)
+    assert r.returncode == 0 and (d / "s.frozen").exists(), (r.stdout + r.stderr)[-3000:]
+    run(tmp_path / "washer" / "c.washer.frozen", verbose=False)
+    a = located(read_s(d / "s.frozen"), "HB")
+    w = located(read_s(tmp_path / "washer" / "s.washer.frozen"), "HB")
+    tol = 2 * guarantee(w.par[0], 1e-5, 1e-7, 0.01, 0.05)     # c.washer.frozen's constants
+    assert abs(a.par[0] - w.par[0]) <= tol, (a.par[0], w.par[0], tol)
+    assert a.par[10] == pytest.approx(w.par[10], rel=1e-5)
