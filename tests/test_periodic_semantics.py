@@ -209,6 +209,51 @@ def pvls(u, par):
     assert uz[0].par[17] == 4             # all inside: 1, exp(-2), the pair at exp(-0.2)
 
 
+FOLDC = """import math
+import numpy as np
+
+
+def func(u, par):
+    x, y = u
+    r = math.sqrt(x * x + y * y)
+    g = par[0] + par[1] - (r - 1) ** 2
+    return np.array([x * g - y, y * g + x])
+
+
+def stpnt(u, par, t=0.0):
+    par[0], par[1], par[10] = 0.25, 0.0, 2 * math.pi
+    u[0], u[1] = 1.5 * math.cos(2 * math.pi * t), 1.5 * math.sin(2 * math.pi * t)
+
+
+def pvls(u, par):
+    par[4] = u.norm(1) + par[1]
+"""
+
+
+def test_pvls_runs_on_the_fold_locus_of_cycles(tmp_path):
+    """Circles r' = r ((p1 + p2) - (r - 1)^2), theta' = 1: r = 1 +- sqrt(p1 + p2), folding
+    at r = 1 on p1 + p2 = 0 (period 2 pi). The fold locus of cycles calls the user's pvls
+    at every point, as periodic branches do (AUTO's PVLSBV): PAR(5) = u.norm(1) + PAR(2) =
+    1 / sqrt(2) + PAR(2) along the locus, not the restart's value carried along. r = 1
+    within the corrector's tolerance (EPSU = 1e-7 relative; measured 3e-9)."""
+    (tmp_path / "foldc.py").write_text(FOLDC)
+    c = tmp_path / "c.foldc"
+    c.write_text("e = 'foldc'\nNDIM = 2, IPS = 2, IRS = 0, ILP = 1\nICP = [1, 11]\n"
+                 "NTST = 20, NCOL = 4, ISP = 2, NMX = 40, NPR = 100, NPAR = 12\n"
+                 "DS = -0.02, DSMIN = 0.0001, DSMAX = 0.05\n")
+    one = run(c, verbose=False, sv="one")
+    assert [r.ty for r in one.rows if r.lab] == ["EP", "LP", "EP"]
+    gen = run(c, verbose=False, sv="gen", restart=one, IRS="LP1", ISW=2, ICP=[1, 2, 11],
+              DS=0.02)
+    loc = run(c, verbose=False, sv="loc", restart=gen, IRS=gen.rows[-1].lab, ISW=2,
+              ICP=[1, 2, 11], NMX=10, DS=0.05)
+    assert loc.status == "ok" and len(loc.rows) == 10
+    assert loc.rows[-1].par[1] < -0.3                       # PAR(2) moved along the locus
+    for row in loc.rows:
+        assert row.par[0] + row.par[1] == pytest.approx(0.0, abs=1e-7)
+        assert row.par[4] == pytest.approx(1 / math.sqrt(2) + row.par[1], abs=1e-7)
+
+
 def test_rotations_have_the_exact_period(tmp_path):
     """tests/data/rotor: U(1) = theta grows by 2 pi per period (AUTO's rotations: NRTN = 1
     from the start profile, u(0) - u(1) + 2 pi NRTN = 0 in the boundary conditions).

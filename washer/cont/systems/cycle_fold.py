@@ -200,7 +200,7 @@ class CycleFoldLocus(CollocationBVP):
 
     def params(self, x):
         u, v, par, beta = self.unpack(x)
-        return par
+        return self.pvls_params(u, par, par[10])
 
     def stability(self, x, J=None):
         return None
@@ -227,9 +227,9 @@ class CycleFoldLocus(CollocationBVP):
     def solution(self, x, tangent) -> Solution:
         """b-row columns of u; the record stores W = (u, v) and PAR with AUTO's NPARI = 2
         internal parameters (beta, c) appended."""
-        u, v, par, beta = self.unpack(x)
+        beta = self.unpack(x)[3]
         return self.bvp_solution(
-            x, tangent, np.r_[par, beta, self.norm_constant(x)],
+            x, tangent, np.r_[self.params(x), beta, self.norm_constant(x)],
             lambda t: [float(t[-1]), float(t[-4]), float(t[-3]), float(t[-2])])
 
     def directions(self, x, tangent, code) -> list:
