@@ -27,8 +27,6 @@ import shutil
 import subprocess
 from pathlib import Path
 
-import numpy as np
-
 from washer.machine import kernel, layout
 from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params
 
