@@ -58,6 +58,21 @@ def test_a_located_point_at_nmx_or_outside_the_window_is_the_end_point(ab):
     assert beyond.rows[-1].values[0] == pytest.approx(0.1)
 
 
+def test_a_uz_at_the_window_edge_is_inside(ab):
+    """A UZ on PAR(ICP(1)) at RL1 itself lies at its value, inside the closed window,
+    whichever side of it the located point fell within the location tolerance (AUTO's
+    nag demo: UZR 1.0 with RL1 = 1.0, written UZ and the next point EP): the UZ keeps its
+    type and the branch ends at the next point. With EPSS = 1e-2 the UZ at 0.105 is
+    located 1.4e-5 beyond it, within the location tolerance 1e-2 (1 + sqrt(DS DSMAX))."""
+    res = run(ab, verbose=False, UZR={1: 0.105}, RL1=0.105, EPSS=1e-2, DS=0.05,
+              DSMAX=0.05, NMX=40, ISP=0, ILP=0)
+    labelled = [r for r in res.rows if r.lab]
+    assert [r.ty for r in labelled][-2:] == ["UZ", "EP"]
+    uz, ep = labelled[-2:]
+    assert 0.105 < uz.values[0] < 0.105 + 1e-2 * (1 + 0.05)
+    assert abs(ep.pt) == abs(uz.pt) + 1
+
+
 def test_thu_reweights_the_step(ab):
     # U(2) dominates ab's arclength at the start; weighted down, the same
     # number of steps of the same DS covers more of the parameter.

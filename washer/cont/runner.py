@@ -126,7 +126,16 @@ class _Executor:
                         and self.n_bp < abs(self.s.MXBF):
                     self.n_bp += 1
                     self.bp_queue.append((p.x.copy(), p.tangent.copy()))
-                if self._ends_here(p, pt):
+                lam = None
+                if base == Code.UZ and isinstance(step.key, tuple):
+                    i, v, _ = self.s.UZR[step.key[1]]
+                    if i == self.s.ICP[0]:
+                        # A UZ on PAR(ICP(1)) is at its value v (the located point only
+                        # within the location tolerance of it): a UZ at RL1 itself, as
+                        # nag's UZR = 1 with RL1 = 1, is inside the window, as AUTO
+                        # writes it (its next point ends the branch).
+                        lam = v
+                if self._ends_here(p, pt, lam):
                     # AUTO's STPLAE / STPLBV: a located point at PT = NMX or outside the
                     # RL0..RL1, A0..A1 window ends the branch and is written as its EP.
                     self.labelled(br, pt, p, Code.EP, stable, True)
@@ -143,13 +152,14 @@ class _Executor:
             npr = s.NPR > 0 and pt % s.NPR == 0
             self.labelled(br, pt, p, Code.RG if npr else Code.NONE, _stable(p), npr)
 
-    def _ends_here(self, p: Point, pt: int) -> bool:
-        """The branch ends at its pt-th point p: PT = NMX, or PAR(ICP(1)) outside
-        RL0..RL1, or the b-file's measure outside A0..A1 (AUTO's STPLAE / STPLBV)."""
+    def _ends_here(self, p: Point, pt: int, lam: float | None = None) -> bool:
+        """The branch ends at its pt-th point p: PT = NMX, or PAR(ICP(1)) (p's, or `lam`
+        where the point's value is known exactly) outside RL0..RL1, or the b-file's
+        measure outside A0..A1 (AUTO's STPLAE / STPLBV)."""
         s = self.s
         if s.NMX > 0 and pt >= s.NMX:
             return True
-        if not (s.RL0 <= p.x[-1] <= s.RL1):
+        if not (s.RL0 <= (p.x[-1] if lam is None else lam) <= s.RL1):
             return True
         if s.A0 > -1e307 or s.A1 < 1e307:
             measure = self.run.system.solution(p.x, p.tangent).columns[0]
