@@ -78,6 +78,18 @@ def test_delete_and_keep_labels_as_autos_dsp_ksp_dlb_klb(tmp_path, monkeypatch):
     assert [x["TY"] for x in clui.ksp(bd(), ["EP"])] == ["EP", "EP"]
 
 
+def test_file_commands_on_a_misspelt_name_are_errors(tmp_path, monkeypatch):
+    """dsp/ksp/dlb/klb, relabel, merge and bd on b./s.NAME that do not exist name the
+    files, and write nothing (before, the label commands wrote empty b. and s. files)."""
+    monkeypatch.chdir(tmp_path)
+    for call in (lambda: clui.klb(2, "nosuch"), lambda: clui.dsp("UZ", "nosuch", "out"),
+                 lambda: clui.relabel("nosuch"), lambda: clui.merge("nosuch"),
+                 lambda: clui.loadbd("nosuch")):
+        with pytest.raises(clui.AutoError, match="no output files b.nosuch, s.nosuch"):
+            call()
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_diagnostic_queries_print_the_d_file_lines(tmp_path, monkeypatch, capsys):
     # AUTO's ev/fl/hb/lp/bp/it/nt/sp/ss print the d-file lines with their word; plot3
     # (AUTO's 3D viewer) notes that it draws nothing, and the script goes on.

@@ -301,9 +301,7 @@ def loadbd(name=None, **kw) -> Diagram:
     """The bifurcation diagram of b./s./d.NAME (fort.7/8/9 without a name)."""
     if isinstance(name, Diagram):
         return name
-    paths = [f"{k}.{name}" for k in "bsd"] if name else list(FORT)
-    if not any(os.path.exists(p) for p in paths[:2]):
-        raise AutoError(f"no output files {paths[0]}, {paths[1]}")
+    paths = _existing(_names(name) if name else list(FORT))
     return Diagram.read(*paths)
 
 
@@ -326,6 +324,14 @@ def dg(name=None) -> Diagram:
 
 def _names(name) -> list[str]:
     return [f"{k}.{name}" for k in "bsd"]
+
+
+def _existing(paths: list[str]) -> list[str]:
+    """paths (b., s., d.) when the b- or s-file exists, else an error naming them: a
+    misspelt name must not become empty output files."""
+    if not any(os.path.exists(p) for p in paths[:2]):
+        raise AutoError(f"no output files {paths[0]}, {paths[1]}")
+    return paths
 
 
 def save(name1, name2=None):
@@ -381,7 +387,7 @@ def append(name1, name2=None):
 
 
 def _transform_files(name1, name2, how: str) -> None:
-    src = _names(name1) if name1 else list(FORT)
+    src = _existing(_names(name1) if name1 else list(FORT))
     bd = Diagram.read(*src)
     new = bd.relabel() if how == "relabel" else bd.merge()
     if name2 is None:
@@ -403,7 +409,7 @@ def _delete_labels(typenames, name1, name2, keep: bool, keep_type: bool):
             return typenames.delete_labels(select, keep, keep_type)
         return SolutionList(s for s in typenames if bool(select(s)) == keep)
     select = label_selector(typenames)
-    src = _names(name1) if name1 else list(FORT)
+    src = _existing(_names(name1) if name1 else list(FORT))
     new = Diagram.read(*src).delete_labels(select, keep, keep_type)
     if name2 is None:
         for p in src[:2]:
