@@ -133,3 +133,43 @@ def test_symbolic_equations_take_fopt(runs, folder, tmp_path):
     (ref,) = [x for x in r1.rows if x.ty == "LP"]
     assert lp.values[0] == pytest.approx(ref.values[0], abs=tol(folder))
     assert lp.u == pytest.approx(ref.u, abs=tol(folder))
+
+
+PITCHFORK = '''
+def func(u, par):
+    return [u[0] ** 3 - par[0] * u[0]]
+def stpnt(u, par):
+    u[0], par[0] = 1.0, 1.0
+def fopt(u, par):
+    return u[0] + par[0]
+'''
+
+
+def test_branch_point_next_to_the_crossing_branch(tmp_path):
+    """u^3 - p1 u = 0 followed along p1 = u^2 (FOPT = u + p1 = PAR(10) the continuation
+    parameter) through its pitchfork at u = p1 = 0, where the trivial branch u = 0
+    crosses it. The step that passes the pitchfork ends on the parabola's other side
+    (u < 0), with the trivial branch between its ends: the location's trial points must
+    stay on the parabola. The BP is at u = p1 = PAR(10) = 0 and the extremum of
+    FOPT = u + u^2 on the parabola at u = -1/2 (LP: PAR(10) = -1/4, p1 = 1/4); each
+    located coordinate within the location tolerance (the tangent is unit in a norm in
+    which every unknown has weight 1). Every row lies on the parabola to Newton's
+    tolerance EPSU (the iterates' last correction bounds the residual's size there)."""
+    (tmp_path / "pfk.py").write_text(PITCHFORK)
+    (tmp_path / "c.pfk").write_text(
+        "e = 'pfk', NDIM = 1, IPS = 5, IRS = 0, ILP = 1, ICP = [10, 1], ISP = 1, ISW = 1\n"
+        "NMX = 100, NPR = 100, MXBF = 0, ITMX = 8, ITNW = 7, NWTN = 3, JAC = 0\n"
+        "EPSL = 1e-08, EPSU = 1e-08, EPSS = 1e-06\n"
+        "DS = -0.02, DSMIN = 0.0001, DSMAX = 0.05, IADS = 1, NPAR = 10\n")
+    r = run(tmp_path / "c.pfk", verbose=False, sv="pfk")
+    c = read_constants(tmp_path / "c.pfk")
+    t = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    assert [s.ty for s in r.specials] == ["EP", "BP", "LP", "EP"]
+    bp, lp = r.specials[1], r.specials[2]
+    assert bp.u[0] == pytest.approx(0, abs=t) and bp.par[0] == pytest.approx(0, abs=t)
+    assert bp.values[0] == pytest.approx(0, abs=2 * t)
+    assert lp.u[0] == pytest.approx(-0.5, abs=t) and lp.par[0] == pytest.approx(0.25, abs=t)
+    assert lp.values[0] == pytest.approx(-0.25, abs=t)
+    for row in r.rows:
+        assert row.par[0] == pytest.approx(row.u[0] ** 2, abs=1e-8)
+    assert "Possible special point" not in (tmp_path / "d.pfk").read_text()

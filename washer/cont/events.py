@@ -277,8 +277,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     that cannot be located is left (`note` says so, AUTO's "Possible special point")
     and the next one is tried.
 
-    trial(s, key) -> (point, value of test key): the continuation step of arclength s
-        from prev, evaluating that test only.
+    trial(s, key, base, chord) -> (point, value of test key): the continuation step of
+        arclength s from prev, evaluating that test only; chord: the unit secant from prev
+        to the far end of the interval being searched (the predictor's direction).
     accepted(key, prev, cur) -> bool: the system's acceptance rule (UZ keys always).
     refresh(point) -> None: all test values at a located point, at its tangent.
     inner(a, b): the system's inner product (the BP's secant is made unit in it).
@@ -309,8 +310,16 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             folds = [k for k in keys if k in (Code.LP, Code.LPC)]
             if folds:
                 key = folds[0]
+        # The trial points' predictor runs along the chord from prev to the interval's far
+        # end (AUTO's LCSPAE steps back from the far point along its secant, the same
+        # line): an interpolation between two points of the branch. Prev's tangent
+        # extrapolates instead, and where another branch crosses within the step (a
+        # pitchfork met at its fold, u^3 - p u = 0 followed along p = u^2) it leaves
+        # the branch's side and Newton converges onto the crossing branch.
+        chord = (target.x - prev.x) / span
+        chord = chord / math.sqrt(inner(chord, chord))
         try:
-            sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base), key,
+            sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
                               from_last=secant,
                               position=lambda p: inner(p.x - prev.x, prev.tangent))

@@ -380,7 +380,7 @@ class Continuation:
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
         """The earliest accepted zero between prev and cur (`events.first_zero`)."""
-        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key, base=None: self._trial(prev, s_, key, base),
+        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key, base=None, chord=None: self._trial(prev, s_, key, base, chord),
                           accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
                           note=lambda text: self._pending.append(Step("note", text=text)),
                           curve_type=self.sys.curve_type,
@@ -395,9 +395,11 @@ class Continuation:
         J = cached[2]
         sp.tests = self._tests(sp, J, self._factor(J, self.sys.border(sp.tangent)), None)
 
-    def _trial(self, prev: Point, s_, key, base=None):
+    def _trial(self, prev: Point, s_, key, base=None, chord=None):
         """The trial point at arclength s_ from prev, evaluating test `key` only: a step
-        from prev, or from `base` = (an earlier trial point, its s) by s_ - s."""
+        from prev, or from `base` = (an earlier trial point, its s) by s_ - s. chord: the
+        predictor's direction of a step from prev on the sphere (`events.first_zero`);
+        prev's tangent when None or where the arclength is a plane along it."""
         if base is not None:
             # The tangent at the trial point is oriented by (and the BP test borders the
             # Jacobian with) the earlier trial's tangent, not the secant of the step from
@@ -434,6 +436,12 @@ class Continuation:
             x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent, s_)
             pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it,
                                exact=True)
+        elif chord is not None and self.sys.arclength == "sphere":
+            # The sphere of radius |s_| about prev is the same whatever the predictor;
+            # the plane arclength of BVPs is measured along prev's tangent, which the
+            # location's s coordinate (`events.locate`, position) keeps.
+            x, it = self.correct(prev.x + s_ * chord, prev.x, chord, s_)
+            pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it, exact=True)
         else:
             pt = self._step(prev, s_, keys=[key], exact=True)
         return pt, pt.tests.get(key)
