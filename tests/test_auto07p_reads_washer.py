@@ -132,3 +132,50 @@ def test_auto07p_continues_washers_fold_of_cycles_locus(plp, tmp_path):
     tol = 1e-6 * (1 + (0.1 * 3.0) ** 0.5)          # c.plp.plp: EPSS, DS, DSMAX
     assert uz[0].values[0] == pytest.approx(ours.values[0], abs=2 * tol)      # PAR(4)
     assert uz[0].values[-1] == pytest.approx(ours.values[-1], rel=1e-6)       # period
+
+
+@pytest.fixture(scope="module")
+def dd2(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "dd2")
+
+
+def _header_blocks(path: Path) -> list[list[str]]:
+    """The b-file's header blocks (the '   0' lines before each branch's rows)."""
+    blocks, cur = [], []
+    for line in path.read_text().splitlines():
+        if line.startswith("   0"):
+            cur.append(line)
+        elif cur:
+            blocks.append(cur)
+            cur = []
+    return blocks
+
+
+@pytest.mark.parametrize("demo, name", [("integral", "b.lp"), ("dd2", "b.pd")])
+def test_extended_systems_headers_are_autos(demo, name, request):
+    """The header of an extended system's run as AUTO-07p writes it, byte for byte
+    (AUTO's own file of the same run, autoref): the fold locus of int's BVP (NDIM 4,
+    NBC 2, NINT 3, NPAR 4: the system's own, the user's NDIM 2, NPAR 3, NBC 1, NINT 1
+    under 'User-specified constants', Branch type 5 'LP') and the period-doubling locus
+    of dd2's map (NDIM 5, Branch type 7 'PD')."""
+    folder = request.getfixturevalue(demo)
+    ref = DEMOS / folder.name / "autoref" / name
+    assert _header_blocks(folder / name)[0] == _header_blocks(ref)[0]
+
+
+def test_fold_of_cycles_header_lines(plp):
+    """plp's fold locus of cycles: NDIM 4, NBC 4, NINT 3 (2 NDIM periodicity conditions;
+    the phase, v's orthogonality and the normalisation), the user's NDIM 2, NBC 0,
+    NINT 0 listed under them, Branch type 5 'LP', the active parameters PAR(4), the
+    period, PAR(1) and beta, as AUTO's b.loci has them. (NPAR and beta's index are
+    washer's own: its PAR(12) holds the torus angle on every periodic branch, AUTO's
+    only where TR is detected, ISP = 2 or 4.)"""
+    ours = [b for b in _header_blocks(plp / "b.loci") if any("Branch type:  5" in x for x in b)]
+    ref = [b for b in _header_blocks(DEMOS / "plp" / "autoref" / "b.loci")
+           if any("Branch type:  5" in x for x in b)]
+    assert ours and ref
+    keep = ("NDIM=", "ISW =", "User-specified", "Branch type", "NBC =")
+    pick = lambda block: [x for x in block if any(k in x for k in keep)]
+    assert pick(ours[0]) == pick(ref[0])
+    active = [x for x in ours[0] if "Active continuation" in x][0].split(":")[1].split()
+    assert active == ["4", "11", "1", "13"]

@@ -358,7 +358,8 @@ class OutputFiles:
     def header(self, c, ndim_internal: int, npar: int, column_titles: list[str],
                curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,
                nfpr: int | None = None, ds: float | None = None, dsmin: float | None = None,
-               dsmax: float | None = None, active: list | None = None) -> None:
+               dsmax: float | None = None, active: list | None = None,
+               internal: dict | None = None) -> None:
         """The run's header block (io.f90:STHD), in AUTO-07p's exact layout.
 
         c: the user's constants; ndim_internal, npar: NDIM and NPAR as the
@@ -367,9 +368,11 @@ class OutputFiles:
         number, else 0); nfpr: number of free parameters (default 2 on |ISW|=2
         curves, else 1); ds, dsmin, dsmax: the engine's step sizes (default the
         user's); active: the run's internal ICP(1..NFPR) where it is not the user's
-        (IPS = 15 appends PAR(10), PAR(13), PAR(14)). Where an internal value differs
-        from the user's, AUTO lists the user's under 'User-specified constants, where
-        different from above'.
+        (IPS = 15 appends PAR(10), PAR(13), PAR(14)); internal: the run's own ILP, ISP,
+        ISW, NMX, NBC, NINT where they are not the user's (an extended system's boundary
+        and integral conditions, a generating run's ISW = -2, NMX = 5). Where an internal
+        value differs from the user's, AUTO lists the user's under 'User-specified
+        constants, where different from above' (AUTO-07p's parseB reads those back).
         The block is written with the first point (`row`), never alone.
         """
         user_irs = c["IRS"] if isinstance(c["IRS"], int) else None
@@ -377,6 +380,8 @@ class OutputFiles:
         nfpr = nfpr if nfpr is not None else (2 if abs(c["ISW"]) == 2 else 1)
         steps = {"DS": ds, "DSMIN": dsmin, "DSMAX": dsmax}
         steps = {k: (c[k] if v is None else v) for k, v in steps.items()}
+        run = {k: c[k] for k in ("ILP", "ISP", "ISW", "NMX", "NBC", "NINT")}
+        run.update(internal or {})
         d3 = lambda *kv: "   0" + "".join(f"{k:>8}{fmt_es(v, 11, 4)}" for k, v in kv)
         i4 = lambda *kv: "   0" + "".join(f"{k:>8}{v:4d}" for k, v in kv)
         lines = ["   0 " + "".join(fmt_es(c[k], 12, 4) for k in ("RL0", "RL1", "A0", "A1"))]
@@ -384,12 +389,12 @@ class OutputFiles:
         lines.append(d3(("DS  =", steps["DS"]), ("DSMIN=", steps["DSMIN"]),
                         ("DSMAX=", steps["DSMAX"])))
         lines.append(i4(("NDIM=", ndim_internal), ("IPS =", c["IPS"]), ("IRS =", irs),
-                        ("ILP =", c["ILP"])))
+                        ("ILP =", run["ILP"])))
         lines.append(i4(("NTST=", c["NTST"]), ("NCOL=", c["NCOL"]), ("IAD =", c["IAD"]),
-                        ("ISP =", c["ISP"])))
-        lines.append(i4(("ISW =", c["ISW"]), ("IPLT=", c["IPLT"]), ("NBC =", c["NBC"]),
-                        ("NINT=", c["NINT"])))
-        lines.append(f"   0{' NMX=':>7}{c['NMX']:5d}{'NPR=':>7}{c['NPR']:5d}{'MXBF=':>8}{c['MXBF']:4d}"
+                        ("ISP =", run["ISP"])))
+        lines.append(i4(("ISW =", run["ISW"]), ("IPLT=", c["IPLT"]), ("NBC =", run["NBC"]),
+                        ("NINT=", run["NINT"])))
+        lines.append(f"   0{' NMX=':>7}{run['NMX']:5d}{'NPR=':>7}{c['NPR']:5d}{'MXBF=':>8}{c['MXBF']:4d}"
                      f"{'IID =':>8}{c['IID']:4d}{'IADS=':>8}{c['IADS']:4d}")
         nuzr = sum(len(v) if isinstance(v, (list, tuple)) else 1
                    for key in ("UZR", "UZSTOP") for v in c[key].values())
@@ -421,7 +426,7 @@ class OutputFiles:
         for key, label in (("SP", "SP="), ("STOP", "STOP=")):
             if c[key]:
                 lines.append(f"   0   {label}[" + ", ".join(f"'{s}'" for s in c[key]) + "]")
-        lines += self._user_specified(c, ndim_internal, npar, irs, user_irs, steps)
+        lines += self._user_specified(c, ndim_internal, npar, irs, user_irs, steps, run)
         icp_user = c["ICP"]
         names = {int(k): v for k, v in c["parnames"].items()}
         lines.append("   0   User-specified parameter" + (":       " if len(icp_user) == 1 else
@@ -436,13 +441,18 @@ class OutputFiles:
         self.column_titles = column_titles
 
     @staticmethod
-    def _user_specified(c, ndim, npar, irs, user_irs, steps) -> list[str]:
-        """STHD's 'User-specified constants, where different from above' lines."""
+    def _user_specified(c, ndim, npar, irs, user_irs, steps, run) -> list[str]:
+        """STHD's 'User-specified constants, where different from above' lines: the
+        step sizes; NDIM, IRS, ILP, NPAR; NMX, ISP, ISW, NBC, NINT."""
         ds_diff = [(k, fmt_es(c[k], 11, 4)) for k in ("DS", "DSMIN", "DSMAX")
                    if fmt_es(c[k], 11, 4) != fmt_es(steps[k], 11, 4)]
-        ints = [("NDIM=", c["NDIM"], ndim), ("IRS =", user_irs, irs), ("NPAR=", c["NPAR"], npar)]
+        ints = [("NDIM=", c["NDIM"], ndim), ("IRS =", user_irs, irs), ("ILP =", c["ILP"], run["ILP"]),
+                ("NPAR=", c["NPAR"], npar)]
         int_diff = [(k, u) for k, u, a in ints if u is not None and u != a]
-        if not ds_diff and not int_diff:
+        runs = [("NMX=", "NMX"), ("ISP =", "ISP"), ("ISW =", "ISW"), ("NBC =", "NBC"),
+                ("NINT=", "NINT")]
+        run_diff = [(k, c[key]) for k, key in runs if c[key] != run[key]]
+        if not ds_diff and not int_diff and not run_diff:
             return []
         lines = ["   0   User-specified constants, where different from above:"]
         if ds_diff:
@@ -450,6 +460,10 @@ class OutputFiles:
             lines.append("   0" + "".join(f"{label[k]:>8}{v}" for k, v in ds_diff))
         if int_diff:
             lines.append("   0" + "".join(f"{k:>8}{u:4d}" for k, u in int_diff))
+        if run_diff:
+            # NMX is (A7,I5), the others (A8,I4)
+            lines.append("   0" + "".join(f"{k:>7}{u:5d}" if k == "NMX=" else f"{k:>8}{u:4d}"
+                                          for k, u in run_diff))
         return lines
 
     def branch_start(self) -> None:

@@ -29,6 +29,10 @@ def _row(lab) -> Row:
     return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
 
 
+#: AUTO's LBTYPE of a curve type (ITPST), the header's 'Branch type' name.
+LBTYPE = {1: "BP", 2: "LP", 3: "HB", 5: "LP", 6: "BP", 7: "PD", 8: "TR"}
+
+
 class FileSink:
     """AUTO's b., s. and d. files of one run, written point by point; an
     s-record is written before its b-row, so a b-file label always has its
@@ -41,10 +45,19 @@ class FileSink:
         self.run = run
         s, c, sysm = run.settings, run.constants, run.system
         curve = sysm.curve_type
-        self.files.header(c, sysm.n_eq if s.IPS in (0, 1) else s.NDIM, s.NPAR, run.titles, curve,
-                          {1: "BP", 2: "LP", 3: "HB", 6: "BP"}.get(curve, ""), irs=run.irs_label,
-                          nfpr=len(sysm.free), ds=s.DS, dsmin=s.DSMIN, dsmax=s.DSMAX,
-                          active=getattr(sysm, "header_icp", None))
+        ndim = sysm.n_eq if s.IPS in (0, 1, -1) else s.NDIM
+        internal = {k: getattr(s, k) for k in ("ILP", "ISP", "ISW", "NMX")}
+        if getattr(sysm, "n_comp", None) and getattr(sysm, "coll", None) is not None:
+            # A collocation system: AUTO's header states its own NDIM, NBC (NDIM periodicity
+            # conditions of cycles and their loci) and NINT (the phase and the loci's
+            # normalisations), the user's below them.
+            ndim = sysm.n_comp
+            internal["NBC"] = sysm.n_comp if sysm.nbc is None else sysm.nbc
+            internal["NINT"] = sysm.nint
+        active = list(getattr(sysm, "header_icp", sysm.free))
+        self.files.header(c, ndim, getattr(sysm, "header_npar", s.NPAR), run.titles, curve,
+                          LBTYPE.get(curve, ""), irs=run.irs_label, nfpr=len(active), ds=s.DS,
+                          dsmin=s.DSMIN, dsmax=s.DSMAX, active=active, internal=internal)
 
     def branch_start(self, br: int) -> None:
         self.files.branch_start()

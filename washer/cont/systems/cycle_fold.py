@@ -81,6 +81,17 @@ class CycleFoldLocus(CollocationBVP):
         self._from_lp(rec)
 
     # ------------------------------------------------------------------ set-up
+    @property
+    def header_npar(self) -> int:
+        """NPAR as the b-file header states it: PAR(1..NPAR), beta and c."""
+        return len(self.par) + self.npari
+
+    @property
+    def header_icp(self) -> list:
+        """The header's active continuation parameters: the free ones and beta's index
+        (AUTO's NFPR counts beta, which the record keeps after PAR(1..NPAR))."""
+        return list(self.free) + [len(self.par) + 1]
+
     def tail_weights(self) -> np.ndarray:
         s = self.settings
         second = 1.0 if self._generating else s.theta_par(self.p2)       # c: THL 1
