@@ -199,8 +199,12 @@ class Settings:
         npar = c["NPAR"]
         if ips in (1, -1, 2) or ips >= 7:
             npar = max(npar, 11)             # PAR(11) holds the period (INIT2)
-        if ips == 2 or (ips == -1 and c["ISP"] != 0):
-            npar = max(npar, 12)             # PAR(12): torus angle
+        # PAR(12): the torus angle, where TR points are detected (INIT2: CHECKSP('TR'); an
+        # SP entry 'TR' or 'TR0' overrides ISP as in `detects`).
+        tr_sp = {split_type_entry(e)[0]: split_type_entry(e)[1] != "0" for e in c["SP"]}
+        if tr_sp.get("TR", (ips == 2 and abs(c["ISP"]) in (2, 4))
+                     or (ips == -1 and c["ISP"] != 0)) and ips in (-1, 2, 7, 12):
+            npar = max(npar, 12)
         npar = max(npar, max(abs(i) for i in icp_all))
         if ips == 15:
             npar = max(npar, 14)             # PAR(12..14): the adjoint's norm, kappa, gamma

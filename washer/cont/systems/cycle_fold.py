@@ -64,7 +64,7 @@ class CycleFoldLocus(CollocationBVP):
         self.free = [self.p1, 11, self.p2]
         self.field = VectorField(self.problem, self.n)
         self.unames = dict(getattr(data, "unames", {}) or {})
-        self.par = np.zeros(max(s.NPAR, 12, max(icp)))
+        self.par = np.zeros(max(s.NPAR, 11, max(icp)))
         p = np.asarray(data.par, float)
         self.par[:min(len(p), len(self.par))] = p[:len(self.par)]
         rec = data.record

@@ -70,6 +70,11 @@ class _CycleLocus(CollocationBVP):
     curve_type = 7
     #: AUTO's NPARI: the eigenfunction's norm follows PAR(1..NPAR) in the record.
     npari = 1
+
+    @property
+    def header_npar(self) -> int:
+        """NPAR as the b-file header states it: PAR(1..NPAR) and the norm."""
+        return len(self.par) + self.npari
     has_theta = False
     general_bc = True
 
@@ -91,7 +96,7 @@ class _CycleLocus(CollocationBVP):
         self.free = [self.p1, self.p2, 11] + ([12] if self.has_theta else [])
         self.field = VectorField(self.problem, self.n)
         self.unames = dict(getattr(data, "unames", {}) or {})
-        self.par = np.zeros(max(s.NPAR, 12, max(icp)))
+        self.par = np.zeros(max(s.NPAR, 12 if self.has_theta else 11, max(icp)))
         p = np.asarray(data.par, float)
         self.par[:min(len(p), len(self.par))] = p[:len(self.par)]
         rec = data.record

@@ -79,7 +79,11 @@ class PeriodicOrbits(CollocationBVP):
         self.icp = icp
         self.free = icp[:2]
         self.field = VectorField(self.problem, self.ndim)
-        self.par = np.zeros(max(s.NPAR, 12, max(icp)))
+        # NPAR as AUTO's INIT2: PAR(11) the period, PAR(12) where TR is detected (in
+        # s.NPAR), and a restart record's user parameters (its NPAR - NPARI) kept.
+        rec = data.record
+        kept = len(rec.par) - getattr(rec, "npari", 0) if rec is not None else 0
+        self.par = np.zeros(max(s.NPAR, 11, max(icp), kept))
         p = np.asarray(data.par, float)
         self.par[:len(p)] = p[:len(self.par)]
         self.kind = (data.kind or "").upper()
