@@ -188,7 +188,7 @@ def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     cur = point(1.0, {Code.LPC: -0.09, Code.BPC: 1e-15})
     tried = []
 
-    def trial(s, key, base=None):
+    def trial(s, key, base=None, chord=None):
         tried.append(key)
         return point(s), tests[key](s)
 
