@@ -45,6 +45,16 @@ def integral(tmp_path_factory):
     return _washer_demo(tmp_path_factory, "int")
 
 
+@pytest.fixture(scope="module")
+def dd2(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "dd2")
+
+
+@pytest.fixture(scope="module")
+def pen(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "pen")
+
+
 def _auto_parse(folder: Path, names: list[str]) -> dict:
     import json
     code = ("import sys, json\nsys.path.insert(0, %r)\n"
@@ -70,10 +80,12 @@ def _auto_parse(folder: Path, names: list[str]) -> dict:
 
 
 @pytest.mark.skipif(not AUTO_PYTHON.exists(), reason="AUTO-07p's Python tools not installed")
-@pytest.mark.parametrize("demo", ["plp", "integral"])
+@pytest.mark.parametrize("demo", ["plp", "integral", "dd2", "pen"])
 def test_autos_parsers_read_every_file_washer_writes(demo, request):
     """Every b- and s-file of the demo's runs (equilibria, cycles, the Hopf locus and the
-    fold locus of cycles of plp; the BVP and its fold locus of int): AUTO's parseB and
+    fold locus of cycles of plp; the BVP and its fold locus of int; the map and its PD
+    locus of dd2; rotations, their branches and the PD locus of cycles of pen): AUTO's
+    parseB and
     parseS list the labels and types washer's own readers find, parseBandS pairs them,
     and parseS reads each record's NPARI, NDIM and IPS as washer's reader does. (The
     records' values are not read: parseS's data reader fails under numpy 2 on AUTO's own
@@ -134,9 +146,6 @@ def test_auto07p_continues_washers_fold_of_cycles_locus(plp, tmp_path):
     assert uz[0].values[-1] == pytest.approx(ours.values[-1], rel=1e-6)       # period
 
 
-@pytest.fixture(scope="module")
-def dd2(tmp_path_factory):
-    return _washer_demo(tmp_path_factory, "dd2")
 
 
 def _header_blocks(path: Path) -> list[list[str]]:
