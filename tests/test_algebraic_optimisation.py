@@ -173,3 +173,27 @@ def test_branch_point_next_to_the_crossing_branch(tmp_path):
     for row in r.rows:
         assert row.par[0] == pytest.approx(row.u[0] ** 2, abs=1e-8)
     assert "Possible special point" not in (tmp_path / "d.pfk").read_text()
+
+
+def test_fopt_gradient_against_the_closed_form():
+    """Problem.fopt_gradient (AUTO's FOPI, shared by IPS = 5 and 15) against sympy's
+    gradient of phi = p1 u1^2 u2 + sin(p2 u2) + p2^3 at three rows. Central differences
+    with h = 1e-7 (1 + |.|): truncation ~h^2 |phi'''| ~ 1e-13, rounding ~eps |phi| / h
+    ~ 1e-8, so 1e-7 absolute on values of order 1."""
+    import sympy as sp
+    from washer.cont.problem import Problem
+    u1, u2, p1, p2 = sp.symbols("u1 u2 p1 p2")
+    phi = p1 * u1 ** 2 * u2 + sp.sin(p2 * u2) + p2 ** 3
+    grad = sp.lambdify((u1, u2, p1, p2), [sp.diff(phi, v) for v in (u1, u2, p1, p2)])
+    prob = Problem(2, lambda u, par: np.zeros(2), npar=3,
+                   fopt=lambda u, par: par[0] * u[0] ** 2 * u[1] + np.sin(par[1] * u[1])
+                   + par[1] ** 3)
+    par = np.array([0.7, -1.3, 5.0])
+    U = np.array([[0.5, 2.0], [-1.5, 0.25], [3.0, -0.75]])
+    gu, gp = prob.fopt_gradient(U, par, [1, 2])
+    want = np.array([grad(u[0], u[1], par[0], par[1]) for u in U])
+    assert gu.shape == (3, 2) and gp.shape == (3, 2)
+    assert np.allclose(gu, want[:, :2], rtol=0, atol=1e-7)
+    assert np.allclose(gp, want[:, 2:], rtol=0, atol=1e-7)
+    none, gp2 = prob.fopt_gradient(U, par, [2], with_u=False)
+    assert none is None and np.allclose(gp2[:, 0], want[:, 3], rtol=0, atol=1e-7)

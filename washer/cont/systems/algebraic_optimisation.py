@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont.problem import FD_STEP
 from washer.cont.system import Solution, register
 from washer.cont.systems._algebraic import AlgebraicSystem
 from washer.cont.systems.bvp import H2
@@ -112,23 +111,10 @@ class AlgebraicOptimisation(AlgebraicSystem):
         return float(self.user.fopt_many(np.asarray(u, float)[None, :], par)[0])
 
     def _grad_phi(self, u, par, indices) -> tuple[np.ndarray, np.ndarray]:
-        """(grad_u phi (NDIM,), d phi / d PAR(indices)): central differences of FOPT with
-        AUTO's steps (FOPI: HMACH (1 + max |u|) for u, HMACH (1 + |p|) for p), one batch."""
-        u = np.asarray(u, float)
-        n, m = len(u), len(indices)
-        hu = FD_STEP * (1 + np.max(np.abs(u)))
-        hp = [FD_STEP * (1 + abs(par[i - 1])) for i in indices]
-        us = np.repeat(u[None], 2 * (n + m), axis=0)
-        ps = np.repeat(np.asarray(par, float)[None], 2 * (n + m), axis=0)
-        for j in range(n):
-            us[2 * j, j] += hu
-            us[2 * j + 1, j] -= hu
-        for k, i in enumerate(indices):
-            ps[2 * (n + k), i - 1] += hp[k]
-            ps[2 * (n + k) + 1, i - 1] -= hp[k]
-        F = self.user.fopt_many(us, ps)
-        d = F[0::2] - F[1::2]
-        return d[:n] / (2 * hu), d[n:] / (2 * np.asarray(hp))
+        """(grad_u phi (NDIM,), d phi / d PAR(indices)): FOPT's central differences
+        (Problem.fopt_gradient, AUTO's FOPI) at the point u."""
+        gu, gp = self.user.fopt_gradient(np.asarray(u, float)[None], par, indices)
+        return gu[0], gp[0]
 
     # ------------------------------------------------------------ equations
     def residual(self, x) -> np.ndarray:

@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont.problem import FD_STEP, Problem
+from washer.cont.problem import Problem
 from washer.cont.system import StartData, register
 from washer.cont.systems.bvp import H2, VectorField, stored_profile
 from washer.cont.systems.general_bvp import BoundaryValueProblem
@@ -129,22 +129,13 @@ class PeriodicOptimisation(BoundaryValueProblem):
 
     # ------------------------------------------------------------------ the extended field
     def _grad_phi(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
-        """grad_u phi at the rows of U (k, NDIM): central differences of FOPT with AUTO's
-        step HMACH (1 + max |u|) (FOPI)."""
-        k, n = U.shape
-        h = FD_STEP * (1 + np.max(np.abs(U), axis=1))
-        E = np.eye(n)[None] * h[:, None, None]
-        pts = np.concatenate([U[:, None] + E, U[:, None] - E], axis=1).reshape(-1, n)
-        F = self.user.fopt_many(pts, par).reshape(k, 2, n)
-        return (F[:, 0] - F[:, 1]) / (2 * h[:, None])
+        """grad_u phi at the rows of U (k, NDIM): FOPT's central differences
+        (Problem.fopt_gradient, AUTO's FOPI)."""
+        return self.user.fopt_gradient(U, par)[0]
 
     def _dphi_dp(self, U: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
         """d phi / d PAR(index) at the rows of U -> (k,), central differences."""
-        h = FD_STEP * (1 + abs(par[index - 1]))
-        pp, pm = np.array(par, float), np.array(par, float)
-        pp[index - 1] += h
-        pm[index - 1] -= h
-        return (self.user.fopt_many(U, pp) - self.user.fopt_many(U, pm)) / (2 * h)
+        return self.user.fopt_gradient(U, par, [index], with_u=False)[1][:, 0]
 
     def _adjoint(self, u, w, f_old, par) -> np.ndarray:
         """w' = -T f_u^T w + kappa T f(u_old) + gamma grad phi (FFPO), rows (k, NDIM)."""
