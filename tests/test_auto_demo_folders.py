@@ -20,9 +20,6 @@ FAST = {"frc", "lrz", "lor", "chu", "opt"}
 
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
-    "ab": "23 of 24: the periodic family of c.ab.3 stops with MX at PERIOD = 51.8, short of "
-          "AUTO's UZ at PERIOD = 1000, since the BVP corrector reuses its last Newton "
-          "Jacobian at the converged point",
     "abcb": "20 of 22: run 2 misses AUTO's LP and BP at its tip PAR(1) = 0.3462",
     "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
             "a degenerate end, AUTO ends with MX and a BP, ours with a UZ and MX",

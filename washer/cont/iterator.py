@@ -43,13 +43,6 @@ START_ITERATIONS = 20
 #: numerically singular bordered matrix (exactly at a branch point): the
 #: secant is used instead.
 SINGULAR_TANGENT = 1e12
-#: BVPs: the last Newton iteration's Jacobian serves as the Jacobian at the converged
-#: point when the converging correction was within this fraction of EPSU (profile) and
-#: EPSL (parameters), i.e. ~1e-9 relative with AUTO's 1e-7: below the rounding error of
-#: a central-difference Jacobian itself (eps / h ~ 2e-9 for h = 1e-7). (A correction
-#: anywhere within EPSU was too much: ab's family from HB10, near its homoclinic end,
-#: then ended with MX short of its UZSTOP.)
-REUSE_FRACTION = 1e-2
 #: A UZ test value |PAR(i) - value| below this fraction of 1 + |value| is rounding:
 #: the parameter is on the value (no sign change is seen there).
 UZ_ROUNDING = 1e-13
@@ -139,9 +132,6 @@ class Continuation:
         self.counters = Counters()
         self.failure = "No convergence with minimum step size"
         self._located_J = None
-        # (x, J): the corrector's last Jacobian, evaluated at the iterate from which the
-        # converging correction to x was taken (BVPs only; see `correct`).
-        self._newton_J = None
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -164,7 +154,7 @@ class Continuation:
         plane = (sysm.arclength == "plane") if plane is None else plane
         row_plane = sysm.border(t_ref) if plane else None
         ns = getattr(sysm, "n_state", None) if plane else None
-        held = {"factor": None, "delref": None, "fresh": None}
+        held = {"factor": None, "delref": None}
 
         # A trial point outside the equations' domain: a failed step.
         residual = _failing_as("equations failed at a Newton iterate", self._residual)
@@ -180,11 +170,8 @@ class Continuation:
                 # converged to is the same; the blocks are refreshed at every
                 # converged point (evaluate), where tangent and tests need them.
                 J = jacobian(x, frozen=sysm.freezes_second_derivatives)
-                held["fresh"] = None if sysm.freezes_second_derivatives else (x, J)
                 if plane:
                     factor = self._factor(J, row_plane)
-            else:
-                held["fresh"] = None
             if plane:
                 c = row_plane @ (x - x_ref) - ds
             else:
@@ -203,8 +190,6 @@ class Continuation:
                 du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x_old[:ns])))
                 dl = float(np.max(np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))))
                 if dl <= s.EPSL and du < s.EPSU:
-                    held["small"] = du <= REUSE_FRACTION * s.EPSU and \
-                        dl <= REUSE_FRACTION * s.EPSL
                     return True
             else:
                 du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
@@ -218,20 +203,12 @@ class Continuation:
                 raise ConvergenceError("Newton iterates diverge")
             return False
 
-        x, it = newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
-                       exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
-        # BVPs: the Jacobian of the last iteration, when it was evaluated at the iterate
-        # the converging correction started from and that correction was below
-        # REUSE_FRACTION of the tolerances, serves as the Jacobian at x (tangent,
-        # Floquet multipliers, tests): the two points, and so the Jacobians, differ by
-        # less than a difference Jacobian's own rounding. AUTO's CONTBV evaluates one
-        # more Jacobian at x; on collocation systems that is the cost of a whole Newton
-        # iteration (f_u at NTST NCOL points). Algebraic systems recompute it as
-        # SOLVAE does.
-        fresh = held["fresh"]
-        self._newton_J = (x, fresh[1]) if sysm.arclength == "plane" and fresh is not None \
-            and held.get("small") else None
-        return x, it
+        # (At the converged point `evaluate` takes a fresh Jacobian, as AUTO's CONTBV and
+        # SOLVAE do: the last iteration's, up to 1e-9 away, was tried on BVPs and is not
+        # close enough near a homoclinic end: ab's family from HB10 in c.ab.3 then stopped
+        # with MX at PERIOD = 51.8, short of AUTO's UZ at PERIOD = 1000.)
+        return newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
+                      exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
 
     def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
@@ -315,17 +292,10 @@ class Continuation:
         return orient(t, len(t) - 1, self.s.EPSL, x[-1])
 
     # ----------------------------------------------------------- evaluation
-    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0,
-                 exact: bool = False) -> Point:
+    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
         """A converged point: tangent, stability and the test values `keys`
-        (all active tests and UZ values when None). exact: the Jacobian evaluated at x
-        itself, never the corrector's last one (location trials: their test values
-        decide the bracket, and a test near its rounding level, abcb's BP of cycles at
-        ~1e-14, changes sign with the ~1e-9 difference between the two)."""
-        reuse = self._newton_J
-        self._newton_J = None
-        J = reuse[1] if reuse is not None and reuse[0] is x and not exact \
-            else self._jacobian(x)
+        (all active tests and UZ values when None)."""
+        J = self._jacobian(x)
         if tangent is None:
             t, factor = self.tangent(J, ref)
         else:
@@ -354,10 +324,10 @@ class Continuation:
         return out
 
     # ----------------------------------------------------------------- step
-    def _step(self, p: Point, ds, keys=None, exact: bool = False):
+    def _step(self, p: Point, ds, keys=None):
         """The continuation step of arclength ds from p (predictor + corrector)."""
         x, it = self.correct(p.x + ds * p.tangent, p.x, p.tangent, ds)
-        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it, exact=exact)
+        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it)
 
     def _retrying_step(self, p: Point, ds):
         """AUTO's STEPAE: on failure halve the step and retry, until below DSMIN.
@@ -424,26 +394,24 @@ class Continuation:
                 # A branch point's test is a determinant of the Jacobian bordered by a
                 # direction: the same one, prev's tangent, at every trial, so that its
                 # values along the location are one function.
-                pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it,
-                                   exact=True)
+                pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it)
             else:
-                pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it, exact=True)
+                pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
         elif key == Code.BPC:
             # The first trial of a BP of a BVP too: bordered by prev's tangent, as the
             # later ones, so that all trials evaluate one function (its own tangent,
             # oriented along a secant to a Newton iterate that may have slipped onto
             # the crossing branch, flipped the test's sign at abcb's BP of cycles).
             x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent, s_)
-            pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it,
-                               exact=True)
+            pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it)
         elif chord is not None and self.sys.arclength == "sphere":
             # The sphere of radius |s_| about prev is the same whatever the predictor;
             # the plane arclength of BVPs is measured along prev's tangent, which the
             # location's s coordinate (`events.locate`, position) keeps.
             x, it = self.correct(prev.x + s_ * chord, prev.x, chord, s_)
-            pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it, exact=True)
+            pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
         else:
-            pt = self._step(prev, s_, keys=[key], exact=True)
+            pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)
 
     def _accepted(self, key, prev, cur) -> bool:

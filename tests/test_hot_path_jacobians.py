@@ -1,5 +1,5 @@
-"""The corrector's Jacobians on the hot path: what is reused or taken from the user must
-be what a fresh evaluation gives.
+"""The corrector's Jacobians on the hot path: what is taken from a shortcut must be what
+the general evaluation gives.
 
 * Small finite-difference stencils are evaluated call by call with the stencil built in
   Python floats (`Problem._jacobian_by_calls`): bit for bit the quotients of the array
@@ -7,22 +7,11 @@ be what a fresh evaluation gives.
 * The collocation's f_p comes from the user's batched dfdp when JAC = 1 (the washer's
   kernel returns it with f_u): exactly that column, and within the difference
   quotient's error of central differences.
-* On BVPs the last Newton iteration's Jacobian serves as the Jacobian at the converged
-  point (tangent, Floquet multipliers): the points differ by the last correction, within
-  EPSU, so the multipliers and the tangent agree with a fresh evaluation to that order.
 """
-import math
-
 import numpy as np
 
-from washer.cont import collocation as col
-from washer.cont import floquet
-from washer.cont.iterator import Continuation
 from washer.cont.problem import Problem
-from washer.cont.settings import Settings
-from washer.cont.system import StartData
 from washer.cont.systems.bvp import VectorField
-from washer.cont.systems.periodic import PeriodicOrbits
 
 
 def ab(u, par):
@@ -75,51 +64,6 @@ def test_collocation_fp_takes_the_batched_dfdp_with_jac_1():
         # JAC = 0 keeps AUTO's central differences (error ~1e-9 relative here)
         assert np.allclose(differenced.fp(U, par, index), exact, rtol=0, atol=1e-7)
 
-
-def test_reused_jacobian_gives_the_fresh_tangent_and_multipliers():
-    """The lambda-omega family from its Hopf point (mu = r^2, multipliers 1 and
-    exp(-2 mu T)): at every point the multipliers from the reused Jacobian equal a fresh
-    condensation at the converged point to 1e-7 (EPSU = 1e-7, the multipliers are
-    well conditioned), the tangent to 1e-6; and the reuse did happen: no Jacobian was
-    evaluated at any of the converged points (each converges within NWTN iterations
-    here; without the reuse 7 of the 10 are, the other 3 being moved by the mesh
-    adaptation after they were accepted)."""
-    par = np.r_[0.0, 1.0, 0.5, 0.8, np.zeros(8)]
-    par[10] = 2 * math.pi
-    s = Settings(IPS=2, ICP=(1, 11), NDIM=2, NPAR=12, NTST=20, NCOL=4, THL={11: 0.0},
-                 DS=0.05, DSMAX=0.5, DSMIN=1e-6)
-    sysm = PeriodicOrbits(StartData(Problem(2, lw, name="lw"), s, np.zeros(2), par, None,
-                                    "HB"))
-    at = []
-    jacobian = sysm.jacobian
-
-    def counted(x):
-        at.append(x.tobytes())
-        return jacobian(x)
-    sysm.jacobian = counted
-    it = Continuation(sysm, s)
-    points = []
-    for step in it:
-        assert step.kind != "failed", step.text
-        if step.kind == "point":
-            p = step.point
-            # multipliers of a fresh Jacobian at p.x, condensed without the factor
-            blocks = sysm.coll.local_blocks(sysm.period(sysm.unpack(p.x)[1]), sysm.field.fu(
-                sysm.coll.at_gauss(sysm.unpack(p.x)[0]).reshape(-1, 2),
-                sysm.unpack(p.x)[1]).reshape(20, 4, 2, 2))
-            fresh = floquet.pencil_multipliers(*col.condense_blocks(blocks, 2))
-            assert np.max(np.abs(np.sort_complex(fresh) -
-                                 np.sort_complex(p.stability.values))) < 1e-7
-            # the unit null vector of a fresh Jacobian, oriented along the point's own
-            t_fresh = it.tangent(jacobian(p.x), p.tangent)[0]
-            assert np.max(np.abs(t_fresh - p.tangent)) < 1e-6
-            points.append(p)
-        if len(points) == 10:
-            break
-    reused = sum(p.x.tobytes() not in at for p in points)
-    assert reused == len(points), reused
-    mus = [sysm.params(p.x)[0] for p in points]
-    assert mus[-1] > 0.05
 
 
 def test_washer_batched_dfdp_is_the_pointwise_kernel_jp():
