@@ -212,6 +212,8 @@ def _execute(sol: Solution) -> Diagram:
         wc.set("sv", "")
         wc.set("s", "")
         problem = _runner.problem(e, wc["NDIM"])
+        if hasattr(problem, "fresh"):
+            problem.fresh()             # AUTO runs each run in a new process
         records = None
         from_data = False
         if not sol.empty and c.get("IRS"):
@@ -230,6 +232,8 @@ def _execute(sol: Solution) -> Diagram:
                 problem.set_icp(wc.icp())
             except ConstantsError:
                 pass
+        if hasattr(problem, "set_sizes"):
+            problem.set_sizes(wc["NBC"], wc["NINT"])
         r, br, mode = build(wc, problem, records, name=e, records_source="the restart solution",
                             mlab=sol._mlab if records and not from_data else None,
                             mbr=sol._mbr if records and not from_data else None)

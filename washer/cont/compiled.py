@@ -103,7 +103,8 @@ class CompiledUser:
 
     def __init__(self, path: Path, ndim: int):
         self.path, self.ndim = Path(path), ndim
-        self.lib = _open(compile_user_file(path))
+        self._lib_path = compile_user_file(path)
+        _open(self._lib_path)
         self.has = {n: bool(self.lib.washer_has(n.encode()))
                     for n in ("func", "stpnt", "bcnd", "icnd", "fopt", "pvls")}
         if not self.has["func"]:
@@ -115,7 +116,25 @@ class CompiledUser:
         self._scratch = np.zeros(0)
         self._scratch_ptr = None
         self._pvls_seen = not self.has["pvls"]
+        self.nbc = self.nint = 0
         self.pvls_wants_eigenvalues = False     # learnt on the first PVLS that asks GETP
+
+    @property
+    def lib(self):
+        """The library's handle (shared by every CompiledUser of the file; `reload`
+        replaces it)."""
+        return _open(self._lib_path)
+
+    def reload(self) -> None:
+        """Unload and load the library again: the user file's SAVEd and module variables
+        start afresh, as they do in AUTO, where every run is a new process (pcl's PVLS
+        sets up its boundary conditions on its FIRST call of each run)."""
+        key = str(self._lib_path)
+        old = _libs.pop(key, None)
+        if old is not None:
+            _ffi.dlclose(old)
+        _open(self._lib_path)
+        self._pvls_seen = not self.has["pvls"]
 
     def _first_pvls(self, u, pars) -> None:
         """AUTO calls PVLS on the starting point before FUNC, and user files rely on it
@@ -130,6 +149,10 @@ class CompiledUser:
         """The run's ICP (what FUNC, BCND, ICND see as ICP(1..))."""
         self.icp[:] = 0
         self.icp[:len(icp)] = icp
+
+    def set_sizes(self, nbc: int, nint: int) -> None:
+        """The run's NBC and NINT (what PVLS reads with GETP('NBC'), GETP('NINT'))."""
+        self.nbc, self.nint = int(nbc), int(nint)
 
     def _scratch_for(self, npar: int, extra: int = 0):
         need = self.ndim * (self.ndim + npar) + extra
@@ -212,7 +235,8 @@ class CompiledUser:
             ndim = u.shape[1]
             ups = np.zeros(ndim * ncol * (ntst + 1))
             ups[:u.size] = u.ravel()
-            self.lib.washer_set_context(2 if ips is None else ips, ndim, ntst, ncol, 0, 0, dtm)
+            self.lib.washer_set_context(2 if ips is None else ips, ndim, ntst, ncol,
+                                        self.nbc, self.nint, dtm)
             self.lib.washer_pvls(ndim, _dptr(ups), _dptr(par))
         else:
             self.lib.washer_set_context(1 if ips is None else ips, self.ndim, 0, 0, 0, 0,
@@ -284,6 +308,10 @@ class CompiledProblem(Problem):
                          bcnd=self._no_bcnd if user.has["bcnd"] else None,
                          icnd=self._no_icnd if user.has["icnd"] else None,
                          fopt_batch=user.fopt_batch if user.has["fopt"] else None)
+
+    def fresh(self) -> None:
+        """A new run: the user file's saved state starts afresh (`CompiledUser.reload`)."""
+        self.user.reload()
 
     # BCND and ICND need NBC / NINT, which the Problem passes to its methods: the
     # methods below call the compiled routines; the callables above only mark them present.
@@ -364,6 +392,9 @@ class CompiledProblem(Problem):
 
     def set_icp(self, icp) -> None:
         self.user.set_icp(icp)
+
+    def set_sizes(self, nbc: int, nint: int) -> None:
+        self.user.set_sizes(nbc, nint)
 
 
 def load_compiled_problem(path, ndim: int, name: str = "") -> CompiledProblem:

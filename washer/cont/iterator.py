@@ -377,6 +377,15 @@ class Continuation:
             # 2.2e-4 off with it, 1.2e-7 without).
             p0, s0 = base
             ds = s_ - s0
+            # s is measured along prev's tangent (`events.first_zero`'s position); a step
+            # of length d along p0's tangent moves it by d <t_p0, t_prev>: ask for the
+            # step that lands on s_. Near a sharp fold, where the branch turns away from
+            # prev's tangent within one step, the plain step falls short by that cosine
+            # at every trial and the location creeps (pcl's LP of its heteroclinic
+            # connections: ITMX used up with the trials moving 60 % of the way).
+            c = self.sys.inner(p0.tangent, prev.tangent)
+            if abs(c) > 0.05:
+                ds /= c
             try:
                 x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
             except ConvergenceError:
@@ -459,6 +468,7 @@ class Continuation:
                     yield Step("note", text=f"NOTE:Retrying step ({exc})")
             st.ds = ds
             pt = self.evaluate(x, (x - x0) / ds, ds=ds, it=it)
+            yield from self._untested(start, pt)
             pt.tests = {}                            # no detection on the first interval
             sysm.update(pt.x, pt.tangent)
             st.point, st.n_points, st.detect = pt, 2, True
@@ -493,6 +503,7 @@ class Continuation:
             # (AUTO's loop calls ADPTDS from its first point on: ab's, log's PT 3 lie
             # 2 DS beyond PT 2).
             st.detect = True
+            yield from self._untested(current, nxt)
             yield from self._accept(nxt, current)
             self._adapt_step(nxt.iterations)
             return
@@ -515,6 +526,26 @@ class Continuation:
             return
         yield from self._accept(nxt, current)
         self._adapt_step(nxt.iterations)
+
+    def _untested(self, prev: Point, cur: Point):
+        """A warning for each user value (UZR, UZSTOP) passed on the first written
+        interval, where nothing is detected (AUTO's test functions start at 0): the
+        point is not labelled, a UZSTOP there does not stop the run, and with NMX = 0
+        (no limit on the steps) the run may then never end."""
+        for k, (i, v, stop) in enumerate(self.uz):
+            q0, q1 = prev.tests.get(("UZ", k)), cur.tests.get(("UZ", k))
+            if q0 is None or q1 is None or q0 * q1 >= 0:
+                continue
+            text = (f"WARNING:PAR({i}) passed the user value {v:g} on the first step of the "
+                    "branch, where no special point is detected (as in AUTO): it is not "
+                    "labelled")
+            if stop:
+                text += " and the run does not stop there"
+                if self.s.NMX <= 0:
+                    text += ("; NMX = 0 sets no limit on the steps: only another stop "
+                             "(a user value, STOP, RL0/RL1/A0/A1, no convergence) ends it")
+            self._pending.append(Step("note", text=text))
+        yield from self._flush()
 
     def _adapt_step(self, iterations: int) -> None:
         """AUTO's ADPTDS every IADS points (IADS = 0: a fixed step)."""

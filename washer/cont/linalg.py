@@ -152,6 +152,48 @@ def tall_null_vector(M) -> np.ndarray:
     return z
 
 
+def nullvc(A: np.ndarray, k: int) -> np.ndarray:
+    """A null vector of the m x n matrix A with a k-dimensional null space, chosen as
+    AUTO's NULLVC chooses it (support.f90): Gaussian elimination with complete pivoting
+    over the first n - k pivots, then the last k unknowns of the pivoted order set to 1
+    and the others back-substituted. Where the null space has more than one dimension
+    this fixes WHICH null vector: the Hopf start of cycles (STHOPF) takes its phase
+    from it, and everything computed downstream that is not phase invariant (a
+    boundary condition at t = 0 of an extended BVP, pcl's PAR(13) = |v(0)|^2) follows
+    that phase."""
+    a = np.array(A, dtype=float)
+    m, n = a.shape
+    cpiv = np.arange(n)
+    amax = 0.0
+    for jj in range(n - k):
+        sub = np.abs(a[jj:, jj:])
+        # Fortran's loop keeps the first strict maximum in row-major order (i, then j).
+        flat = int(np.argmax(sub))
+        i, j = divmod(flat, sub.shape[1])
+        piv = sub[i, j]
+        ip, jp = jj + i, jj + j
+        if jj == 0:
+            amax = piv
+        if piv <= amax / np.finfo(float).max:
+            a[ip, jp] = max(amax / np.finfo(float).max, np.finfo(float).tiny)
+        if ip != jj:
+            a[[jj, ip], :] = a[[ip, jj], :]
+        cpiv[jj] = jp
+        if jp != jj:
+            a[:, [jj, jp]] = a[:, [jp, jj]]
+        rm = a[jj + 1:, jj] / a[jj, jj]
+        a[jj + 1:, jj + 1:] -= np.outer(rm, a[jj, jj + 1:])
+    u = np.zeros(n)
+    u[n - k:] = 1.0
+    for i in range(n - k - 1, -1, -1):
+        u[i] = -(a[i, i + 1:] @ u[i + 1:]) / a[i, i]
+    for i in range(n - k - 1, -1, -1):
+        j = cpiv[i]
+        if j != i:
+            u[i], u[j] = u[j], u[i]
+    return u
+
+
 def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
     """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
     if it is negligible, the first non-negligible component positive."""

@@ -107,6 +107,10 @@ class Problem:
         p.jac = jac
         return p
 
+    def fresh(self) -> None:
+        """A new run begins (AUTO starts each run in a new process): equations that keep
+        state between calls start afresh. Nothing to do for Python problems."""
+
     @property
     def has_dfdu(self) -> bool:
         """Whether f_u is the user's own (JAC != 0 and a Jacobian given), not differences."""

@@ -115,7 +115,10 @@ class ScreenSink:
               flush=True)
 
     def note(self, br, pt, text) -> None:
-        pass
+        # AUTO's notes go to the d-file only; warnings about how the run will go on
+        # (a stop value passed where nothing is detected) are shown.
+        if text.startswith("WARNING:"):
+            print(f"{br:4d}{pt:6d} {text}", file=self.stream, flush=True)
 
     def end(self, status: str, elapsed: float) -> None:
         if status != "ok":

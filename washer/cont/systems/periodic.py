@@ -54,6 +54,7 @@ if TYPE_CHECKING:                  # annotations only; imported where used
 
 from washer.cont import collocation as col
 from washer.cont import floquet
+from washer.cont.linalg import nullvc
 from washer.auto.codes import Code
 from washer.cont.system import Solution, Stability, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
@@ -125,12 +126,28 @@ class PeriodicOrbits(CollocationBVP):
             i = cand[np.argmin(np.abs(lam[cand].real))]
             T = 2 * math.pi / lam[i].imag
             self.par[10] = T
-        phi = vec[:, i]
+        # The eigenvector a + i b of i w, w = 2 pi / T, as STHOPF finds it: the null
+        # vector (a, b) of [[-w I, A], [A, w I]] by NLVC, unit in the Euclidean norm.
+        # Its phase (which rotation of the eigenvector) is AUTO's, and the orbits'
+        # phase follows it along the branch (the phase condition only keeps it): a
+        # problem that is not phase invariant downstream (pcl's normalisation of the
+        # Floquet bundle at t = 0) then meets AUTO's points.
+        n, w = len(u), 2 * math.pi / T
+        Ar = np.real(A)
+        smat = np.block([[-w * np.eye(n), Ar], [Ar, w * np.eye(n)]])
+        ab = nullvc(smat, 2)
+        ab /= np.linalg.norm(ab)
+        a, b = ab[:n], ab[n:]
+        if not np.all(np.isfinite(ab)) or np.linalg.norm(Ar @ (a + 1j * b) - 1j * w * (a + 1j * b)) \
+                > 1e-6 * (1 + np.linalg.norm(Ar)):
+            # Not a clean pair at 2 pi / T (a stored period off the eigenvalue): the
+            # eigenvector itself.
+            a, b = vec[:, i].real, vec[:, i].imag
         t = self.mesh.node_times()
         S, C = np.sin(2 * math.pi * t)[:, None], np.cos(2 * math.pi * t)[:, None]
-        udot = S * phi.real[None, :] + C * phi.imag[None, :]
+        udot = S * a[None, :] + C * b[None, :]
         self.U_old = np.tile(u, (self.mesh.n_nodes, 1))
-        self.up_old = C * phi.real[None, :] - S * phi.imag[None, :]
+        self.up_old = C * a[None, :] - S * b[None, :]
         x0 = self._x(self.U_old, self.par)
         t0 = np.r_[udot.ravel(), 0.0, 0.0]
         self._start = (x0, t0 / math.sqrt(self.inner(t0, t0)))
