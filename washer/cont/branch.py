@@ -39,7 +39,10 @@ class Point:
     direction in the system's inner product, oriented along the branch.
     stability : spectrum or None. tests : {base code: value} of the test
     functions at x. ds : the step that reached the point. iterations : Newton
-    iterations of that step.
+    iterations of that step. direction : the predictor's direction and the
+    arclength plane's normal for the step from this point where it is not the
+    tangent: on BVP branches the unit secant of the step that reached the point
+    (AUTO's CONTBV); None means the tangent.
     """
     x: np.ndarray
     tangent: np.ndarray
@@ -47,6 +50,11 @@ class Point:
     tests: dict = field(default_factory=dict)
     ds: float = 0.0
     iterations: int = 0
+    direction: np.ndarray | None = None
+
+    @property
+    def step_direction(self) -> np.ndarray:
+        return self.tangent if self.direction is None else self.direction
 
     @property
     def lam(self) -> float:

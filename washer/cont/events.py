@@ -203,7 +203,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             if base is not None and position is not None:
                 s_new = position(pt)
         except LocationFailed:
-            if last is not None and abs(s_new - last[1]) < tol:
+            if last is not None and abs(s_new - last[1]) < 2 * tol:
                 best = last
                 break
             raise

@@ -14,8 +14,14 @@ stops: the consumer (`washer.cont.runner`) numbers, labels, stops and writes.
 Arclength conditions (the system's `arclength`):
 * "sphere" (algebraic, SOLVAE): |x - x_old|^2_theta = ds^2, full Newton each
   iteration; one hidden first step (AUTO's unwritten first STEPAE).
-* "plane" (BVP, SOLVBV): <x - x_old, t_old>_theta = ds, Newton-chord: the
-  matrix is refactorised for the first NWTN iterations only.
+* "plane" (BVP, SOLVBV): <x - x_old, d_old>_theta = ds, Newton-chord: the
+  matrix is refactorised for the first NWTN iterations only. The predictor's
+  direction d_old is AUTO's: the unit secant of the step that reached x_old
+  (CONTBV + SCALEB; `Point.direction`), the stored or computed direction at the
+  start; the exact tangent serves the test functions and the output. (The
+  tangent predicts better, so Newton needs fewer iterations and ADPTDS grows
+  the steps beyond AUTO's, and where mesh adaptation is marginal, as near a
+  homoclinic orbit, the run then depends on a step sequence AUTO never took.)
 A branch started by switching (`mode="switch"`) takes its first step on the
 plane <x - x_bp - ds d, d> = 0 (AUTO's STBIF) and writes it.
 """
@@ -296,13 +302,16 @@ class Continuation:
         """A converged point: tangent, stability and the test values `keys`
         (all active tests and UZ values when None)."""
         J = self._jacobian(x)
+        direction = None
         if tangent is None:
             t, factor = self.tangent(J, ref)
+            if self.sys.arclength == "plane":
+                direction = ref / math.sqrt(self.sys.inner(ref, ref))     # CONTBV, SCALEB
         else:
             t = tangent
             factor = self._factor(J, self.sys.border(t))
         stab = self.sys.stability(x, J)
-        pt = Point(np.array(x), t, stab, {}, ds, it)
+        pt = Point(np.array(x), t, stab, {}, ds, it, direction)
         pt.tests = self._tests(pt, J, factor, keys)
         return pt
 
@@ -326,7 +335,8 @@ class Continuation:
     # ----------------------------------------------------------------- step
     def _step(self, p: Point, ds, keys=None):
         """The continuation step of arclength ds from p (predictor + corrector)."""
-        x, it = self.correct(p.x + ds * p.tangent, p.x, p.tangent, ds)
+        d = p.step_direction
+        x, it = self.correct(p.x + ds * d, p.x, d, ds)
         return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it)
 
     def _retrying_step(self, p: Point, ds):
@@ -566,9 +576,15 @@ class Continuation:
 
     def _adapt_mesh(self, p: Point, n_points: int) -> None:
         """Mesh adaptation of BVP systems (AUTO's ADAPT every IAD points): the
-        system moves the accepted point and its tangent to its new mesh."""
+        system moves the accepted point, its tangent and its step direction to its
+        new mesh; the direction is made unit again in the new mesh's norm (CONTBV
+        scales the secant after ADAPT)."""
         if self.sys.wants_remesh(n_points):
-            p.x, p.tangent = self.sys.remesh(p.x, p.tangent)
+            if p.direction is None:
+                p.x, p.tangent = self.sys.remesh(p.x, p.tangent)
+            else:
+                p.x, p.tangent, d = self.sys.remesh(p.x, p.tangent, p.direction)
+                p.direction = d / math.sqrt(self.sys.inner(d, d))
 
     def _flush(self):
         while self._pending:

@@ -388,6 +388,24 @@ class CollocationBVP:
         sign, logdet = np.linalg.slogdet(Sc / scale)
         return float(sign * math.exp(logdet))
 
+    def orient_stdrbv(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """STDRBV's sign for a computed direction t at x: the first free parameter
+        (PAR(ICP(1)) first, then ICP(2), ...) whose rate is not negligible (EPSL,
+        relative) increases; else the first component of u(1) whose rate is not
+        negligible (EPSU) does. At a symmetry-breaking BP of cycles (r3b's halo orbits
+        from its Lyapunov family) the parameters do not move and u(1) decides which of
+        the two mirror families is followed."""
+        s = self.settings
+        n_u, n_x = self.coll.n_u, len(t)
+        for slot in [n_x - 1] + list(range(n_u, n_x - 1)):
+            if abs(t[slot]) / (1 + abs(x[slot])) > s.EPSL:
+                return t if t[slot] > 0 else -t
+        n = self.n_comp
+        for tv, xv in zip(t[n_u - n:n_u], x[n_u - n:n_u]):
+            if abs(tv) / (1 + abs(xv)) > s.EPSU:
+                return t if tv > 0 else -t
+        return t
+
     def null_vector(self, J, border: np.ndarray) -> np.ndarray:
         """A null vector of the (singular or nearly singular) bordered matrix
         [J; border]: the smallest right singular vector of the reduced matrix, then the

@@ -289,7 +289,7 @@ class BoundaryValueProblem(CollocationBVP):
         if self._stored is not None and self.settings.ISW == -1:
             # STDRBV with IPERP = 1: the other branch at a BP.
             z = self.null_vector(J, self.weights * self._stored)
-            return x0, self._orient(z / math.sqrt(self.inner(z, z)), x0)
+            return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
         if self._stored is not None:
             nrm = math.sqrt(self.inner(self._stored, self._stored))
             if nrm > 0:
@@ -317,20 +317,7 @@ class BoundaryValueProblem(CollocationBVP):
             good = False
         if not good:
             z = self.null_vector(J, np.zeros(self.n_x))
-        return x0, self._orient(z / math.sqrt(self.inner(z, z)), x0)
-
-    def _orient(self, t, x):
-        """STDRBV's sign: the first free parameter (PAR(ICP(1)) first) with a
-        non-negligible rate increases; else the first such U(i) at t = 1."""
-        s = self.settings
-        for slot in [self.n_x - 1] + list(range(self.n_u, self.n_x - 1)):
-            if abs(t[slot]) / (1 + abs(x[slot])) > s.EPSL:
-                return t if t[slot] > 0 else -t
-        last = slice(self.n_u - self.ndim, self.n_u)
-        for tv, xv in zip(t[last], x[last]):
-            if abs(tv) / (1 + abs(xv)) > s.EPSU:
-                return t if tv > 0 else -t
-        return t
+        return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
 
     def stability(self, x, J=None):
         return None

@@ -243,7 +243,7 @@ class PeriodicOrbits(CollocationBVP):
                              "direction (written with IIS = 0?), so the other branch cannot "
                              "be found")
         z = self.null_vector(self.jacobian(x0), self.weights * old)
-        return z / math.sqrt(self.inner(z, z))
+        return self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
 
     # ------------------------------------------------------------------ helpers
     def unpack(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
