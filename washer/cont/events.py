@@ -322,7 +322,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
                               from_last=secant,
-                              position=lambda p: inner(p.x - prev.x, prev.tangent))
+                              position=lambda p: inner(p.x - prev.x, prev.step_direction))
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other

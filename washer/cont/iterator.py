@@ -387,13 +387,14 @@ class Continuation:
             # 2.2e-4 off with it, 1.2e-7 without).
             p0, s0 = base
             ds = s_ - s0
-            # s is measured along prev's tangent (`events.first_zero`'s position); a step
-            # of length d along p0's tangent moves it by d <t_p0, t_prev>: ask for the
+            # s is measured along prev's step direction (`events.first_zero`'s position,
+            # the coordinate in which a step from prev of arclength s lands at s); a step
+            # of length d along p0's tangent moves it by d <t_p0, d_prev>: ask for the
             # step that lands on s_. Near a sharp fold, where the branch turns away from
             # prev's tangent within one step, the plain step falls short by that cosine
             # at every trial and the location creeps (pcl's LP of its heteroclinic
             # connections: ITMX used up with the trials moving 60 % of the way).
-            c = self.sys.inner(p0.tangent, prev.tangent)
+            c = self.sys.inner(p0.tangent, prev.step_direction)
             if abs(c) > 0.05:
                 ds /= c
             try:
