@@ -313,7 +313,11 @@ class CollocationBVP:
         previous point) are interpolated onto it; the phase reference too."""
         old = self.mesh
         W = self.coll.profile(x)
-        tm = col.new_mesh(old, W[:, :self.ndim], old.ntst, periodic=self.periodic_mesh)
+        # CNRLBV's ADAPT: EQDF over every component of the continued system (a locus's
+        # null vectors too), extended by periodicity only for the orbits themselves
+        # ((IPS = 2 or 12) and |ISW| <= 1); a locus of cycles (ISW = 2) extrapolates.
+        periodic = self.periodic_mesh and abs(self.settings.ISW) <= 1
+        tm = col.new_mesh(old, W, old.ntst, periodic=periodic)
         nt = self.n_tail
 
         def move(v):
