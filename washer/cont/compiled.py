@@ -20,6 +20,7 @@ call, so the per-point cost is the user's code plus a few nanoseconds.
 """
 from __future__ import annotations
 
+import weakref
 from pathlib import Path
 
 import numpy as np
@@ -64,6 +65,7 @@ void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, in
 _ffi = FFI()
 _ffi.cdef(CDEF)
 _libs: dict[str, object] = {}          # one dlopen per library file
+_users: dict[str, "weakref.WeakSet"] = {}   # the CompiledUsers of each library file
 
 
 def find_user_file(name: str, folder: Path) -> Path | None:
@@ -91,8 +93,13 @@ def _open(lib_path: Path):
     return _libs[key]
 
 
+#: The C type of the arrays passed, resolved once (a type string is parsed again on
+#: every from_buffer call: a tenth of a collocation run's time in man's profile).
+_DOUBLES = _ffi.typeof("double[]")
+
+
 def _dptr(a: np.ndarray):
-    return _ffi.from_buffer("double[]", a)
+    return _ffi.from_buffer(_DOUBLES, a)
 
 
 class CompiledUser:
@@ -104,7 +111,8 @@ class CompiledUser:
     def __init__(self, path: Path, ndim: int):
         self.path, self.ndim = Path(path), ndim
         self._lib_path = compile_user_file(path)
-        _open(self._lib_path)
+        self.lib = _open(self._lib_path)
+        _users.setdefault(str(self._lib_path), weakref.WeakSet()).add(self)
         self.has = {n: bool(self.lib.washer_has(n.encode()))
                     for n in ("func", "stpnt", "bcnd", "icnd", "fopt", "pvls")}
         if not self.has["func"]:
@@ -119,22 +127,19 @@ class CompiledUser:
         self.nbc = self.nint = 0
         self.pvls_wants_eigenvalues = False     # learnt on the first PVLS that asks GETP
 
-    @property
-    def lib(self):
-        """The library's handle (shared by every CompiledUser of the file; `reload`
-        replaces it)."""
-        return _open(self._lib_path)
-
     def reload(self) -> None:
         """Unload and load the library again: the user file's SAVEd and module variables
         start afresh, as they do in AUTO, where every run is a new process (pcl's PVLS
-        sets up its boundary conditions on its FIRST call of each run)."""
+        sets up its boundary conditions on its FIRST call of each run). Every
+        CompiledUser of the file gets the new handle."""
         key = str(self._lib_path)
         old = _libs.pop(key, None)
         if old is not None:
-            _ffi.dlclose(old)
-        _open(self._lib_path)
-        self._pvls_seen = not self.has["pvls"]
+            _ffi.dlclose(old)              # first: dlopen of a loaded file is the same copy
+        lib = _open(self._lib_path)
+        for user in list(_users.get(key, ())):
+            user.lib = lib
+            user._pvls_seen = not user.has["pvls"]
 
     def _first_pvls(self, u, pars) -> None:
         """AUTO calls PVLS on the starting point before FUNC, and user files rely on it
