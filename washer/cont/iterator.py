@@ -492,7 +492,9 @@ class Continuation:
                 self.state = None
                 yield Step("failed", start, text=self.failure)
                 return
-            pt.tests = {}
+            # No detection from the hidden point; its user values are kept for the
+            # warning when one is passed on the first written (untested) interval.
+            pt.tests = {k: v for k, v in pt.tests.items() if isinstance(k, tuple)}
             sysm.update(pt.x, pt.tangent)
             st.point = pt
 

@@ -1,0 +1,68 @@
+"""How a run starts, as AUTO starts it: which null vector a Hopf start takes (NLVC), the
+user file's saved state afresh for every run (a new process per run in AUTO), and a
+warning where a user value is passed on the first step, where nothing is detected."""
+import shutil
+from pathlib import Path
+
+import numpy as np
+
+from washer.cont.linalg import nullvc
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+
+
+def test_nullvc_is_a_null_vector_with_the_pivoted_free_unknowns_one():
+    """AUTO's NULLVC on a 6 x 6 matrix of rank 4 built from random factors: A u = 0 to
+    rounding, and the two unknowns left free by complete pivoting are 1 (so u is not
+    the unit SVD vector: which null vector comes out is fixed by the elimination, and
+    the Hopf start's orbit phase with it)."""
+    rng = np.random.default_rng(3)
+    A = rng.standard_normal((6, 4)) @ rng.standard_normal((4, 6))
+    u = nullvc(A, 2)
+    assert np.linalg.norm(A @ u) < 1e-12 * np.linalg.norm(A) * np.linalg.norm(u)
+    # the last two unknowns of the pivoted order are exactly 1: two entries of u are 1
+    assert np.sum(u == 1.0) >= 2
+    # it lies in the null space (its projection onto it is itself)
+    _, _, Vt = np.linalg.svd(A)
+    N = Vt[-2:].T
+    assert np.linalg.norm(u - N @ (N.T @ u)) < 1e-12 * np.linalg.norm(u)
+
+
+def test_user_file_saved_state_starts_afresh_for_every_run():
+    """pcl's PVLS sets PAR(21) = U(0)(7) - 10 on its FIRST call only (a SAVEd flag): AUTO
+    runs every run in a new process, so every run's first call sets it. The compiled
+    library reloaded (`fresh`) behaves so; without the reload the second call is a no-op."""
+    from washer.cont.compiled import load_compiled_problem
+    p = load_compiled_problem(DATA / "auto_demos" / "pcl" / "pcl.f90", 9)
+
+    def pvls_once():
+        u = np.zeros(9)
+        u[6] = 3.0
+        par = np.zeros(36)
+        p.user.pvls(u, par)
+        return par[20]
+    p.fresh()
+    assert pvls_once() == -7.0 and pvls_once() == 0.0
+    p.fresh()
+    assert pvls_once() == -7.0
+
+
+def test_a_user_value_passed_on_the_first_step_is_a_warning(tmp_path):
+    """The line u = p continued from p = 0 with DS = 0.5: the hidden first step ends at
+    p = 0.5, the first written one at p = 1, and UZSTOP p = 0.7 lies inside it, where no
+    test is made (AUTO's tests start at 0): it is not labelled and the run goes on to
+    NMX; the d-file says so."""
+    (tmp_path / "line.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([u[0] - par[0]])\n"
+        "def stpnt(u, par):\n    u[0] = 0.0\n    par[0] = 0.0\n")
+    (tmp_path / "c.line").write_text(
+        "e = 'line'\nNDIM = 1, IPS = 1, IRS = 0, ILP = 0, ISP = 0\nICP = [1]\nNMX = 4\n"
+        "DS = 0.5, DSMIN = 0.01, DSMAX = 0.5\nUZSTOP = {1: 0.7}\n")
+    res = run(tmp_path / "c.line", verbose=False, sv="line")
+    assert res.status == "ok"
+    d = (tmp_path / "d.line").read_text()
+    assert [r.ty for r in res.rows if r.lab] == ["EP", "EP"]
+    assert "WARNING:PAR(1) passed the user value 0.7 on the first step" in d
+    assert "does not stop there" in d
