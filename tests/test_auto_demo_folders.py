@@ -28,8 +28,6 @@ EXPECTED_FAIL = {
            "BP locus meets a fold AUTO's forward run labels BP a little earlier, ours LP",
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
-    "r3b": "6 of 7: the halo family's PT 137, where AUTO's NMX ends the run (EP) at its "
-           "next BP of cycles, is that BP located (our test changed sign in the last step)",
     "enz": "10 of 11: where the branch from the BP passes the pitchfork again AUTO labels an "
            "LP and a BP one step apart, we the BP only",
     "tor": "23 of 24: AUTO's BP of cycles one step after the LP at PAR(1) = -0.8325 (b.1) is "
