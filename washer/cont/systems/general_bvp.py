@@ -181,14 +181,12 @@ class BoundaryValueProblem(CollocationBVP):
         self._begin(U, old if (same or self.settings.ISW == -1) else None)
 
     def _begin(self, U, old) -> None:
-        if getattr(self.problem, "has_pvls", False):
-            # RSPTBV: PVLS on the start "so the parameters can be initialized": its
-            # PAR is the run's (pcl's PVLS sets the section offsets its boundary
-            # conditions hold, on its first call of a run).
-            orbit = Orbit.of(np.asarray(U, float), self.mesh.node_times(), self.w_node,
-                             self.par[10] if len(self.par) > 10 else 0.0, self.mesh.ntst,
-                             self.mesh.ncol, None)
-            self.par = np.asarray(self.problem.pvls(orbit, self.par), float)
+        # RSPTBV: PVLS on the start "so the parameters can be initialized": its PAR is
+        # the run's (pcl's PVLS sets the section offsets its boundary conditions hold,
+        # on its first call of a run).
+        self.par = np.asarray(self.pvls_params(np.asarray(U, float), self.par,
+                                               self.par[10] if len(self.par) > 10 else 0.0),
+                              float)
         self.U_old = np.array(U, float)
         self.udot_old = np.zeros_like(self.U_old)
         self.up_old = self.field.f(self.U_old, self.par)          # STUPBV
