@@ -21,8 +21,8 @@ FAST = {"frc", "lrz", "lor", "chu", "opt"}
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
     "abcb": "20 of 22: run 2 misses AUTO's LP and BP at its tip PAR(1) = 0.3462",
-    "lcbp": "6 of 8: where the BP loci reach the Hopf point (circles of radius PAR(1) -> 0), "
-            "a degenerate end, AUTO ends with MX and a BP, ours with a UZ and MX",
+    "lcbp": "7 of 8: where the generic BP locus reaches the Hopf point (circles of radius "
+            "PAR(1) -> 0), a degenerate end, AUTO ends with a BP, ours with an LP",
     "tfc": "12 of 18: run 5's first BP of cycles, a fold's tip (a zero of third order), is "
            "only noted: its location ends ITMX just above the zero threshold, so run 6 cannot "
            "start from BP2; where the BP locus meets a fold AUTO's forward run labels BP a "
