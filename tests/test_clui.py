@@ -120,6 +120,29 @@ def test_a_failing_command_names_the_line(tmp_path, monkeypatch):
     assert "y.auto:2" in str(err.value) and "c.nosuch" in str(err.value)
 
 
+def test_a_bad_value_of_a_constants_file_names_its_line_and_a_keywords_the_command(
+        tmp_path, monkeypatch):
+    # ICP names are resolved only when the run is built (against parnames): the error
+    # must still point at the constants file's line, or at the command that set it.
+    monkeypatch.chdir(tmp_path)
+    shutil.copy(DEMOS / "ab" / "ab.f90", tmp_path)
+    lines = (DEMOS / "ab" / "c.ab.1").read_text().splitlines()
+    row = next(i for i, ln in enumerate(lines) if ln.startswith("ICP"))
+    lines[row] = "ICP = ['nosuch']"
+    Path("c.ab").write_text("\n".join(lines) + "\n")
+    Path("x.auto").write_text("r = run('ab')\n")
+    with pytest.raises(ScriptError) as err:
+        run_script("x.auto")
+    assert f"c.ab:{row + 1}" in str(err.value) and "'nosuch'" in str(err.value)
+    lines[row] = "ICP = [1]"
+    Path("c.ab").write_text("\n".join(lines) + "\n")
+    Path("y.auto").write_text("r = run('ab', ICP=['nosuch'])\n")
+    with pytest.raises(ScriptError) as err:
+        run_script("y.auto")
+    msg = str(err.value)
+    assert "y.auto:1" in msg and "ICP" in msg and f"c.ab:{row + 1}" not in msg
+
+
 def test_a_run_not_done_says_why_in_its_d_file_and_the_script_goes_on(tmp_path, monkeypatch):
     # A run of a kind the engine does not do (HomCont, IPS = 9) is reported on the
     # screen and in the d-file its output would have had; later commands still run.

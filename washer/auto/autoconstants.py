@@ -18,10 +18,15 @@ class AutoError(RuntimeError):
 
 class AutoConstants(dict):
     """AUTO's constants as the CLUI holds them (parseC): every standard key present,
-    None meaning AUTO's default; updates replace values, None included."""
+    None meaning AUTO's default; updates replace values, None included.
+
+    `origins` maps a key read from a constants file to its place there ('c.NAME:LINE'),
+    so that an error found only when a run is built names that line; a value set by a
+    command keyword has no origin (the error names the command)."""
 
     def __init__(self, other=None, **kw):
         super().__init__({k: None for k in STANDARD_KEYS})
+        self.origins: dict[str, str] = dict(getattr(other, "origins", {}))
         if other is not None:
             for k, v in dict(other).items():
                 dict.__setitem__(self, k, _copyval(v))
@@ -29,6 +34,7 @@ class AutoConstants(dict):
             self.update(kw)
 
     def __setitem__(self, key, value):
+        self.origins.pop(key, None)
         if key == "DS" and value in ("-", "+"):
             cur = self.get("DS")
             cur = 0.01 if cur is None else float(cur)
@@ -40,9 +46,12 @@ class AutoConstants(dict):
     def update(self, d=None, **kw):
         items = dict(d or {})
         items.update(kw)
+        origins = getattr(d, "origins", {})
         for k, v in items.items():
             if k in self or k in SPECIAL_KEYS:
                 self[k] = v
+                if k in origins and k not in kw:
+                    self.origins[k] = origins[k]
             elif not str(k).startswith("Active "):
                 raise AutoError(f"Unknown option: {k}")
 
@@ -55,7 +64,7 @@ class AutoConstants(dict):
         for k, v in self.items():
             if v is None or k == "homcont":
                 continue
-            c.set(k, v, f"{source}: {k}")
+            c.set(k, v, self.origins.get(k, f"{source}: {k}"))
         return c
 
 

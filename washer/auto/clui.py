@@ -54,6 +54,7 @@ def read_auto_constants(name: str) -> AutoConstants:
     out = AutoConstants()
     for k in c.given:
         out[k] = c[k]
+        out.origins[k] = c.given[k]
     return out
 
 
