@@ -190,22 +190,26 @@ def test_fold_of_cycles_header_is_autos(plp):
 def test_auto07p_continues_washers_fold_locus_of_a_bvp(integral, tmp_path):
     """AUTO-07p restarts int's fold locus (c.int, ICP = [1, 2], ISW = 2) from washer's
     record of it (s.lp, the UZ at PAR(1) = 3, label 9; NPARI = 1: the norm after the
-    user's NPAR) and meets PAR(1) = 1 where washer's own run did (UZ10): PAR(2) within
-    twice the location tolerance EPSS (1 + sqrt(DS DSMAX)) of c.int."""
+    user's NPAR) and meets PAR(1) = 1 where washer, restarted from the same record by the
+    same script line, does: PAR(2) within twice the location tolerance
+    EPSS (1 + sqrt(DS DSMAX)) of c.int (the demo's own run ends at NMX before PAR(1) = 1,
+    in both programs)."""
     recs = {r.lab: r for r in read_s(integral / "s.lp")}
     assert recs[9].ty == "UZ" and recs[9].par[0] == pytest.approx(3) and recs[9].npari == 1
-    auto = tmp_path / "auto"
-    auto.mkdir()
-    for name in ("int.f90", "c.int"):
-        shutil.copy(DEMOS / "int" / name, auto / name)
-    shutil.copy(integral / "s.lp", auto / "s.ours")
-    (auto / "r.auto").write_text("run(e='int', c='int', s='ours', IRS=9, ICP=[1, 2], ISW=2, "
-                                 "sv='x')\n")
-    subprocess.run(["auto-07p", "r.auto"], cwd=auto, env=dict(os.environ, OMP_NUM_THREADS="1"),
-                   capture_output=True, timeout=600, check=True)
-    uz = [r for r in branch_rows(auto / "b.x") if r.lab and r.ty == -54]
-    ours = [r for r in branch_rows(integral / "b.lp") if r.lab == 10][0]
-    assert ours.ty == -54 and ours.values[0] == pytest.approx(1.0)
-    assert len(uz) == 1 and uz[0].values[0] == pytest.approx(1.0, abs=1e-5)
+    line = "run(e='int', c='int', s='ours', IRS=9, ICP=[1, 2], ISW=2, sv='x')\n"
+    uz = {}
+    for who, cmd in (("auto", ["auto-07p", "r.auto"]),
+                     ("washer", [sys.executable, "-m", "washer.auto", "r.auto"])):
+        folder = tmp_path / who
+        folder.mkdir()
+        for name in ("int.f90", "c.int"):
+            shutil.copy(DEMOS / "int" / name, folder / name)
+        shutil.copy(integral / "s.lp", folder / "s.ours")
+        (folder / "r.auto").write_text(line)
+        subprocess.run(cmd, cwd=folder, env=dict(os.environ, OMP_NUM_THREADS="1"),
+                       capture_output=True, timeout=600, check=True)
+        uz[who] = [r for r in branch_rows(folder / "b.x") if r.lab and r.ty == -54]
+    assert len(uz["auto"]) == 1 and uz["auto"][0].values[0] == pytest.approx(1.0, abs=1e-5)
+    assert len(uz["washer"]) == 1 and uz["washer"][0].values[0] == pytest.approx(1.0, abs=1e-5)
     tol = 1e-4 * (1 + (0.01 * 2.0) ** 0.5)          # c.int: EPSS, DS, DSMAX
-    assert uz[0].values[-1] == pytest.approx(ours.values[-1], abs=2 * tol)     # PAR(2)
+    assert uz["auto"][0].values[-1] == pytest.approx(uz["washer"][0].values[-1], abs=2 * tol)
