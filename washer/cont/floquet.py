@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 
 from washer.auto.codes import Code
-from washer.cont.system import Stability
+from washer.cont.system import Stability, fold_test
 
 #: Stability tolerance of FNSPBV: |mu| <= 1 + STABLE_TOL counts as inside the circle.
 STABLE_TOL = 1e-5
@@ -202,7 +202,7 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
     codes = [int(c) for c in codes]
     out = {}
     if Code.LPC in codes:
-        out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
+        out[int(Code.LPC)] = fold_test(tangent)
     if Code.BPC in codes:
         out[int(Code.BPC)] = None if (tangent is None or inaccurate(st) or bp is None) \
             else bp()

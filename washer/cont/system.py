@@ -111,6 +111,13 @@ import numpy as np
 from washer.cont.linalg import Factor
 
 
+def fold_test(tangent) -> float | None:
+    """The fold test of every continued system (AUTO's FNLPAE, FNLPBV): the component of
+    the unit tangent along the first continuation parameter, which the systems keep as
+    their last unknown; None before there is a tangent."""
+    return None if tangent is None else float(tangent[-1])
+
+
 @dataclass
 class Stability:
     """Spectrum at a point: `values` are eigenvalues (IPS = 1, sorted by

@@ -7,7 +7,7 @@ import numpy as np
 
 from washer.auto.codes import Code
 from washer.cont.linalg import dense_factor, null_vectors, orient
-from washer.cont.system import Solution
+from washer.cont.system import Solution, fold_test
 
 
 class AlgebraicSystem:
@@ -80,7 +80,7 @@ class AlgebraicSystem:
     def _lp_bp(self, tangent, factor, codes) -> dict:
         out = {}
         if Code.LP in codes:
-            out[Code.LP] = float(tangent[-1])
+            out[Code.LP] = fold_test(tangent)
         if Code.BP in codes:
             # AUTO's FNBPAE: the determinant of the Newton matrix [G_x; border].
             sign, logdet = factor.sign_logdet()

@@ -31,7 +31,7 @@ from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.problem import FD_STEP
 from washer.cont.pvls import Orbit
-from washer.cont.system import Solution
+from washer.cont.system import Solution, fold_test
 
 #: Relative step of the mixed second differences of f (eps^(1/4)).
 H2 = 1e-4
@@ -369,7 +369,7 @@ class CollocationBVP:
         codes = self.active_tests() if codes is None else [int(c) for c in codes]
         out = {}
         if Code.LPC in codes:
-            out[int(Code.LPC)] = None if tangent is None else float(tangent[-1])
+            out[int(Code.LPC)] = fold_test(tangent)
         if Code.BPC in codes:
             try:
                 out[int(Code.BPC)] = None if tangent is None else self.bp_function(

@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from washer.auto.codes import Code
-from washer.cont.system import Solution, register
+from washer.cont.system import Solution, fold_test, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 
 #: The normalisation constant c of int <v, v> + beta^2 = c.
@@ -224,7 +224,7 @@ class CycleFoldLocus(CollocationBVP):
         codes = self.active_tests() if codes is None else codes
         out = {}
         if Code.LP in codes:
-            out[int(Code.LP)] = None if tangent is None else float(tangent[-1])
+            out[int(Code.LP)] = fold_test(tangent)
         return out
 
     def accept(self, code, prev, cur) -> bool:

@@ -56,7 +56,7 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont import collocation as col
 from washer.cont import floquet
-from washer.cont.system import Solution, register
+from washer.cont.system import Solution, fold_test, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 
 #: The fixed norm of the eigenfunction, int <v, v> (+ <w, w>) = NORM.
@@ -271,9 +271,6 @@ class _CycleLocus(CollocationBVP):
         """The constants the run goes by (the generating run's ILP = ISP = 0)."""
         return getattr(self, "run_settings", self.settings)
 
-    def _lp(self, tangent):
-        return None if tangent is None else float(tangent[-1])
-
     def accept(self, code, prev, cur) -> bool:
         return True
 
@@ -354,7 +351,7 @@ class PeriodDoublingLocus(_CycleLocus):
         codes = self.active_tests() if codes is None else [int(c) for c in codes]
         out = {}
         if Code.LPC in codes:
-            out[int(Code.LPC)] = self._lp(tangent)
+            out[int(Code.LPC)] = fold_test(tangent)
         if Code.R2 in codes:
             out[int(Code.R2)] = floquet.resonance_12_test(self.multipliers(x),
                                                           self.settings.EPSS)
@@ -441,7 +438,7 @@ class TorusLocus(_CycleLocus):
         codes = self.active_tests() if codes is None else [int(c) for c in codes]
         out = {}
         if Code.LPC in codes:
-            out[int(Code.LPC)] = self._lp(tangent)
+            out[int(Code.LPC)] = fold_test(tangent)
         theta = float(x[self.coll.n_u + 1]) if 12 in self.xpar else float(self.par[11])
         out.update(floquet.torus_resonance_tests(theta, codes))
         return out
