@@ -8,7 +8,7 @@ of g is a circle of radius r*, period T = 2 pi / (1 + r*^2). For p3 = 0 the circ
 r = p1 and r = exp(p2) cross at p1 = exp(p2): a transcritical bifurcation of cycles,
 which persists along the curve p1 = exp(p2) in (p1, p2) (a non-generic BP: ISW = 2)
 and, with p3 free, is the codimension-two set g = g_r = g_p1 = 0, i.e. p1 = exp(p2),
-p3 = 0 (the generic case: ISW = 3). tests/test_cycle_bp.py derives that with sympy.
+p3 = 0 (the generic case: ISW = 3). tests/test_cycle_branch_point.py derives that with sympy.
 """
 import math
 

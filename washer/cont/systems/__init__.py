@@ -9,8 +9,9 @@ algebraic_optimisation
              extrema of FOPT on f = 0 (IPS = 5; FNC1, FNC2)
 periodic     periodic orbits by collocation (IPS = 2; FNPS), PD and BP switching
 cycle_fold   the locus of folds of cycles in two parameters (IPS = 2, ISW = 2; FNPL)
-cycle_loci   the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR)
-cycle_bp     the locus of branch points of cycles (IPS = 2, ISW = 2 or 3; FNPBP)
+cycle_pd_tr  the loci of period doublings and tori (IPS = 2, ISW = 2; FNPD, FNTR)
+cycle_branch_point
+             the locus of branch points of cycles (IPS = 2, ISW = 2 or 3; FNPBP)
 bvp          the collocation base of periodic orbits and their loci (registers nothing)
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching, and
              their fold locus (ISW = 2 from LP; FNBL)
