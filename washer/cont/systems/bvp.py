@@ -484,3 +484,22 @@ class CollocationBVP:
         return Solution(par=par, columns=cols, u=W.copy(), t=self.mesh.node_times(),
                         udot=udot, rldot=rl, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
                         ndim_user=self.ndim)
+
+
+class CycleLocus(CollocationBVP):
+    """Base of the two- and three-parameter loci of periodic orbits (folds, period
+    doublings, tori, branch points of cycles): AUTO computes no stability on these curves,
+    and the user's PVLS sees the orbit itself, the first NDIM columns of the profile,
+    with its period PAR(11)."""
+
+    def orbit(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """(u (n_nodes, NDIM), full PAR) at the unknowns x."""
+        W, par = self.unpack(x)
+        return W[:, :self.n], par
+
+    def params(self, x):
+        u, par = self.orbit(x)
+        return self.pvls_params(u, par, par[10])
+
+    def stability(self, x, J=None):
+        return None

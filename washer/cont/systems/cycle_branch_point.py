@@ -61,7 +61,7 @@ import numpy as np
 from washer.auto.codes import Code
 from washer.cont.linalg import tall_null_vector
 from washer.cont.system import Solution, register
-from washer.cont.systems.bvp import H2, CollocationBVP, VectorField, onto_mesh, stored_profile
+from washer.cont.systems.bvp import H2, CycleLocus, VectorField, onto_mesh, stored_profile
 
 #: How many internal parameters follow PAR(NPAR) in the record: phi3, a, b.
 N_INTERNAL = 3
@@ -87,7 +87,7 @@ def rearranged(icp: list, generic: bool) -> list:
 
 @register(2, 2, "BP")
 @register(2, 2, "BPC-curve")
-class CycleBranchPointLocus(CollocationBVP):
+class CycleBranchPointLocus(CycleLocus):
     """The locus of BPs of cycles (FNPBP/BCPBP/ICPBP); see the module docstring."""
     curve_type = 6
     nint = 4
@@ -329,14 +329,6 @@ class CycleBranchPointLocus(CollocationBVP):
             Bp[:n, slot[self.i_b]] = W[0, n:]
         return self.coll.jacobian_general(blocks, dF.reshape(npar, N, m, 2 * n), int_u,
                                           int_par, (B0, B1, Bp))
-
-    def params(self, x):
-        W, par = self.unpack(x)
-        return self.pvls_params(W[:, :self.n], par, par[10])
-
-    def stability(self, x, J=None):
-        """No stability on these curves (AUTO writes PT < 0 there)."""
-        return None
 
     def active_tests(self) -> list:
         s = getattr(self, "run_settings", self.settings)      # the generating run: none

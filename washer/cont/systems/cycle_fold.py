@@ -34,7 +34,7 @@ import numpy as np
 
 from washer.auto.codes import Code
 from washer.cont.system import Solution, fold_test, register
-from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
+from washer.cont.systems.bvp import CycleLocus, VectorField, onto_mesh, stored_profile
 
 #: The normalisation constant c of int <v, v> + beta^2 = c.
 NORM = 1.0
@@ -42,7 +42,7 @@ NORM = 1.0
 
 @register(2, 2, "LP")
 @register(2, 2, "LPC-curve")
-class CycleFoldLocus(CollocationBVP):
+class CycleFoldLocus(CycleLocus):
     curve_type = 5
     nint = 3
     _generating = False
@@ -209,12 +209,9 @@ class CycleFoldLocus(CollocationBVP):
             int_par[2, 1] = -1.0
         return self.coll.jacobian_general(blocks, dF.reshape(4, N, m, 2 * n), int_u, int_par)
 
-    def params(self, x):
+    def orbit(self, x):
         u, v, par, beta = self.unpack(x)
-        return self.pvls_params(u, par, par[10])
-
-    def stability(self, x, J=None):
-        return None
+        return u, par
 
     def active_tests(self) -> list:
         s = getattr(self, "run_settings", self.settings)      # the generating run: ILP = 0

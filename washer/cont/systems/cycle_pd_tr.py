@@ -57,13 +57,13 @@ from washer.auto.codes import Code
 from washer.cont import collocation as col
 from washer.cont import floquet
 from washer.cont.system import Solution, fold_test, register
-from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
+from washer.cont.systems.bvp import CycleLocus, VectorField, onto_mesh, stored_profile
 
 #: The fixed norm of the eigenfunction, int <v, v> (+ <w, w>) = NORM.
 NORM = 1.0
 
 
-class _CycleLocus(CollocationBVP):
+class _CycleLocus(CycleLocus):
     """What the PD and TR loci share; subclasses set `copies` (m), `curve_type`, the
     angle slot and the boundary conditions."""
     copies = 2
@@ -255,14 +255,6 @@ class _CycleLocus(CollocationBVP):
             int_par[m - 1, slots[self.c_index]] = -1.0                 # the norm row's - c
         return self.coll.jacobian_general(blocks, dF.reshape(len(self.xpar), N, c, m * n),
                                           int_u, int_par, self._bc_jac(W[0], par))
-
-    def params(self, x):
-        W, par = self.unpack(x)
-        return self.pvls_params(W[:, :self.n], par, par[10])
-
-    def stability(self, x, J=None):
-        """No stability on ISW = 2 curves (AUTO writes PT > 0 there)."""
-        return None
 
     def active_tests(self) -> list:
         return [int(Code.LPC)] if self._run_settings().detects("LP") else []
