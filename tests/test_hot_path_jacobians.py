@@ -13,6 +13,8 @@ import numpy as np
 from washer.cont.problem import Problem
 from washer.cont.systems.bvp import VectorField
 
+from test_periodic import lw       # the closed-form Hopf normal form the periodic tests continue
+
 
 def ab(u, par):
     e = np.exp(u[1])
@@ -31,14 +33,6 @@ def test_small_stencil_jacobian_equals_the_batched_stencil_bit_for_bit():
         for idx in ([1], [2, 1], [3]):
             assert np.array_equal(plain.jacobian(u, par, idx), batched.jacobian(u, par, idx))
         assert np.array_equal(plain.dfdu(u, par), batched.dfdu(u, par))
-
-
-def lw(u, par):
-    x, y = u[0], u[1]
-    mu, om, b, c = par[0], par[1], par[2], par[3]
-    r2 = x * x + y * y
-    th = om + b * r2 + c * x
-    return np.array([x * (mu - r2) - y * th, y * (mu - r2) + x * th])
 
 
 def lw_dfdp_batch(us, pars):
