@@ -109,7 +109,7 @@ def test_autos_parsers_read_every_file_washer_writes(demo, request):
 
 
 def _ty(code: int) -> str:
-    from washer.auto.codes import type_name
+    from washer.cont.codes import type_name
     return type_name(code)
 
 

@@ -175,7 +175,7 @@ def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     the fold's (s = 0.1): the step's special point is the fold, the first trial is the
     fold's."""
     from types import SimpleNamespace
-    from washer.auto.codes import Code
+    from washer.cont.codes import Code
     from washer.cont.branch import Point
     from washer.cont.events import first_zero
     settings = SimpleNamespace(EPSS=1e-8, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-6)

@@ -29,7 +29,7 @@ from washer.auto.files import read_s, record_text
 from washer.cont.branch import Record
 from washer.cont.iterator import Continuation
 from washer.cont import collocation as col
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.problem import Problem
 from washer.cont.settings import Settings
 from washer.cont.system import StartData

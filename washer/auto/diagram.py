@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.atomic import write_text
-from washer.auto.codes import split_code, type_name as _type_name
+from washer.cont.codes import split_code, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _read_record, _read_text, fmt_e,
                                record_text)
 from washer.auto.autoconstants import AutoConstants

@@ -24,8 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
-from washer.auto.record import Record
+from washer.cont.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
+from washer.cont.record import Record
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.auto.codes import find
-from washer.auto.record import Record  # noqa: F401  (the rows of a Branch)
+from washer.cont.codes import find
+from washer.cont.record import Record  # noqa: F401  (the rows of a Branch)
 from washer.cont.system import Stability
 
 
@@ -175,7 +175,7 @@ class Branch:
 
     def __call__(self, key):
         """r('HB1'), r('LP'), r(3), r(-1): a labelled point by type (and count), label
-        or position, as AUTO's FINDLB (washer.auto.codes.find)."""
+        or position, as AUTO's FINDLB (washer.cont.codes.find)."""
         try:
             return find(self.specials, key, code=lambda r: r.code)
         except LookupError as exc:

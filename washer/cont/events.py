@@ -33,7 +33,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code, curve_code, type_name
+from washer.cont.codes import Code, curve_code, type_name
 
 #: A zero estimated within this fraction of a step from a located special
 #: point lies on it: a second test vanishes there too (a transcritical BP is

@@ -33,7 +33,7 @@ from typing import Callable
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.system import Stability, fold_test
 
 #: Stability tolerance of FNSPBV: |mu| <= 1 + STABLE_TOL counts as inside the circle.

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from washer.cont.branch import Counters, Point
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.events import first_zero
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient

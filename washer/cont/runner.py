@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.auto.codes import Code, curve_code, type_name
+from washer.cont.codes import Code, curve_code, type_name
 from washer.cont import start
 from washer.cont.branch import Branch, Point, Record
 from washer.cont.iterator import Continuation, ConvergenceError

@@ -18,7 +18,7 @@ from __future__ import annotations
 import sys
 
 from washer.auto.files import OutputFiles, Row, fmt_es, screen_heading
-from washer.auto.codes import type_name
+from washer.cont.codes import type_name
 
 
 def _row(lab) -> Row:

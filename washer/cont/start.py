@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
-from washer.auto.codes import split_code, type_name
+from washer.cont.codes import split_code, type_name
 from washer.auto.files import find_record
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.linalg import dense_factor, null_vectors, orient
 from washer.cont.system import Solution, fold_test
 

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor

@@ -58,7 +58,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.linalg import tall_null_vector
 from washer.cont.system import Solution, register
 from washer.cont.systems.bvp import H2, CycleLocus, VectorField, onto_mesh, stored_profile

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.system import Solution, fold_test, register
 from washer.cont.systems.bvp import CycleLocus, VectorField, onto_mesh, stored_profile
 

@@ -53,7 +53,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont import floquet
 from washer.cont.system import Solution, fold_test, register

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.normal_form import FD2_STEP
 from washer.cont.system import StartData, register
 from washer.cont.linalg import null_vectors

@@ -41,7 +41,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont.problem import Problem
 from washer.cont.system import Solution, StartData, register

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.problem import Problem
 from washer.cont.system import Stability, StartData, register
 from washer.cont.floquet import torus_resonance_tests

@@ -55,7 +55,7 @@ if TYPE_CHECKING:                  # annotations only; imported where used
 from washer.cont import collocation as col
 from washer.cont import floquet
 from washer.cont.linalg import nullvc
-from washer.auto.codes import Code
+from washer.cont.codes import Code
 from washer.cont.system import Solution, Stability, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField, onto_mesh, stored_profile
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.auto.codes import split_code, type_name
+from washer.cont.codes import split_code, type_name
 
 
 @dataclass
