@@ -15,8 +15,18 @@ PAR(ICP(1)) has weight 1 (THL), so each engine's parameter is within that distan
 exact zero, and the two within twice it. EPSS, DS, DSMAX are read from the header of AUTO's
 own b-file branch (the branches a run switches to, MXBF, have only column titles and keep
 the run's constants). The period has no weight in the arclength of periodic orbits (THL
-{11: 0}), so the tolerance does not bound it: it is compared at 1e-3 relative (AUTO's UZ at
-PERIOD = 1000 in the ab demo is 999.88; the exact value is the UZ value itself).
+{11: 0}), so the tolerance does not bound it directly: it is compared at 1e-3 relative
+(AUTO's UZ at PERIOD = 1000 in the ab demo is 999.88; the exact value is the UZ value
+itself), or within what the arclength tolerance implies where the period changes faster
+than that along the branch: |dT/ds| times the tolerance. |dT/ds| is read from AUTO's own
+rows next to the point: over a step, the arclength is at least sqrt(dPAR(ICP(1))^2 + dL2^2)
+(PAR(ICP(1)) has weight 1 in it, and the solution's L2 norm, the b-file's L2-NORM column,
+changes by at most the norm of the change), so |dT| / sqrt(dPAR^2 + dL2^2) is at least the
+step's mean |dT/ds|; the larger of the steps before and after the point is taken.
+Cycles growing to a homoclinic orbit need this: their period grows without bound
+while the orbit hardly moves (vhb: AUTO's UZ at PERIOD = 1e5 is written at 100396, 3.5e-6
+in L2 norm beyond the row before it whose period is 87613: a tolerance of 2.3e-5 in
+arclength leaves the period free by 8e4 there).
 
     python tests/auto_demo_compare.py [DEMO ...]     # run and print the README table
 """
@@ -52,6 +62,8 @@ class Point:
     par: float
     period: float | None
     tol: float
+    #: |d PERIOD / ds| on AUTO's branch at the point, from its rows (`period_slope`)
+    period_slope: float = 0.0
 
     @property
     def key(self):
@@ -105,16 +117,43 @@ def points(path: Path, reference: bool) -> list[Point]:
         epss, ds, dsmax = const["EPSS"], abs(const["DS"]), abs(const["DSMAX"])
         tol = 2 * epss * (1 + math.sqrt(ds * dsmax))
         titles = b.titles
-        k_per = None
+        k_per = k_l2 = None
         if "PERIOD" in titles[1:]:          # AUTO's title of PAR(11) on periodic orbits
             k_per = titles.index("PERIOD")
-        for r in b.rows:
+        if "L2-NORM" in titles[1:]:
+            k_l2 = titles.index("L2-NORM")
+        for k, r in enumerate(b.rows):
             name = type_name(r.ty)
             if r.lab and name not in ("RG", ""):
                 per = r.values[k_per] if k_per is not None and k_per < len(r.values) else None
+                slope = period_slope(b.rows, k, k_per, k_l2) if per is not None else 0.0
                 out.append(Point(path.name.removesuffix(".gz"), name, r.br, r.lab,
-                                 r.values[0] if r.values else float("nan"), per, tol))
+                                 r.values[0] if r.values else float("nan"), per, tol, slope))
     return out
+
+
+def period_slope(rows, k: int, k_per: int, k_l2: int | None) -> float:
+    """|d PERIOD / ds| at row k of a branch's rows: the largest |dT| / sqrt(dPAR^2 + dL2^2)
+    over the steps to the rows before and after it, each at least the step's mean |dT/ds|
+    (the arclength of a step is at least that root: PAR(ICP(1)) has weight 1 in it, and the
+    L2 norm changes by at most the norm of the change). 0 without an L2-NORM column (then
+    the period is compared at PERIOD_RTOL only); inf where a neighbouring row has the same
+    PAR and L2 norm but another period (nothing in the arclength then bounds the period)."""
+    if k_l2 is None:
+        return 0.0
+    best = 0.0
+    r = rows[k].values
+    for j in (k - 1, k + 1):
+        if not 0 <= j < len(rows):
+            continue
+        q = rows[j].values
+        if max(k_per, k_l2) >= min(len(q), len(r)):
+            continue
+        dt = abs(r[k_per] - q[k_per])
+        ds = math.hypot(r[0] - q[0], r[k_l2] - q[k_l2])
+        if dt > 0:
+            best = max(best, dt / ds if ds > 0 else math.inf)
+    return best
 
 
 def same_value(o: Point, a: Point) -> str | None:
@@ -124,9 +163,15 @@ def same_value(o: Point, a: Point) -> str | None:
     if not abs(o.par - a.par) <= a.tol * max(1.0, abs(a.par)):
         return f"PAR {o.par:.10g} vs AUTO {a.par:.10g} (tol {a.tol:.2g})"
     if a.period is not None and o.period is not None and \
-            not math.isclose(o.period, a.period, rel_tol=PERIOD_RTOL):
-        return f"period {o.period:.10g} vs AUTO {a.period:.10g}"
+            not abs(o.period - a.period) <= period_tolerance(a):
+        return f"period {o.period:.10g} vs AUTO {a.period:.10g} (tol {period_tolerance(a):.2g})"
     return None
+
+
+def period_tolerance(a: Point) -> float:
+    """How far a period may lie from AUTO's a.period: PERIOD_RTOL relative, or the
+    arclength tolerance times |dT/ds| on AUTO's branch there where that is larger."""
+    return max(PERIOD_RTOL * abs(a.period), a.period_slope * a.tol)
 
 
 #: Weights of the alignment: a pair of the same type and branch whose located values agree

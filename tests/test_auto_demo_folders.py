@@ -35,10 +35,7 @@ EXPECTED_FAIL = {
            "step) is only noted: its location ends ITMX just above the zero threshold",
     "tor": "23 of 24: AUTO's BP of cycles one step after the LP at PAR(1) = -0.8325 (b.1) is "
            "not labelled by us",
-    "phs": "2 of 4: a UZ on RL1 (AUTO's located point lies beyond it: EP); the UZ at "
-           "PERIOD = 1e8 (the period has no weight in the arclength)",
-    "vhb": "3 of 4: the UZ at PERIOD = 1e5 (no weight in the arclength): AUTO's lies at "
-           "100396, ours at 100000",
+    "phs": "3 of 4: a UZ on RL1 (AUTO's located point lies beyond it: EP)",
     "ppp": "47 of 58: AUTO's GH at a one-point jump of its test (10), and a BP of cycles "
            "AUTO places off the independently known value",
 }
