@@ -115,6 +115,27 @@ def test_failed_run_keeps_points_and_ends_with_mx(tmp_path):
     assert "No convergence" in res.status
 
 
+def test_run_files_are_flushed_together_s_file_first(tmp_path):
+    """A run's files are flushed every flush_seconds (and at the end), the s-file first:
+    what is on disk between flushes is nothing of the point, and after a flush every label
+    of the b-file has its s-record."""
+    from washer.auto.files import OutputFiles, Row
+    from washer.cont.record import Record
+    out = OutputFiles(tmp_path, "x", flush_seconds=3600.0)
+    out.column_titles = ["PAR(1)", "L2-NORM"]
+    out.record(Record(1, 5, 1, 1, 1, 1, 1, 1, np.array([0.5]), np.arange(3.0)))
+    out.row(Row(1, 5, 1, 1, [0.25, 0.5]))
+    assert (tmp_path / "b.x").read_text() == "" and (tmp_path / "s.x").read_text() == ""
+    flushed = []
+    for path, fh in out._handles.items():        # the order of the flushes
+        fh.flush = (lambda f, name=path.name: lambda: (flushed.append(name), f()))(fh.flush)
+    out.flush()
+    assert flushed == ["s.x", "b.x", "d.x"]
+    out.close()
+    assert [r.lab for b in read_b(tmp_path / "b.x") for r in b] == [1]
+    assert [r.lab for r in read_s(tmp_path / "s.x")] == [1]
+
+
 def test_cli_errors_name_file_and_line(tmp_path, capsys):
     p = _c(tmp_path, "e = 'nothere'\nNDIM = 2\nBOGUS = 1\n")
     assert main([str(p)]) == 2

@@ -1,7 +1,8 @@
 """AUTO-07p's b., s. and d. files (docs/auto.md section 2): writers and readers. No numerics.
 
-Writers append and flush one point at a time, so a run that fails half-way
-keeps every point computed so far. The layouts are AUTO-07p's (io.f90: STHD,
+Writers append one point at a time and flush after every write, or (a run's files,
+`washer.cont.sinks.FileSink`) every FLUSH_SECONDS and at the end, so a run that fails
+half-way keeps every point computed so far. The layouts are AUTO-07p's (io.f90: STHD,
 HEADNG, WRLINE; ae.f90: WRTSP8, PRINTEIG), so AUTO's own Python tools (parseB,
 parseS, parseD) read what washer writes:
   * a b-file header is written together with the branch's first point, so a run
@@ -19,6 +20,7 @@ import functools
 import math
 import os
 import re
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -75,11 +77,28 @@ def fmt_es(x: float, width: int, digits: int) -> str:
     return text.rjust(width)
 
 
-def _plain(v: np.ndarray) -> bool:
+#: Up to this many values a row is checked and converted in plain Python (cheaper than
+#: numpy's per-call overhead at the sizes of b-rows, eigenvalues and algebraic records).
+SHORT_ROW = 64
+
+
+def _floats(values) -> list:
+    """The values as a flat list of Python floats (a short list or tuple directly)."""
+    if isinstance(values, (list, tuple)) and len(values) <= SHORT_ROW:
+        try:
+            return [float(x) for x in values]
+        except TypeError:                   # nested rows: flattened by numpy below
+            pass
+    return np.asarray(values, dtype=float).ravel().tolist()
+
+
+def _plain(v: list) -> bool:
     """Whether every value prints with a 2-digit exponent in C's %E: finite, zero or of
     magnitude in [1e-99, 1e99) (the rest go value by value through fmt_e / fmt_es)."""
+    if len(v) <= SHORT_ROW:
+        return all(1e-99 <= abs(x) < 1e99 or x == 0.0 for x in v)
     with np.errstate(invalid="ignore"):
-        a = np.abs(v)
+        a = np.abs(np.asarray(v))
         return bool(np.all((a < 1e99) & ((a >= 1e-99) | (a == 0))))
 
 
@@ -87,20 +106,20 @@ def fmt_e_many(values, width: int = 19, digits: int = 10) -> str:
     """fmt_e of every value, concatenated: one %-format of the whole row and one
     exponent substitution (the b- and s-files' bulk; the same text as fmt_e value by
     value, which the tests check)."""
-    v = np.asarray(values, dtype=float).ravel()
+    v = _floats(values)
     if _plain(v):
-        text = (f"%{width - 1}.{digits}E" * len(v)) % tuple(v.tolist())
+        text = (f"%{width - 1}.{digits}E" * len(v)) % tuple(v)
         # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3
         return text.replace("E+", "E+0").replace("E-", "E-0")
-    return "".join(fmt_e(x, width, digits) for x in v.tolist())
+    return "".join(fmt_e(x, width, digits) for x in v)
 
 
 def fmt_es_many(values, width: int, digits: int) -> str:
     """fmt_es of every value, concatenated (C's %E is ESw.d for 2-digit exponents)."""
-    v = np.asarray(values, dtype=float).ravel()
+    v = _floats(values)
     if _plain(v):
-        return (f"%{width}.{digits}E" * len(v)) % tuple(v.tolist())
-    return "".join(fmt_es(x, width, digits) for x in v.tolist())
+        return (f"%{width}.{digits}E" * len(v)) % tuple(v)
+    return "".join(fmt_es(x, width, digits) for x in v)
 
 
 def _fortran_float(token: str) -> float:
@@ -302,7 +321,8 @@ def _open_output(path: Path, append: bool):
 
 
 class OutputFiles:
-    """b./s./d. files of one run (sv name), written point by point.
+    """b./s./d. files of one run (sv name), written point by point; flushed after every
+    write, or at most `flush_seconds` apart and at `close`.
 
     protect: files that must not be truncated, above all the s-file the run
     restarts from (AUTO's default sv is the restart file's own name): if an
@@ -311,8 +331,9 @@ class OutputFiles:
     the restart data has been read into memory.
     """
 
-    def __init__(self, folder: Path, name: str, protect=()):
+    def __init__(self, folder: Path, name: str, protect=(), flush_seconds: float = 0.0):
         folder = Path(folder)
+        self.flush_seconds = flush_seconds
         self.b_path, self.s_path, self.d_path = (folder / f"{k}.{name}" for k in "bsd")
         self.backups: list[Path] = []
         for p in (self.b_path, self.s_path, self.d_path):
@@ -328,23 +349,37 @@ class OutputFiles:
         self._handles: dict = {}
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
+        self._flushed = time.monotonic()
+        self._heading = (None, "")     # the d-file's screen heading of column_titles
         self._d_points = 0
 
     def _append(self, path: Path, text: str) -> None:
-        """Append and flush: every point is in the file once written (a run that
-        dies keeps it). Handles stay open for the run (opened without following
-        symlinks); `close` ends them."""
+        """Append, and flush all files when `flush_seconds` have passed since the last
+        flush (0: after every write). Handles stay open for the run (opened without
+        following symlinks); `close` flushes and ends them."""
         fh = self._handles.get(path)
         if fh is None:
             fh = self._handles[path] = _open_output(path, append=True)
         fh.write(text)
-        fh.flush()
+        now = time.monotonic()
+        if now - self._flushed >= self.flush_seconds:
+            self.flush()
+            self._flushed = now
+
+    def flush(self) -> None:
+        """Everything written so far to disk: the s-file first, so that each label of
+        the b-file has its record there (an s-record is written before its b-row)."""
+        for path in (self.s_path, self.b_path, self.d_path):
+            fh = self._handles.get(path)
+            if fh is not None:
+                fh.flush()
 
     def close(self) -> None:
-        """End of the run. Every write is already on disk (each is appended and flushed
-        on its own); a header still pending had no point to go with, and is dropped so
-        that the b-file never holds a header without data. The handles are closed."""
+        """End of the run: everything written is flushed (the s-file first) and the
+        handles closed; a header still pending had no point to go with, and is dropped so
+        that the b-file never holds a header without data."""
         self._pending_b = ""
+        self.flush()
         for fh in self._handles.values():
             fh.close()
         self._handles.clear()
@@ -480,18 +515,20 @@ class OutputFiles:
         self._pending_b = ""
         bar = f"{D_BAR}\n" if self._d_points else ""
         self._d_points += 1
-        self._append(self.d_path, f"{bar}\n{screen_heading(self.column_titles)}\n{screen_line(r)}\n")
+        if self._heading[0] != self.column_titles:
+            self._heading = (list(self.column_titles), screen_heading(self.column_titles))
+        self._append(self.d_path, f"{bar}\n{self._heading[1]}\n{screen_line(r)}\n")
 
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
         'Eigenvalue  k:' with real and imaginary parts (ES14.5). pt: unsigned point number."""
-        eig = np.asarray(eig, dtype=complex)
-        stable = int(np.sum(eig.real < 0))
-        lines = [f"\n{br:4d}{pt:6d}         Eigenvalues  :   Stable:{stable:4d}"]
+        eig = np.asarray(eig, dtype=complex).tolist()
+        stable = sum(1 for z in eig if z.real < 0)
+        head = f"{br:4d}{pt:6d}         Eigenvalue"
+        lines = [f"\n{head}s  :   Stable:{stable:4d}"]
         # real and imaginary parts of every eigenvalue formatted in one call (28 characters each)
-        text = fmt_es_many(np.column_stack([eig.real, eig.imag]), 14, 5)
-        lines += [f"{br:4d}{pt:6d}         Eigenvalue{k:3d}:{text[28 * (k - 1):28 * k]}"
-                  for k in range(1, len(eig) + 1)]
+        text = fmt_es_many([v for z in eig for v in (z.real, z.imag)], 14, 5)
+        lines += [f"{head}{k + 1:3d}:{text[28 * k:28 * k + 28]}" for k in range(len(eig))]
         self.diag("\n".join(lines))
 
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
@@ -499,7 +536,7 @@ class OutputFiles:
         'Multiplier  k ' line per multiplier with real, imaginary part and modulus (ES14.5)."""
         mults = np.asarray(mults, dtype=complex)
         lines = [f"{br:4d}{pt:6d}         Multipliers:     Stable:{n_stable:4d}"]
-        text = fmt_es_many(np.column_stack([mults.real, mults.imag, np.abs(mults)]), 14, 5)
+        text = fmt_es_many([v for z in mults.tolist() for v in (z.real, z.imag, abs(z))], 14, 5)
         lines += [f"{br:4d}{pt:6d}         Multiplier{k:3d} {text[42 * (k - 1):42 * k - 14]}"
                   f"  Abs. Val.{text[42 * k - 14:42 * k]}" for k in range(1, len(mults) + 1)]
         self.diag("\n".join(lines))
