@@ -24,38 +24,39 @@ FD2_STEP = 1e-3
 FD3_STEP = 4e-3
 
 
-def _directional(problem, x, p, dirs):
-    """Symmetric directional derivatives of f at x, all in one batched call.
+#: The stencil offsets of second and third differences, in units of the direction: h and
+#: 2h either side (h = FD2_STEP), h, 2h and 4h either side (h = FD3_STEP).
+_C2 = np.array([FD2_STEP, -FD2_STEP, 2 * FD2_STEP, -2 * FD2_STEP])
+_C3 = np.array([FD3_STEP, -FD3_STEP, 2 * FD3_STEP, -2 * FD3_STEP, 4 * FD3_STEP, -4 * FD3_STEP])
 
-    dirs: list of (order, w), order 2 or 3. Central differences along w,
+
+def _directional(problem, x, p, W2, W3=None):
+    """Symmetric directional derivatives of f at x along the rows of W2 (second) and W3
+    (third), all in one batched call. Central differences along w,
         D2 ~ [f(x+hw) - 2f(x) + f(x-hw)] / h^2,
         D3 ~ [f(x+2hw) - 2f(x+hw) + 2f(x-hw) - f(x-2hw)] / (2h^3),
     each Richardson-extrapolated from h and 2h to O(h^4): (4 D(h) - D(2h)) / 3.
-    Returns a list of (n,) arrays."""
+    Returns D2 (k2, n) and D3 (k3, n) (None without W3)."""
     # Points x + (c h) w for all directions of one order at once (c = +-1, +-2, and
     # +-4 for third derivatives): the same arithmetic as point by point.
-    x = np.asarray(x, dtype=float)
     n = len(x)
-    orders = np.array([o for o, _ in dirs])
-    W = np.array([w for _, w in dirs], dtype=float).reshape(len(dirs), n)
-    W2, W3 = W[orders == 2], W[orders == 3]
-    h2, h3 = FD2_STEP, FD3_STEP
-    c2 = np.array([h2, -h2, 2 * h2, -2 * h2])
-    c3 = np.array([h3, -h3, 2 * h3, -2 * h3, 4 * h3, -4 * h3])
-    P2 = x + c2[None, :, None] * W2[:, None, :]             # (k2, 4, n)
-    P3 = x + c3[None, :, None] * W3[:, None, :]             # (k3, 6, n)
-    F = problem.func_many(np.concatenate([x[None, :], P2.reshape(-1, n), P3.reshape(-1, n)]), p)
+    k2 = len(W2)
+    blocks = [x[None, :], (x + _C2[None, :, None] * W2[:, None, :]).reshape(-1, n)]
+    if W3 is not None:
+        blocks.append((x + _C3[None, :, None] * W3[:, None, :]).reshape(-1, n))
+    F = problem.func_many(np.concatenate(blocks), p)
     f0 = F[0]
-    F2 = F[1:1 + P2.shape[0] * 4].reshape(-1, 4, n)
-    F3 = F[1 + P2.shape[0] * 4:].reshape(-1, 6, n)
+    F2 = F[1:1 + k2 * 4].reshape(-1, 4, n)
+    h2, h3 = FD2_STEP, FD3_STEP
     d_h = (F2[:, 0] - 2 * f0 + F2[:, 1]) / h2 ** 2
     d_2h = (F2[:, 2] - 2 * f0 + F2[:, 3]) / (2 * h2) ** 2
     D2 = (4 * d_h - d_2h) / 3
+    if W3 is None:
+        return D2, None
+    F3 = F[1 + k2 * 4:].reshape(-1, 6, n)
     d_h = (F3[:, 2] - 2 * F3[:, 0] + 2 * F3[:, 1] - F3[:, 3]) / (2 * h3 ** 3)
     d_2h = (F3[:, 4] - 2 * F3[:, 2] + 2 * F3[:, 3] - F3[:, 5]) / (2 * (2 * h3) ** 3)
-    D3 = (4 * d_h - d_2h) / 3
-    it2, it3 = iter(D2), iter(D3)
-    return [next(it2) if o == 2 else next(it3) for o in orders]
+    return D2, (4 * d_h - d_2h) / 3
 
 
 def _bilinear(d2_sum, d2_diff):
@@ -66,6 +67,7 @@ def _bilinear(d2_sum, d2_diff):
 def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> float:
     """l1 at the Hopf point x (ndim,), parameters p (npar,), frequency omega
     (rad per unit time); A = f_x(x, p) if already known."""
+    x = np.asarray(x, dtype=float)
     if A is None:
         A = problem.dfdu(x, p)
     n = len(x)
@@ -78,8 +80,8 @@ def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> 
     a, b = q.real.copy(), q.imag.copy()
     # Stage 1, by polarisation of symmetric directional derivatives along a, b, a +- b:
     # D3(a+b) + D3(a-b) = 2 C(a,a,a) + 6 C(a,b,b), D3(a+b) - D3(a-b) = 6 C(a,a,b) + 2 C(b,b,b).
-    D2a, D2b, D2s, D2d, D3a, D3b, D3s, D3d = _directional(problem, x, p, [
-        (2, a), (2, b), (2, a + b), (2, a - b), (3, a), (3, b), (3, a + b), (3, a - b)])
+    dirs = np.array([a, b, a + b, a - b])
+    (D2a, D2b, D2s, D2d), (D3a, D3b, D3s, D3d) = _directional(problem, x, p, dirs, dirs)
     Bab = _bilinear(D2s, D2d)
     B_qqb = D2a + D2b                               # B(q, conj q)
     B_qq = D2a - D2b + 2j * Bab                     # B(q, q)
@@ -88,11 +90,12 @@ def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> 
     C_qqqb = re_C + 1j * im_C                       # C(q, q, conj q)
     h11 = np.linalg.solve(A, B_qqb).real            # real: B(q, conj q) is real
     h20 = np.linalg.solve(2j * omega * np.eye(n) - A, B_qq)
-    c, d = h20.real.copy(), h20.imag.copy()
-    pairs = [(a, h11), (b, h11), (a, c), (b, d), (a, d), (b, c)]
-    D2 = _directional(problem, x, p, [(2, u + w) for u, w in pairs] +
-                      [(2, u - w) for u, w in pairs])
-    Bah, Bbh, Bac, Bbd, Bad, Bbc = (_bilinear(D2[k], D2[k + 6]) for k in range(6))
+    c, d = h20.real, h20.imag
+    # Stage 2: B(u, w) of the pairs (a, h11), (b, h11), (a, c), (b, d), (a, d), (b, c).
+    U = np.array([a, b, a, b, a, b])
+    Wp = np.array([h11, h11, c, d, d, c])
+    D2, _ = _directional(problem, x, p, np.concatenate((U + Wp, U - Wp)))
+    Bah, Bbh, Bac, Bbd, Bad, Bbc = _bilinear(D2[:6], D2[6:])
     B_q_h11 = Bah + 1j * Bbh                        # B(q, h11)
     B_qb_h20 = Bac + Bbd + 1j * (Bad - Bbc)         # B(conj q, h20)
     val = np.conj(pv) @ (C_qqqb - 2 * B_q_h11 + B_qb_h20)
