@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from washer.auto.constants import ConstantsError, parse_override, read_constants
-from washer.auto.files import find_record, fmt_e, read_b, read_s
+from washer.auto.files import fmt_e, read_b, read_s
+from washer.cont.record import find_record
 from washer.run import main, run
 
 DATA = Path(__file__).parent / "data"

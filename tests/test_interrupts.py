@@ -176,7 +176,7 @@ def test_run_raises_keyboard_interrupt_after_writing_the_files(tmp_path):
 
 def test_run_command_exits_130_on_ctrl_c(tmp_path, capsys):
     from washer.run import main
-    import washer.cont.sinks as sinks
+    import washer.auto.sinks as sinks
     c = _ab(tmp_path)
     real = sinks.ScreenSink.point
     calls = []
@@ -203,7 +203,7 @@ def test_ctrl_c_stops_the_forced_washer_run_and_keeps_its_points(tmp_path):
     import shutil
     from washer.run import load
     shutil.copy(ROOT / "auto_constants" / "c.washer.forced", tmp_path)
-    code = ("import sys\nimport washer.cont.sinks as S\n"
+    code = ("import sys\nimport washer.auto.sinks as S\n"
             "real = S.ScreenSink.point\n"
             "def point(self, lab, pt):\n"
             "    real(self, lab, pt)\n"

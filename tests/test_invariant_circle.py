@@ -19,7 +19,7 @@ import pytest
 import sympy as sp
 
 from washer.cont import invariant_circle as ic
-from washer.cont.sinks import FileSink
+from washer.auto.sinks import FileSink
 from washer.auto.files import read_b, read_s
 from washer.cont.systems import circles as cs
 

@@ -39,7 +39,7 @@ from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError
 from washer.problems.resolve import resolve_problem
 from washer.cont.runner import RunError, build, execute, restart_records
-from washer.cont.sinks import FileSink, ScreenSink
+from washer.auto.sinks import FileSink, ScreenSink
 from washer import sizes
 from washer.locks import LockedError, output_lock
 from washer.sizes import SizeError
@@ -59,7 +59,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
 
     problem: the equations (default: from e=, see resolve_problem); params: the
     washer's parameters for e='washer' (default: the shipped reference set);
-    sinks: extra sinks (washer.cont.sinks) besides the files and the screen;
+    sinks: extra sinks (washer.auto.sinks) besides the files and the screen;
     restart: what IRS is looked up in: a Branch (a previous run's result), a Record,
     a list of Records or an s-file path (default: the s-file s.<s> beside the
     constants file); files: write b./s./d. files (False: the run stays in memory,

@@ -201,7 +201,7 @@ def _execute(sol: Solution) -> Diagram:
     """One run of the engine from the selected solution; its output files parsed back."""
     from washer.cont.runner import RunError, build, execute
     from washer.cont.problem import ProblemError
-    from washer.cont.sinks import FileSink, ScreenSink
+    from washer.auto.sinks import FileSink, ScreenSink
     from washer.cont.compile import CompileError
     c = sol.c
     e = c.get("e") or ""

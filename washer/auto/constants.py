@@ -13,20 +13,8 @@ import re
 import shutil
 from pathlib import Path
 
-HUGE = 1.7976e308
+from washer.cont.settings import DEFAULTS, HUGE  # noqa: F401 (AUTO's table, re-exported)
 
-#: Every constant AUTO-07p knows, with its default (docs/auto.md section 1.2).
-DEFAULTS: dict[str, object] = {
-    "e": "", "s": "", "dat": "", "sv": "", "unames": {}, "parnames": {}, "U": {}, "PAR": {},
-    "NDIM": 2, "IPS": 1, "IRS": 0, "ILP": 1, "ICP": [1], "NTST": 20, "NCOL": 4, "IAD": 3,
-    "ISP": 2, "ISW": 1, "IPLT": 0, "NBC": 0, "NINT": 0, "NMX": 0, "NPR": 0, "MXBF": 10,
-    "IID": 2, "ITMX": 9, "ITNW": 5, "NWTN": 3, "JAC": 0, "EPSL": 1e-7, "EPSU": 1e-7,
-    "EPSS": 1e-5, "DS": 0.01, "DSMIN": 0.005, "DSMAX": 0.1, "IADS": 1, "NPAR": 36,
-    "THL": {}, "THU": {}, "RL0": -HUGE, "RL1": HUGE, "A0": -HUGE, "A1": HUGE, "UZR": {},
-    "UZSTOP": {}, "SP": [], "STOP": [], "IIS": 3, "IBR": 0, "LAB": 0, "TY": "",
-    "NUNSTAB": -1, "NSTAB": -1, "IEQUIB": 1, "ITWIST": 0, "ISTART": 5, "IREV": [],
-    "IFIXED": [], "IPSI": [],
-}
 INT_KEYS = {"NDIM", "IPS", "ILP", "NTST", "NCOL", "IAD", "ISP", "ISW", "IPLT", "NBC", "NINT",
             "NMX", "NPR", "MXBF", "IID", "ITMX", "ITNW", "NWTN", "JAC", "IADS", "NPAR", "IIS",
             "IBR", "LAB", "NUNSTAB", "NSTAB", "IEQUIB", "ITWIST", "ISTART"}

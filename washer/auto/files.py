@@ -700,28 +700,6 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
                   t=t, ntst=ntst, ncol=ncol, npari=npari), nrowpr
 
 
-def find_record(records: list[Record], irs) -> Record:
-    """AUTO's FINDLB on s-file records: a label number, -n for the n-th record, or
-    'HB2' by type and count (codes.find). Raises LookupError naming what the file holds."""
-    try:
-        rec = find(records, irs, code=lambda r: r.code)
-    except LookupError as exc:
-        damaged = getattr(records, "damaged", [])
-        extra = f" (a damaged record at the end was left out: {damaged[0]})" if damaged else ""
-        raise LookupError(f"IRS={irs!r}: {exc} in the restart file{extra}") from None
-    # Periodic solutions only: a general BVP (IPS = 4), a map's or a time integration's
-    # record (IPS = -1, -2: NTST = 1 marks a stored direction) need no period.
-    if rec.ntst > 0 and rec.ncol > 0 and len(rec.par) >= 11 and rec.ips in (2, 12):
-        period = float(rec.par[10])
-        if not (math.isfinite(period) and period > 0):
-            lines = getattr(records, "header_lines", {})
-            where = lines.get(id(rec), "the restart file")
-            raise LookupError(f"{where}: IRS={irs!r}: the record's PAR(11) (the period) is "
-                              f"{period!r}: expected a positive period; this record cannot "
-                              "start a run")
-    return rec
-
-
 def read_dat(path: Path, ndim: int) -> tuple[np.ndarray, np.ndarray]:
     """A data file of AUTO's `dat='NAME'` (NAME.dat, copied by AUTO's CLUI to fort.3 and
     read by STPNUB): one row per time point, `t u(1) ... u(NDIM)`, blank-separated, in

@@ -1,7 +1,7 @@
 """Continuation results in memory: points, records (b-rows with their s-record), branches.
 
 A `Branch` is what one run computed, independent of files: it can be saved to
-AUTO's b./s./d. files (`washer.cont.sinks`), restarted from (its labelled
+AUTO's b./s./d. files (`washer.auto.sinks`), restarted from (its labelled
 points carry the stored solution and direction, like s-file records), and
 pickled.
 """

@@ -3,11 +3,12 @@ record type of the engine's results (washer.cont.branch.Branch.rows) and of the
 records read from s-files (washer.auto.files.read_s)."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from washer.cont.codes import split_code, type_name
+from washer.cont.codes import find, split_code, type_name
 
 
 @dataclass
@@ -88,3 +89,25 @@ class Record:
         shape = f"U{list(u.shape)}" if u.ndim > 1 else \
             "U=[" + ", ".join(f"{v:.6g}" for v in u[:4]) + (", ...]" if len(u) > 4 else "]")
         return f"<Record {name}: BR {self.br} PT {self.pt}; {free + '; ' if free else ''}{shape}>"
+
+
+def find_record(records: list[Record], irs) -> Record:
+    """AUTO's FINDLB on s-file records: a label number, -n for the n-th record, or
+    'HB2' by type and count (codes.find). Raises LookupError naming what the file holds."""
+    try:
+        rec = find(records, irs, code=lambda r: r.code)
+    except LookupError as exc:
+        damaged = getattr(records, "damaged", [])
+        extra = f" (a damaged record at the end was left out: {damaged[0]})" if damaged else ""
+        raise LookupError(f"IRS={irs!r}: {exc} in the restart file{extra}") from None
+    # Periodic solutions only: a general BVP (IPS = 4), a map's or a time integration's
+    # record (IPS = -1, -2: NTST = 1 marks a stored direction) need no period.
+    if rec.ntst > 0 and rec.ncol > 0 and len(rec.par) >= 11 and rec.ips in (2, 12):
+        period = float(rec.par[10])
+        if not (math.isfinite(period) and period > 0):
+            lines = getattr(records, "header_lines", {})
+            where = lines.get(id(rec), "the restart file")
+            raise LookupError(f"{where}: IRS={irs!r}: the record's PAR(11) (the period) is "
+                              f"{period!r}: expected a positive period; this record cannot "
+                              "start a run")
+    return rec

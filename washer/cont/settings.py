@@ -14,7 +14,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from washer.auto.constants import DEFAULTS
 
 #: AUTO perturbs DS, DSMAX by (1 + 1e-7) and DSMIN by 1 / (1 + 1e-7) (INIT1), so
 #: that b-files show 8.2000000200 rather than 8.2: we do the same.
@@ -32,7 +31,21 @@ UNSUPPORTED_IPS = {
     17: "stationary states of a parabolic PDE",
 }
 
-#: AUTO's defaults (main.f90:INIT), one table for the constants files and the engine.
+HUGE = 1.7976e308
+
+#: Every constant AUTO-07p knows, with its default (docs/auto.md section 1.2; main.f90:INIT):
+#: one table for the engine and the constants files (washer.auto.constants reads into it).
+DEFAULTS: dict[str, object] = {
+    "e": "", "s": "", "dat": "", "sv": "", "unames": {}, "parnames": {}, "U": {}, "PAR": {},
+    "NDIM": 2, "IPS": 1, "IRS": 0, "ILP": 1, "ICP": [1], "NTST": 20, "NCOL": 4, "IAD": 3,
+    "ISP": 2, "ISW": 1, "IPLT": 0, "NBC": 0, "NINT": 0, "NMX": 0, "NPR": 0, "MXBF": 10,
+    "IID": 2, "ITMX": 9, "ITNW": 5, "NWTN": 3, "JAC": 0, "EPSL": 1e-7, "EPSU": 1e-7,
+    "EPSS": 1e-5, "DS": 0.01, "DSMIN": 0.005, "DSMAX": 0.1, "IADS": 1, "NPAR": 36,
+    "THL": {}, "THU": {}, "RL0": -HUGE, "RL1": HUGE, "A0": -HUGE, "A1": HUGE, "UZR": {},
+    "UZSTOP": {}, "SP": [], "STOP": [], "IIS": 3, "IBR": 0, "LAB": 0, "TY": "",
+    "NUNSTAB": -1, "NSTAB": -1, "IEQUIB": 1, "ITWIST": 0, "ISTART": 5, "IREV": [],
+    "IFIXED": [], "IPSI": [],
+}
 _D = DEFAULTS
 
 
@@ -56,7 +69,7 @@ def split_type_entry(entry: str) -> tuple[str, str]:
 @dataclass(frozen=True)
 class Settings:
     """Everything the iterator, events and systems read. Field names are AUTO's,
-    defaults AUTO's (washer.auto.constants.DEFAULTS, with INIT1's perturbations).
+    defaults AUTO's (DEFAULTS, with INIT1's perturbations).
 
     Units: DS, DSMIN, DSMAX are arclength in the THL/THU-weighted norm of the
     unknowns; EPSL, EPSU relative Newton tolerances; EPSS the relative

@@ -11,7 +11,7 @@ import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.cont.codes import split_code, type_name
-from washer.auto.files import find_record
+from washer.cont.record import find_record
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError
 from washer.cont.system import StartData, lookup

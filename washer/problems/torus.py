@@ -271,7 +271,7 @@ def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int 
     parameter found by Newton: near the birth the amplitude, not the parameter, is the
     coordinate); then the engine's run (`washer.cont.systems.circles.continue_circles`:
     pseudo-arclength in the inner product of `scale`, UZSTOP at `stop`, PAR as e='washer'
-    numbers them) through `sinks` (b-/s-/d-files, the screen: washer.cont.sinks)."""
+    numbers them) through `sinks` (b-/s-/d-files, the screen: washer.auto.sinks)."""
     b = birth(params, name)
     fmap = half_period_map(params, name)
     # first_circle scales v to a unit largest component: ask for the amplitude that makes

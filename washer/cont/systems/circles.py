@@ -256,7 +256,7 @@ def continue_circles(fmap, first: ic.Circle, stop: float, *, index: int = 1, par
                      sinks=(), name: str = "circle") -> Branch:
     """The family of invariant circles of fmap from `first` until PAR(index) = p reaches
     `stop` (UZSTOP), as an engine run: `runner.execute` on `InvariantCircles` with
-    `constants(...)`, through `sinks` (washer.cont.sinks: b-/s-/d-files, the screen).
+    `constants(...)`, through `sinks` (washer.auto.sinks: b-/s-/d-files, the screen).
     par: the full PAR vector written to the records (default zeros, PAR(index) = p);
     scale (n,): the components' typical sizes for the inner product (default 1).
     Returns the engine's Branch (`circles(branch)` reads the circles; `reached(branch)`

@@ -1,4 +1,4 @@
-"""Where the points of a run go: AUTO's b./s./d. files, the screen, memory.
+"""Where the points of a run go besides memory: AUTO's b., s. and d. files and the screen.
 
 Sinks are attached to a run (`washer.cont.runner.execute(..., sinks=[...])`),
 never required: a run in memory is a `Branch`, and files are one more sink.
