@@ -67,6 +67,9 @@ SECOND_STEP = 1.2e-4
 #: times |f_uu|). The loci's Newton matrices need no more; central differences would
 #: give 1e-11 for twice the Jacobians.
 JACOBIAN_STEP = 1e-7
+#: The signs (a, b) of the four points z + a h e_s + b k w of a mixed second difference.
+_SIGN_A = np.array([1.0, 1.0, -1.0, -1.0])
+_SIGN_B = np.array([1.0, -1.0, 1.0, -1.0])
 
 
 class ProblemError(RuntimeError):
@@ -453,24 +456,23 @@ class Problem:
         if self._dfdu_batch is not None and self.has_dfdp_batch:
             return self._second_from_jacobians(u, par, ws, par_indices)
         n, m, q = self.ndim, len(ws), len(par_indices)
-        ns = n + q
-        h = SECOND_STEP * (1 + np.abs(np.r_[u, par[[i - 1 for i in par_indices]]]))
+        ns, npar = n + q, len(par)
+        pidx = [i - 1 for i in par_indices]
+        h = SECOND_STEP * (1 + np.abs(np.concatenate((u, par[pidx]))))
         wn = np.maximum(np.max(np.abs(ws), axis=1), 1e-300)
         k = SECOND_STEP * (1 + np.max(np.abs(u))) / wn                      # (m,)
-        signs = np.array([[1, 1], [1, -1], [-1, 1], [-1, -1]], dtype=float)
+        # z + a h e_s + b k w, in that order of additions, for all s and the four sign
+        # pairs (a, b) = (1, 1), (1, -1), (-1, 1), (-1, -1) at once
         us = np.empty((ns, m, 4, n))
-        ps = np.empty((ns, m, 4, len(par)))
-        us[:] = u
-        ps[:] = par
-        kw = (k[:, None] * ws)                                               # (m, n)
-        # z + a h e_s + b k w, in that order of additions, for all s and signs at once
-        us += signs[None, None, :, 1, None] * kw[None, :, None, :]
+        np.add(u, _SIGN_B[:, None] * (k[:, None] * ws)[:, None, :], out=us)
+        ah = _SIGN_A * h[:, None]                                            # (ns, 4)
         idx = np.arange(n)
-        us[idx, :, :, idx] += signs[None, None, :, 0] * h[:n, None, None]
+        us[idx, :, :, idx] += ah[:n, None, :]
+        ps = np.empty((ns, m, 4, npar))
+        ps[:] = par
         if q:
-            pidx = np.array([i - 1 for i in par_indices])
-            ps[n + np.arange(q), :, :, pidx] += signs[None, None, :, 0] * h[n:, None, None]
-        F = self.func_many(us.reshape(-1, n), ps.reshape(-1, len(par))).reshape(ns, m, 4, n)
+            ps[n + np.arange(q), :, :, pidx] += ah[n:, None, :]
+        F = self.func_many(us.reshape(-1, n), ps.reshape(-1, npar)).reshape(ns, m, 4, n)
         num = F[:, :, 0] - F[:, :, 1] - F[:, :, 2] + F[:, :, 3]
         return num / (4 * h[:, None, None] * k[None, :, None])
 
