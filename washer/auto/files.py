@@ -1,7 +1,7 @@
 """AUTO-07p's b., s. and d. files (docs/auto.md section 2): writers and readers. No numerics.
 
 Writers append one point at a time and flush after every write, or (a run's files,
-`washer.cont.sinks.FileSink`) every FLUSH_SECONDS and at the end, so a run that fails
+`washer.auto.sinks.FileSink`) every FLUSH_SECONDS and at the end, so a run that fails
 half-way keeps every point computed so far. The layouts are AUTO-07p's (io.f90: STHD,
 HEADNG, WRLINE; ae.f90: WRTSP8, PRINTEIG), so AUTO's own Python tools (parseB,
 parseS, parseD) read what washer writes:
