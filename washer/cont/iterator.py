@@ -186,19 +186,22 @@ class Continuation:
                 c = (row @ d) / 2 - abs(ds)
                 factor = self._factor(J, row)
             held["factor"] = factor
-            return factor.solve(-np.append(G, c))
+            rhs = np.empty(len(G) + 1)
+            np.negative(G, out=rhs[:-1])
+            rhs[-1] = -c
+            return factor.solve(rhs)
 
         def converged(x_old, x, dx, it):
             if ns is not None:
                 # AUTO's NEWTONBV: every free parameter's correction relative to it
                 # within EPSL (the period's too), the profile's largest correction
                 # relative to its largest value before the update within EPSU.
-                du = np.max(np.abs(dx[:ns])) / (1 + np.max(np.abs(x_old[:ns])))
-                dl = float(np.max(np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))))
+                du = np.abs(dx[:ns]).max() / (1 + np.abs(x_old[:ns]).max())
+                dl = float((np.abs(dx[ns:]) / (1 + np.abs(x[ns:]))).max())
                 if dl <= s.EPSL and du < s.EPSU:
                     return True
             else:
-                du = np.max(np.abs(dx[:-1])) / (1 + np.max(np.abs(x[:-1])))
+                du = np.abs(dx[:-1]).max() / (1 + np.abs(x[:-1]).max())
                 dl = abs(dx[-1]) / (1 + abs(x[-1]))
                 if dl <= s.EPSL and du <= s.EPSU:
                     return True
@@ -261,7 +264,7 @@ class Continuation:
         e[-1] = 1.0
         with np.errstate(all="ignore"):
             z = factor.solve(e)
-        nz = math.sqrt(abs(sysm.inner(z, z))) if np.all(np.isfinite(z)) else math.inf
+        nz = math.sqrt(abs(sysm.inner(z, z))) if np.isfinite(z).all() else math.inf
         if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:
             z, nz = ref, math.sqrt(sysm.inner(ref, ref))
         return z / nz, factor

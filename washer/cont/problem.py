@@ -242,7 +242,7 @@ class Problem:
         f = self._call(self._func, "func", u, par)
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
-        if not np.all(np.isfinite(f)):
+        if not np.isfinite(f).all():
             raise ProblemError(f"{self.name}: func(u, par) returned non-finite values at "
                                f"u = {np.array2string(np.asarray(u), precision=6)}")
         return f
@@ -306,7 +306,7 @@ class Problem:
             if J.shape != (self.ndim, self.ndim):
                 raise ProblemError(f"{self.name}: dfdu returned shape {J.shape}, expected "
                                    f"({self.ndim}, {self.ndim})")
-            if not np.all(np.isfinite(J)):
+            if not np.isfinite(J).all():
                 raise ProblemError(f"{self.name}: dfdu(u, par) returned non-finite values")
             return J
         u = np.asarray(u, dtype=float)

@@ -41,7 +41,7 @@ class AlgebraicSystem:
 
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:
-        return float(np.sum(self.theta * a * b))
+        return float((self.theta * a * b).sum())
 
     def border(self, t) -> np.ndarray:
         return self.theta * t
@@ -108,7 +108,7 @@ class AlgebraicSystem:
         par = self.params(x)
         u = x[:self.ndim]
         ncols = self.n_columns
-        cols = [float(np.sqrt(np.sum(u ** 2)))] + [float(v) for v in u[:ncols]]
+        cols = [float(np.sqrt((u ** 2).sum()))] + u[:ncols].tolist()
         rldot = [float(tangent[-1])] + [float(tangent[-1 - k]) for k in range(1, len(self.free))]
         return Solution(par=par, columns=cols, u=np.array(x[:-1]), udot=np.array(tangent[:-1]),
                         rldot=rldot, ndim_user=self.ndim)

@@ -36,6 +36,7 @@ class LocusSystem(AlgebraicSystem):
         # The last second-derivative blocks of the Jacobian (see jacobian's
         # frozen_second): the corrector reuses them within a step.
         self._second = None
+        self._derivatives_memo = None
 
     def stored_point(self, start: StartData, kind: str):
         """The extended state (n_eq,) stored with a point of the same curve (a
@@ -72,6 +73,19 @@ class LocusSystem(AlgebraicSystem):
         if self.problem.has_pvls:
             p = self.problem.pvls(x[:self.ndim], p)
         return p
+
+    def derivatives(self, u, p) -> tuple[np.ndarray, np.ndarray]:
+        """f_u (n, n) and [f_PAR(ICP(1)), f_PAR(ICP(2))] (n, 2) at (u, p), from one
+        `Problem.jacobian` (one stencil where they are differences), remembered for the
+        last (u, p): the corrector asks for the residual and then the Jacobian at the
+        same point."""
+        key = (u.tobytes(), p.tobytes())
+        memo = self._derivatives_memo
+        if memo is None or memo[0] != key:
+            J = self.problem.jacobian(u, p, self.free)
+            n = self.ndim
+            memo = self._derivatives_memo = (key, J[:, :n], J[:, n:])
+        return memo[1], memo[2]
 
     def second(self, x, ws) -> np.ndarray:
         """T[s, k] = f_zz[e_s, w_k], shape (n + 2, len(ws), n): the second

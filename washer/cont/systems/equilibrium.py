@@ -55,7 +55,7 @@ def hopf_period(lam: np.ndarray) -> float | None:
 
 
 def spectrum(lam: np.ndarray) -> Stability:
-    n_stable = int(np.sum(lam.real <= 0.0))
+    n_stable = int((lam.real <= 0.0).sum())
     return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam))
 
 

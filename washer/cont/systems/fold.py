@@ -48,7 +48,7 @@ class FoldSystem(LocusSystem):
         n = self.ndim
         u, phi = x[:n], x[n:2 * n]
         p = self._p(x)
-        return np.r_[self.problem.func(u, p), self.problem.dfdu(u, p) @ phi, phi @ phi - 1.0]
+        return np.r_[self.problem.func(u, p), self.derivatives(u, p)[0] @ phi, phi @ phi - 1.0]
 
     def jacobian(self, x, frozen_second: bool = False):
         """dG/dx, shape (2n + 1, 2n + 2): exact in phi, the problem's Jacobians in
@@ -57,8 +57,7 @@ class FoldSystem(LocusSystem):
         n = self.ndim
         phi = x[n:2 * n]
         u, p = x[:n], self._p(x)
-        A = self.problem.dfdu(u, p)
-        fp = self.problem.dfdp(u, p, self.free)
+        A, fp = self.derivatives(u, p)
         if frozen_second and self._second is not None:
             T = self._second
         else:

@@ -54,18 +54,9 @@ class HopfSystem(LocusSystem):
         n = self.ndim
         u, v, kappa = x[:n], x[n:2 * n], x[2 * n]
         p = self._p(x)
-        A = self._fu(u, p)
+        A, _ = self.derivatives(u, p)
         return np.concatenate((self.problem.func(u, p), A @ (A @ v) + kappa * v,
                                [v @ v - 1.0, (A.T @ self.v_old - A @ self.v_old) @ v]))
-
-    def _fu(self, u, p) -> np.ndarray:
-        """f_u(u, p), remembered for the last (u, p): the corrector asks for the residual
-        and then the Jacobian at the same point."""
-        key = (u.tobytes(), p.tobytes())
-        memo = getattr(self, "_fu_memo", None)
-        if memo is None or memo[0] != key:
-            memo = self._fu_memo = (key, self.problem.dfdu(u, p))
-        return memo[1]
 
     def jacobian(self, x, frozen_second: bool = False):
         """dG/dx, shape (2n + 2, 2n + 3). Blocks in v and kappa are exact; the
@@ -77,8 +68,7 @@ class HopfSystem(LocusSystem):
         n = self.ndim
         v, kappa = x[n:2 * n], x[2 * n]
         u, p = x[:n], self._p(x)
-        A = self._fu(u, p)
-        fp = self.problem.dfdp(u, p, self.free)
+        A, fp = self.derivatives(u, p)
         vo = self.v_old
         w = A.T @ vo - A @ vo
         if frozen_second and self._second is not None:
