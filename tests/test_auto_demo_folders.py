@@ -33,8 +33,9 @@ EXPECTED_FAIL = {
            "LP and a BP one step apart, we the BP only",
     "r3b": "6 of 7: the vertical family's BP of cycles (a test far from linear over the "
            "step) is only noted: its location ends ITMX just above the zero threshold",
-    "tor": "23 of 24: AUTO's BP of cycles one step after the LP at PAR(1) = -0.8325 (b.1) is "
-           "not labelled by us",
+    "tor": "23 of 24: a symmetry-breaking BP of cycles at PAR(1) = -0.787593 (b.1; shooting "
+           "confirms it) that AUTO only notes is labelled by us and takes one step, so AUTO's "
+           "last LP (PT 124) is our EP at NMX",
     "phs": "3 of 4: a UZ on RL1 (AUTO's located point lies beyond it: EP)",
     "ppp": "47 of 58: AUTO's GH at a one-point jump of its test (10), and a BP of cycles "
            "AUTO places off the independently known value",

@@ -298,3 +298,84 @@ def test_pvls_on_the_locus_receives_the_orbit(tmp_path):
     assert gen.status == "ok" and len(gen.rows) == 5
     for row in one.rows + gen.rows:
         assert row.par[4] == pytest.approx(row.values[2] / math.sqrt(2), abs=TOL)
+
+
+def _tor_field(p):
+    """tor.f90's FUNC (Freire et al.'s circuit, odd: f(-u) = -f(u)) and its Jacobian."""
+    import numpy as np
+    rn, be, ga, r, a3, b3 = p[:6]
+
+    def f(u):
+        x, y, z = u
+        return np.array([(-(be + rn) * x + be * y - a3 * x**3 + b3 * (y - x)**3) / r,
+                         be * x - (be + ga) * y - z - b3 * (y - x)**3, y])
+
+    def fu(u):
+        x, y, _ = u
+        q = 3 * b3 * (y - x)**2
+        return np.array([[(-(be + rn) - 3 * a3 * x**2 - q) / r, (be + q) / r, 0.0],
+                         [be + q, -(be + ga) - q, -1.0], [0.0, 1.0, 0.0]])
+    return f, fu
+
+
+@pytest.mark.slow
+def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
+    """tor's cycles from its Hopf point (run 2) fold at PAR(1) = -0.832514 and, 2.9e-3
+    further in arclength, break their symmetry u(t + T/2) = -u(t) at PAR(1) = -0.832438
+    (AUTO labels it BP at PT 79). Next to that branch point the period is so ill-determined
+    that the location's short steps from its trial points fail in ITNW = 5; the branch
+    point must still be located. Checked independently by shooting over half a period
+    (DOP853, rtol 1e-12): a symmetric orbit is a fixed point of u0 -> -phi_{T/2}(u0), and
+    the symmetry breaks where -Dphi_{T/2} has the eigenvalue -1 (the fold is its +1).
+    Tolerance: the location tolerance EPSS (1 + sqrt(DS DSMAX)) in arclength, in which
+    PAR(1) has weight 1, so PAR(1) is located at least that well; the collocation error
+    (NTST = 25) moves the exact zero by far less (AUTO's BP lies 2e-7 from the shooting
+    value)."""
+    import numpy as np
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq, fsolve
+
+    demo = Path(__file__).parent / "data" / "auto_demos" / "tor"
+    for f in ("tor.f90", "c.tor"):
+        shutil.copy(demo / f, tmp_path)
+    c = read_constants(tmp_path / "c.tor")
+    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    eq = run(tmp_path / "c.tor", verbose=False, sv="eq", e="tor")
+    cyc = run(tmp_path / "c.tor", verbose=False, sv="cyc", e="tor", restart=eq, IRS="HB1",
+              IPS=2, ICP=[1, 11])
+    types = [(r.ty, r.values[0]) for r in cyc.rows if r.lab and -0.8326 < r.values[0] < -0.832]
+    assert [t for t, _ in types] == ["LP", "BP"]
+    bp = cyc("BP2")
+    assert math.isclose(bp.par[0], types[1][1])
+
+    P = np.array(bp.par, float)
+    U, t = np.asarray(bp.U), np.asarray(bp.t)
+
+    def half_map(u0, lam, T):
+        f, fu = _tor_field(np.r_[lam, P[1:]])
+        sol = solve_ivp(lambda s, y: np.r_[f(y[:3]), (fu(y[:3]) @ y[3:].reshape(3, 3)).ravel()],
+                        [0, T / 2], np.r_[u0, np.eye(3).ravel()], method="DOP853",
+                        rtol=1e-12, atol=1e-14)
+        return sol.y[:3, -1], sol.y[3:, -1].reshape(3, 3)
+
+    # the orbit's point where y = 0, y' > 0 (the phase condition of the shooting)
+    i = np.where((U[:-1, 1] <= 0) & (U[1:, 1] > 0))[0][0]
+    a = -U[i, 1] / (U[i + 1, 1] - U[i, 1])
+    z = [np.r_[U[i] + a * (U[i + 1] - U[i]), P[0]]]
+
+    def orbit(T):
+        z[0] = fsolve(lambda w: np.r_[half_map(w[:3], w[3], T)[0] + w[:3], w[1]], z[0],
+                      xtol=1e-13)
+        return z[0]
+
+    def r_plus_one(T):
+        """The eigenvalue of -Dphi_{T/2} nearest -1, plus 1, on the symmetric orbit of
+        period T."""
+        w = orbit(T)
+        ev = np.linalg.eigvals(-half_map(w[:3], w[3], T)[1])
+        return float(np.real(ev[np.argmin(np.abs(ev + 1))]) + 1)
+
+    T0 = P[10]
+    T_bp = brentq(r_plus_one, T0 - 0.02, T0 + 0.02, xtol=1e-10)
+    lam_bp = orbit(T_bp)[3]
+    assert abs(bp.par[0] - lam_bp) < tol

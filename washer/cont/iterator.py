@@ -412,7 +412,21 @@ class Continuation:
                 # STEPAE/STEPBV step from their current point with its own direction):
                 # r3b's third BP on its circle of equilibria, the BP of its halo orbits.
                 t0, _ = self.tangent(self._jacobian(p0.x), prev.tangent)
-                x, it = self.correct(p0.x + ds * t0, p0.x, t0, ds)
+                try:
+                    x, it = self.correct(p0.x + ds * t0, p0.x, t0, ds)
+                except ConvergenceError:
+                    # Closer still to the branch point, the period (no weight in the
+                    # arclength) is so ill-determined on the plane about a trial point
+                    # that Newton converges only linearly from there, whatever the
+                    # direction: the step is taken from prev instead, as the location's
+                    # first trial (tor's symmetry-breaking BP of cycles one step past a
+                    # fold: the trial 6e-5 from the last one failed in ITNW = 5, the
+                    # step of 2.9e-3 from prev converges in 2 iterations).
+                    # (The location measures the point's s along prev's step
+                    # direction, wherever on it the step lands.)
+                    x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent,
+                                         s_)
+                    ds = s_
             if key in (Code.BP, Code.BPC):
                 # A branch point's test is a determinant of the Jacobian bordered by a
                 # direction: the same one, prev's tangent, at every trial, so that its
