@@ -379,3 +379,86 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
     T_bp = brentq(r_plus_one, T0 - 0.02, T0 + 0.02, xtol=1e-10)
     lam_bp = orbit(T_bp)[3]
     assert abs(bp.par[0] - lam_bp) < tol
+
+
+def _abcb_field(p):
+    """abcb.f90's FUNC (the A -> B -> C reaction), its derivatives in u and in PAR(1)."""
+    import numpy as np
+    d, al, be, b, s = p[:5]
+
+    def f(u):
+        x1, x2, x3 = u
+        e, x1c = np.exp(x3), 1 - x1
+        return np.array([-x1 + d * x1c * e, -x2 + d * e * (x1c - s * x2),
+                         -x3 - be * x3 + d * b * e * (x1c + al * s * x2)])
+
+    def fu(u):
+        x1, x2, x3 = u
+        e, x1c = np.exp(x3), 1 - x1
+        return np.array([[-1 - d * e, 0.0, d * x1c * e],
+                         [-d * e, -1 - d * e * s, d * e * (x1c - s * x2)],
+                         [-d * b * e, d * b * e * al * s,
+                          -1 - be + d * b * e * (x1c + al * s * x2)]])
+
+    def fp(u):
+        x1, x2, x3 = u
+        e, x1c = np.exp(x3), 1 - x1
+        return np.array([x1c * e, e * (x1c - s * x2), b * e * (x1c + al * s * x2)])
+    return f, fu, fp
+
+
+def test_abcb_bp_two_points_past_the_tip_is_regular(tmp_path):
+    """abcb's cycles in PAR(1) (run 2) turn at a tip, PAR(1) = 0.3462085, where AUTO labels
+    LP (PT 83) and, two points later, BP at 0.3458076 (PT 85). AUTO's records of those
+    points and of PT 80 (tests/data/abcb_tip, AUTO-07p 0.9.2) are checked by shooting
+    (DOP853, rtol 1e-12): the Jacobian of (u0, T, PAR(1)) -> (phi_T(u0) - u0, phase)
+    has full rank 4 on a branch and loses it at a branch point. At the tip its smallest
+    singular value is 1.5e-6 against 0.06 at PT 80: fold and branch point coincide there
+    (as AUTO's own BP test says: 5e-12 at the LP). At AUTO's BP it is 0.011, as regular
+    as the branch two steps from the tip: that label is where AUTO's determinant, bordered
+    by the previous step's direction, changes sign as that direction turns past the tip
+    (+8e-5 at PT 84, -0.67 at the same point bordered by the step back, -0.34 at the
+    'located' point), not a zero. Ours labels no BP past the tip."""
+    import gzip
+
+    import numpy as np
+    from scipy.integrate import solve_ivp
+
+    from washer.auto.files import read_s
+    with gzip.open(Path(__file__).parent / "data" / "abcb_tip" / "s.abcb.2.gz", "rb") as src:
+        (tmp_path / "s.auto").write_bytes(src.read())
+    recs = {r.lab: r for r in read_s(tmp_path / "s.auto")}
+
+    def smallest_singular_values(rec):
+        p = np.array(rec.par, float)
+        f, fu, fp = _abcb_field(p)
+        u0, T = np.asarray(rec.U)[0], p[10]
+
+        def rhs(t, y):
+            u, A = y[:3], fu(y[:3])
+            return np.r_[f(u), (A @ y[3:12].reshape(3, 3)).ravel(), A @ y[12:] + fp(u)]
+        y = solve_ivp(rhs, [0, T], np.r_[u0, np.eye(3).ravel(), np.zeros(3)],
+                      method="DOP853", rtol=1e-12, atol=1e-14).y[:, -1]
+        assert np.max(np.abs(y[:3] - u0)) < 1e-9          # AUTO's orbit is periodic
+        J = np.zeros((4, 5))
+        J[:3, :3] = y[3:12].reshape(3, 3) - np.eye(3)
+        J[:3, 3], J[:3, 4] = f(y[:3]), y[12:]
+        J[3, :3] = f(u0) / np.linalg.norm(f(u0))
+        sv = np.linalg.svd(J, compute_uv=False)
+        return sv[-1], sv[0]
+
+    regular, tip, auto_bp = (smallest_singular_values(recs[k]) for k in (16, 17, 18))
+    assert [recs[k].ty for k in (17, 18)] == ["LP", "BP"]
+    assert tip[0] < 1e-5 * tip[1]                 # singular at the tip (1.5e-6 / 7.9)
+    assert auto_bp[0] > 1e3 * tip[0]              # regular at AUTO's BP (0.011)
+    assert auto_bp[0] > 0.1 * regular[0]          # as two steps from a regular tip would be
+
+    demo = Path(__file__).parent / "data" / "auto_demos" / "abcb"
+    for name in ("abcb.f90", "c.abcb"):
+        shutil.copy(demo / name, tmp_path)
+    eq = run(tmp_path / "c.abcb", verbose=False, sv="eq", e="abcb")
+    cyc = run(tmp_path / "c.abcb", verbose=False, sv="cyc", e="abcb", restart=eq,
+              IRS="HB1", IPS=2, ICP=[1, 11], IPLT=1)
+    assert cyc.status == "ok"
+    assert max(r.values[0] for r in cyc.rows) < recs[17].par[0] + 1e-6
+    assert not [r for r in cyc.rows if r.lab and r.ty == "BP"]
