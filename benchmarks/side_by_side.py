@@ -334,6 +334,8 @@ def report(rows: list[dict], against: str | None = None) -> str:
         head += f" {against[:10] + ' us/pt':>17s} {'speed-up':>8s}"
     head += f" {'AUTO us/pt':>11s} {'washer/AUTO':>11s}"
     head += f" {'cpu us/pt':>10s} {'AUTO cpu':>9s} {'cpu w/A':>8s}"
+    if against:
+        head += f" {against[:7] + ' cpu':>12s} {'cpu speed-up':>12s}"
     out = [head]
     for r in rows:
         if "washer" not in r:
@@ -363,5 +365,11 @@ def report(rows: list[dict], against: str | None = None) -> str:
                 ca, na = r["auto_cpu"]
                 pc = 1e6 * ca / max(na, 1)
                 line += f" {pc:9.1f} {1e6 * cw / max(nw, 1) / pc:7.2f}x"
+            else:
+                line += f" {'-':>9s} {'-':>8s}"
+            if against and "old_cpu" in r:
+                co, no = r["old_cpu"]
+                pco = 1e6 * co / max(no, 1)
+                line += f" {pco:12.1f} {pco / (1e6 * cw / max(nw, 1)):11.2f}x"
         out.append(f"{r['case']:24s} {pts:>13s} {per:13.1f}" + line)
     return "\n".join(out)
