@@ -84,22 +84,26 @@ class HopfSystem(LocusSystem):
         J = np.zeros((2 * n + 2, 2 * n + 3))
         # Columns: u (0..n-1), v (n..2n-1), kappa (2n), p2 (2n+1), p1 (2n+2); the
         # derivative blocks come in the order (u, p1, p2).
+        cols = self._derivative_columns()
         J[:n, :n] = A
-        J[:n, 2 * n + 2] = fp[:, 0]
-        J[:n, 2 * n + 1] = fp[:, 1]
-        J[n:2 * n, :n] = d_g[:, :n]
-        J[n:2 * n, 2 * n + 2] = d_g[:, n]
-        J[n:2 * n, 2 * n + 1] = d_g[:, n + 1]
+        J[:n, cols[n:]] = fp
+        J[n:2 * n, cols] = d_g
         AA = A @ A
         AA.flat[::n + 1] += kappa                  # A^2 + kappa I
         J[n:2 * n, n:2 * n] = AA
         J[n:2 * n, 2 * n] = v
         J[2 * n, n:2 * n] = 2 * v
-        J[2 * n + 1, :n] = d_phase[:n]
-        J[2 * n + 1, 2 * n + 2] = d_phase[n]
-        J[2 * n + 1, 2 * n + 1] = d_phase[n + 1]
+        J[2 * n + 1, cols] = d_phase
         J[2 * n + 1, n:2 * n] = w
         return J
+
+    def _derivative_columns(self) -> np.ndarray:
+        """The columns of J holding the derivatives along (u, PAR(ICP(1)), PAR(ICP(2)))."""
+        cols = getattr(self, "_cols", None)
+        if cols is None:
+            n = self.ndim
+            cols = self._cols = np.r_[np.arange(n), 2 * n + 2, 2 * n + 1]
+        return cols
 
     def update(self, x, tangent):
         v = x[self.ndim:2 * self.ndim]
