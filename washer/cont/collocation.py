@@ -39,6 +39,8 @@ Contents, with the AUTO routine each follows:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
+from types import SimpleNamespace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -85,21 +87,30 @@ def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return L, D
 
 
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
+@lru_cache(maxsize=None)
 def lagrange_weights(ncol: int) -> tuple[np.ndarray, np.ndarray]:
     """(WT, WP) of GENWTS, each shape (ncol + 1, ncol): the Lagrange basis on the
     NCOL + 1 equally spaced nodes k / NCOL of [0, 1] and its derivative (per unit of
-    the local variable z in [0, 1]) at the Gauss points."""
+    the local variable z in [0, 1]) at the Gauss points. Computed once per NCOL
+    (read-only arrays: every mesh of a run shares them)."""
     nodes = np.arange(ncol + 1) / ncol
-    return _lagrange(nodes, gauss_points(ncol))
+    return tuple(_frozen(a) for a in _lagrange(nodes, gauss_points(ncol)))
 
 
+@lru_cache(maxsize=None)
 def integration_weights(ncol: int) -> np.ndarray:
     """WI of WINT, shape (ncol + 1,): closed Newton-Cotes weights on [0, 1] for the
-    NCOL + 1 equally spaced nodes (the integrals of the Lagrange basis)."""
+    NCOL + 1 equally spaced nodes (the integrals of the Lagrange basis). Computed once
+    per NCOL (read-only)."""
     nodes = np.arange(ncol + 1) / ncol
     xg, wg = np.polynomial.legendre.leggauss(ncol + 2)       # exact for degree 2 ncol + 3
     L, _ = _lagrange(nodes, 0.5 * (xg + 1))
-    return L @ (0.5 * wg)
+    return _frozen(L @ (0.5 * wg))
 
 
 def interpolation_weights(ncol: int, z) -> np.ndarray:
@@ -196,53 +207,22 @@ class Collocation:
         self.w_node = mesh.node_weights()
         self._pattern()
 
-    # -- sparsity pattern, built once per mesh
+    # -- sparsity pattern: it depends on the sizes only, so the meshes of a run (ADAPT
+    # moves tm, never NTST or NCOL) share one (`_sparsity`)
     def _pattern(self) -> None:
-        m, n, N, npar, nint = self.mesh.ncol, self.ndim, self.mesh.ntst, self.npar, self.nint
-        j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
-                                    np.arange(n), indexing="ij")
-        rows_blk = ((j * m + c) * n + i).ravel()
-        cols_blk = ((j * m + k) * n + l).ravel()
-        jj, cc, ii = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), indexing="ij")
-        rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), npar)
-        cols_par = np.repeat(self.n_u + np.arange(npar), N * m * n)
-        pr = self.n_coll + np.arange(self.nbc)
-        last = (self.mesh.n_nodes - 1) * n
-        if self.general_bc:
-            # rows: every BC; columns: u(0), u(1), then the parameters (row-major blocks)
-            bcols = np.r_[np.arange(n), last + np.arange(n), self.n_u + np.arange(npar)]
-            rows_bc = np.repeat(pr, len(bcols))
-            cols_bc = np.tile(bcols, self.nbc)
-        else:
-            rows_bc = np.concatenate([pr, pr])
-            cols_bc = np.concatenate([np.arange(n), last + np.arange(n)])
-        rows_int = np.repeat(self.n_coll + self.nbc + np.arange(nint), self.n_x)
-        cols_int = np.tile(np.arange(self.n_x), nint)
-        rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
-        cols = np.concatenate([cols_blk, cols_par, cols_bc, cols_int])
-        self.nnz = len(rows)
-        # where the boundary and integral rows' values sit (assembly order), for
-        # washer.cont.reduction, which takes those rows dense
-        tail = len(rows_blk) + len(rows_par)
-        self._tail_rows, self._tail_cols = rows[tail:] - self.n_coll, cols[tail:]
-        # CSC order of the entries; entries with the same (row, col) never occur
-        order = np.lexsort((rows, cols))
-        self._order = order
-        self._indices = rows[order].astype(np.int32)
-        counts = np.bincount(cols, minlength=self.n_x)
-        self._indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
-        self._bc_vals = np.concatenate([np.ones(n), -np.ones(n)])
-        self._n_blk = len(rows_blk)
-        # The bordered matrix [J; border]: each column gains one entry, the border row
-        # (the last row index, so it ends the column in CSC order).
-        col_of = np.repeat(np.arange(self.n_x), counts)
-        self._pos_J = np.arange(self.nnz) + col_of
-        self._indptr_b = (self._indptr + np.arange(self.n_x + 1)).astype(np.int32)
-        self._pos_border = self._indptr_b[1:] - 1
-        ind_b = np.empty(self.nnz + self.n_x, np.int32)
-        ind_b[self._pos_J] = self._indices
-        ind_b[self._pos_border] = self.n_eq
-        self._indices_b = ind_b
+        pat = _sparsity(self.mesh.ntst, self.mesh.ncol, self.ndim, self.npar, self.nint,
+                        self.nbc, self.general_bc)
+        self.nnz = pat.nnz
+        self._tail_rows, self._tail_cols = pat.tail_rows, pat.tail_cols
+        self._order = pat.order
+        self._indices = pat.indices
+        self._indptr = pat.indptr
+        self._bc_vals = pat.bc_vals
+        self._n_blk = pat.n_blk
+        self._pos_J = pat.pos_J
+        self._indptr_b = pat.indptr_b
+        self._pos_border = pat.pos_border
+        self._indices_b = pat.indices_b
 
     # -- helpers
     def profile(self, x: np.ndarray) -> np.ndarray:
@@ -339,6 +319,64 @@ class Collocation:
             return sp.csc_matrix((data, self._indices_b, self._indptr_b),
                                  shape=(self.n_x, self.n_x))
         return sp.vstack([sp.csc_matrix(J), sp.csr_matrix(border[None, :])], format="csc")
+
+
+@lru_cache(maxsize=16)
+def _sparsity(N: int, m: int, n: int, npar: int, nint: int, nbc: int,
+              general_bc: bool) -> SimpleNamespace:
+    """The CSC structure of `Collocation`'s Jacobian (and of the bordered matrix) for
+    NTST = N, NCOL = m, NDIM = n: index arrays only, shared by every mesh of
+    these sizes (as every Jacobian of one mesh always did: never written to)."""
+    n_nodes = N * m + 1
+    n_u = n_nodes * n
+    n_coll = N * m * n
+    n_eq = n_coll + nbc + nint
+    n_x = n_u + npar
+    j, c, i, k, l = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), np.arange(m + 1),
+                                np.arange(n), indexing="ij")
+    rows_blk = ((j * m + c) * n + i).ravel()
+    cols_blk = ((j * m + k) * n + l).ravel()
+    jj, cc, ii = np.meshgrid(np.arange(N), np.arange(m), np.arange(n), indexing="ij")
+    rows_par = np.tile(((jj * m + cc) * n + ii).ravel(), npar)
+    cols_par = np.repeat(n_u + np.arange(npar), N * m * n)
+    pr = n_coll + np.arange(nbc)
+    last = (n_nodes - 1) * n
+    if general_bc:
+        # rows: every BC; columns: u(0), u(1), then the parameters (row-major blocks)
+        bcols = np.r_[np.arange(n), last + np.arange(n), n_u + np.arange(npar)]
+        rows_bc = np.repeat(pr, len(bcols))
+        cols_bc = np.tile(bcols, nbc)
+    else:
+        rows_bc = np.concatenate([pr, pr])
+        cols_bc = np.concatenate([np.arange(n), last + np.arange(n)])
+    rows_int = np.repeat(n_coll + nbc + np.arange(nint), n_x)
+    cols_int = np.tile(np.arange(n_x), nint)
+    rows = np.concatenate([rows_blk, rows_par, rows_bc, rows_int])
+    cols = np.concatenate([cols_blk, cols_par, cols_bc, cols_int])
+    p = SimpleNamespace(nnz=len(rows))
+    # where the boundary and integral rows' values sit (assembly order), for
+    # washer.cont.reduction, which takes those rows dense
+    tail = len(rows_blk) + len(rows_par)
+    p.tail_rows, p.tail_cols = rows[tail:] - n_coll, cols[tail:]
+    # CSC order of the entries; entries with the same (row, col) never occur
+    order = np.lexsort((rows, cols))
+    p.order = order
+    p.indices = rows[order].astype(np.int32)
+    counts = np.bincount(cols, minlength=n_x)
+    p.indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+    p.bc_vals = np.concatenate([np.ones(n), -np.ones(n)])
+    p.n_blk = len(rows_blk)
+    # The bordered matrix [J; border]: each column gains one entry, the border row
+    # (the last row index, so it ends the column in CSC order).
+    col_of = np.repeat(np.arange(n_x), counts)
+    p.pos_J = np.arange(p.nnz) + col_of
+    p.indptr_b = (p.indptr + np.arange(n_x + 1)).astype(np.int32)
+    p.pos_border = p.indptr_b[1:] - 1
+    ind_b = np.empty(p.nnz + n_x, np.int32)
+    ind_b[p.pos_J] = p.indices
+    ind_b[p.pos_border] = n_eq
+    p.indices_b = ind_b
+    return p
 
 
 # --------------------------------------------------------------------------- Floquet
@@ -446,19 +484,30 @@ def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) ->
 def interpolate(mesh: Mesh, U: np.ndarray, tm_new: np.ndarray, ncol_new: int) -> np.ndarray:
     """AUTO's INTERP: the piecewise polynomial (mesh, U) evaluated at the nodes of the
     mesh tm_new with ncol_new nodes per interval. U (n_nodes, ...) -> (n_nodes_new, ...)."""
-    target = Mesh(np.asarray(tm_new, float), ncol_new).node_times()
-    return evaluate(mesh, U, target)
+    return interpolator(mesh, tm_new, ncol_new)(U)
+
+
+def interpolator(mesh: Mesh, tm_new: np.ndarray, ncol_new: int):
+    """`interpolate` from `mesh` onto the nodes of (tm_new, ncol_new) as a function of
+    U, the weights computed once: ADAPT moves the point, its directions and the phase
+    reference with the same ones."""
+    return evaluator(mesh, Mesh(np.asarray(tm_new, float), ncol_new).node_times())
 
 
 def evaluate(mesh: Mesh, U: np.ndarray, t) -> np.ndarray:
     """The piecewise polynomial (mesh, U) at times t in [0, 1], shape (len(t), ...)."""
+    return evaluator(mesh, t)(U)
+
+
+def evaluator(mesh: Mesh, t):
+    """`evaluate` at the times t as a function of the node values U (n_nodes, ...)."""
     t = np.asarray(t, float)
     m = mesh.ncol
     j = np.clip(np.searchsorted(mesh.tm, t, side="right") - 1, 0, mesh.ntst - 1)
     z = (t - mesh.tm[j]) / mesh.dtm[j]
     W = interpolation_weights(m, z)                                   # (len(t), m+1)
     idx = j[:, None] * m + np.arange(m + 1)[None, :]
-    return np.einsum("tk,tk...->t...", W, U[idx])
+    return lambda U: np.einsum("tk,tk...->t...", W, np.asarray(U)[idx])
 
 
 def profile_from_data(t: np.ndarray, U: np.ndarray, ntst: int, ncol: int,

@@ -319,16 +319,17 @@ class CollocationBVP:
         periodic = self.periodic_mesh and abs(self.settings.ISW) <= 1
         tm = col.new_mesh(old, W, old.ntst, periodic=periodic)
         nt = self.n_tail
+        onto = col.interpolator(old, tm, old.ncol)
 
         def move(v):
             v = np.asarray(v, float)
             Wv = v[:self.coll.n_u].reshape(-1, self.n_comp)
-            return np.r_[col.interpolate(old, Wv, tm, old.ncol).ravel(), v[-nt:]]
+            return np.r_[onto(Wv).ravel(), v[-nt:]]
         out = [move(x)] + [move(v) for v in vectors]
         # CONTBV after ADAPT: the phase reference's derivative is T f of the
         # interpolated profile (STUPBV), not the interpolant of the old T f: where the
         # mesh moves across a steep layer the two differ by the interpolation error.
-        self.set_phase_reference(col.interpolate(old, self.U_old, tm, old.ncol), self.par)
+        self.set_phase_reference(onto(self.U_old), self.par)
         self.set_mesh(col.Mesh(tm, old.ncol))
         self.mesh_changed()
         return tuple(out)
