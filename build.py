@@ -41,7 +41,7 @@ contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text())
 contbuilder.set_source(
     "washer._cont",
     '#include "cont.h"',
-    sources=["csrc/cont/reduce.cpp"],
+    sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
     extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],

@@ -146,3 +146,60 @@ def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc
     Sc_ref = M[coll.n_coll:][:, S].toarray() - M[coll.n_coll:][:, I] @ X_ref
     np.testing.assert_allclose(X, X_ref, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-12)
+
+
+@needs_cont
+@pytest.mark.parametrize("N, m, n", [(1, 1, 1), (6, 4, 3), (3, 2, 5), (4, 7, 2)])
+def test_compiled_collocation_blocks_are_the_numpy_ones(N, m, n, monkeypatch):
+    """Collocation.local_blocks compiled (reduction.collocation_blocks) gives the numpy
+    expression's values bit for bit (the same operations in the same order: a run does
+    not depend on whether washer._cont is built), and both are the definition
+    WP[k, c] delta_il - dtm[j] T WT[k, c] A[j, c, i, l] written out here."""
+    rng = np.random.default_rng(N + 10 * m + 100 * n)
+    mesh = col.Mesh(np.r_[0.0, np.sort(rng.random(N - 1)), 1.0], m)
+    coll = col.Collocation(mesh, n)
+    A = rng.standard_normal((N, m, n, n))
+    T = 2.7
+    fast = coll.local_blocks(T, A)
+    monkeypatch.setattr(reduction, "available", lambda: False)
+    slow = coll.local_blocks(T, A)
+    assert np.array_equal(fast, slow) and np.array_equal(np.signbit(fast), np.signbit(slow))
+    WT, WP = col.lagrange_weights(m)
+    for j in range(N):
+        for c in range(m):
+            for k in range(m + 1):
+                want = WP[k, c] * np.eye(n) - mesh.dtm[j] * T * WT[k, c] * A[j, c]
+                got = fast[j, c * n:(c + 1) * n, k * n:(k + 1) * n]
+                np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)
+
+
+@needs_cont
+@pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
+                                                    (True, 2, 1)])
+def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, nint):
+    """BorderedCollocation.reduced: a factorisation of [J; border] reduces the matrix
+    with J's collocation rows and other dense rows (another integral row, another
+    border: the BP test of cycles at a point's own phase) onto (U(0), parameters) as
+    reduction.onto_start does on that matrix (forward substitution with LAPACK's
+    solves, a separate elimination): equal to rounding (random blocks of norm ~1 and
+    N = 11 intervals: 1e-10 relative)."""
+    rng = np.random.default_rng(21 + nbc + nint)
+    n, N, m = 3, 11, 4
+    npar = nbc + nint - n + 1
+    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc,
+                           nbc=nbc, npar=npar)
+    blocks = coll.local_blocks(0.9, rng.standard_normal((N, m, n, n)))
+    bc = (rng.standard_normal((nbc, n)), rng.standard_normal((nbc, n)),
+          rng.standard_normal((nbc, npar))) if general_bc else None
+    J = coll.jacobian_general(blocks, rng.standard_normal((npar, N, m, n)),
+                              rng.standard_normal((nint, coll.mesh.n_nodes, n)),
+                              rng.standard_normal((nint, npar)), bc_jac=bc)
+    f = reduction.BorderedCollocation.from_jacobian(coll, J, rng.standard_normal(coll.n_x))
+    J2 = J.copy()
+    if nint:
+        pos = coll.integral_positions(0)
+        J2.data[pos] = rng.standard_normal(len(pos))
+    border2 = rng.standard_normal(coll.n_x)
+    Sc_ref, _ = reduction.onto_start(coll, J2, border2)
+    Sc = f.reduced(reduction.pieces(coll, J2, border2)[2])
+    np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-10 * np.abs(Sc_ref).max())

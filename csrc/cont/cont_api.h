@@ -27,3 +27,18 @@ void cont_bvp_free(cont_bvp *f);
 int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                     const double *extra, double *sign_logdet, double *P0, double *P1);
 int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);
+/* After cont_bvp_factor: the matrix with the same collocation rows (blocks, parcols) and
+ * other dense rows `extra` (NE, nx), reduced onto S = (U(0), parameters):
+ * Sc (NE, NDIM + NPAR) row-major, Sc = M_RS - M_RI M_II^-1 M_IS with R the dense rows and
+ * I the unknowns after U(0) (the eliminations of the factorisation replayed on the new
+ * rows, then U(NTST) eliminated with the reduced collocation rows). Returns 0, 1 when
+ * M_II is singular, 2 when called before a factorisation. */
+int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc);
+
+/* The collocation blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM), row-major, of the equations
+ * sum_k WP[k, c] U_jk - dtm[j] T f(sum_k WT[k, c] U_jk) = 0 with respect to U_j:
+ *   blocks[j, c*NDIM + i, k*NDIM + l] = WP[k, c] delta_il - dtm[j] T WT[k, c] A[j, c, i, l]
+ * WT, WP (NCOL + 1, NCOL) row-major (GENWTS), dtm (NTST,), A (NTST, NCOL, NDIM, NDIM) the
+ * Jacobians of f at the Gauss points. Returns 0, or 2 for bad sizes. */
+int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const double *WP,
+                     const double *dtm, double T, const double *A, double *blocks);

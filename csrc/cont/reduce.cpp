@@ -45,8 +45,10 @@ struct cont_bvp {
     // swaps piv2, dense-row multipliers E2 (ne x n). Index 0 unused.
     std::vector<Mat> T, E2;
     std::vector<std::vector<int>> piv2;
-    // The remaining (U_0, U_N, par) system.
+    // The remaining (U_0, U_N, par) system, and its first n rows (the collocation rows
+    // reduced: P0 U_0 + P1 U_N + Ppar par) for cont_bvp_schur.
     Eigen::PartialPivLU<Mat> lu;
+    Mat Rfin;
     // The matrix itself (blocks, parameter columns, dense rows), for the residual of
     // the refinement step in cont_bvp_solve.
     std::vector<double> blocks0, parcols0, extra0;
@@ -212,6 +214,7 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
         R_ids.assign(tids.begin() + n, tids.end());
     }
     // R: P0 U_0 + P1 U_N + S par = ... (the collocation rows, reduced)
+    f->Rfin = R;
     Eigen::Map<Mat>(P0, n, n) = R.leftCols(n);
     Eigen::Map<Mat>(P1, n, n) = R.middleCols(n, n);
     // ---- the remaining system in (U_0, U_N, par)
@@ -238,6 +241,65 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     sign_logdet[0] = singular ? 0.0 : sign;
     sign_logdet[1] = singular ? -INFINITY : logdet;
     return singular ? 1 : 0;
+}
+
+int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
+    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+    const int mn = m * n;
+    if ((int)f->W.size() != N || f->Rfin.rows() != n) return 2;
+    Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
+    // the dense rows through the eliminations of cont_bvp_factor, as they went there:
+    // each pivot row is final once it has pivoted
+    for (int j = 0; j < N; ++j) {
+        const Mat &W = f->W[j];
+        for (int t = 0; t < K; ++t) {
+            const int c = n + t;
+            const double d = W(t, c);
+            if (d == 0.0) return 1;
+            const int tail = (m + 1) * n - c - 1;
+            const int gc = j * mn + c;
+            for (int e = 0; e < ne; ++e) {
+                const double l = Ex(e, gc) / d;
+                Ex(e, gc) = 0.0;
+                if (l == 0.0) continue;
+                Ex.row(e).segment(j * mn, n) -= l * W.row(t).head(n);
+                Ex.row(e).segment(gc + 1, tail) -= l * W.row(t).segment(c + 1, tail);
+                if (np) Ex.row(e).tail(np) -= l * W.row(t).tail(np);
+            }
+        }
+        if (j == 0) continue;
+        const Mat &T = f->T[j];
+        for (int t = 0; t < n; ++t) {
+            const double d = T(t, t);
+            if (d == 0.0) return 1;
+            const int gc = j * mn + t;
+            for (int e = 0; e < ne; ++e) {
+                const double l = Ex(e, gc) / d;
+                Ex(e, gc) = 0.0;
+                if (l == 0.0) continue;
+                Ex.row(e).segment(gc + 1, n - t - 1) -= l * T.row(t).segment(t + 1, n - t - 1);
+                Ex.row(e).segment(0, n) -= l * T.row(t).segment(n, n);
+                Ex.row(e).segment((j + 1) * mn, n) -= l * T.row(t).segment(2 * n, n);
+                if (np) Ex.row(e).tail(np) -= l * T.row(t).tail(np);
+            }
+        }
+    }
+    // eliminate U_N with the reduced collocation rows: Sc = E_S - E_N P1^-1 [P0 Ppar]
+    const int gN = N * mn, ns = n + np;
+    const Mat &R = f->Rfin;
+    Eigen::FullPivLU<Mat> p1(R.middleCols(n, n));
+    if (!p1.isInvertible()) return 1;
+    Mat RS(n, ns);
+    RS.leftCols(n) = R.leftCols(n);
+    if (np) RS.rightCols(np) = R.rightCols(np);
+    const Mat Y = p1.solve(RS);                           // P1^-1 [P0 Ppar]
+    Eigen::Map<Mat> out(Sc, ne, ns);
+    for (int e = 0; e < ne; ++e) {
+        for (int i = 0; i < n; ++i) out(e, i) = Ex(e, i);
+        for (int i = 0; i < np; ++i) out(e, n + i) = Ex(e, nx - np + i);
+    }
+    out -= Ex.block(0, gN, ne, n) * Y;
+    return 0;
 }
 
 namespace {

@@ -260,8 +260,14 @@ class Collocation:
     def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
         """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,
         (NCOL+1)*NDIM), from A = f_u at the Gauss points (NTST, NCOL, NDIM, NDIM)
-        scaled by T (T = 1 for an already scaled right-hand side)."""
+        scaled by T (T = 1 for an already scaled right-hand side). Compiled
+        (washer.cont.reduction.collocation_blocks: the same operations, the same values)
+        when washer._cont is built."""
         m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
+        from washer.cont import reduction          # compiled, when built
+        if reduction.available():
+            return reduction.collocation_blocks(self.WT, self.WP, self.mesh.dtm, T,
+                                                np.reshape(A, (N, m, n, n)))
         eye = np.eye(n)
         blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
                - (self.mesh.dtm[:, None, None, None, None] * T)
@@ -290,8 +296,13 @@ class Collocation:
         else:
             bc_vals = self._bc_vals
         vals = np.concatenate([blocks.ravel(), dpar.ravel(), bc_vals, rows_int.ravel()])
-        return sp.csc_matrix((vals[self._order], self._indices, self._indptr),
-                             shape=(self.n_eq, self.n_x))
+        J = sp.csc_matrix((vals[self._order], self._indices, self._indptr),
+                          shape=(self.n_eq, self.n_x))
+        # The values in assembly order, for washer.cont.reduction.pieces (which would
+        # otherwise scatter J.data back): J is never changed in place (a variant is a
+        # copy, which does not carry this).
+        J.assembly = (self, vals)
+        return J
 
     def jacobian(self, T: float, blocks: np.ndarray, dpar: np.ndarray,
                  up_old: np.ndarray) -> sp.csc_matrix:
@@ -305,7 +316,16 @@ class Collocation:
         """Whether J was assembled by `jacobian_general` on this mesh (this CSC pattern)."""
         import scipy.sparse as sp
         return (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
-                and J.indices is not None and np.array_equal(J.indptr, self._indptr))
+                and J.indices is not None
+                and (J.indptr is self._indptr or np.array_equal(J.indptr, self._indptr)))
+
+    def integral_positions(self, k: int = 0) -> np.ndarray:
+        """Where the entries of integral condition k (one per column, in column order)
+        sit in the data of a Jacobian of this pattern (CSC order)."""
+        cache = self.__dict__.setdefault("_int_pos", {})
+        if k not in cache:
+            cache[k] = np.flatnonzero(self._indices == self.n_coll + self.nbc + k)
+        return cache[k]
 
     def bordered(self, J: sp.csc_matrix, border: np.ndarray) -> sp.csc_matrix:
         """[J; border] as a CSC matrix (N + 1, N + 1). A J built by `jacobian` (this

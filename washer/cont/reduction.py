@@ -37,8 +37,12 @@ def pieces(coll, J, border) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     csrc/cont/cont_api.h."""
     m, n, N = coll.mesh.ncol, coll.ndim, coll.mesh.ntst
     npar = coll.npar
-    vals = np.empty(coll.nnz)
-    vals[coll._order] = J.data                           # back to assembly order
+    kept = getattr(J, "assembly", None)
+    if kept is not None and kept[0] is coll:
+        vals = kept[1]                                   # as assembled
+    else:
+        vals = np.empty(coll.nnz)
+        vals[coll._order] = J.data                       # back to assembly order
     nb = coll._n_blk
     blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
     npc = N * m * n * npar
@@ -77,6 +81,25 @@ def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:
 
 def _ptr(a: np.ndarray):
     return ffi.cast("double *", ffi.from_buffer(a))
+
+
+def collocation_blocks(WT: np.ndarray, WP: np.ndarray, dtm: np.ndarray, T: float,
+                       A: np.ndarray) -> np.ndarray:
+    """The collocation blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM) from the Jacobians A
+    (NTST, NCOL, NDIM, NDIM) of f at the Gauss points, the period T and the weights
+    WT, WP (NCOL + 1, NCOL) (csrc/cont/assemble.cpp: the operations of
+    Collocation.local_blocks' numpy expression, in its order)."""
+    A = np.ascontiguousarray(A, dtype=float)
+    N, m, n, _ = A.shape
+    WT = np.ascontiguousarray(WT, dtype=float)
+    WP = np.ascontiguousarray(WP, dtype=float)
+    dtm = np.ascontiguousarray(dtm, dtype=float)
+    if WT.shape != (m + 1, m) or WP.shape != (m + 1, m) or dtm.shape != (N,) or A.shape[3] != n:
+        raise ValueError(f"collocation_blocks: shapes {WT.shape}, {WP.shape}, {dtm.shape}, "
+                         f"{A.shape}")
+    out = np.empty((N, m * n, (m + 1) * n))
+    lib.cont_coll_blocks(N, m, n, _ptr(WT), _ptr(WP), _ptr(dtm), float(T), _ptr(A), _ptr(out))
+    return out
 
 
 class BorderedCollocation:
@@ -133,6 +156,20 @@ class BorderedCollocation:
 
     def sign_logdet(self) -> tuple[float, float]:
         return self._sl
+
+    def reduced(self, extra: np.ndarray) -> np.ndarray | None:
+        """The matrix with these collocation rows and the dense rows `extra`
+        (NDIM + NPAR, nx) instead of the factorised ones, reduced onto S = (U(0), the
+        parameters): Sc (NDIM + NPAR, NDIM + NPAR), as `onto_start` (the factorisation's
+        eliminations replayed on the new rows, csrc/cont/reduce.cpp cont_bvp_schur).
+        None where a pivot of the factorisation was zero."""
+        N, m, n, npar = self.shape
+        extra = np.ascontiguousarray(extra, dtype=float)
+        if extra.shape != (n + npar, self.nx):
+            raise ValueError(f"dense rows of shape {extra.shape}, expected {(n + npar, self.nx)}")
+        Sc = np.empty((n + npar, n + npar))
+        rc = lib.cont_bvp_schur(self._f, _ptr(extra), _ptr(Sc))
+        return Sc if rc == 0 else None
 
     def floquet_pair(self) -> tuple[np.ndarray, np.ndarray]:
         """(P0, P1): P0 U(0) + P1 U(1) = 0 for the linearised collocation equations."""

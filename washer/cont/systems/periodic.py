@@ -358,8 +358,12 @@ class PeriodicOrbits(CollocationBVP):
         codes = self.active_tests() if codes is None else codes
 
         def bp():
+            # The factorisation of [J; border] at x has J's collocation rows, which the
+            # own-phase Jacobian shares (only its phase row differs): its eliminations
+            # give the BP test's reduced matrix.
             try:
-                return self.bp_function(self._own_phase(x, J), tangent)
+                return self.bp_function(self._own_phase(x, J), tangent,
+                                        self.compiled_factor_of(J, factor))
             except RuntimeError:
                 return None
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
@@ -377,8 +381,7 @@ class PeriodicOrbits(CollocationBVP):
             return J
         U, par = self.unpack(x)
         J = J.copy()
-        row = self.coll.n_coll + self.coll.nbc
-        pos = np.flatnonzero(J.indices == row)             # one entry per column, in order
+        pos = self.coll.integral_positions(0)              # one entry per column, in order
         up = self.period(par) * self.field.f(U, par)
         J.data[pos] = np.r_[(self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)]
         return J

@@ -1,0 +1,28 @@
+// The collocation blocks of a boundary-value problem's Jacobian, assembled from the
+// Jacobians of the (scaled) right-hand side at the Gauss points (layout and contract:
+// cont_api.h). The same operations in the same order as the numpy expression of
+// washer.cont.collocation.Collocation.local_blocks, so the values are identical.
+#include "cont.h"
+
+int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const double *WP,
+                     const double *dtm, double T, const double *A, double *blocks) {
+    if (ntst < 1 || ncol < 1 || ndim < 1) return 2;
+    const int m = ncol, n = ndim;
+    const long w = (long)(m + 1) * n;               // a block's row length
+    for (int j = 0; j < ntst; ++j) {
+        const double s = dtm[j] * T;
+        for (int c = 0; c < m; ++c) {
+            const double *Ac = A + ((long)j * m + c) * n * n;
+            for (int i = 0; i < n; ++i) {
+                double *row = blocks + (((long)j * m + c) * n + i) * w;
+                for (int k = 0; k <= m; ++k) {
+                    const double wp = WP[k * m + c], wt = s * WT[k * m + c];
+                    double *out = row + (long)k * n;
+                    for (int l = 0; l < n; ++l)
+                        out[l] = (l == i ? wp * 1.0 : wp * 0.0) - wt * Ac[i * n + l];
+                }
+            }
+        }
+    }
+    return 0;
+}
