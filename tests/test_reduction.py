@@ -148,7 +148,8 @@ def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc
     np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-12)
 
 
-@needs_cont
+@pytest.mark.skipif(not reduction.available("cont_coll_blocks"),
+                    reason="washer._cont not built from these sources (python build.py cont)")
 @pytest.mark.parametrize("N, m, n", [(1, 1, 1), (6, 4, 3), (3, 2, 5), (4, 7, 2)])
 def test_compiled_collocation_blocks_are_the_numpy_ones(N, m, n, monkeypatch):
     """Collocation.local_blocks compiled (reduction.collocation_blocks) gives the numpy
@@ -161,7 +162,7 @@ def test_compiled_collocation_blocks_are_the_numpy_ones(N, m, n, monkeypatch):
     A = rng.standard_normal((N, m, n, n))
     T = 2.7
     fast = coll.local_blocks(T, A)
-    monkeypatch.setattr(reduction, "available", lambda: False)
+    monkeypatch.setattr(reduction, "available", lambda function=None: False)
     slow = coll.local_blocks(T, A)
     assert np.array_equal(fast, slow) and np.array_equal(np.signbit(fast), np.signbit(slow))
     WT, WP = col.lagrange_weights(m)
@@ -173,7 +174,8 @@ def test_compiled_collocation_blocks_are_the_numpy_ones(N, m, n, monkeypatch):
                 np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)
 
 
-@needs_cont
+@pytest.mark.skipif(not reduction.available("cont_bvp_schur"),
+                    reason="washer._cont not built from these sources (python build.py cont)")
 @pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
                                                     (True, 2, 1)])
 def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, nint):

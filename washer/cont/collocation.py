@@ -265,7 +265,7 @@ class Collocation:
         when washer._cont is built."""
         m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
         from washer.cont import reduction          # compiled, when built
-        if reduction.available():
+        if reduction.available("cont_coll_blocks"):
             return reduction.collocation_blocks(self.WT, self.WP, self.mesh.dtm, T,
                                                 np.reshape(A, (N, m, n, n)))
         eye = np.eye(n)

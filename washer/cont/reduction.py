@@ -26,9 +26,11 @@ except ImportError:                                      # not built: see build.
     ffi = lib = None
 
 
-def available() -> bool:
-    """Whether washer._cont is built (python build.py cont)."""
-    return lib is not None
+def available(function: str | None = None) -> bool:
+    """Whether washer._cont is built (python build.py cont), and when `function` is
+    named, whether the build has it (a module built from older sources lacks the later
+    functions: their callers then keep the numpy path)."""
+    return lib is not None and (function is None or hasattr(lib, function))
 
 
 def pieces(coll, J, border) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -162,11 +164,13 @@ class BorderedCollocation:
         (NDIM + NPAR, nx) instead of the factorised ones, reduced onto S = (U(0), the
         parameters): Sc (NDIM + NPAR, NDIM + NPAR), as `onto_start` (the factorisation's
         eliminations replayed on the new rows, csrc/cont/reduce.cpp cont_bvp_schur).
-        None where a pivot of the factorisation was zero."""
+        None where a pivot of the factorisation was zero (or the build lacks it)."""
         N, m, n, npar = self.shape
         extra = np.ascontiguousarray(extra, dtype=float)
         if extra.shape != (n + npar, self.nx):
             raise ValueError(f"dense rows of shape {extra.shape}, expected {(n + npar, self.nx)}")
+        if not available("cont_bvp_schur"):
+            return None
         Sc = np.empty((n + npar, n + npar))
         rc = lib.cont_bvp_schur(self._f, _ptr(extra), _ptr(Sc))
         return Sc if rc == 0 else None
