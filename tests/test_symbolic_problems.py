@@ -119,3 +119,15 @@ def test_hopf_locus_with_exact_derivatives_is_the_closed_form(folder):
         sigma = s.par[2]
         assert s.par[0] == pytest.approx(sigma * (sigma + beta + 3) / (sigma - beta - 1),
                                          rel=1e-7)
+
+
+def test_a_reloaded_problem_shares_the_parsed_declarations_and_the_library(folder):
+    """Every run loads its problem afresh: the second load of the same file reuses the
+    parsed cffi declarations and the opened library (a cdef costs milliseconds, more than
+    a short run), and computes the same values."""
+    a = load_python_problem("lrz", folder, 3)
+    b = load_python_problem("lrz", folder, 3)
+    assert a._compiled.ffi is b._compiled.ffi and a._compiled.lib is b._compiled.lib
+    u, par = np.array([1.0, 2.0, 3.0]), np.array([28.0, 8 / 3, 10.0])
+    np.testing.assert_array_equal(a.func(u, par), b.func(u, par))
+    np.testing.assert_array_equal(b.func(u, par), [10.0 * (2 - 1), 28 - 2 - 3, 2 - 8.0])

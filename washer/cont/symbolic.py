@@ -124,14 +124,30 @@ void washer_sym_hess(int k, const double *U, const double *P, int pstride, doubl
 """
 
 
+_FFI: list = []                 # the one FFI of the generated functions' declarations
+_LIBS: dict = {}                # library path -> its dlopen (libraries are content-named)
+
+
+def _ffi():
+    """The FFI declaring CDEF: parsed once per process (a cdef costs milliseconds, more
+    than a short run of a small problem)."""
+    if not _FFI:
+        import cffi
+        ffi = cffi.FFI()
+        ffi.cdef(CDEF)
+        _FFI.append(ffi)
+    return _FFI[0]
+
+
 class _Compiled:
     """The compiled functions with numpy in and out."""
 
     def __init__(self, lib_path: Path, ndim: int, npar_sym: int):
-        import cffi
-        self.ffi = cffi.FFI()
-        self.ffi.cdef(CDEF)
-        self.lib = self.ffi.dlopen(str(lib_path))
+        self.ffi = _ffi()
+        lib = _LIBS.get(str(lib_path))
+        if lib is None:
+            lib = _LIBS[str(lib_path)] = self.ffi.dlopen(str(lib_path))
+        self.lib = lib
         self.n, self.npar = ndim, npar_sym
 
     def _ptr(self, a):
