@@ -46,6 +46,7 @@ own), not second differences of f (4 (NDIM + 2) values of f per vector).
 from __future__ import annotations
 
 import copy
+import functools
 import inspect
 
 import numpy as np
@@ -589,10 +590,11 @@ class Problem:
                                "non-finite values")
         return out
 
-    @property
+    @functools.cached_property
     def stpnt_has_time(self) -> bool:
         """Whether stpnt takes AUTO's time argument: stpnt(u, par, t), t in [0, 1]
-        (a periodic orbit's start for IPS = 2)."""
+        (a periodic orbit's start for IPS = 2). Looked up once per problem (a signature
+        costs a tenth of a millisecond)."""
         if self._stpnt is None:
             return False
         try:
