@@ -529,6 +529,28 @@ def test_start_direction_without_the_first_parameter(tmp_path):
     assert all(abs(row.par[0]) <= 1e-9 for row in r.rows)
 
 
+
+def test_isw_minus_one_at_a_regular_point_continues_the_branch(tmp_path):
+    """A general BVP restarted with ISW = -1 at a label that is not a BP (AUTO's CNRLBV
+    takes IPERP = 1 whenever IRS != 0 and ISW < 0: STDRBV's null vector of the Jacobian,
+    PAR(ICP(1))-dot > 0 or else the next free parameter's) continues the one branch through
+    the point; AUTO's p2c demo restarts its eigenfunction problem so from a UZ of cycles
+    with the ISW = -1 of an earlier run. u' = p2 u, u(0) = u(1), int u dt = p1 from its UZ
+    at p2 = 1: the trivial branch u = 0, p1 = 0, p2 increasing (p1-dot is 0) to the UZSTOP
+    at p2 = 2, with no BP (the one at p2 = 0 lies behind)."""
+    (tmp_path / "gro.py").write_text(GROWTH)
+    (tmp_path / "c.gro").write_text("NDIM=1, IPS=4, ICP=[1, 2], NBC=1, NINT=1, NTST=5, NCOL=3, "
+                                    "ILP=0, ISP=2, NMX=50, DS=0.1, DSMAX=0.2, NPAR=2, "
+                                    "UZSTOP={2: 1.0}\n")
+    r = run(tmp_path / "c.gro", e="gro", sv="gro", verbose=False)
+    r2 = run(tmp_path / "c.gro", e="gro", s="gro", IRS=r("UZ1").lab, ISW=-1,
+             UZSTOP={2: 2.0}, sv="gro2", verbose=False)
+    assert r2.status == "ok" and [s.ty for s in r2.specials] == ["UZ"]
+    assert r2("UZ1").par[1] == pytest.approx(2.0)
+    p2 = [row.par[1] for row in r2.rows]
+    assert all(b > a for a, b in zip(p2, p2[1:]))
+    assert all(abs(row.par[0]) <= 1e-9 for row in r2.rows)
+
 @pytest.mark.slow
 def test_man_demo(tmp_path):
     """man: the Lorenz stable manifold grown as orbits from a circle around the origin

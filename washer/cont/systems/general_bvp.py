@@ -27,7 +27,9 @@ Starts:
 * a stored BVP solution: moved onto the run's mesh when NTST/NCOL differ (ADAPT2),
   its direction reused when the free parameters agree (STPNBV1).
 * ISW = -1 at a BP (code 6): the null vector of the Jacobian bordered by the stored
-  direction (STDRBV with IPERP = 1): the other branch.
+  direction (STDRBV with IPERP = 1): the other branch. ISW = -1 at any other label
+  (CNRLBV takes IPERP = 1 whenever IRS != 0 and ISW < 0): the Jacobian's null vector
+  with STDRBV's orientation, the one branch through the point.
 
 Test functions: LP (code 5) the PAR(ICP(1))-component of the unit tangent (FNLPBV),
 BP (code 6) the determinant of the bordered Jacobian reduced onto (u(0), the free
@@ -284,11 +286,12 @@ class BoundaryValueProblem(CollocationBVP):
     def start(self):
         x0 = self._start[0]
         J = self.jacobian(x0)
-        if self._stored is not None and self.settings.ISW == -1:
+        switch = self.settings.ISW == -1
+        if self._stored is not None and switch and self.kind == "BP":
             # STDRBV with IPERP = 1: the other branch at a BP.
             z = self.null_vector(J, self.weights * self._stored)
             return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
-        if self._stored is not None:
+        if self._stored is not None and not switch:
             nrm = math.sqrt(self.inner(self._stored, self._stored))
             if nrm > 0:
                 return x0, self._stored / nrm
