@@ -15,8 +15,8 @@
  * every interval (condensation of parameters, partial pivoting within the interval's
  * rows), then the interval end nodes 1..NTST-1 one after the other (partial pivoting
  * within the two blocks of rows involved), then a dense LU of what is left in
- * (U(0), U(1), parameters). It returns the determinant as sign and log|det| and the
- * pair (P0, P1) (row-major NDIM x NDIM) with P0 U(0) + P1 U(1) = 0 for every solution of
+ * (U(0), U(1), parameters). It returns the determinant as sign and log|det| (unless
+ * sign_logdet is NULL: cont_bvp_sign_logdet gives it later) and the pair (P0, P1) (row-major NDIM x NDIM) with P0 U(0) + P1 U(1) = 0 for every solution of
  * the collocation rows with the parameters held (the monodromy matrix is -P1^-1 P0).
  * Return values: 0 success, 1 a zero pivot (exactly singular), 2 bad sizes.
  */
@@ -26,6 +26,10 @@ cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar);
 void cont_bvp_free(cont_bvp *f);
 int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                     const double *extra, double *sign_logdet, double *P0, double *P1);
+/* The determinant of the last factorisation as sign and log|det| (the sum of the logs of
+ * its pivots, in elimination order; cont_bvp_factor gives the same when its sign_logdet
+ * is not NULL). Returns 1 when a pivot was zero (sign 0, log|det| = -inf), else 0. */
+int cont_bvp_sign_logdet(const cont_bvp *f, double *sign_logdet);
 int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);
 /* After cont_bvp_factor: the matrix with the same collocation rows (blocks, parcols) and
  * other dense rows `extra` (NE, nx), reduced onto S = (U(0), parameters):

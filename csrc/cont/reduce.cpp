@@ -32,6 +32,17 @@ double perm_sign(const std::vector<int> &p) {
     return s;
 }
 
+// y[k] -= l * x[k], k < len: the same operations, element by element, whichever way
+// (so the same values): a plain loop for short rows, where Eigen's per-expression
+// set-up dominated (NDIM 3: lengths 3 to 20), Eigen's vectorised one for long rows.
+inline void sub_scaled(double *__restrict y, const double *__restrict x, double l, int len) {
+    if (len >= 24) {
+        Eigen::Map<Eigen::VectorXd>(y, len) -= l * Eigen::Map<const Eigen::VectorXd>(x, len);
+        return;
+    }
+    for (int k = 0; k < len; ++k) y[k] -= l * x[k];
+}
+
 }  // namespace
 
 struct cont_bvp {
@@ -52,6 +63,12 @@ struct cont_bvp {
     // The matrix itself (blocks, parameter columns, dense rows), for the residual of
     // the refinement step in cont_bvp_solve.
     std::vector<double> blocks0, parcols0, extra0;
+    // The pivots in elimination order (the remaining system's in `lu`), the sign of the
+    // determinant and whether a pivot was zero: log|det| is summed on request
+    // (cont_bvp_sign_logdet), in the order the factorisation met the pivots.
+    std::vector<double> pivots;
+    double sign = 1.0;
+    bool singular = false;
 };
 
 cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
@@ -85,18 +102,21 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     f->blocks0.assign(blocks, blocks + (size_t)N * mn * (m + 1) * n);
     f->parcols0.assign(parcols, parcols + (size_t)N * mn * np);
     f->extra0.assign(extra, extra + (size_t)ne * nx);
-    double sign = 1.0, logdet = 0.0;
+    double sign = 1.0;
     bool singular = false;
     std::vector<int> rows, cols;     // the elimination order, as original indices
     rows.reserve(nx);
     cols.reserve(nx);
+    std::vector<double> &pivots = f->pivots;
+    pivots.clear();
+    pivots.reserve(nx);
     auto pivot_step = [&](double p) {
         if (p == 0.0) {
             singular = true;
             return;
         }
         if (p < 0) sign = -sign;
-        logdet += std::log(std::fabs(p));
+        pivots.push_back(p);
     };
 
     // ---- condensation of the interior nodes of every interval
@@ -130,22 +150,25 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             if (d == 0.0) continue;
             // the columns still to eliminate: U_j (0..n-1) and everything right of c
             const int tail = (m + 1) * n - c - 1;
+            const double *wt = &W(t, 0);
             for (int r = t + 1; r < mn; ++r) {
-                const double l = W(r, c) / d;
-                W(r, c) = l;
+                double *wr = &W(r, 0);
+                const double l = wr[c] / d;
+                wr[c] = l;
                 if (l == 0.0) continue;
-                W.row(r).head(n) -= l * W.row(t).head(n);
-                W.row(r).tail(cw - c - 1) -= l * W.row(t).tail(cw - c - 1);
+                sub_scaled(wr, wt, l, n);
+                sub_scaled(wr + c + 1, wt + c + 1, l, cw - c - 1);
             }
             const int gc = j * mn + c;
             for (int e = 0; e < ne; ++e) {
-                const double l = Ex(e, gc) / d;
+                double *ex = &Ex(e, 0);
+                const double l = ex[gc] / d;
                 E(e, t) = l;
-                Ex(e, gc) = 0.0;
+                ex[gc] = 0.0;
                 if (l == 0.0) continue;
-                Ex.row(e).segment(j * mn, n) -= l * W.row(t).head(n);
-                Ex.row(e).segment(gc + 1, tail) -= l * W.row(t).segment(c + 1, tail);
-                if (np) Ex.row(e).tail(np) -= l * W.row(t).tail(np);
+                sub_scaled(ex + j * mn, wt, l, n);
+                sub_scaled(ex + gc + 1, wt + c + 1, l, tail);
+                sub_scaled(ex + nx - np, wt + cw - np, l, np);
             }
         }
         // the n condensed rows of interval j: (U_j, U_j+1, par)
@@ -190,22 +213,25 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             cols.push_back(j * mn + t);
             if (d == 0.0) continue;
             const int tw = 3 * n + np - t - 1;
+            const double *tt = &T(t, 0);
             for (int r = t + 1; r < 2 * n; ++r) {
-                const double l = T(r, t) / d;
-                T(r, t) = l;
+                double *tr = &T(r, 0);
+                const double l = tr[t] / d;
+                tr[t] = l;
                 if (l == 0.0) continue;
-                T.row(r).tail(tw) -= l * T.row(t).tail(tw);
+                sub_scaled(tr + t + 1, tt + t + 1, l, tw);
             }
             const int gc = j * mn + t;
             for (int e = 0; e < ne; ++e) {
-                const double l = Ex(e, gc) / d;
+                double *ex = &Ex(e, 0);
+                const double l = ex[gc] / d;
                 E2(e, t) = l;
-                Ex(e, gc) = 0.0;
+                ex[gc] = 0.0;
                 if (l == 0.0) continue;
-                Ex.row(e).segment(gc + 1, n - t - 1) -= l * T.row(t).segment(t + 1, n - t - 1);
-                Ex.row(e).segment(0, n) -= l * T.row(t).segment(n, n);
-                Ex.row(e).segment((j + 1) * mn, n) -= l * T.row(t).segment(2 * n, n);
-                if (np) Ex.row(e).tail(np) -= l * T.row(t).tail(np);
+                sub_scaled(ex + gc + 1, tt + t + 1, l, n - t - 1);
+                sub_scaled(ex, tt + n, l, n);
+                sub_scaled(ex + (j + 1) * mn, tt + 2 * n, l, n);
+                sub_scaled(ex + nx - np, tt + 3 * n, l, np);
             }
         }
         R.leftCols(n) = T.block(n, n, n, n);
@@ -238,9 +264,18 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     for (int i = 0; i < nd; ++i) pivot_step(U(i, i));
     sign *= f->lu.permutationP().determinant();
     sign *= perm_sign(rows) * perm_sign(cols);
-    sign_logdet[0] = singular ? 0.0 : sign;
-    sign_logdet[1] = singular ? -INFINITY : logdet;
+    f->sign = sign;
+    f->singular = singular;
+    if (sign_logdet) cont_bvp_sign_logdet(f, sign_logdet);
     return singular ? 1 : 0;
+}
+
+int cont_bvp_sign_logdet(const cont_bvp *f, double *sign_logdet) {
+    double logdet = 0.0;
+    for (double p : f->pivots) logdet += std::log(std::fabs(p));
+    sign_logdet[0] = f->singular ? 0.0 : f->sign;
+    sign_logdet[1] = f->singular ? -INFINITY : logdet;
+    return f->singular ? 1 : 0;
 }
 
 int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
@@ -308,7 +343,7 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
     const int mn = m * n;
     std::vector<double> rc(rhs, rhs + f->nc), re(rhs + f->nc, rhs + nx);
-    std::vector<std::vector<double>> t2(N);         // the reduction's right-hand sides
+    std::vector<double> t2all((size_t)N * 2 * n);   // the reduction's right-hand sides
     // forward: condensation
     for (int j = 0; j < N; ++j) {
         const Mat &W = f->W[j];
@@ -329,8 +364,7 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     std::vector<double> tR(rc.begin() + K, rc.begin() + mn);
     for (int j = 1; j < N; ++j) {
         const Mat &T = f->T[j];
-        std::vector<double> &tv = t2[j];
-        tv.resize(2 * n);
+        double *tv = t2all.data() + (size_t)j * 2 * n;
         for (int r = 0; r < n; ++r) {
             tv[r] = tR[r];
             tv[n + r] = rc[(size_t)j * mn + K + r];
@@ -360,7 +394,7 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     // back: the end nodes U_N-1 .. U_1
     for (int j = N - 1; j >= 1; --j) {
         const Mat &T = f->T[j];
-        const std::vector<double> &tv = t2[j];
+        const double *tv = t2all.data() + (size_t)j * 2 * n;
         const double *u0 = x, *u1 = x + (size_t)(j + 1) * mn;
         double *uj = x + (size_t)j * mn;
         for (int t = n - 1; t >= 0; --t) {

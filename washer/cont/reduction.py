@@ -130,13 +130,18 @@ class BorderedCollocation:
             raise ValueError(f"inconsistent shapes {blocks.shape}, {parcols.shape}, "
                              f"{extra.shape}")
         self._f = ffi.gc(lib.cont_bvp_new(N, m, n, npar), lib.cont_bvp_free)
-        sl = np.zeros(2)
         self.P0 = np.zeros((n, n))
         self.P1 = np.zeros((n, n))
-        rc = lib.cont_bvp_factor(self._f, _ptr(blocks), _ptr(parcols), _ptr(extra), _ptr(sl),
-                                 _ptr(self.P0), _ptr(self.P1))
+        # the determinant on request (collocation systems never ask: their BP test is the
+        # reduced matrix's), unless the build predates cont_bvp_sign_logdet
+        self._sl = None
+        sl = ffi.NULL if available("cont_bvp_sign_logdet") else np.zeros(2)
+        rc = lib.cont_bvp_factor(self._f, _ptr(blocks), _ptr(parcols), _ptr(extra),
+                                 sl if sl is ffi.NULL else _ptr(sl), _ptr(self.P0),
+                                 _ptr(self.P1))
         self.singular = rc == 1
-        self._sl = (float(sl[0]), float(sl[1]))
+        if sl is not ffi.NULL:
+            self._sl = (float(sl[0]), float(sl[1]))
         self._dense = dense
 
     @classmethod
@@ -157,6 +162,10 @@ class BorderedCollocation:
         return x
 
     def sign_logdet(self) -> tuple[float, float]:
+        if self._sl is None:
+            sl = np.zeros(2)
+            lib.cont_bvp_sign_logdet(self._f, _ptr(sl))
+            self._sl = (float(sl[0]), float(sl[1]))
         return self._sl
 
     def reduced(self, extra: np.ndarray) -> np.ndarray | None:
