@@ -9,10 +9,16 @@ why any point differs.
 
 Demos whose runs need what the engine does not do yet are expected to fail with the
 reason (strict=False: they report XPASS once the engine does them).
+
+AUTO-07p's own Python parsers (parseB, parseS, parseBandS, parseD) then read every b-, s-
+and d-file the demo's script wrote in that folder and must find what washer's readers
+find there (tests/auto07p_parsers.py says what is compared); skipped with a message
+where AUTO-07p is not installed.
 """
 import pytest
 
-from auto_demo_compare import all_demos, run_demo
+from auto07p_parsers import auto_python, check_folder
+from auto_demo_compare import DEMOS, all_demos, run_demo
 
 #: Demos in the default run (a few seconds each, IPS 1 and 2, Fortran user files, dat=
 #: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
@@ -56,15 +62,47 @@ def _params():
     return out
 
 
+#: Each demo's run, once per test session: (its folder, compare's Result).
+_RUNS: dict = {}
+
+
+def _run(demo, tmp_path_factory):
+    """The demo run in a fresh folder (once: both tests of a demo read the same run)."""
+    if demo not in _RUNS:
+        work = tmp_path_factory.mktemp(demo)
+        # A demo expected to fall short gets 5 minutes (a run that goes wrong may not
+        # end: with NMX = 0 nothing but a stop condition ends it).
+        r = run_demo(demo, work, timeout=300 if demo in EXPECTED_FAIL else 1800)
+        _RUNS[demo] = (work / demo, r)
+    return _RUNS[demo]
+
+
 @pytest.mark.parametrize("demo", _params())
-def test_demo_folder_matches_auto(demo, tmp_path):
-    # A demo expected to fall short gets 5 minutes (a run that goes wrong may not end:
-    # with NMX = 0 nothing but a stop condition ends it).
-    r = run_demo(demo, tmp_path, timeout=300 if demo in EXPECTED_FAIL else 1800)
+def test_demo_folder_matches_auto(demo, tmp_path_factory):
+    _, r = _run(demo, tmp_path_factory)
     assert r.returncode == 0, f"{demo}: the script failed:\n{r.log[-3000:]}"
     assert r.auto_points > 0
     assert r.matched == r.auto_points, (f"{demo}: {r.matched} of AUTO's {r.auto_points} "
                                         "special points matched:\n" + "\n".join(r.problems[:20]))
+
+
+def _parser_params():
+    return [pytest.param(d, marks=[] if d in FAST else [pytest.mark.slow], id=d)
+            for d in all_demos()]
+
+
+@pytest.mark.parametrize("demo", _parser_params())
+def test_autos_parsers_read_the_demos_files(demo, tmp_path_factory):
+    """AUTO-07p's parseB, parseS, parseBandS and parseD read every b-, s- and d-file the
+    demo's script wrote (whether or not its points all match AUTO's) with the branches,
+    labels, type codes, record headers, record sizes and PAR values washer's own readers
+    find (tests/auto07p_parsers.py)."""
+    if auto_python() is None:
+        pytest.skip("AUTO-07p's Python package is not installed: the files washer wrote "
+                    "are not checked with AUTO's parsers")
+    folder, _ = _run(demo, tmp_path_factory)
+    problems = check_folder(folder, DEMOS / demo)
+    assert not problems, f"{demo}:\n" + "\n".join(problems[:20])
 
 
 def _readme_table():
