@@ -213,3 +213,70 @@ def test_auto07p_continues_washers_fold_locus_of_a_bvp(integral, tmp_path):
     assert len(uz["washer"]) == 1 and uz["washer"][0].values[0] == pytest.approx(1.0, abs=1e-5)
     tol = 1e-4 * (1 + (0.01 * 2.0) ** 0.5)          # c.int: EPSS, DS, DSMAX
     assert uz["auto"][0].values[-1] == pytest.approx(uz["washer"][0].values[-1], abs=2 * tol)
+
+
+def _record_heads(path: Path) -> list[tuple[list[int], list[int]]]:
+    """Each s-record's 16 header integers and the ICP line of its stored direction."""
+    lines = path.read_text().splitlines()
+    out, i = [], 0
+    while i < len(lines):
+        h = [int(x) for x in lines[i].split()]
+        ntpl, nar, nrowpr = h[6], h[7], h[8]
+        icp_line = i + 1 + ((nar - 1) // 7 + 1) * ntpl
+        out.append((h, [int(x) for x in lines[icp_line].split()]))
+        i += 1 + nrowpr
+    return out
+
+
+#: The s-record header fields compared with AUTO's: all but IBR, NTOT, ITP, LAB (where
+#: the point lies on the curve) and IPRIV.
+_SAME = {4: "NFPR", 5: "ISW", 6: "NTPL", 7: "NAR", 8: "NROWPR", 9: "NTST", 10: "NCOL",
+         11: "NPAR", 12: "NPARI", 13: "NDIM", 14: "IPS"}
+
+
+def _assert_records_like_autos(ours: Path, ref: Path, code: int) -> None:
+    mine = [(h, icp) for h, icp in _record_heads(ours) if h[2] == code]
+    auto = [(h, icp) for h, icp in _record_heads(ref) if h[2] == code]
+    assert mine and auto
+    for h, icp in mine:
+        assert {_SAME[k]: h[k] for k in _SAME} == {_SAME[k]: auto[0][0][k] for k in _SAME}
+        assert icp == auto[0][1]
+
+
+def test_fold_of_cycles_records_are_autos(plp):
+    """plp's fold locus of cycles (UZ, code -54) as AUTO's records of it (autoref s.loci):
+    NFPR = 4 (periodic.f90 INITPS: NDIM = 2 NDIM, NBC = NDIM, NINT = 3, so NFPR = NBC +
+    NINT - NDIM + 1 = 4) with ICP = PAR(4), the period, PAR(1) and beta (PAR(12)) and
+    their four RLDOT, NPAR 13, NPARI 2, the sizes of the stored profile."""
+    _assert_records_like_autos(plp / "s.loci", DEMOS / "plp" / "autoref" / "s.loci", -54)
+
+
+@pytest.fixture(scope="module")
+def lcbp(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "lcbp")
+
+
+@pytest.mark.parametrize("name", ["b.lcbp.1", "b.lcbp.2.fw", "b.lcbp.2.bw", "b.lcbp.3.fw",
+                                  "b.lcbp.3.bw"])
+def test_branch_point_of_cycles_headers_are_autos(lcbp, name):
+    """lcbp's b-file headers are AUTO's byte for byte (autoref): the cycles' run (e =
+    'lcbp' s = '/' sv = 'lcbp.1': the CLUI's fresh start) and the restarted BP loci of
+    cycles, non-generic (ISW = 2: NDIM 4, NBC 4, NINT 4, NPAR 15 = PAR(1..12), phi3, a,
+    b) and generic (ISW = 3: NPAR 14, no b). (The generating runs, lcbp.2.sw and
+    lcbp.3.sw, differ: AUTO's is a system of 4 NDIM components with 9 internal
+    parameters, ours starts from the adjoint computed at the BP: 2 NDIM, 3.)"""
+    assert _header_blocks(lcbp / name)[0] == _header_blocks(DEMOS / "lcbp" / "autoref" / name)[0]
+
+
+@pytest.mark.skipif(not HAVE_AUTO, reason="AUTO-07p (auto-07p and gfortran) is not installed")
+def test_branch_point_of_cycles_records_are_autos(lcbp, tmp_path):
+    """The s-records of lcbp's restarted BP loci of cycles (code 64) as AUTO-07p's own of
+    the same script, run here: NFPR 5 with the same ICP (PAR(1), the period, PAR(2) or
+    PAR(3), b (PAR(15), ISW = 2 only), phi3 (PAR(13))), NPAR 15 and NPARI 3 (ISW = 2),
+    NPAR 14 and NPARI 2 (ISW = 3), the profile's sizes."""
+    auto = tmp_path / "lcbp"
+    shutil.copytree(DEMOS / "lcbp", auto, ignore=shutil.ignore_patterns("autoref"))
+    subprocess.run(["auto-07p", "lcbp.auto"], cwd=auto, env=dict(os.environ, OMP_NUM_THREADS="1"),
+                   capture_output=True, timeout=600, check=True)
+    for name in ("s.lcbp.2.fw", "s.lcbp.2.bw", "s.lcbp.3.fw", "s.lcbp.3.bw"):
+        _assert_records_like_autos(lcbp / name, auto / name, 64)

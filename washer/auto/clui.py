@@ -171,7 +171,9 @@ def _read_s(name: str) -> SolutionList:
     path = Path(f"s.{name}")
     if not path.exists():
         raise AutoError(f"{path}: no such solution file")
-    return SolutionList(read_solutions(path))
+    out = SolutionList(read_solutions(path))
+    out.source = str(path)
+    return out
 
 
 def _check_equation(e) -> None:
@@ -180,7 +182,8 @@ def _check_equation(e) -> None:
     for ext in (".f90", ".f", ".c", ".py"):
         if os.path.exists(f"{e}{ext}"):
             return
-    raise AutoError(f"No equations file found for: '{e}'")
+    raise AutoError(f"No equations file found for: '{e}' (expected {e}.f90, {e}.f, {e}.c or "
+                    f"{e}.py in {Path('.').resolve()})")
 
 
 def _data_start(name: str, problem, wc):
@@ -206,11 +209,14 @@ def _execute(sol: Solution) -> Diagram:
     c = sol.c
     e = c.get("e") or ""
     if c.get("IRS") and sol.empty:
-        raise AutoError(f"Restart label IRS={c['IRS']} not found.")
+        why = getattr(sol, "missing", "")
+        raise AutoError(f"Restart label IRS={c['IRS']!r} not found" +
+                        (f": {why}" if why else " (no solution loaded: s='NAME' reads s.NAME)"))
     sv = c.get("sv") or ""
     try:
         wc = c.washer(f"run(e='{e}')")
-        wc.set("sv", "")
+        # sv stays: the b-file header names it as AUTO's does (e = 'NAME' sv = 'NAME.1');
+        # the files are written here (FileSink), not by the engine from it.
         wc.set("s", "")
         problem = _runner.problem(e, wc["NDIM"])
         if hasattr(problem, "fresh"):
@@ -257,7 +263,7 @@ def _execute(sol: Solution) -> Diagram:
     except (ConstantsError, ProblemError, CompileError) as exc:
         raise AutoError(str(exc)) from None
     name = sv or ".washer-fort"
-    files = FileSink(Path("."), name)
+    files = FileSink(Path("."), name, fresh_s="/")
     result = execute(r, br, mode, [files, ScreenSink()])
     paths = [Path(f"{k}.{name}") for k in "bsd"]
     if not sv:

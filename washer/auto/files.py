@@ -394,7 +394,7 @@ class OutputFiles:
                curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,
                nfpr: int | None = None, ds: float | None = None, dsmin: float | None = None,
                dsmax: float | None = None, active: list | None = None,
-               internal: dict | None = None) -> None:
+               internal: dict | None = None, s_name: str | None = None) -> None:
         """The run's header block (io.f90:STHD), in AUTO-07p's exact layout.
 
         c: the user's constants; ndim_internal, npar: NDIM and NPAR as the
@@ -408,6 +408,7 @@ class OutputFiles:
         and integral conditions, a generating run's ISW = -2, NMX = 5). Where an internal
         value differs from the user's, AUTO lists the user's under 'User-specified
         constants, where different from above' (AUTO-07p's parseB reads those back).
+        s_name: the s the header names where it is not c's (AUTO's CLUI: '/').
         The block is written with the first point (`row`), never alone.
         """
         user_irs = c["IRS"] if isinstance(c["IRS"], int) else None
@@ -447,7 +448,10 @@ class OutputFiles:
         for key in ("UZR", "UZSTOP"):
             if c[key]:
                 lines.append(f"   0   {key} = {_dict_str(c[key])}")
-        strs = "".join(f" {k} = '{c[k]}'" for k in ("e", "s", "dat", "sv") if c[k])
+        names = {k: c[k] for k in ("e", "s", "dat", "sv")}
+        if s_name is not None:
+            names["s"] = s_name
+        strs = "".join(f" {k} = '{v}'" for k, v in names.items() if v)
         if strs:
             lines.append("   0  " + strs)
         if c["parnames"]:

@@ -45,8 +45,13 @@ class FileSink:
     b-file label always has its record (a restart from it cannot fail after a
     crash)."""
 
-    def __init__(self, folder, name: str, protect=(), flush_seconds: float = FLUSH_SECONDS):
+    def __init__(self, folder, name: str, protect=(), flush_seconds: float = FLUSH_SECONDS,
+                 fresh_s: str = ""):
+        """fresh_s: the `s = '...'` the header names for a run without a restart record
+        (AUTO's CLUI passes '/', its marker for constants and solution read from one
+        stream, which AUTO-07p's headers of such runs show); "" names the constants' s."""
         self.files = OutputFiles(folder, name, protect=protect, flush_seconds=flush_seconds)
+        self.fresh_s = fresh_s
 
     def begin(self, run) -> None:
         self.run = run
@@ -64,7 +69,8 @@ class FileSink:
         active = list(getattr(sysm, "header_icp", sysm.free))
         self.files.header(c, ndim, getattr(sysm, "header_npar", s.NPAR), run.titles, curve,
                           LBTYPE.get(curve, ""), irs=run.irs_label, nfpr=len(active), ds=s.DS,
-                          dsmin=s.DSMIN, dsmax=s.DSMAX, active=active, internal=internal)
+                          dsmin=s.DSMIN, dsmax=s.DSMAX, active=active, internal=internal,
+                          s_name=self.fresh_s if self.fresh_s and not run.irs_label else None)
 
     def branch_start(self, br: int) -> None:
         self.files.branch_start()

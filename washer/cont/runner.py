@@ -63,12 +63,14 @@ class _Executor:
             lab = self.label
         sol = sysm.solution(point.x, point.tangent)
         values = [float(point.x[-1])] + list(sol.columns) + [float(sol.par[i - 1]) for i in s.ICP[1:]]
-        # One RLDOT per written free parameter (NFPR): a locus may carry internal
-        # unknowns (the cycle-fold's beta) whose direction is not a parameter of the record.
+        # The record's NFPR, ICP and RLDOT are AUTO's: all the free parameters, a locus'
+        # internal ones included where AUTO counts them (the cycle fold's beta, PAR(NPAR+1):
+        # periodic.f90 INITPS, NFPR = NBC + NINT - NDIM + 1 = 4), as the header lists them.
+        icp = list(getattr(sysm, "header_icp", sysm.free))
         out = Record(br=br, pt=pt, code=curve_code(base, sysm.curve_type), lab=lab,
-                     nfpr=len(sysm.free), isw=s.ISW, ndim_user=sol.ndim_user, ips=s.IPS,
-                     u=np.asarray(sol.u), par=np.asarray(sol.par), icp=list(sysm.free),
-                     rldot=list(sol.rldot)[:len(sysm.free)], udot=sol.udot, t=sol.t, ntst=sol.ntst,
+                     nfpr=len(icp), isw=s.ISW, ndim_user=sol.ndim_user, ips=s.IPS,
+                     u=np.asarray(sol.u), par=np.asarray(sol.par), icp=icp,
+                     rldot=list(sol.rldot)[:len(icp)], udot=sol.udot, t=sol.t, ntst=sol.ntst,
                      ncol=sol.ncol, values=values, stable=stable, stability=point.stability,
                      info=info or {}, npari=getattr(sysm, "npari", 0))
         self.run.branch.rows.append(out)

@@ -50,7 +50,13 @@ _D = DEFAULTS
 
 
 class SettingsError(ValueError):
-    """Constants that no run can use (a step rule that would never end, ...)."""
+    """Constants that no run can use (a step rule that would never end, a parameter list
+    ICP that the continued system cannot use, ...). `keys` names the constants at fault,
+    so that the message can point at their place in the constants file."""
+
+    def __init__(self, message: str, keys: tuple = ()):
+        super().__init__(message)
+        self.keys = tuple(keys)
 
 
 class SettingsWarning(UserWarning):

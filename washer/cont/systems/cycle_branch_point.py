@@ -60,6 +60,7 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont.linalg import tall_null_vector
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, register
 from washer.cont.systems.bvp import H2, CycleLocus, VectorField, onto_mesh, stored_profile
 
@@ -79,9 +80,9 @@ def rearranged(icp: list, generic: bool) -> list:
         q = icp[:need]
     if len(q) < need or len(set(q)) < need:
         what = "ICP = [p1, p2, p3, 11]" if generic else "ICP = [p1, p2, 11]"
-        raise ValueError(f"ISW = {3 if generic else 2} at a BP of cycles continues it in "
+        raise SettingsError(f"ISW = {3 if generic else 2} at a BP of cycles continues it in "
                          f"{need - 1} parameters and the period ({what}): ICP = {icp} "
-                         "names too few")
+                         "names too few", keys=("ICP",))
     return q
 
 
@@ -132,6 +133,21 @@ class CycleBranchPointLocus(CycleLocus):
             self._from_curve(rec)
 
     # ------------------------------------------------------------------ set-up
+    @property
+    def npari(self) -> int:
+        """AUTO's NPARI of the records: the internal parameters after PAR(1..NPAR)
+        (NPAR = max(NPAR, 12)): phi3, a and b on the non-generic locus (ISW = 2), phi3
+        and a on the generic one (ISW = 3, no b), as AUTO's records of these loci (3 and
+        2). The generating run stores phi3, a, b too (3: AUTO's writes 9, the internals of
+        its 4 NDIM generating system, which this start does not use)."""
+        return 2 if (self.generic and not self._generating) else 3
+
+    @property
+    def header_npar(self) -> int:
+        """NPAR as the b-file header and the s-records state it: PAR(1..NPAR) and the
+        NPARI internal parameters (AUTO's 15 for ISW = 2, 14 for ISW = 3)."""
+        return self.i_phi3 - 1 + self.npari
+
     def tail_weights(self) -> np.ndarray:
         internal = (self.i_phi3, self.i_a, self.i_b)
         return np.array([1.0 if i in internal else self.settings.theta_par(i)
@@ -349,11 +365,12 @@ class CycleBranchPointLocus(CycleLocus):
 
     def solution(self, x, tangent) -> Solution:
         """b-row columns of u; the record stores W = (u, phi) and PAR with phi3, a, b
-        appended (AUTO's internal PAR(NPAR+1..NPAR+3))."""
+        appended (AUTO's internal PAR(NPAR+1..NPAR+3); without b on the generic locus:
+        `npari`)."""
         def rldot(t):
             d = dict(zip(self.xpar, t[self.coll.n_u:]))
             return [float(d[i]) for i in self.free]
-        return self.bvp_solution(x, tangent, self.params(x), rldot)
+        return self.bvp_solution(x, tangent, self.params(x)[:self.header_npar], rldot)
 
     def directions(self, x, tangent, code) -> list:
         return []
