@@ -45,7 +45,9 @@ def test_list_of_pairs_keeps_every_user_value_of_an_index(tmp_path):
     ("e = 'ab", "unterminated string"),
     ("2 1 0 1  NDIM,IPS,IRS,ILP", "c.x:2: the file ends where the old positional format "
                                    "expects NICP"),
-    ("2 1 0 1\n2 1", "c.x:2: expected NICP >= 1 followed by NICP parameter indices"),
+    ("2 1 0 1\n2 1", "c.x:2: NICP = 2 but the row lists 1 parameter index 1 and the line "
+                     "ends: expected NICP"),
+    ("2 1 0 1\n0 1", "c.x:2: NICP = 0: expected NICP"),
     ("2 1 0 1\n1 1\n15 4.5", "c.x:3: NCOL expects an integer, got '4.5'"),
 ])
 def test_malformed_constants(tmp_path, text, message):

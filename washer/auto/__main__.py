@@ -17,6 +17,9 @@ def main(argv: list[str] | None = None) -> int:
         interact()
         return 0
     from washer.auto import clui
+    import warnings
+    # A warning names its file and line itself: the screen shows it as such.
+    warnings.formatwarning = lambda message, category, *a, **k: f"warning: {message}\n"
     for path in argv:
         try:
             run_script(path)

@@ -53,7 +53,12 @@ class AutoConstants(dict):
                 if k in origins and k not in kw:
                     self.origins[k] = origins[k]
             elif not str(k).startswith("Active "):
-                raise AutoError(f"Unknown option: {k}")
+                import difflib
+                near = difflib.get_close_matches(str(k), [x for x in self if x.isupper()] or
+                                                 list(self), n=1)
+                raise AutoError(f"Unknown option: {k}" +
+                                (f" (did you mean {near[0]}?)" if near else
+                                 " (expected an AUTO constant such as NMX, DS or ICP)"))
 
     def copy(self) -> "AutoConstants":
         return AutoConstants(self)

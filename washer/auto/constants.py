@@ -173,10 +173,63 @@ def _old_number(word: str, key: str, where: str):
         raise ConstantsError(f"{where}: {key} expects {kind}, got {word!r}") from None
 
 
-def parse_old(lines: list[str], first: int, source: str) -> list[tuple[str, object, int]]:
+class ConstantsWarning(UserWarning):
+    """A constants file AUTO reads, but not as its author probably meant (an ICP row
+    listing more indices than its NICP)."""
+
+
+def _old_icp(words: list[str], n: int, line: str, source: str, names) -> list:
+    """ICP of the old format's second row `NICP ICP(1) .. ICP(NICP) [comment]`: the first
+    NICP words after NICP, as AUTO's parseC takes them (integers, or names of parnames:
+    `names`, the parnames given before the positional rows). A row whose NICP does not
+    match the indices it lists is an error naming what was expected (AUTO itself would
+    take a word of the comment for a parameter name); indices beyond NICP are taken as
+    the comment, as AUTO does, with a ConstantsWarning."""
+    import warnings
+    where = f"{source}:{n}"
+    nicp = _old_number(words[0], "NICP", where)
+
+    def is_index(w: str) -> bool:
+        name = w.lstrip("-")
+        return bool(re.fullmatch(r"-?\d+", w)) or name in names or name == "PERIOD" or \
+            bool(re.fullmatch(r"PAR\(\d+\)", name))
+
+    listed = []                         # the indices the row lists, up to its comment
+    for w in words[1:]:
+        if not is_index(w):
+            break
+        listed.append(w)
+    expected = (f"expected NICP (the number of continuation parameters, >= 1) followed "
+                f"by that many parameter indices, e.g. '2 1 11'; found {' '.join(line.split())!r}")
+    if nicp < 1:
+        raise ConstantsError(f"{where}: NICP = {nicp}: {expected}")
+    if len(listed) < nicp:
+        after = words[1 + len(listed)] if len(words) > 1 + len(listed) else None
+        what = f"then {after!r}, which is neither an integer nor a name of parnames" \
+            if after is not None else "and the line ends"
+        raise ConstantsError(f"{where}: NICP = {nicp} but the row lists {len(listed)} "
+                             f"parameter ind{'ex' if len(listed) == 1 else 'ices'} "
+                             f"{' '.join(listed)} {what}: {expected}")
+    if len(listed) > nicp:
+        warnings.warn(f"{where}: NICP = {nicp} but the row lists {len(listed)} parameter "
+                      f"indices ({' '.join(listed)}): ICP = [{', '.join(listed[:nicp])}] as AUTO reads it, "
+                      f"{' '.join(listed[nicp:])} taken as a comment (raise NICP to "
+                      f"{len(listed)} to continue in them all)", ConstantsWarning, stacklevel=2)
+
+    def index(word: str):
+        try:
+            return int(word)
+        except ValueError:
+            return word                 # a name from parnames
+    return [index(w) for w in listed[:nicp]]
+
+
+def parse_old(lines: list[str], first: int, source: str,
+              parnames=()) -> list[tuple[str, object, int]]:
     """Statements (key, value, line) of AUTO's old positional format (parseC.read):
     NDIM IPS IRS ILP / NICP ICP(1..NICP) / the OLD_ROWS / NTHL, then NTHL rows `I THL(I)`,
-    likewise THU and UZR. lines[first] is the first positional row (line first + 1)."""
+    likewise THU and UZR. lines[first] is the first positional row (line first + 1).
+    parnames: the parameter names given before the positional rows."""
     out: list[tuple[str, object, int]] = []
     pos = first
 
@@ -202,11 +255,7 @@ def parse_old(lines: list[str], first: int, source: str) -> list[tuple[str, obje
         out.append((key, index(word) if key == "IRS" else
                     _old_number(word, key, f"{source}:{n}"), n))
     words, n = row("NICP and the NICP indices of ICP", 1)
-    nicp = _old_number(words[0], "NICP", f"{source}:{n}")
-    if nicp < 1 or len(words) < 1 + nicp:
-        raise ConstantsError(f"{source}:{n}: expected NICP >= 1 followed by NICP parameter "
-                             f"indices, found {lines[n - 1]!r}")
-    out.append(("ICP", [index(w) for w in words[1:1 + nicp]], n))
+    out.append(("ICP", _old_icp(words, n, lines[n - 1], source, set(parnames)), n))
     for keys in OLD_ROWS:
         words, n = row(" ".join(keys), 1)
         out += [(k, _old_number(w, k, f"{source}:{n}"), n) for k, w in zip(keys, words)]
@@ -237,19 +286,30 @@ def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, i
         if sc.peek() == "":
             return out
         if sc.peek().isdigit():
-            return out + parse_old(text.splitlines(), sc.line - 1, source)
+            names = [v for k, v, _ in out if k == "parnames" and isinstance(v, dict)]
+            return out + parse_old(text.splitlines(), sc.line - 1, source,
+                                   [str(x) for d in names for x in d.values()])
         line = sc.line
         key = sc.word()
         sc.skip(newlines=False, commas=False)
         if sc.advance() != "=":
             raise ConstantsError(f"{source}:{line}: expected '=' after {key}")
-        out.append((key, sc.value(), line))
+        try:
+            value = sc.value()
+        except ConstantsError as exc:
+            # the key whose value is wrong, in its statement's words
+            raise ConstantsError(str(exc).replace(": expected a value", f": {key}: expected a "
+                                                  "value", 1)) from None
+        out.append((key, value, line))
 
 
 def check_value(key: str, value, where: str):
     """Type-check one constant; returns the normalised value."""
     if key not in DEFAULTS:
-        raise ConstantsError(f"{where}: unknown AUTO constant {key}")
+        import difflib
+        near = difflib.get_close_matches(str(key), list(DEFAULTS), n=1)
+        raise ConstantsError(f"{where}: unknown AUTO constant {key}" +
+                             (f" (did you mean {near[0]}?)" if near else ""))
     if key in INT_KEYS:
         if isinstance(value, float) and value.is_integer():
             value = int(value)

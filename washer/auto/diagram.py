@@ -310,19 +310,26 @@ class SolutionList(list):
         if irs is None and kw.get("constants") is not None:
             irs = kw["constants"].get("IRS")
         sol = None
+        missing = ""
         if irs is not None:
             if irs != 0:
                 try:
                     sol = self(irs)
-                except KeyError:
-                    sol = None
+                except KeyError as exc:
+                    sol, missing = None, str(exc.args[0])
         elif len(self):
             sol = self[-1]
         else:
             raise RuntimeError("Cannot start from an empty solution list.")
         if sol is None or isinstance(sol, SolutionList):
             sol = Solution(None)
-        return sol.load(**kw)
+        out = sol.load(**kw)
+        if out.empty and irs:
+            # why IRS selects nothing, and where it was looked for (the run's message)
+            where = getattr(self, "source", "")
+            out.missing = f"{missing or f'Label {irs} selects a list'}" + \
+                (f" in {where}" if where else "")
+        return out
 
     def relabel(self) -> "SolutionList":
         out = SolutionList()

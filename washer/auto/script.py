@@ -193,7 +193,10 @@ def run_script(path, ns: dict | None = None) -> dict:
                           f"{', '.join(sorted(set(clui.COMMANDS) | {'auto'}))}") from None
     except Exception as exc:        # noqa: BLE001 - every failure names the script line
         line = _script_line(exc, path)
-        raise ScriptError(f"{path}:{line}: {type(exc).__name__}: {exc} "
+        # KeyError's str() quotes its message; the label selections raise it with a sentence
+        text = exc.args[0] if isinstance(exc, KeyError) and len(exc.args) == 1 and \
+            isinstance(exc.args[0], str) else exc
+        raise ScriptError(f"{path}:{line}: {type(exc).__name__}: {text} "
                           f"({_source_line(source, line)})") from exc
     return ns
 

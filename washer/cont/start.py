@@ -7,6 +7,8 @@ Errors are `RunError`s naming the constants file and what was expected.
 """
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
@@ -186,6 +188,14 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     try:
         system = ctor(StartData(problem, s, u, par, rec, kind, names,
                                 data if rec is None else None))
+    except SettingsError as exc:
+        # The constants are at fault (ICP names too few parameters for the system, ...),
+        # not the start point: the message points at the constants' place.
+        key = next((k for k in exc.keys if k in c.given), exc.keys[0] if exc.keys else None)
+        place = c.given.get(key, "") if key else ""
+        where = place if re.search(r":\d+$", place) else \
+            (f"{c.source}: {key}" if key else c.source)
+        raise RunError(f"{where}: {exc}") from None
     except (ValueError, ProblemError, np.linalg.LinAlgError) as exc:
         raise RunError(f"{c.source}: cannot start from {kind or 'this point'}: {exc}") \
             from None

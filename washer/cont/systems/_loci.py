@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from washer.cont.settings import SettingsError
 from washer.cont.system import StartData
 from washer.cont.systems._algebraic import AlgebraicSystem
 
@@ -22,8 +23,8 @@ class LocusSystem(AlgebraicSystem):
     def _setup(self, start: StartData, n_extra: int):
         s = start.settings
         if len(s.ICP) < 2:
-            raise ValueError("ISW = 2 continues a locus in two parameters: ICP needs two "
-                             f"entries, got {list(s.ICP)}")
+            raise SettingsError("ISW = 2 continues a locus in two parameters: ICP needs two "
+                             f"entries, got {list(s.ICP)}", keys=("ICP",))
         self.problem, self.settings = start.problem, s
         self.ndim = n = start.problem.ndim
         self.n_eq = n + n_extra + 1

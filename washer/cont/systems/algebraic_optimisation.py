@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, register
 from washer.cont.systems._algebraic import AlgebraicSystem
 from washer.cont.systems.bvp import H2
@@ -54,9 +55,9 @@ class AlgebraicOptimisation(AlgebraicSystem):
         user = start.problem
         rec = start.record
         if s.ICP[0] != OBJECTIVE:
-            raise ValueError(f"ICP = {list(s.ICP)}: with IPS = 5, ICP(1) is PAR(10), the "
+            raise SettingsError(f"ICP = {list(s.ICP)}: with IPS = 5, ICP(1) is PAR(10), the "
                              "objective FOPT (the continuation parameter); the free equation "
-                             "parameters follow it")
+                             "parameters follow it", keys=("ICP",))
         if not user.has_fopt:
             raise ValueError(f"IPS = 5 needs the objective FOPT of the equations "
                              f"'{user.name}' (AUTO's FOPT(NDIM,U,ICP,PAR,IJAC,FS,DFDU,DFDP), "
@@ -67,9 +68,9 @@ class AlgebraicOptimisation(AlgebraicSystem):
         nfpr_rec = int(rec.nfpr) if rec is not None else 1
         nfpr = nfpr_rec + (1 if rec is None or start.kind == "LP" else 0)
         if len(s.ICP) < nfpr:
-            raise ValueError(f"ICP = {list(s.ICP)}: NFPR = {nfpr} free parameters (the "
+            raise SettingsError(f"ICP = {list(s.ICP)}: NFPR = {nfpr} free parameters (the "
                              f"objective PAR(10) and {nfpr - 1} equation parameter"
-                             f"{'s' if nfpr > 2 else ''}) but ICP names {len(s.ICP)}")
+                             f"{'s' if nfpr > 2 else ''}) but ICP names {len(s.ICP)}", keys=("ICP",))
         self.problem, self.user, self.settings = user, user, s
         self.ndm = self.ndim = n = user.ndim
         self.nfpr = nfpr

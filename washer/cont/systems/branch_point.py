@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from washer.cont.linalg import null_vectors
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems._loci import LocusSystem
 
@@ -55,8 +56,8 @@ class BranchPointLocus(LocusSystem):
         n = self.ndim
         if self.generic:
             if len(s.ICP) < 3:
-                raise ValueError("ISW = 3 continues the branch points of a generic problem in "
-                                 f"three parameters: ICP needs three entries, got {list(s.ICP)}")
+                raise SettingsError("ISW = 3 continues the branch points of a generic problem in "
+                                 f"three parameters: ICP needs three entries, got {list(s.ICP)}", keys=("ICP",))
             self.free = [s.ICP[0], s.ICP[1], s.ICP[2]]
         # AUTO's weights: THU over the extended state U(1..2n + 2), THL on PAR(ICP(1)).
         self.theta = np.r_[s.theta_u(2 * n + 2), s.theta_par(s.ICP[0])]

@@ -47,6 +47,7 @@ import numpy as np
 
 from washer.cont.linalg import tall_null_vector
 from washer.cont.problem import Problem
+from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
 from washer.cont.systems.general_bvp import BoundaryValueProblem
 
@@ -232,9 +233,9 @@ class BVPBranchPointLocus(BoundaryValueProblem):
         generic = s.ISW == 3
         need = nfpx + (2 if generic else 1)
         if len(s.ICP) < need:
-            raise ValueError(f"ISW = {s.ISW} continues the branch points of a BVP with "
+            raise SettingsError(f"ISW = {s.ISW} continues the branch points of a BVP with "
                              f"{nfpx} free parameter(s) in {need} parameters: ICP needs "
-                             f"{need} entries, got {list(s.ICP)}")
+                             f"{need} entries, got {list(s.ICP)}", keys=("ICP",))
         if nfpx < 1:
             raise ValueError(f"NBC + NINT - NDIM + 1 = {nfpx}: expected at least 1")
         lay = self.layout = Layout(n, s.NBC, s.NINT, s.NPAR, s.ICP)

@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from washer.cont.codes import Code
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, fold_test, register
 from washer.cont.systems.bvp import CycleLocus, VectorField, onto_mesh, stored_profile
 
@@ -58,8 +59,8 @@ class CycleFoldLocus(CycleLocus):
         icp = list(s.ICP)
         others = [i for i in icp[1:] if i != 11]
         if not others:
-            raise ValueError("ISW = 2 at an LP of cycles continues the fold in two parameters: "
-                             f"ICP = {icp} names only one (give e.g. ICP = [{icp[0]}, 2, 11])")
+            raise SettingsError("ISW = 2 at an LP of cycles continues the fold in two parameters: "
+                             f"ICP = {icp} names only one (give e.g. ICP = [{icp[0]}, 2, 11])", keys=("ICP",))
         self.p1, self.p2 = icp[0], others[0]
         self.free = [self.p1, 11, self.p2]
         self.field = VectorField(self.problem, self.n)

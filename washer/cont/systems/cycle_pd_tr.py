@@ -56,6 +56,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont import floquet
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, fold_test, register
 from washer.cont.systems.bvp import CycleLocus, VectorField, onto_mesh, stored_profile
 
@@ -88,8 +89,8 @@ class _CycleLocus(CycleLocus):
         others = [i for i in icp[1:] if i not in (11, 12)]
         name = "period doubling" if self.curve_type == 7 else "torus bifurcation"
         if not others:
-            raise ValueError(f"ISW = 2 at a {name} continues it in two parameters: ICP = "
-                             f"{icp} names only one (give e.g. ICP = [{icp[0]}, 2])")
+            raise SettingsError(f"ISW = 2 at a {name} continues it in two parameters: ICP = "
+                             f"{icp} names only one (give e.g. ICP = [{icp[0]}, 2])", keys=("ICP",))
         self.p1, self.p2 = icp[0], others[0]
         #: The free parameters in x's order after the profile (PAR(ICP(1)) last).
         self.xpar = [11] + ([12] if self.has_theta else []) + [self.p2, self.p1]

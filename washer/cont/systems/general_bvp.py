@@ -46,6 +46,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont.problem import Problem
+from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
 
@@ -78,8 +79,8 @@ class BoundaryValueProblem(CollocationBVP):
             raise ValueError(f"NBC = {self.nbc}, NINT = {self.nint}, NDIM = {n}: NBC + NINT - "
                              f"NDIM + 1 = {nfpr} free parameters; expected at least 1")
         if len(s.ICP) < nfpr and getattr(self, "_free", None) is None:
-            raise ValueError(f"NBC + NINT - NDIM + 1 = {nfpr} free parameters, but ICP = "
-                             f"{list(s.ICP)} names {len(s.ICP)}")
+            raise SettingsError(f"NBC + NINT - NDIM + 1 = {nfpr} free parameters, but ICP = "
+                             f"{list(s.ICP)} names {len(s.ICP)}", keys=("ICP",))
         self.nfpr = nfpr
         # The free parameters: the first NFPR of ICP, unless a subclass set its own
         # (the generating run of a fold locus frees the null vector's norm instead of
@@ -517,8 +518,8 @@ class BVPFoldLocus(BoundaryValueProblem):
                              f"{s.NBC + s.NINT - n + 1} free parameters on their branch are "
                              "not supported yet (1 is)")
         if len(s.ICP) < 2:
-            raise ValueError("ISW = 2 continues the fold locus in two parameters: ICP needs "
-                             f"two entries, got {list(s.ICP)}")
+            raise SettingsError("ISW = 2 continues the fold locus in two parameters: ICP needs "
+                             f"two entries, got {list(s.ICP)}", keys=("ICP",))
         norm = s.NPAR + 1
         generating = data.kind == "LP"
         if generating:

@@ -50,6 +50,7 @@ from __future__ import annotations
 import numpy as np
 
 from washer.cont.problem import Problem
+from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
 from washer.cont.systems.bvp import H2, VectorField, stored_profile
 from washer.cont.systems.general_bvp import BoundaryValueProblem
@@ -97,9 +98,9 @@ class PeriodicOptimisation(BoundaryValueProblem):
                              "or fopt(u, par) in NAME.py)")
         clash = sorted(set(s.ICP) & set(APPENDED))
         if clash:
-            raise ValueError(f"ICP = {list(s.ICP)}: with IPS = 15 PAR(10), PAR(13) and PAR(14) "
+            raise SettingsError(f"ICP = {list(s.ICP)}: with IPS = 15 PAR(10), PAR(13) and PAR(14) "
                              f"are the objective and the multipliers (free already), "
-                             f"not continuation parameters (PAR({clash[0]}))")
+                             f"not continuation parameters (PAR({clash[0]}))", keys=("ICP",))
         self.user, self.ndm = user, n
         self.ufield = VectorField(user, n)
         self._free = list(s.ICP) + list(APPENDED)

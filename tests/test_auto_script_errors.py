@@ -1,0 +1,165 @@
+"""Broken input to `python -m washer.auto` scripts and constants files, as a user makes it:
+each error names the file and line (the script's, and the constants file's where the
+fault is there) and what was expected, and the script stops there."""
+import shutil
+import warnings
+from pathlib import Path
+
+import pytest
+
+from washer.auto import clui
+from washer.auto.constants import ConstantsWarning
+from washer.auto.script import ScriptError, run_script
+
+DATA = Path(__file__).parent / "data"
+DEMOS = DATA / "auto_demos"
+
+
+@pytest.fixture
+def ab(tmp_path, monkeypatch):
+    """A folder with the ab problem (ab.py, c.ab: equilibria of AUTO's ab2p demo)."""
+    monkeypatch.chdir(tmp_path)
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    clui._runner.refused.clear()
+    return tmp_path
+
+
+def _error(script: str, name: str = "x.auto") -> str:
+    Path(name).write_text(script)
+    with pytest.raises(ScriptError) as err:
+        run_script(name)
+    return str(err.value)
+
+
+def _c_ab_with(line_start: str, replacement: str, name: str) -> int:
+    """c.NAME: c.ab with the line starting with line_start replaced; its line number."""
+    lines = Path("c.ab").read_text().splitlines()
+    row = next(i for i, ln in enumerate(lines) if ln.startswith(line_start))
+    lines[row] = replacement
+    Path(f"c.{name}").write_text("\n".join(lines) + "\n")
+    return row + 1
+
+
+def test_misspelt_constant_in_a_constants_file_names_line_and_the_nearest(ab):
+    line = _c_ab_with("NMX", "NMXX=  400, NPR=  400", "typo")
+    msg = _error("run('ab', c='typo')\n")
+    assert msg.startswith("x.auto:1: ")
+    assert f"c.typo:{line}: unknown AUTO constant NMXX (did you mean NMX?)" in msg
+
+
+def test_misspelt_keyword_of_a_command_names_the_nearest(ab):
+    msg = _error("r = 1\nrun('ab', NMXX=3)\n")
+    assert msg.startswith("x.auto:2: ") and "Unknown option: NMXX (did you mean NMX?)" in msg
+
+
+def test_a_value_that_is_not_one_names_its_key_and_line(ab):
+    line = _c_ab_with("NMX", "NMX= many, NPR=  400", "typ2")
+    msg = _error("run('ab', c='typ2')\n")
+    assert f"c.typ2:{line}: NMX: expected a value (number, 'string', [list] or {{dict}})" in msg
+    msg = _error("run('ab', NMX='many')\n")
+    assert "NMX expects an integer, got 'many'" in msg
+
+
+def test_missing_equations_file_says_what_was_looked_for(ab):
+    msg = _error("run(e='nosuch', c='ab')\n")
+    assert msg.startswith("x.auto:1: ")
+    assert "No equations file found for: 'nosuch' (expected nosuch.f90, nosuch.f, nosuch.c " \
+           "or nosuch.py in" in msg
+
+
+def test_python_equations_with_a_syntax_error_name_file_and_line(ab):
+    Path("bad.py").write_text("import numpy as np\ndef func(u, par)\n    return u\n")
+    msg = _error("run(e='bad', c='ab')\n")
+    assert "bad.py: failed to import: SyntaxError" in msg and "line 2" in msg
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
+def test_fortran_equations_that_do_not_compile_name_file_and_line(ab):
+    src = (DEMOS / "ab" / "ab.f90").read_text().splitlines()
+    row = next(i for i, ln in enumerate(src) if "F(1)=" in ln.replace(" ", ""))
+    src[row] = src[row].replace("=", "= +*", 1)
+    Path("fab.f90").write_text("\n".join(src) + "\n")
+    msg = _error("run(e='fab', c='ab')\n")
+    assert "fab.f90: compiling failed (gfortran" in msg and f"fab.f90:{row + 1}:" in msg
+
+
+def test_a_label_not_in_the_solutions(ab):
+    run_script_text = "run('ab', sv='ab')\n"
+    Path("a.auto").write_text(run_script_text)
+    run_script("a.auto")
+    # by type and count: the selection's own words, without KeyError's quotes
+    msg = _error("r = loadbd('ab')\nrun(r('HB9'))\n")
+    assert msg.startswith("x.auto:2: KeyError: Label HB9 not found: there are 2 HB solutions")
+    # by number, in a restart file: the file and the labels it holds
+    msg = _error("run('ab', s='ab', IRS=99)\n")
+    assert "Restart label IRS=99 not found: Label 99 not found (labels: [1, 2, 3, 4, 5, 6]) " \
+           "in s.ab" in msg
+
+
+def test_a_missing_restart_file(ab):
+    msg = _error("run('ab', s='nosuch', IRS=2)\n")
+    assert msg.startswith("x.auto:1: ") and "s.nosuch: no such solution file" in msg
+
+
+def test_script_syntax_error_names_the_line(ab):
+    msg = _error("r = 1\nrun('ab'\nprint 'x'\n")
+    assert msg.startswith("x.auto:2: syntax error")
+
+
+def test_icp_too_short_for_the_locus_names_the_icp_line_not_the_start(ab):
+    """ISW = 2 at an HB with one ICP entry: the fault is ICP (its line in c.ab, or the
+    command that set it), not the HB the run starts from."""
+    line = next(i for i, ln in enumerate(Path("c.ab").read_text().splitlines(), 1)
+                if ln.startswith("ICP"))
+    msg = _error("r = run('ab')\nrun(r('HB1'), ISW=2)\n")
+    assert f"c.ab:{line}: ISW = 2 continues a locus in two parameters: ICP needs two " \
+           "entries, got [1]" in msg
+    assert "cannot start from" not in msg
+    msg = _error("r = run('ab')\nrun(r('HB1'), ICP=[1], ISW=2)\n")
+    assert "run(e='ab'): ICP: ISW = 2 continues a locus" in msg and "cannot start" not in msg
+
+
+# ------------------------------------------ AUTO's old positional constants format
+def _old_format(tmp_path, icp_row: str) -> None:
+    """enz's constants file (AUTO's old positional format) with its ICP row replaced."""
+    for f in ("enz.f90", "c.enz"):
+        shutil.copy(DEMOS / "enz" / f, tmp_path)
+    lines = (tmp_path / "c.enz").read_text().splitlines()
+    assert lines[1].split()[:2] == ["1", "1"]
+    lines[1] = icp_row
+    (tmp_path / "c.enz").write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("row, listed", [
+    ("2 1\t\t\t\tNICP,(ICP(I),I=1,NICP)", "1 parameter index 1 then 'NICP'"),
+    ("3 1 2   NICP,(ICP(I),I=1,NICP)", "2 parameter indices 1 2 then 'NICP'"),
+    ("2 1", "1 parameter index 1 and the line ends"),
+])
+def test_old_format_nicp_larger_than_the_indices_listed(tmp_path, monkeypatch, row, listed):
+    """NICP says more parameters than the row lists before its comment: the error names
+    c.enz, line 2, the indices found and what was expected (AUTO's parseC would take
+    the comment's first word for a parameter name)."""
+    monkeypatch.chdir(tmp_path)
+    _old_format(tmp_path, row)
+    msg = _error("run(e='enz', c='enz')\n")
+    nicp = row.split()[0]
+    assert f"c.enz:2: NICP = {nicp} but the row lists {listed}" in msg
+    assert "expected NICP (the number of continuation parameters, >= 1) followed by that " \
+           "many parameter indices" in msg
+
+
+def test_old_format_nicp_smaller_than_the_indices_listed_warns(tmp_path, monkeypatch):
+    """NICP = 1 with two indices listed: AUTO reads ICP = [1] and the rest as a comment;
+    so does washer, saying so (file, line, what it took)."""
+    monkeypatch.chdir(tmp_path)
+    _old_format(tmp_path, "1 1 2    NICP,(ICP(I),I=1,NICP)")
+    from washer.auto.constants import read_constants
+    with pytest.warns(ConstantsWarning, match=r"c.enz:2: NICP = 1 but the row lists 2 "
+                                              r"parameter indices \(1 2\): ICP = \[1\]"):
+        c = read_constants(tmp_path / "c.enz")
+    assert c["ICP"] == [1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ConstantsWarning)
+        _old_format(tmp_path, "1 1    NICP,(ICP(I),I=1,NICP)")
+        assert read_constants(tmp_path / "c.enz")["ICP"] == [1]
