@@ -58,8 +58,12 @@ for name in sys.argv[2:]:
     try:
         if kind == "b":
             b = parseB.parseB(name)
+            # labels branch by branch (a file may repeat a label: runs appended)
+            labels = [[v["TY number"], v["LAB"]] for br in b.branches
+                      for i in br.labels.getIndices() for v in br.labels[i].values()]
+            assert [lab for _, lab in labels] == list(b.getLabels())
             out[name] = {"branches": [[br["BR"], len(br)] for br in b.branches],
-                         "labels": [[b.getLabel(l)["TY number"], l] for l in b.getLabels()]}
+                         "labels": labels}
         elif kind == "s":
             recs = []
             for x in parseS.parseS(name):
