@@ -66,3 +66,23 @@ def test_a_user_value_passed_on_the_first_step_is_a_warning(tmp_path):
     assert [r.ty for r in res.rows if r.lab] == ["EP", "EP"]
     assert "WARNING:PAR(1) passed the user value 0.7 on the first step" in d
     assert "does not stop there" in d
+
+
+def test_washer_starts_at_the_constants_par_values(tmp_path):
+    """c.washer sets PAR = {'C_p': 0.0}: as AUTO's STPNUS (STPNT, then the constants' PAR
+    override its values), the run starts at C_p = 0, and at the equilibrium there (the
+    state the built-in stpnt computes at the start parameters), not at the reference
+    set's C_p = 0.101: the first point is C_p = 0 to Newton's tolerance (EPSL = 1e-7
+    relative) and its state is the model's rotating-frame equilibrium at C_p = 0 to EPSU."""
+    import washer
+    shutil.copy(Path(__file__).resolve().parents[1] / "auto_constants" / "c.washer",
+                tmp_path / "c.washer")
+    first = run(tmp_path / "c.washer", verbose=False, files=False, NMX=3).rows[0]
+    assert first.ty == "EP" and abs(first.par[0]) <= 1e-7
+    params = washer.load_params()
+    assert params["C_p"] > 0.05                  # the reference set is not at C_p = 0
+    eq0 = washer.Model(params.replace(C_p=0.0)).rotating_equilibrium(frame="averaged")
+    assert np.max(np.abs(first.U[:6] - eq0)) <= 1e-7 * (1 + np.max(np.abs(eq0)))
+    # the start is not the reference set's equilibrium carried to C_p = 0
+    eq_ref = washer.Model(params).rotating_equilibrium(frame="averaged")
+    assert np.max(np.abs(eq_ref - eq0)) > 1e-7 * (1 + np.max(np.abs(eq0)))

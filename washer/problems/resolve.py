@@ -31,8 +31,12 @@ def resolve_problem(c: Constants, folder: Path, params=None) -> Problem:
         except ParameterError as exc:
             detail = str(exc).split(": ", 1)[-1]
             raise RunError(f"{c.given.get('PAR', c.source)}: PAR: {detail}") from None
-        if e == "washer:forced" and c["IRS"] in (0, "0"):
-            params = start                                  # stpnt's orbit at the start PAR
+        if c["IRS"] in (0, "0"):
+            # AUTO's STPNUS: STPNT, then the constants' PAR override its values; the
+            # state stpnt gives must then be the solution at those values (the
+            # equilibrium at C_p = 0 of c.washer, not at the reference C_p), which it is
+            # when stpnt computes it at the start parameters.
+            params = start
         for i in c.icp():
             if i not in PAR_NAMES and i not in (11, 12) and c["ISW"] in (0, 1, -1):
                 warnings.warn(f"{c.given.get('ICP', c.source)}: ICP: PAR({i}) is not a "

@@ -156,11 +156,12 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
 
 
 def forced_start_params(c, params=None):
-    """The parameters e='washer:forced' starts from (IRS = 0): `params` (default the
-    reference set) with the constants' PAR entries applied (names or indices of
-    PAR_NAMES). A periodic start is not corrected (AUTO's STPNUB), so stpnt must give the
-    orbit at the run's starting values, not at those PAR then overrides: this is the set
-    it computes the orbit at (the period PAR(11) follows from Omega)."""
+    """The parameters a built-in washer problem starts from (IRS = 0): `params` (default
+    the reference set) with the constants' PAR entries applied (names or indices of
+    PAR_NAMES), as AUTO's STPNUS applies them after STPNT. stpnt must give the solution
+    at the run's starting values, not at those PAR then overrides (a periodic start is
+    not corrected: AUTO's STPNUB): this is the set it computes the equilibrium, or
+    e='washer:forced''s orbit, at (the period PAR(11) follows from Omega)."""
     params = _reference_params() if params is None else params
     changes = {PAR_NAMES[c.par_index(k)]: float(v) for k, v in c["PAR"].items()
                if c.par_index(k) in PAR_NAMES}
