@@ -24,6 +24,69 @@ if TYPE_CHECKING:                  # annotations only
 PERMC_SPEC = "MMD_AT_PLUS_A"
 
 
+# numpy's LAPACK gufuncs (gesv, getrf for the determinant, geev), called without the
+# Python wrappers of numpy.linalg: at the sizes of algebraic continuation (N < 20) the
+# wrappers' type dispatch, checks and error-state contexts cost 3 to 5 times the LAPACK
+# call (np.linalg.eigvals 19 us against 3.5 us for a 2 x 2 matrix), and an equilibrium
+# point takes about six of these calls. The same routines give the same values; without
+# the module (another numpy) the public functions are used.
+try:
+    from numpy.linalg import _umath_linalg as _lapack
+    _GESV, _SLOGDET, _EIGVALS, _EIG = (_lapack.solve1, _lapack.slogdet, _lapack.eigvals,
+                                       _lapack.eig)
+except (ImportError, AttributeError):       # pragma: no cover - another numpy
+    _lapack = None
+
+
+def solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """np.linalg.solve(M, b) for a real square M (n, n) and b (n,), except that a singular
+    M gives NaN (and the floating-point 'invalid' flag: a warning where they are on,
+    outside a run) instead of LinAlgError."""
+    if _lapack is None:                     # pragma: no cover
+        try:
+            return np.linalg.solve(M, b)
+        except np.linalg.LinAlgError:
+            return np.full(len(b), np.nan)
+    return _GESV(M, b, signature="dd->d")
+
+
+def slogdet(M: np.ndarray) -> tuple[float, float]:
+    """np.linalg.slogdet of a real square M: (sign, log|det|), (0, -inf) if singular."""
+    if _lapack is None:                     # pragma: no cover
+        sign, logdet = np.linalg.slogdet(M)
+    else:
+        sign, logdet = _SLOGDET(M, signature="d->dd")
+    return float(sign), float(logdet)
+
+
+def eigvals(A: np.ndarray) -> np.ndarray:
+    """np.linalg.eigvals of a real square A: real if every eigenvalue is, else complex.
+    LinAlgError for non-finite entries or when the QR iteration does not converge."""
+    if _lapack is None:                     # pragma: no cover
+        return np.linalg.eigvals(A)
+    if not np.isfinite(A).all():
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+    w = _EIGVALS(A, signature="d->D")
+    if not np.isfinite(w).all():
+        raise np.linalg.LinAlgError("Eigenvalues did not converge")
+    return w.real if (w.imag == 0).all() else w
+
+
+def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """np.linalg.eig of a real square A: (eigenvalues, eigenvectors as columns), real if
+    every eigenvalue is, else complex. LinAlgError as `eigvals`."""
+    if _lapack is None:                     # pragma: no cover
+        return tuple(np.linalg.eig(A))
+    if not np.isfinite(A).all():
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+    w, v = _EIG(A, signature="d->DD")
+    if not np.isfinite(w).all():
+        raise np.linalg.LinAlgError("Eigenvalues did not converge")
+    if (w.imag == 0).all():
+        return w.real, v.real
+    return w, v
+
+
 class Factor(Protocol):
     def solve(self, rhs: np.ndarray) -> np.ndarray: ...
     def sign_logdet(self) -> tuple[float, float]: ...
@@ -54,7 +117,7 @@ class DenseFactor:
                 import scipy.linalg
                 x = scipy.linalg.lu_solve(self.lu, rhs, check_finite=False)
             else:
-                x = np.linalg.solve(self.M, rhs)
+                x = solve(self.M, rhs)
         except np.linalg.LinAlgError:
             x = np.full(len(rhs), np.nan)
         if not np.isfinite(x).all():
@@ -64,8 +127,7 @@ class DenseFactor:
         return x
 
     def sign_logdet(self) -> tuple[float, float]:
-        sign, logdet = np.linalg.slogdet(self.M)
-        return float(sign), float(logdet)
+        return slogdet(self.M)
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from washer.cont.linalg import eig
+
 #: Steps for second and third differences, about eps^(1/4) and eps^(1/5) of a
 #: unit-scaled state: they balance truncation O(h^4) after extrapolation
 #: against rounding eps |f| / h^2 (resp. h^3).
@@ -71,9 +73,9 @@ def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> 
     if A is None:
         A = problem.dfdu(x, p)
     n = len(x)
-    lam, V = np.linalg.eig(A)
+    lam, V = eig(A)
     q = V[:, np.argmin(np.abs(lam - 1j * omega))]
-    lamT, W = np.linalg.eig(A.T)
+    lamT, W = eig(A.T)
     pv = W[:, np.argmin(np.abs(lamT + 1j * omega))]
     q = q / np.linalg.norm(q)
     pv = pv / np.conj(np.conj(pv) @ q)

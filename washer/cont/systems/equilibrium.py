@@ -15,7 +15,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
-from washer.cont.linalg import null_vectors
+from washer.cont.linalg import eigvals, null_vectors
 from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
@@ -25,7 +25,7 @@ IMAG_TOL = 1e-8
 
 
 def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
-    lam = np.linalg.eigvals(A)
+    lam = eigvals(A)
     return lam[np.argsort(-lam.real, kind="stable")]
 
 
