@@ -95,6 +95,10 @@ def test_a_label_not_in_the_solutions(ab):
     msg = _error("run('ab', s='ab', IRS=99)\n")
     assert "Restart label IRS=99 not found: Label 99 not found (labels: [1, 2, 3, 4, 5, 6]) " \
            "in s.ab" in msg
+    # a type the file does not hold: the types it does
+    msg = _error("run('ab', s='ab', IRS='BT1')\n")
+    assert "Label BT1 not found: there are 0 BT solutions (types here: EP, HB, LP, UZ) " \
+           "in s.ab" in msg
 
 
 def test_a_missing_restart_file(ab):

@@ -298,7 +298,9 @@ class SolutionList(list):
         if n is None:
             return SolutionList(hits)
         if n > len(hits):
-            raise KeyError(f"Label {label} not found: there are {len(hits)} {name} solutions")
+            have = sorted({type_name(s.rec.code) for s in self})
+            raise KeyError(f"Label {label} not found: there are {len(hits)} {name} solutions"
+                           + ("" if hits else f" (types here: {', '.join(have) or 'none'})"))
         return hits[n - 1]
 
     def getLabels(self) -> list[int]:
