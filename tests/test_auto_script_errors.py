@@ -167,3 +167,15 @@ def test_old_format_nicp_smaller_than_the_indices_listed_warns(tmp_path, monkeyp
         warnings.simplefilter("error", ConstantsWarning)
         _old_format(tmp_path, "1 1    NICP,(ICP(I),I=1,NICP)")
         assert read_constants(tmp_path / "c.enz")["ICP"] == [1]
+
+
+def test_equations_that_raise_name_the_users_file_and_line(ab, capsys):
+    """A Python user file whose func raises: the run stops at its start point, saying
+    which user function failed, how, and where in the user's file."""
+    Path("bad.py").write_text("import numpy as np\n\n\ndef func(u, par):\n    return u[5]\n\n\n"
+                              "def stpnt(u, par):\n    pass\n")
+    Path("x.auto").write_text("run(e='bad', c='ab')\n")
+    run_script("x.auto")
+    err = capsys.readouterr().err
+    assert "the equations fail at the start point (bad: func(u, par) failed: IndexError" in err
+    assert f"{Path('bad.py').resolve()}:5)" in err or "bad.py:5)" in err

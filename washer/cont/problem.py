@@ -48,6 +48,7 @@ from __future__ import annotations
 import copy
 import functools
 import inspect
+from pathlib import Path
 
 import numpy as np
 
@@ -71,6 +72,27 @@ JACOBIAN_STEP = 1e-7
 #: The signs (a, b) of the four points z + a h e_s + b k w of a mixed second difference.
 _SIGN_A = np.array([1.0, 1.0, -1.0, -1.0])
 _SIGN_B = np.array([1.0, -1.0, 1.0, -1.0])
+
+
+def user_frame(exc: BaseException) -> str:
+    """' (FILE:LINE)' of the deepest traceback frame of `exc` in the user's own code (not
+    washer's, not the standard library's or an installed package's), or '': where a
+    user's func, stpnt, pvls ... failed."""
+    import sysconfig
+    import traceback
+    own = str(Path(__file__).resolve().parents[1])
+    libs = tuple(str(Path(p).resolve()) for k, p in sysconfig.get_paths().items()
+                 if k in ("stdlib", "platstdlib", "purelib", "platlib"))
+    where = ""
+    for fr in traceback.extract_tb(exc.__traceback__):
+        name = fr.filename or ""
+        if not name or name.startswith("<"):
+            continue
+        full = str(Path(name).resolve())
+        if full.startswith(own) or full.startswith(libs):
+            continue
+        where = f" ({name}:{fr.lineno})"
+    return where
 
 
 class ProblemError(RuntimeError):
@@ -237,7 +259,7 @@ class Problem:
             raise
         except Exception as exc:
             raise ProblemError(f"{self.name}: {what}(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}") from exc
+                               f"{exc}{user_frame(exc)}") from exc
 
     def func(self, u, par) -> np.ndarray:
         f = self._call(self._func, "func", u, par)
@@ -271,7 +293,7 @@ class Problem:
             out = np.array([fn(u, p) for u, p in zip(us, pars)], dtype=float)
         except Exception as exc:
             raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}") from exc
+                               f"{exc}{user_frame(exc)}") from exc
         if out.shape != (len(us), self.ndim):
             raise ProblemError(f"{self.name}: func returned shape {out.shape[1:]}, expected "
                                f"({self.ndim},)")
@@ -371,7 +393,7 @@ class Problem:
             F = np.array(rows, dtype=float)
         except Exception as exc:
             raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}") from exc
+                               f"{exc}{user_frame(exc)}") from exc
         k = len(hs)
         if F.shape != (2 * k, n):
             raise ProblemError(f"{self.name}: func returned shape {F.shape[1:]}, expected "
@@ -514,7 +536,7 @@ class Problem:
                 self._pvls(u if isinstance(u, Orbit) else np.array(u, dtype=float), par)
             except Exception as exc:
                 raise ProblemError(f"{self.name}: pvls(u, par) failed: {type(exc).__name__}: "
-                                   f"{exc}") from exc
+                                   f"{exc}{user_frame(exc)}") from exc
         return par
 
     def bcnd(self, u0, u1, par, nbc: int) -> np.ndarray:
@@ -672,7 +694,7 @@ class Problem:
             self._stpnt(*args)
         except Exception as exc:
             raise ProblemError(f"{self.name}: {what} failed: {type(exc).__name__}: "
-                               f"{exc}") from exc
+                               f"{exc}{user_frame(exc)}") from exc
         if not (np.all(np.isfinite(u)) and np.all(np.isfinite(par))):
             raise ProblemError(f"{self.name}: {what} left non-finite values in u or par")
         return u, par
