@@ -13,6 +13,9 @@ def test_the_same_values_as_numpy_linalg(n):
         M = rng.standard_normal((n, n + 1))[:, :n]          # strided, as J[:, :n]
         b = rng.standard_normal(n)
         assert np.array_equal(linalg.solve(M, b), np.linalg.solve(M, b))
+        Mc = 2j * np.eye(n) - M                           # the first Lyapunov coefficient's
+        bc = b + 1j * rng.standard_normal(n)
+        assert np.array_equal(linalg.solve(Mc, bc), np.linalg.solve(Mc, bc))
         sign, logdet = np.linalg.slogdet(M)
         assert linalg.slogdet(M) == (float(sign), float(logdet))
         w = linalg.eigvals(M)

@@ -39,15 +39,16 @@ except (ImportError, AttributeError):       # pragma: no cover - another numpy
 
 
 def solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """np.linalg.solve(M, b) for a real square M (n, n) and b (n,), except that a singular
-    M gives NaN (and the floating-point 'invalid' flag: a warning where they are on,
-    outside a run) instead of LinAlgError."""
+    """np.linalg.solve(M, b) for a square M (n, n) and b (n,), real or complex, except that
+    a singular M gives NaN (and the floating-point 'invalid' flag: a warning where they
+    are on, outside a run) instead of LinAlgError."""
     if _lapack is None:                     # pragma: no cover
         try:
             return np.linalg.solve(M, b)
         except np.linalg.LinAlgError:
             return np.full(len(b), np.nan)
-    return _GESV(M, b, signature="dd->d")
+    cplx = np.iscomplexobj(M) or np.iscomplexobj(b)
+    return _GESV(M, b, signature="DD->D" if cplx else "dd->d")
 
 
 def slogdet(M: np.ndarray) -> tuple[float, float]:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont.linalg import eig
+from washer.cont.linalg import eig, solve
 
 #: Steps for second and third differences, about eps^(1/4) and eps^(1/5) of a
 #: unit-scaled state: they balance truncation O(h^4) after extrapolation
@@ -77,7 +77,8 @@ def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> 
     q = V[:, np.argmin(np.abs(lam - 1j * omega))]
     lamT, W = eig(A.T)
     pv = W[:, np.argmin(np.abs(lamT + 1j * omega))]
-    q = q / np.linalg.norm(q)
+    qr, qi = q.real, q.imag
+    q = q / np.sqrt(qr.dot(qr) + qi.dot(qi))          # np.linalg.norm(q), the same sums
     pv = pv / np.conj(np.conj(pv) @ q)
     a, b = q.real.copy(), q.imag.copy()
     # Stage 1, by polarisation of symmetric directional derivatives along a, b, a +- b:
@@ -90,8 +91,11 @@ def first_lyapunov(problem, x, p, omega: float, A: np.ndarray | None = None) -> 
     re_C = (2 / 3) * D3a + (D3s + D3d) / 6          # C(a,a,a) + C(a,b,b)
     im_C = (2 / 3) * D3b + (D3s - D3d) / 6          # C(a,a,b) + C(b,b,b)
     C_qqqb = re_C + 1j * im_C                       # C(q, q, conj q)
-    h11 = np.linalg.solve(A, B_qqb).real            # real: B(q, conj q) is real
-    h20 = np.linalg.solve(2j * omega * np.eye(n) - A, B_qq)
+    with np.errstate(invalid="ignore"):             # a singular A: NaN, raised below
+        h11 = solve(A, B_qqb).real                  # real: B(q, conj q) is real
+        h20 = solve(2j * omega * np.eye(n) - A, B_qq)
+    if not (np.isfinite(h11).all() and np.isfinite(h20).all()):
+        raise np.linalg.LinAlgError("Singular matrix")
     c, d = h20.real, h20.imag
     # Stage 2: B(u, w) of the pairs (a, h11), (b, h11), (a, c), (b, d), (a, d), (b, c).
     U = np.array([a, b, a, b, a, b])
