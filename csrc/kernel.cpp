@@ -302,5 +302,13 @@ int washer_jac_rot_batch(int n, const double *xi, const double *P, int pstride, 
                        Jp ? Jp + (long)12 * WASHER_N_DIFF * i : nullptr);
     });
 }
+int washer_rhs_jac_rot_batch(int n, const double *xi, const double *P, int pstride, int frame,
+                             double *dxi, double *J, double *Jp, int *nfail) {
+    return batch(n, nfail, [&](int i) {
+        return rot_eval(xi + 12 * i, P + (long)i * pstride, frame, dxi ? dxi + 12 * i : nullptr,
+                        J ? J + 144 * i : nullptr,
+                        Jp ? Jp + (long)12 * WASHER_N_DIFF * i : nullptr);
+    });
+}
 
 }  // extern "C"

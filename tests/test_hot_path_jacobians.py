@@ -9,6 +9,7 @@ the general evaluation gives.
   quotient's error of central differences.
 """
 import numpy as np
+import pytest
 
 from washer.cont.problem import Problem
 from washer.cont.systems.bvp import VectorField
@@ -83,3 +84,33 @@ def test_washer_batched_dfdp_is_the_pointwise_kernel_jp():
         pm[0] -= h
         fd = (prob.func(us[k], pp) - prob.func(us[k], pm)) / (2 * h)
         assert np.allclose(Jp[k], fd, rtol=1e-6, atol=1e-6 * np.max(np.abs(fd)))
+
+
+def test_washer_f_with_its_jacobians_is_f_and_then_the_jacobians_are_the_kernels():
+    """e='washer': f from the kernel pass that also gives f_u and f_p
+    (func_many_with_jacobian, the collocation residual before its Jacobian) is
+    func_many's bit for bit, and the Jacobians asked for next at the same points
+    (answered from that pass) are jac_rot_batch's bit for bit; at other points they are
+    evaluated afresh."""
+    from washer.machine import kernel
+    from washer.problems.rotating import rotating_problem
+    if not kernel.has_rhs_jac_rot_batch():
+        pytest.skip("kernel built from older sources (python build.py)")
+    prob = rotating_problem().with_jac(1)
+    assert prob.has_func_dfdu_batch
+    u0, par0 = prob.start(17)
+    rng = np.random.default_rng(7)
+    us = u0 + 1e-3 * rng.normal(size=(9, 12))
+    pars = np.repeat(par0[None, :], 9, axis=0)
+    pars[:, 0] += np.linspace(0.0, 0.05, 9)
+    f = prob.func_many_with_jacobian(us, pars)
+    fu, fp = prob.dfdu_many(us, pars), prob.dfdp_many(us, pars, 1)
+    other = us + 1e-4
+    fu_other = prob.dfdu_many(other, pars)
+    assert np.array_equal(f, prob.func_many(us, pars))
+    assert np.array_equal(fu, prob.dfdu_many(us + 0.0, pars.copy()))
+    fresh = rotating_problem().with_jac(1)
+    assert np.array_equal(fu, fresh.dfdu_many(us, pars))
+    assert np.array_equal(fp, fresh.dfdp_many(us, pars, 1))
+    assert np.array_equal(fu_other, fresh.dfdu_many(other, pars))
+    assert not np.array_equal(fu_other, fu)

@@ -41,7 +41,10 @@ batched call, so a compiled right-hand side pays the Python overhead once per
 stencil, not once per point. With `dfdu_batch` and `dfdp_batch` (JAC = 1) the second
 derivatives of the fold and Hopf loci are differences of those analytic Jacobians
 along the few vectors they are needed on (1 Jacobian per vector, forward from the point's
-own), not second differences of f (4 (NDIM + 2) values of f per vector).
+own), not second differences of f (4 (NDIM + 2) values of f per vector). A problem
+whose f comes with its Jacobians at no extra cost (the washer's kernel) may pass
+`func_dfdu_batch(us, pars)` (-> (k, NDIM)): f, with dfdu_batch and dfdp_batch at the same
+points then answered from that one evaluation (`func_many_with_jacobian`).
 """
 from __future__ import annotations
 
@@ -112,8 +115,9 @@ class Problem:
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
                  bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None,
-                 dfdp_batch=None):
+                 dfdp_batch=None, func_dfdu_batch=None):
         self.ndim, self.name, self.npar = ndim, name, npar
+        self._func_dfdu_batch = func_dfdu_batch
         self._fopt, self._fopt_batch = fopt, fopt_batch
         self._fopt_vectorised = None      # does fopt accept (ndim, k) arrays? (checked once)
         self._flow = flow
@@ -301,6 +305,29 @@ class Problem:
             raise ProblemError(f"{self.name}: func(u, par) returned non-finite values")
         return out
 
+    @property
+    def has_func_dfdu_batch(self) -> bool:
+        """Whether `func_many_with_jacobian` evaluates the Jacobians with f (a
+        func_dfdu_batch given and the user's Jacobians in use, JAC != 0)."""
+        return getattr(self, "_func_dfdu_batch", None) is not None and self.jac != 0
+
+    def func_many_with_jacobian(self, us, pars) -> np.ndarray:
+        """`func_many`, for points whose Jacobians are asked for next: a problem whose f
+        is a by-product of its Jacobians (func_dfdu_batch: the washer's kernel) computes
+        them in the same pass, and its dfdu_batch / dfdp_batch at these points then
+        return them without a second evaluation. The same values as func_many."""
+        if not self.has_func_dfdu_batch:
+            return self.func_many(us, pars)
+        us = np.asarray(us, dtype=float)
+        pars = np.asarray(pars, dtype=float)
+        if pars.ndim == 1:
+            pars = np.broadcast_to(pars, (len(us), len(pars)))
+        out = self._call(self._func_dfdu_batch, "func_dfdu_batch", us, np.ascontiguousarray(pars))
+        if out.shape != (len(us), self.ndim):
+            raise ProblemError(f"{self.name}: func_dfdu_batch returned shape {out.shape}, "
+                               f"expected ({len(us)}, {self.ndim})")
+        return out
+
     def _call_vectorised(self, us, pars):
         """f at k points in one call of the user's func with u (ndim, k) and par
         (npar, k) (numpy broadcasting: `u[0] * par[1]` works on rows). Used only
@@ -418,7 +445,11 @@ class Problem:
         idx = np.arange(n)
         pts[:, idx, idx] += h
         pts[:, n + idx, idx] -= h
-        F = self.func_many(pts.reshape(-1, n), np.repeat(pars, 2 * n, axis=0)).reshape(k, 2 * n, n)
+        # one parameter vector for all points (the callers' broadcast view, row stride 0)
+        # stays a view: only its values reach the user's func
+        rep = (np.broadcast_to(pars[0], (2 * n * k, pars.shape[1]))
+               if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
+        F = self.func_many(pts.reshape(-1, n), rep).reshape(k, 2 * n, n)
         return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))
 
     @property

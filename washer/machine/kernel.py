@@ -199,6 +199,25 @@ def jac_rot_batch(X, P, frame: str = "averaged"):
     return J, Jp
 
 
+def has_rhs_jac_rot_batch() -> bool:
+    """Whether the built kernel has washer_rhs_jac_rot_batch (a kernel built from older
+    sources lacks it: callers then ask for the rhs and the Jacobians apart)."""
+    return hasattr(lib, "washer_rhs_jac_rot_batch")
+
+
+def rhs_jac_rot_batch(X, P, frame: str = "averaged"):
+    """Rotating-frame rhs and Jacobians for n states in one pass: (f (n, 12), J (n, 12, 12),
+    Jp (n, 12, N_DIFF)); f is a by-product of the Jacobians (the values of rhs_rot_batch,
+    bit for bit) at the cost of jac_rot_batch alone."""
+    X = _batch_states(X, "X")
+    n = X.shape[0]
+    P, stride = _batch_params(P, n)
+    out, J, Jp = np.empty_like(X), np.empty((n, 12, 12)), np.empty((n, 12, N_DIFF))
+    _batch_call(lib.washer_rhs_jac_rot_batch, n, "rhs_jac_rot_batch", _ptr(X), _ptr(P), stride,
+                _frame(frame), _ptr(out), _ptr(J), _ptr(Jp))
+    return out, J, Jp
+
+
 def integrate(system: str, mode: str, t0: float, y0, P, tout, rtol: float, atol: float,
               h0: float = 0.0, max_steps: int = 0):
     """Integrate with the kernel's DOPRI5 and dense output.

@@ -69,6 +69,18 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
     def dfdu_batch(us, pars):
         return jac_batch(us, pars)[0].copy()
 
+    def func_dfdu_batch(us, pars):
+        # f with J and Jp from one kernel pass (f is their by-product): the Jacobians
+        # asked for next at these points (the collocation Jacobian after its residual)
+        # come from the cache
+        us, pars = np.ascontiguousarray(us, float), np.asarray(pars, float)
+        key = (us.shape, us.tobytes(), pars.shape, pars.tobytes())
+        last_batch["key"] = None
+        f, J, Jp = kernel.rhs_jac_rot_batch(us, kernel_params_many(pars), frame)
+        last_batch["val"] = (J, Jp)
+        last_batch["key"] = key
+        return f
+
     def dfdp_batch(us, pars):
         Jp = jac_batch(us, pars)[1]
         out = np.zeros((len(Jp), 12, np.shape(pars)[-1]))
@@ -98,7 +110,8 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
         u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
-                   func_batch=func_batch, dfdp_batch=dfdp_batch, parnames=dict(PAR_NAMES))
+                   func_batch=func_batch, dfdp_batch=dfdp_batch, parnames=dict(PAR_NAMES),
+                   func_dfdu_batch=func_dfdu_batch if kernel.has_rhs_jac_rot_batch() else None)
 
 
 def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,

@@ -56,17 +56,21 @@ class VectorField:
         self.problem, self.ndim = problem, ndim
         self._last_f = None
 
-    def f(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
+    def f(self, U: np.ndarray, par: np.ndarray, with_jacobian: bool = False) -> np.ndarray:
         """f at the rows of U (k, NDIM) -> (k, NDIM). The last call's values are kept:
         Newton's Jacobian (its PERIOD column T f) asks for f at the Gauss points of the
-        iterate whose residual has just asked for them; a copy is returned."""
+        iterate whose residual has just asked for them; a copy is returned.
+        with_jacobian: f_u and f_p at these points are asked for next
+        (Problem.func_many_with_jacobian: the washer's kernel gives them in the same pass)."""
         U = np.asarray(U, float)
         par = np.asarray(par, float)
         key = (U.shape, U.tobytes(), par.shape, par.tobytes())
         last = self._last_f
         if last is not None and last[0] == key:
             return last[1].copy()
-        F = self.problem.func_many(U, par)
+        F = (self.problem.func_many_with_jacobian(U, par)
+             if with_jacobian and getattr(self.problem, "has_func_dfdu_batch", False)
+             else self.problem.func_many(U, par))
         self._last_f = (key, F.copy())
         return F
 

@@ -257,7 +257,10 @@ class PeriodicOrbits(CollocationBVP):
     def residual(self, x: np.ndarray) -> np.ndarray:
         U, par = self.unpack(x)
         ug = self.coll.at_gauss(U).reshape(-1, self.ndim)
-        fg = self.field.f(ug, par).reshape(self.mesh.ntst, self.mesh.ncol, self.ndim)
+        # Newton asks for the Jacobian at this iterate next (up to NWTN iterations):
+        # a problem whose f comes with its Jacobians evaluates them here, once
+        fg = self.field.f(ug, par, with_jacobian=True).reshape(self.mesh.ntst, self.mesh.ncol,
+                                                               self.ndim)
         return self.coll.residual(U, self.period(par), fg, self.U_old, self.up_old,
                                   self.bc_offset())
 
@@ -266,6 +269,10 @@ class PeriodicOrbits(CollocationBVP):
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         T = self.period(par)
         ug = self.coll.at_gauss(U).reshape(-1, n)
+        if getattr(self.problem, "has_func_dfdu_batch", False) and 11 in self.free:
+            # f (the PERIOD column) and f_u, f_p in one evaluation, unless the residual
+            # at x has just made it (then every call below is answered from it)
+            self.field.f(ug, par, with_jacobian=True)
         A = self.field.fu(ug, par).reshape(N, m, n, n)
         blocks = self.coll.local_blocks(T, A)
         dF = np.empty((2, N, m, n))              # d(T f)/d(PAR(ICP(2)), PAR(ICP(1)))
