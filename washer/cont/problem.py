@@ -513,8 +513,8 @@ class Problem:
         ns, npar = n + q, len(par)
         pidx = [i - 1 for i in par_indices]
         h = SECOND_STEP * (1 + np.abs(np.concatenate((u, par[pidx]))))
-        wn = np.maximum(np.max(np.abs(ws), axis=1), 1e-300)
-        k = SECOND_STEP * (1 + np.max(np.abs(u))) / wn                      # (m,)
+        wn = np.maximum(np.abs(ws).max(axis=1), 1e-300)
+        k = SECOND_STEP * (1 + np.abs(u).max()) / wn                        # (m,)
         # z + a h e_s + b k w, in that order of additions, for all s and the four sign
         # pairs (a, b) = (1, 1), (1, -1), (-1, 1), (-1, -1) at once
         us = np.empty((ns, m, 4, n))
