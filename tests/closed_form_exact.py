@@ -247,8 +247,15 @@ def ab_lp_p1(p2_value: float, p3_value: float = 3.0) -> list:
     """PAR(1) of the folds of ab's equilibria at (p2, p3), increasing u1: on the branch
     u2 = p2 u1 / (1 + p3) and p1 = u1 e^-u2 / (1 - u1) (f = 0); folds where
     d p1 / d u1 = 0."""
-    u1 = sp.Symbol("u1", real=True)
-    p2, p3 = sp.nsimplify(p2_value), sp.nsimplify(p3_value)
-    p1 = u1 * sp.exp(-p2 * u1 / (1 + p3)) / (1 - u1)
-    roots = sp.solve(sp.diff(p1, u1), u1)
-    return [float(p1.subs(u1, r)) for r in sorted(roots, key=float) if 0 < r < 1]
+    # Solved for k = p2 / (1 + p3) as a symbol, then evaluated: solve() with p2 a rational
+    # of many digits (a start value such as 17.0000009 at a step's end) does not finish.
+    u1, k = sp.symbols("u1 k", positive=True)
+    p1 = u1 * sp.exp(-k * u1) / (1 - u1)
+    roots = sp.solve(sp.diff(p1, u1), u1)          # (1 -+ sqrt(1 - 4 / k)) / 2
+    kv = sp.Float(p2_value, 30) / (1 + sp.Float(p3_value, 30))
+    out = []
+    for r in roots:
+        v = complex(r.subs(k, kv).evalf(30))
+        if v.imag == 0 and 0 < v.real < 1:
+            out.append((v.real, float(p1.subs(u1, r).subs(k, kv).evalf(30))))
+    return [p for _, p in sorted(out)]

@@ -44,7 +44,6 @@ EXPECTED_FAIL = {
     "tor": "23 of 24: a symmetry-breaking BP of cycles at PAR(1) = -0.787593 (b.1; shooting "
            "confirms it) that AUTO only notes is labelled by us and takes one step, so AUTO's "
            "last LP (PT 124) is our EP at NMX",
-    "phs": "3 of 4: a UZ on RL1 (AUTO's located point lies beyond it: EP)",
     "ppp": "47 of 58: AUTO's GH at a one-point jump of its test (10), and a BP of cycles "
            "AUTO places off the independently known value",
 }

@@ -62,17 +62,24 @@ def compare(got, ref, tol, uz_targets=()):
 
 def test_bvp_demo_trivial_branch(tmp_path):
     """bvp.auto's first run: on u = 0 the linearisation u'' = -(p1 pi)^2 u has
-    nontrivial solutions at p1 = 1, 2, ...: five BPs, then UZSTOP 5.5. The located
-    BPs are the collocation's discrete eigenvalues (NTST = 20, NCOL = 4), which lie
-    within 1e-7 of the integers (3e-8 at p1 = 5, the error growing with p1)."""
+    nontrivial solutions at p1 = 1, 2, ...: five BPs, then UZSTOP 5.5. The BPs are the
+    collocation's discrete eigenvalues (NTST = 20, NCOL = 4), within 1e-7 of the
+    integers (3e-8 at p1 = 5), and the steps of 0.2 end on them to within the location
+    tolerance: each located BP is the step's end itself (AUTO's LCSPBV takes it when
+    its first secant correction is below the tolerance), at 1.0000001 .. 5.0000005 as
+    in AUTO's b-file."""
     d = demo(tmp_path, "bvp")
     c = read_constants(d / "c.bvp")
     r = run(d / "c.bvp", e="bvp", sv="bvp", verbose=False)
     assert r.status == "ok"
     ref = auto_rows("bvp", "b.bvp")
     compare(ours((r, 1)), [x for x in ref if x[1] == 1], tolerance(c))
-    for k, bp in enumerate(s for s in r.specials if s.ty == "BP"):
-        assert bp.par[0] == pytest.approx(k + 1, abs=1e-7)
+    auto_bps = [a for t, b, a in ref if t == "BP" and b == 1]
+    bps = [s.par[0] for s in r.specials if s.ty == "BP"]
+    assert len(bps) == len(auto_bps) == 5
+    for k, (bp, a) in enumerate(zip(bps, auto_bps)):
+        assert bp == pytest.approx(k + 1, abs=tolerance(c))
+        assert bp == pytest.approx(a, abs=1e-9)           # AUTO's step end, 10 digits
 
 
 @pytest.mark.slow

@@ -58,19 +58,54 @@ def test_a_located_point_at_nmx_or_outside_the_window_is_the_end_point(ab):
     assert beyond.rows[-1].values[0] == pytest.approx(0.1)
 
 
-def test_a_uz_at_the_window_edge_is_inside(ab):
-    """A UZ on PAR(ICP(1)) at RL1 itself lies at its value, inside the closed window,
-    whichever side of it the located point fell within the location tolerance (AUTO's
-    nag demo: UZR 1.0 with RL1 = 1.0, written UZ and the next point EP): the UZ keeps its
-    type and the branch ends at the next point. With EPSS = 1e-2 the UZ at 0.105 is
-    located 1.4e-5 beyond it, within the location tolerance 1e-2 (1 + sqrt(DS DSMAX))."""
-    res = run(ab, verbose=False, UZR={1: 0.105}, RL1=0.105, EPSS=1e-2, DS=0.05,
+def test_a_uz_at_the_window_edge_located_by_trials_is_inside(ab):
+    """A UZ on PAR(ICP(1)) at RL1 itself that the location's trials aimed at lies at its
+    value, inside the closed window: the UZ keeps its type and the branch ends at the
+    next point (AUTO's nag demo: UZR 1.0 with RL1 = 1.0, written UZ and the next point EP;
+    AUTO writes its last trial's own PAR, on whichever side of the value its location
+    error left it: nag's 1.1e-9 inside, this run's 1.7e-9 beyond, an EP at PT 17)."""
+    res = run(ab, verbose=False, UZR={1: 0.105}, RL1=0.105, EPSS=1e-4, DS=0.05,
               DSMAX=0.05, NMX=40, ISP=0, ILP=0)
     labelled = [r for r in res.rows if r.lab]
     assert [r.ty for r in labelled][-2:] == ["UZ", "EP"]
     uz, ep = labelled[-2:]
-    assert 0.105 < uz.values[0] < 0.105 + 1e-2 * (1 + 0.05)
+    assert uz.values[0] == pytest.approx(0.105, abs=1e-12)
     assert abs(ep.pt) == abs(uz.pt) + 1
+
+
+def test_a_uz_at_the_window_edge_located_at_the_step_end_is_the_end_point(ab):
+    """AUTO's LCSPAE takes the step's end itself as the special point when its first
+    secant correction is below the location tolerance EPSS (1 + sqrt|DS DSMAX|), without a
+    trial: with EPSS = 1e-2 the step that passes PAR(1) = 0.105 ends 2.9e-4 beyond it,
+    within 1.05e-2, and that point, outside RL1 = 0.105, is the branch's EP (STPLAE), not a
+    UZ. AUTO-07p on ab.f90 with these constants writes the same: EP at PT 17,
+    PAR(1) = 0.10529294861. Without RL1 the same point is the UZ."""
+    kw = dict(verbose=False, UZR={1: 0.105}, EPSS=1e-2, DS=0.05, DSMAX=0.05, NMX=40,
+              ISP=0, ILP=0)
+    free = run(ab, **kw)
+    (uz,) = [r for r in free.rows if r.lab and r.ty == "UZ"]
+    tol = 1e-2 * (1 + 0.05)
+    assert 0.105 + 1e-4 < uz.values[0] < 0.105 + tol       # the step's end, beyond it
+    # the step's end: the row before it is the previous regular point
+    before = [r for r in free.rows if abs(r.pt) == abs(uz.pt) - 1]
+    assert before and before[0].values[0] < 0.105
+    edge = run(ab, RL1=0.105, **kw)
+    labelled = [r for r in edge.rows if r.lab]
+    assert [r.ty for r in labelled] == ["EP", "EP"]
+    assert abs(labelled[-1].pt) == abs(uz.pt)
+    assert labelled[-1].values[0] == uz.values[0]
+
+
+def test_the_step_end_rule_is_autos_first_secant_test():
+    """events.at_step_end: (1 + HMACH) |q_cur s| < tol |q_prev - q_cur|, tol = EPSS (1 +
+    sqrt|DS DSMAX|): a test linear in s, q(s) = s - z over a step of s = 1 from 0, has its
+    zero at the step's end exactly when z > 1 - tol."""
+    from types import SimpleNamespace
+    from washer.cont.events import at_step_end
+    st = SimpleNamespace(EPSS=1e-4, DS=0.01, DSMAX=0.04)
+    tol = 1e-4 * (1 + 0.02)
+    for z, inside in ((1 - 0.9 * tol, True), (1 - 1.1 * tol, False), (0.5, False)):
+        assert at_step_end(0.0 - z, 1.0 - z, 1.0, st) is inside
 
 
 def test_thu_reweights_the_step(ab):

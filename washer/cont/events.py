@@ -9,7 +9,9 @@ When several tests change sign in one step, the earliest zero along the
 branch is located first, by a linear estimate, then re-checked: the interval
 up to the located point is searched again, so no zero is stepped over.
 
-Location (LCSPAE): trial points are continuation steps of arclength s from
+Location (LCSPAE): where the secant estimate of the zero already lies within the
+tolerance below of the step's end, the step's end itself is the special point, with
+no trial (`at_step_end`). Otherwise trial points are continuation steps of arclength s from
 the previous point; the first trial is the secant estimate, then Muller's
 method (a parabola through the last three (s, q) pairs) kept inside the
 bracket, up to ITMX iterations. A trial step that does not converge is retried
@@ -270,6 +272,23 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     return pt, s_best
 
 
+#: AUTO's HMACH: LCSPAE / LCSPBV lengthen every secant and Muller correction by this
+#: fraction, so that a trial lands just beyond the estimated zero.
+HMACH = 1e-7
+
+
+def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:
+    """Whether the zero of a test that changed sign from q_prev to q_cur over a step of
+    arclength s_cur is located at the step's end itself: AUTO's LCSPAE / LCSPBV return
+    the current point, without a trial step, when the first secant correction back to
+    the zero, (1 + HMACH) q_cur s_cur / (q_prev - q_cur), is below the location tolerance
+    EPSS (1 + sqrt|DS DSMAX|). The point is then where the continuation step put it, on
+    the far side of the zero (phs's UZ at PAR(1) = 1 = RL1: the step lands 1e-7 beyond
+    it, which AUTO writes as the end point EP)."""
+    tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    return abs((1 + HMACH) * q_cur * s_cur) < tol * abs(q_prev - q_cur)
+
+
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
                curve_type: int = 0, secant: bool = False):
     """The earliest accepted zero between the points prev and cur (a step of arclength
@@ -289,7 +308,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
 
     Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
     two Hopf loci crossing) are one special point: its type is the first in AUTO's
-    order (PRIORITY), whichever zero was located."""
+    order (PRIORITY), whichever zero was located. A zero whose first secant estimate lies
+    within the location tolerance of cur is cur itself (`at_step_end`): the point returned
+    is then the object cur."""
     target, span, found = cur, ds, None
     failed: set = set()
     for _ in range(2 * len(cur.tests) + 1):
@@ -318,6 +339,11 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         # the branch's side and Newton converges onto the crossing branch.
         chord = (target.x - prev.x) / span
         chord = chord / math.sqrt(inner(chord, chord))
+        if found is None and at_step_end(prev.tests[key], target.tests[key], span, settings):
+            # AUTO's LCSPAE / LCSPBV: the step's end is the special point itself.
+            refresh(target)
+            found = (target, key)
+            continue
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,

@@ -79,6 +79,9 @@ class Step:
         message: "NOTE:Possible special point", "NOTE:Retrying step"),
         "failed" (no convergence at DSMIN: the branch ends with MX).
     point : the point (None for notes). prev : the point before it.
+    at_step_end : a special point that is the continuation step's end itself, not a
+        trial of the location (`events.at_step_end`): its parameters are where the step
+        put them, beyond the zero.
     """
     kind: str
     point: Point | None = None
@@ -86,6 +89,7 @@ class Step:
     code: int = 0
     key: object = None
     text: str = ""
+    at_step_end: bool = False
 
 
 @dataclass
@@ -548,7 +552,8 @@ class Continuation:
             st.point = sp
             st.n_points += 1
             code = Code.UZ if isinstance(key, tuple) else sysm.located_code(key, sp)
-            yield Step("special", sp, prev=current, code=int(code), key=key)
+            yield Step("special", sp, prev=current, code=int(code), key=key,
+                       at_step_end=sp is nxt)
             if sysm.arclength == "plane":
                 # AUTO's CNRLBV adapts after every point, located ones included (with
                 # the last location step's iterations); CNRLAE only after regular ones.

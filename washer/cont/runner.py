@@ -129,13 +129,16 @@ class _Executor:
                     self.n_bp += 1
                     self.bp_queue.append((p.x.copy(), p.tangent.copy()))
                 lam = None
-                if base == Code.UZ and isinstance(step.key, tuple):
+                if base == Code.UZ and isinstance(step.key, tuple) and not step.at_step_end:
                     i, v, _ = self.s.UZR[step.key[1]]
                     if i == self.s.ICP[0]:
-                        # A UZ on PAR(ICP(1)) is at its value v (the located point only
-                        # within the location tolerance of it): a UZ at RL1 itself, as
-                        # nag's UZR = 1 with RL1 = 1, is inside the window, as AUTO
-                        # writes it (its next point ends the branch).
+                        # A UZ on PAR(ICP(1)) that the location's trials aimed at is at
+                        # its value v (on which side of v the last trial ends is
+                        # round-off): a UZ at RL1 itself, as nag's UZR = 1 with RL1 = 1,
+                        # is inside the window, as AUTO writes it (its next point ends
+                        # the branch). One located at the step's end is where the step
+                        # put it, beyond v: outside the window when v is RL1 (phs), an EP
+                        # as AUTO's STPLAE writes it.
                         lam = v
                 if self._ends_here(p, pt, lam):
                     # AUTO's STPLAE / STPLBV: a located point at PT = NMX or outside the
