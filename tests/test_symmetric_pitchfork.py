@@ -1,0 +1,85 @@
+"""AUTO's enz demo (two coupled enzyme cells) run with its own enz.f90 and c.enz, against
+closed forms (sympy).
+
+F1 = (s0 - s1) + (s2 - s1) - rho R(s1), F2 = (s0 + m - s2) + (s1 - s2) - rho R(s2),
+R(s) = s / (1 + s + kappa s^2), m = PAR(2) = 0: the system is symmetric under s1 <-> s2.
+On the symmetric branch s1 = s2 = s, s0 = s + rho R(s), F_u has the eigenvalue
+-1 - rho R'(s) along (1, 1) (folds of this branch) and -3 - rho R'(s) along (1, -1)
+(pitchforks: the asymmetric branch, branch 2, bifurcates there). Along branch 2 the
+parameter is even in the asymmetry s1 - s2, so where branch 2 passes a pitchfork its
+parameter is extremal: a fold and a branch point at one point. AUTO's b-file labels an LP
+and, one step later, the BP there (its fold test, noisy next to the branch point, met the
+location tolerance 14 tolerances before it); it is one point.
+"""
+import shutil
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from washer.run import run
+
+DEMO = Path(__file__).parent / "data" / "auto_demos" / "enz"
+RHO, KAPPA = 100, 1                         # enz.f90's STPNT: PAR(3), PAR(4)
+
+
+def _closed_form():
+    """PAR(1) of the symmetric branch's folds and pitchforks (sympy, 30 digits)."""
+    s = sp.Symbol("s", positive=True)
+    R = s / (1 + s + KAPPA * s**2)
+    s0 = s + RHO * R
+    dR = sp.diff(R, s)
+    out = {}
+    for name, shift in (("LP", 1), ("BP", 3)):
+        # shift + rho R'(s) = 0: a quartic's positive roots
+        num = sp.numer(sp.together(shift + RHO * dR))
+        roots = [r for r in sp.Poly(num, s).nroots(n=30) if r.is_real and r > 0]
+        out[name] = sorted(float(s0.subs(s, r)) for r in roots)
+    return out
+
+
+@pytest.fixture(scope="module")
+def enz(tmp_path_factory):
+    d = tmp_path_factory.mktemp("enz")
+    for f in ("enz.f90", "c.enz"):
+        shutil.copy(DEMO / f, d)
+    return run(d / "c.enz", e="enz", verbose=False)
+
+
+def tol(value):
+    """Twice the location tolerance of c.enz (EPSS = 1e-5, DS = 0.1, DSMAX = 0.25), in
+    PAR(1), which has weight 1 in the arclength."""
+    return 2 * 1e-5 * (1 + (0.1 * 0.25) ** 0.5) * max(1.0, abs(value))
+
+
+def test_folds_and_pitchforks_of_the_symmetric_branch(enz):
+    exact = _closed_form()
+    assert len(exact["LP"]) == 2 and len(exact["BP"]) == 2
+    first = [(s.ty, s.par[0]) for s in enz.specials if s.br == 1 and s.ty in ("LP", "BP")]
+    # along the branch from s0 = 0: LP 34.357, BP 34.223, BP 22.182, LP 18.887
+    want = [("LP", exact["LP"][1]), ("BP", exact["BP"][1]), ("BP", exact["BP"][0]),
+            ("LP", exact["LP"][0])]
+    assert [t for t, _ in first] == [t for t, _ in want]
+    for (_, got), (_, w) in zip(first, want):
+        assert got == pytest.approx(w, abs=tol(w))
+
+
+def test_the_bifurcating_branch_turns_at_the_other_pitchfork(enz):
+    """Branch 2 meets the symmetric branch again at the pitchfork 22.18164: labelled BP
+    there, with its PAR(1) a minimum along branch 2 (the rows before and after lie above
+    it) and its asymmetry gone."""
+    bp = _closed_form()["BP"][0]
+    rows = enz.rows
+    (k,) = [i for i, r in enumerate(rows) if r.br == 2 and r.lab and
+            abs(r.values[0] - bp) < 1e-3]
+    at = rows[k]
+    assert at.ty == "BP"
+    assert at.values[0] == pytest.approx(bp, abs=tol(bp))
+    u1, u2 = at.values[2], at.values[3]
+    assert abs(u1 - u2) < 1e-4 * abs(u1)
+    around = [rows[j].values[0] for j in (k - 2, k - 1, k + 1, k + 2)]
+    assert all(r.br == 2 for r in rows[k - 2:k + 3])
+    assert min(around) > at.values[0]
+    # the asymmetry changes sign across it: branch 2 passes from s1 > s2 to s1 < s2
+    assert (rows[k - 1].values[2] - rows[k - 1].values[3]) * \
+        (rows[k + 1].values[2] - rows[k + 1].values[3]) < 0
