@@ -58,7 +58,9 @@ def test_a_value_that_is_not_one_names_its_key_and_line(ab):
     msg = _error("run('ab', c='typ2')\n")
     assert f"c.typ2:{line}: NMX: expected a value (number, 'string', [list] or {{dict}})" in msg
     msg = _error("run('ab', NMX='many')\n")
-    assert "NMX expects an integer, got 'many'" in msg
+    assert "run(e='ab'): NMX expects an integer, got 'many'" in msg       # named once
+    msg = _error("run('ab', UZR={'x': 1})\n")
+    assert "run(e='ab'): UZR: unknown parameter 'x'" in msg
 
 
 def test_missing_equations_file_says_what_was_looked_for(ab):

@@ -305,54 +305,57 @@ def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, i
 
 def check_value(key: str, value, where: str):
     """Type-check one constant; returns the normalised value."""
+    # every message below names the key: a place that names it too ('run(e='ab'): NMX',
+    # a command's keyword) would say it twice
+    named = where.removesuffix(f": {key}")
     if key not in DEFAULTS:
         import difflib
         near = difflib.get_close_matches(str(key), list(DEFAULTS), n=1)
-        raise ConstantsError(f"{where}: unknown AUTO constant {key}" +
+        raise ConstantsError(f"{named}: unknown AUTO constant {key}" +
                              (f" (did you mean {near[0]}?)" if near else ""))
     if key in INT_KEYS:
         if isinstance(value, float) and value.is_integer():
             value = int(value)
         if not isinstance(value, int) or isinstance(value, bool):
-            raise ConstantsError(f"{where}: {key} expects an integer, got {value!r}")
-        _check_bound(key, value, where)
+            raise ConstantsError(f"{named}: {key} expects an integer, got {value!r}")
+        _check_bound(key, value, named)
     elif key in REAL_KEYS:
         if key == "DS" and value == "-":
             return value            # AUTO CLUI: flip the sign of the current DS
         if not isinstance(value, (int, float)) or isinstance(value, bool):
-            raise ConstantsError(f"{where}: {key} expects a number, got {value!r}")
+            raise ConstantsError(f"{named}: {key} expects a number, got {value!r}")
         value = float(value)
         if math.isnan(value) or (key in FINITE_KEYS and math.isinf(value)):
-            raise ConstantsError(f"{where}: {key} expects a finite number, got {value!r}")
-        _check_bound(key, value, where)
+            raise ConstantsError(f"{named}: {key} expects a finite number, got {value!r}")
+        _check_bound(key, value, named)
     elif key in STR_KEYS:
         if not isinstance(value, str):
-            raise ConstantsError(f"{where}: {key} expects a quoted string, got {value!r}")
+            raise ConstantsError(f"{named}: {key} expects a quoted string, got {value!r}")
         if key in NAME_KEYS:
-            check_name(key, value, where)
+            check_name(key, value, named)
     elif key == "IRS":
         if not isinstance(value, (int, str)) or isinstance(value, bool):
-            raise ConstantsError(f"{where}: IRS expects a label number or a name like 'HB1'")
+            raise ConstantsError(f"{named}: IRS expects a label number or a name like 'HB1'")
     elif key == "ICP":
         if isinstance(value, (int, str)):
             value = [value]
         if not isinstance(value, list) or not value:
-            raise ConstantsError(f"{where}: ICP expects a list of parameter indices or names")
+            raise ConstantsError(f"{named}: ICP expects a list of parameter indices or names")
         for i in value:
             # -21..-31: optimality conditions of IPS = 15 (checked against IPS by icp()).
             if isinstance(i, bool) or not isinstance(i, (int, str)) or \
                     isinstance(i, int) and i < 1 and not -31 <= i <= -21:
-                raise ConstantsError(f"{where}: ICP entries are parameter indices >= 1 "
+                raise ConstantsError(f"{named}: ICP entries are parameter indices >= 1 "
                                      f"(PAR(1), PAR(2), ...) or names (or, with IPS = 15, "
                                      f"-21..-31: optimality conditions), got {i!r}")
     elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
         if not isinstance(value, list):
-            raise ConstantsError(f"{where}: {key} expects a list")
+            raise ConstantsError(f"{named}: {key} expects a list")
         if key in ("SP", "STOP"):
             for entry in value:
                 if not isinstance(entry, str) or not _TYPE_ENTRY.fullmatch(entry):
                     raise ConstantsError(
-                        f"{where}: {key} entries are a point type and an optional count "
+                        f"{named}: {key} entries are a point type and an optional count "
                         f"in quotes, like {key}=['HB3'] (the 3rd Hopf point) or ['LP0'], "
                         f"got {entry!r}")
     else:   # dicts
@@ -360,16 +363,16 @@ def check_value(key: str, value, where: str):
                 all(isinstance(v, list) and len(v) == 2 for v in value):
             value = _pairs_dict(key, value)
         if not isinstance(value, dict):
-            raise ConstantsError(f"{where}: {key} expects a {{key: value}} dictionary")
+            raise ConstantsError(f"{named}: {key} expects a {{key: value}} dictionary")
         if key in NUMBER_DICTS:
             _check_number_dict(key, value, where)
         if key in ("parnames", "unames"):
             for k, n in value.items():
                 if isinstance(k, bool) or not isinstance(k, int) or k < 1:
-                    raise ConstantsError(f"{where}: {key} keys are indices 1, 2, ..., "
+                    raise ConstantsError(f"{named}: {key} keys are indices 1, 2, ..., "
                                          f"got {k!r}")
                 if not isinstance(n, str) or not n.strip():
-                    raise ConstantsError(f"{where}: {key}[{k}] expects a name in quotes, "
+                    raise ConstantsError(f"{named}: {key}[{k}] expects a name in quotes, "
                                          f"got {n!r}")
     return value
 
@@ -546,9 +549,12 @@ class Constants(dict):
     def par_values(self, key: str) -> list[tuple[int, float]]:
         """(index, value) pairs of UZR/UZSTOP/THL/PAR-style dicts, lists expanded."""
         out = []
+        where = self.given.get(key, self.source)
+        if not re.search(r":\d+$", where):
+            where = f"{where.removesuffix(f': {key}')}: {key}"     # name the constant
         for k, v in self[key].items():
             for x in (v if isinstance(v, list) else [v]):
-                out.append((self.par_index(k), float(x)))
+                out.append((self.par_index(k, where), float(x)))
         return out
 
 
