@@ -283,3 +283,30 @@ def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     ours = Diagram.read(work / "b.frc", work / "s.frc")
     expect = [(s["TY"], s["LAB"]) for s in ours()]
     assert eval(b_labels) == expect and eval(s_labels) == expect
+
+
+def _header_blocks(path: Path) -> list[list[str]]:
+    """The b-file's header blocks (the '   0' lines before each branch's rows)."""
+    blocks, cur = [], []
+    for line in path.read_text().splitlines():
+        if line.startswith("   0"):
+            cur.append(line)
+        elif cur:
+            blocks.append(cur)
+            cur = []
+    return blocks
+
+
+def test_headers_of_a_data_start_and_its_restarts_are_autos(tmp_path, monkeypatch):
+    """lor's script (a start from lor.dat, then restarts from its labels, sv='lor'): every
+    header block of b.lor is AUTO's byte for byte (autoref): the data start as AUTO's CLUI
+    runs it, IRS = 0 with e = 'lor' s = '/' dat = 'lor' (its marker of constants and data
+    read from one stream), the restarts with IRS = the label and e = 'lor' only."""
+    work = tmp_path / "lor"
+    shutil.copytree(DEMOS / "lor", work, ignore=shutil.ignore_patterns("autoref"))
+    monkeypatch.chdir(work)
+    run_script("lor.auto")
+    ours = _header_blocks(work / "b.lor")
+    ref = _header_blocks(DEMOS / "lor" / "autoref" / "b.lor")
+    assert len(ours) == len(ref) == 3
+    assert ours == ref

@@ -246,6 +246,8 @@ def _execute(sol: Solution) -> Diagram:
                             mbr=sol._mbr if records and not from_data else None)
         if from_data:
             r.first_label, r.label0 = True, (c.get("LAB") or 1) - 1   # a start, as IRS = 0
+            r.irs_label = 0                 # and its header says IRS = 0, as AUTO's
+            r.constants.set("IRS", 0)
             br = c.get("IBR") or 1
     except RunError as exc:
         if REFUSED.search(str(exc)):
