@@ -158,6 +158,12 @@ def test_column_titles_follow_headng():
     assert column_title("U(3)") == "     U(3)          "
     assert column_title("m_u") == "     m_u           "              # centred: 7 - (3-1)//2
     assert column_title("a_rather_long_parameter_name") == " a_rather_long     "   # 13 chars
+    # HEADNG's IPLT column of a named component: 'INTEGRAL ' // name (AUTO's exp demo:
+    # 'INTEGRAL u'), 'L2-NORM ' // name (ffn: 'L2-NORM x'), 'MAX ' // name, centred as a
+    # whole, the name cut to its 13 characters (a CHARACTER(13)) and not the prefix
+    assert column_title("INTEGRAL u") == "  INTEGRAL u       "             # 7 - (10-1)//2 = 3
+    assert column_title("L2-NORM x") == "  L2-NORM x        "              # 7 - 8//2 = 3
+    assert column_title("MAX a_rather_long_name") == " MAX a_rather_long "
     assert fmt_es(-1.7976e308, 12, 4) == " -1.7976+308" and fmt_es(1e-7, 11, 4) == " 1.0000E-07"
 
 

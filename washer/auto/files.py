@@ -183,7 +183,9 @@ def column_title(title: str) -> str:
         if re.fullmatch(pattern, title):
             break
     else:
-        title = title[:NAME_LENGTH]
+        # a name (CHARACTER(13) in AUTO), alone or after HEADNG's 'MAX ', 'INTEGRAL ', ...
+        m = re.fullmatch(r"(MAX |MIN |INTEGRAL |L2-NORM )?(.*)", title)
+        title = (m.group(1) or "") + m.group(2)[:NAME_LENGTH]
         col = max(7 - (len(title) - 1) // 2, 2)
     return (" " * (col - 1) + title).ljust(19)[:19]
 

@@ -478,19 +478,23 @@ class CollocationBVP:
         return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
 
     def column_titles(self) -> list:
+        """HEADNG's titles: the IPLT column (named by unames where U(k) has a name:
+        'INTEGRAL u', 'MAX x'), then MAX of each shown component."""
         n, iplt = self.n_shown, self.settings.IPLT
         iab = abs(iplt)
+        un = self.unames
+        k = (iab - 1) % n + 1 if iab else 0          # HEADNG: MOD(ABS(IPLT)-1, NDM)+1
+        u = un[k] if k in un else f"U({k})"
         if iplt > 0 and iab <= n:
-            first = f"MAX U({iab})"
+            first = f"MAX {u}"
         elif iplt < 0 and iab <= n:
-            first = f"MIN U({iab})"
+            first = f"MIN {u}"
         elif n < iplt <= 2 * n:
-            first = f"INTEGRAL U({iplt - n})"
+            first = f"INTEGRAL {u}"
         elif 2 * n < iplt <= 3 * n:
-            first = f"L2-NORM U({iplt - 2 * n})"
+            first = f"L2-NORM {u}"
         else:
             first = "L2-NORM"
-        un = self.unames
         return [first] + [f"MAX {un[i]}" if i in un else f"MAX U({i})"
                           for i in range(1, self.n2() + 1)]
 
