@@ -65,25 +65,28 @@ def gauss_points(ncol: int) -> np.ndarray:
 
 def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Values and derivatives of the Lagrange basis on `nodes` at points `z`:
-    both of shape (len(nodes), len(z))."""
+    both of shape (len(nodes), len(z)). Every basis function b is the product over the
+    other nodes k in increasing order, and its derivative the sum over l of those
+    products without l; all b at once (a factor 1.0 where k = l: the same products)."""
     nodes = np.asarray(nodes, float)
     z = np.atleast_1d(np.asarray(z, float))
     n = len(nodes)
+    others = np.array([[k for k in range(n) if k != b] for b in range(n)], dtype=int)
+    others = others.reshape(n, n - 1)
+    denom = np.array([np.prod(nodes[b] - nodes[others[b]]) for b in range(n)])
+    dz = z[None, :] - nodes[others.T][:, :, None]            # (n - 1, n, len(z)): z - x_k
     L = np.ones((n, len(z)))
     D = np.zeros((n, len(z)))
-    for b in range(n):
-        others = [k for k in range(n) if k != b]
-        denom = np.prod(nodes[b] - nodes[others])
-        for k in others:
-            L[b] *= z - nodes[k]
-        for l in others:
-            term = np.ones(len(z))
-            for k in others:
-                if k != l:
-                    term *= z - nodes[k]
-            D[b] += term
-        L[b] /= denom
-        D[b] /= denom
+    for s in range(n - 1):
+        L *= dz[s]
+    for li in range(n - 1):
+        term = np.ones((n, len(z)))
+        for s in range(n - 1):
+            if s != li:
+                term *= dz[s]
+        D += term
+    L /= denom[:, None]
+    D /= denom[:, None]
     return L, D
 
 

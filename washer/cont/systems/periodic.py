@@ -254,9 +254,22 @@ class PeriodicOrbits(CollocationBVP):
         return self.coll.profile(x), par
 
     # ------------------------------------------------------------------ equations
+    def _at_gauss(self, x: np.ndarray, U: np.ndarray) -> np.ndarray:
+        """u at the Gauss points (NTST*NCOL, NDIM) of the profile U of x: Newton's
+        Jacobian at an iterate follows its residual, which has just interpolated them
+        (the last one is kept, with the mesh it was taken on)."""
+        key = (self.coll, x.tobytes())
+        last = getattr(self, "_last_ug", None)
+        if last is not None and last[0][0] is key[0] and last[0][1] == key[1]:
+            return last[1]
+        ug = self.coll.at_gauss(U).reshape(-1, self.ndim)
+        ug.setflags(write=False)
+        self._last_ug = (key, ug)
+        return ug
+
     def residual(self, x: np.ndarray) -> np.ndarray:
         U, par = self.unpack(x)
-        ug = self.coll.at_gauss(U).reshape(-1, self.ndim)
+        ug = self._at_gauss(x, U)
         # Newton asks for the Jacobian at this iterate next (up to NWTN iterations):
         # a problem whose f comes with its Jacobians evaluates them here, once
         fg = self.field.f(ug, par, with_jacobian=True).reshape(self.mesh.ntst, self.mesh.ncol,
@@ -268,7 +281,7 @@ class PeriodicOrbits(CollocationBVP):
         U, par = self.unpack(x)
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         T = self.period(par)
-        ug = self.coll.at_gauss(U).reshape(-1, n)
+        ug = self._at_gauss(x, U)
         if getattr(self.problem, "has_func_dfdu_batch", False) and 11 in self.free:
             # f (the PERIOD column) and f_u, f_p in one evaluation, unless the residual
             # at x has just made it (then every call below is answered from it)
