@@ -63,6 +63,17 @@ def test_a_value_that_is_not_one_names_its_key_and_line(ab):
     assert "run(e='ab'): UZR: unknown parameter 'x'" in msg
 
 
+def test_an_unclosed_bracket_names_the_line_it_opens(ab):
+    """ICP = [1 on line 2, the next statement on line 3: the '[' of line 2 was never
+    closed (it said line 3 expected a value, found 'NMX=3')."""
+    Path("c.br").write_text("NDIM=2\nICP=[1\nNMX=3\n")
+    msg = _error("run('ab', c='br')\n")
+    assert "c.br:2: unclosed '[': expected ']' before 'NMX=3' (line 3)" in msg
+    Path("c.br").write_text("NDIM=2\nUZSTOP={1: 0.1\nNMX=3\n")
+    msg = _error("run('ab', c='br')\n")
+    assert "c.br:2: unclosed '{': expected '}' before 'NMX=3' (line 3)" in msg
+
+
 def test_missing_equations_file_says_what_was_looked_for(ab):
     msg = _error("run(e='nosuch', c='ab')\n")
     assert msg.startswith("x.auto:1: ")

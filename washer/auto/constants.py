@@ -92,6 +92,7 @@ class _Scanner:
         self.skip()
         c = self.peek()
         if c == "[":
+            opened = self.line
             self.advance()
             items = []
             while True:
@@ -101,8 +102,14 @@ class _Scanner:
                     return items
                 if self.peek() == "":
                     raise self.error("unclosed '[': expected ']'")
+                if re.compile(r"[A-Za-z_]\w*\s*=").match(self.text, self.i):
+                    # the next statement: the list was never closed
+                    raise ConstantsError(
+                        f"{self.source}:{opened}: unclosed '[': expected ']' before "
+                        f"{self.text[self.i:].splitlines()[0].strip()!r} (line {self.line})")
                 items.append(self.value())
         if c == "{":
+            opened = self.line
             self.advance()
             items = {}
             while True:
@@ -112,6 +119,10 @@ class _Scanner:
                     return items
                 if self.peek() == "":
                     raise self.error("unclosed '{': expected '}'")
+                if re.compile(r"[A-Za-z_]\w*\s*=").match(self.text, self.i):
+                    raise ConstantsError(
+                        f"{self.source}:{opened}: unclosed '{{': expected '}}' before "
+                        f"{self.text[self.i:].splitlines()[0].strip()!r} (line {self.line})")
                 m = re.compile(r"[A-Za-z_][A-Za-z0-9_()]*(?=\s*:)").match(self.text, self.i)
                 if m and m.group() not in ("None", "True", "False"):
                     # an unquoted name as a key ({epsilon: [1e-4]}): AUTO's READC takes it
