@@ -47,15 +47,37 @@ inline void sub_scaled(double *__restrict y, const double *__restrict x, double 
 
 struct cont_bvp {
     int N, m, n, np, ne, K, nx, nc;   // NTST, NCOL, NDIM, NPAR, dense rows, interior, sizes
-    // Interval j (condensation): W[j] (m n x (m+1) n + np) eliminated in place (multipliers
-    // below the pivots in the interior columns n..n+K-1), row swaps piv1, the dense rows'
-    // multipliers E1 (ne x K).
-    std::vector<Mat> W, E1;
-    std::vector<std::vector<int>> piv1;
-    // Node k = 1..N-1 (reduction): T[k] (2n x 3n + np), columns (U_k, U_0, U_k+1, par),
-    // swaps piv2, dense-row multipliers E2 (ne x n). Index 0 unused.
-    std::vector<Mat> T, E2;
-    std::vector<std::vector<int>> piv2;
+    // Interval j (condensation): W(j) (m n x (m+1) n + np) eliminated in place (multipliers
+    // below the pivots in the interior columns n..n+K-1), row swaps piv1(j), the dense
+    // rows' multipliers E1(j) (ne x K).
+    // Node k = 1..N-1 (reduction): T(k) (2n x 3n + np), columns (U_k, U_0, U_k+1, par),
+    // swaps piv2(k), dense-row multipliers E2(k) (ne x n). Index 0 unused.
+    // All of them in buffers allocated once with the object (a factorisation allocates
+    // nothing per interval).
+    int cw = 0, tw = 0;
+    bool factored = false;
+    std::vector<double> Wb, E1b, Tb, E2b;
+    std::vector<int> piv1b, piv2b;
+    Eigen::Map<Mat> W(int j) { return Eigen::Map<Mat>(Wb.data() + (size_t)j * m * n * cw, m * n, cw); }
+    Eigen::Map<const Mat> W(int j) const {
+        return Eigen::Map<const Mat>(Wb.data() + (size_t)j * m * n * cw, m * n, cw);
+    }
+    Eigen::Map<Mat> E1(int j) { return Eigen::Map<Mat>(E1b.data() + (size_t)j * ne * K, ne, K); }
+    Eigen::Map<const Mat> E1(int j) const {
+        return Eigen::Map<const Mat>(E1b.data() + (size_t)j * ne * K, ne, K);
+    }
+    Eigen::Map<Mat> T(int j) { return Eigen::Map<Mat>(Tb.data() + (size_t)j * 2 * n * tw, 2 * n, tw); }
+    Eigen::Map<const Mat> T(int j) const {
+        return Eigen::Map<const Mat>(Tb.data() + (size_t)j * 2 * n * tw, 2 * n, tw);
+    }
+    Eigen::Map<Mat> E2(int j) { return Eigen::Map<Mat>(E2b.data() + (size_t)j * ne * n, ne, n); }
+    Eigen::Map<const Mat> E2(int j) const {
+        return Eigen::Map<const Mat>(E2b.data() + (size_t)j * ne * n, ne, n);
+    }
+    int *piv1(int j) { return piv1b.data() + (size_t)j * K; }
+    const int *piv1(int j) const { return piv1b.data() + (size_t)j * K; }
+    int *piv2(int j) { return piv2b.data() + (size_t)j * n; }
+    const int *piv2(int j) const { return piv2b.data() + (size_t)j * n; }
     // The remaining (U_0, U_N, par) system, and its first n rows (the collocation rows
     // reduced: P0 U_0 + P1 U_N + Ppar par) for cont_bvp_schur.
     Eigen::PartialPivLU<Mat> lu;
@@ -83,12 +105,19 @@ cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
     f->K = (ncol - 1) * ndim;
     f->nc = ntst * ncol * ndim;
     f->nx = (ntst * ncol + 1) * ndim + npar;
-    f->W.resize(ntst);
-    f->E1.resize(ntst);
-    f->piv1.resize(ntst);
-    f->T.resize(ntst);
-    f->E2.resize(ntst);
-    f->piv2.resize(ntst);
+    f->cw = (ncol + 1) * ndim + npar;
+    f->tw = 3 * ndim + npar;
+    try {
+        f->Wb.resize((size_t)ntst * ncol * ndim * f->cw);
+        f->E1b.resize((size_t)ntst * f->ne * f->K);
+        f->Tb.resize((size_t)ntst * 2 * ndim * f->tw);
+        f->E2b.resize((size_t)ntst * f->ne * ndim);
+        f->piv1b.resize((size_t)ntst * f->K);
+        f->piv2b.resize((size_t)ntst * ndim);
+    } catch (const std::bad_alloc &) {
+        delete f;
+        return nullptr;
+    }
     return f;
 }
 
@@ -121,17 +150,14 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
 
     // ---- condensation of the interior nodes of every interval
     Mat R;                      // the rows carried along the chain: (U_0, U_k, par)
-    std::vector<int> R_ids;
+    std::vector<int> R_ids, ids(mn), tids(2 * n);
     for (int j = 0; j < N; ++j) {
-        Mat &W = f->W[j];
-        W.resize(mn, cw);
+        Eigen::Map<Mat> W = f->W(j);
         W.leftCols((m + 1) * n) = Eigen::Map<const Mat>(blocks + (size_t)j * mn * (m + 1) * n, mn, (m + 1) * n);
         if (np) W.rightCols(np) = Eigen::Map<const Mat>(parcols + (size_t)j * mn * np, mn, np);
-        Mat &E = f->E1[j];
-        E.setZero(ne, K);
-        std::vector<int> &piv = f->piv1[j];
-        piv.assign(K, 0);
-        std::vector<int> ids(mn);
+        Eigen::Map<Mat> E = f->E1(j);
+        E.setZero();
+        int *piv = f->piv1(j);
         for (int r = 0; r < mn; ++r) ids[r] = j * mn + r;
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
@@ -181,23 +207,21 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             continue;
         }
         // ---- reduction: eliminate U_j from R (U_0, U_j, par) and interval j's rows
-        Mat &T = f->T[j];
-        T.setZero(2 * n, 3 * n + np);
+        Eigen::Map<Mat> T = f->T(j);
+        T.setZero();
         T.block(0, 0, n, n) = R.middleCols(n, n);               // U_j
         T.block(0, n, n, n) = R.leftCols(n);                    // U_0
         if (np) T.block(0, 3 * n, n, np) = R.rightCols(np);
         T.block(n, 0, n, n) = W.block(K, 0, n, n);              // U_j
         T.block(n, 2 * n, n, n) = W.block(K, n + K, n, n);      // U_j+1
         if (np) T.block(n, 3 * n, n, np) = W.block(K, (m + 1) * n, n, np);
-        std::vector<int> tids(2 * n);
         for (int r = 0; r < n; ++r) {
             tids[r] = R_ids[r];
             tids[n + r] = ids[K + r];
         }
-        Mat &E2 = f->E2[j];
-        E2.setZero(ne, n);
-        std::vector<int> &piv2 = f->piv2[j];
-        piv2.assign(n, 0);
+        Eigen::Map<Mat> E2 = f->E2(j);
+        E2.setZero();
+        int *piv2 = f->piv2(j);
         for (int t = 0; t < n; ++t) {
             int p = t;
             for (int r = t + 1; r < 2 * n; ++r)
@@ -266,6 +290,7 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     sign *= perm_sign(rows) * perm_sign(cols);
     f->sign = sign;
     f->singular = singular;
+    f->factored = true;
     if (sign_logdet) cont_bvp_sign_logdet(f, sign_logdet);
     return singular ? 1 : 0;
 }
@@ -281,12 +306,12 @@ int cont_bvp_sign_logdet(const cont_bvp *f, double *sign_logdet) {
 int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
     const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
     const int mn = m * n;
-    if ((int)f->W.size() != N || f->Rfin.rows() != n) return 2;
+    if (!f->factored || f->Rfin.rows() != n) return 2;
     Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
     // the dense rows through the eliminations of cont_bvp_factor, as they went there:
     // each pivot row is final once it has pivoted
     for (int j = 0; j < N; ++j) {
-        const Mat &W = f->W[j];
+        const Eigen::Map<const Mat> W = f->W(j);
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
             const double d = W(t, c);
@@ -303,7 +328,7 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
             }
         }
         if (j == 0) continue;
-        const Mat &T = f->T[j];
+        const Eigen::Map<const Mat> T = f->T(j);
         for (int t = 0; t < n; ++t) {
             const double d = T(t, t);
             if (d == 0.0) return 1;
@@ -346,36 +371,36 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     std::vector<double> t2all((size_t)N * 2 * n);   // the reduction's right-hand sides
     // forward: condensation
     for (int j = 0; j < N; ++j) {
-        const Mat &W = f->W[j];
+        const Eigen::Map<const Mat> W = f->W(j);
         double *rb = rc.data() + (size_t)j * mn;
         // The factor swapped whole rows (multipliers included, as LAPACK's getrf):
         // all interchanges first, then the unit lower triangle.
         for (int t = 0; t < K; ++t) {
-            const int p = f->piv1[j][t];
+            const int p = f->piv1(j)[t];
             if (p != t) std::swap(rb[t], rb[p]);
         }
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
             for (int r = t + 1; r < mn; ++r) rb[r] -= W(r, c) * rb[t];
-            for (int e = 0; e < ne; ++e) re[e] -= f->E1[j](e, t) * rb[t];
+            for (int e = 0; e < ne; ++e) re[e] -= f->E1(j)(e, t) * rb[t];
         }
     }
     // forward: reduction
     std::vector<double> tR(rc.begin() + K, rc.begin() + mn);
     for (int j = 1; j < N; ++j) {
-        const Mat &T = f->T[j];
+        const Eigen::Map<const Mat> T = f->T(j);
         double *tv = t2all.data() + (size_t)j * 2 * n;
         for (int r = 0; r < n; ++r) {
             tv[r] = tR[r];
             tv[n + r] = rc[(size_t)j * mn + K + r];
         }
         for (int t = 0; t < n; ++t) {
-            const int p = f->piv2[j][t];
+            const int p = f->piv2(j)[t];
             if (p != t) std::swap(tv[t], tv[p]);
         }
         for (int t = 0; t < n; ++t) {
             for (int r = t + 1; r < 2 * n; ++r) tv[r] -= T(r, t) * tv[t];
-            for (int e = 0; e < ne; ++e) re[e] -= f->E2[j](e, t) * tv[t];
+            for (int e = 0; e < ne; ++e) re[e] -= f->E2(j)(e, t) * tv[t];
         }
         for (int r = 0; r < n; ++r) tR[r] = tv[n + r];
     }
@@ -393,7 +418,7 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     const double *par = x + nx - np;
     // back: the end nodes U_N-1 .. U_1
     for (int j = N - 1; j >= 1; --j) {
-        const Mat &T = f->T[j];
+        const Eigen::Map<const Mat> T = f->T(j);
         const double *tv = t2all.data() + (size_t)j * 2 * n;
         const double *u0 = x, *u1 = x + (size_t)(j + 1) * mn;
         double *uj = x + (size_t)j * mn;
@@ -407,7 +432,7 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     }
     // back: the interior nodes of every interval
     for (int j = 0; j < N; ++j) {
-        const Mat &W = f->W[j];
+        const Eigen::Map<const Mat> W = f->W(j);
         const double *rb = rc.data() + (size_t)j * mn;
         const double *uL = x + (size_t)j * mn, *uR = x + (size_t)(j + 1) * mn;
         double *uI = x + (size_t)j * mn + n;
