@@ -310,3 +310,45 @@ def test_headers_of_a_data_start_and_its_restarts_are_autos(tmp_path, monkeypatc
     ref = _header_blocks(DEMOS / "lor" / "autoref" / "b.lor")
     assert len(ours) == len(ref) == 3
     assert ours == ref
+
+
+#: IPLT of lrz's equilibria (NDIM 3, unames x, y, z) and the U(k) its column shows
+#: (ae.f90 STPLAE: U(|IPLT|), U(IPLT - NDIM), U(IPLT - 2 NDIM); 12: beyond 3 NDIM, the
+#: L2 norm).
+IPLT_COLUMN = {2: 2, -1: 1, 5: 2, 8: 2, 12: None}
+
+
+def test_iplt_column_of_an_algebraic_problem(tmp_path, monkeypatch):
+    """lrz's equilibria with IPLT = 2, -1, 5, 8, 12: the b-file's second column is
+    U(k) as AUTO's STPLAE takes it (the L2 norm beyond 3 NDIM), on every row, and its
+    title HEADNG's ('y' at column 2, 'INTEGRAL y', 'L2-NORM y', 'L2-NORM'); where
+    AUTO-07p is installed, every header block is AUTO's own of the same runs byte for byte."""
+    work = tmp_path / "w"
+    work.mkdir()
+    for f in ("lrz.f90", "c.lrz"):
+        shutil.copy(DEMOS / "lrz" / f, work)
+    script = "".join(f"run(e='lrz', c='lrz', IPLT={i}, NMX=8, sv='p{abs(i)}')\n"
+                     for i in IPLT_COLUMN)
+    (work / "t.auto").write_text(script)
+    monkeypatch.chdir(work)
+    run_script("t.auto")
+    for iplt, k in IPLT_COLUMN.items():
+        rows = [ln.split() for ln in (work / f"b.p{abs(iplt)}").read_text().splitlines()
+                if not ln.startswith("   0")]
+        assert len(rows) > 8 and any(float(r[5]) != 0 for r in rows)
+        for r in rows:
+            if k is None:
+                norm = float(np.sqrt(sum(float(v) ** 2 for v in r[6:9])))
+                assert float(r[5]) == pytest.approx(norm, rel=1e-9)
+            else:
+                assert r[5] == r[5 + k]                     # the same printed value
+    if shutil.which("auto-07p") is None or shutil.which("gfortran") is None:
+        return
+    import subprocess
+    ref = tmp_path / "auto"
+    shutil.copytree(work, ref, ignore=shutil.ignore_patterns("b.*", "s.*", "d.*", "fort.*"))
+    subprocess.run(["auto-07p", "t.auto"], cwd=ref, capture_output=True, timeout=600,
+                   check=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    for iplt in IPLT_COLUMN:
+        name = f"b.p{abs(iplt)}"
+        assert _header_blocks(work / name) == _header_blocks(ref / name), name

@@ -174,10 +174,18 @@ _TITLE_COLUMNS = ((r"PAR\(\d+\)", 4), (r"L2-NORM", 4), (r"U\(\d+\)", 6), (r"(MAX
 NAME_LENGTH = 13
 
 
-@functools.lru_cache(maxsize=1024)
 def column_title(title: str) -> str:
     """The 19-character b-file column title of HEADNG (the screen and d-file show its
-    first 14 characters). A name is centred at column max(7 - (len - 1) // 2, 2)."""
+    first 14 characters). A name is centred at column max(7 - (len - 1) // 2, 2); a
+    title that carries its column (washer.cont.record.ColumnTitle) is placed there."""
+    column = getattr(title, "column", None)
+    if column is not None:
+        return (" " * (column - 1) + str(title).strip()[:NAME_LENGTH]).ljust(19)[:19]
+    return _column_title(str(title))
+
+
+@functools.lru_cache(maxsize=1024)
+def _column_title(title: str) -> str:
     title = title.strip()
     for pattern, col in _TITLE_COLUMNS:
         if re.fullmatch(pattern, title):

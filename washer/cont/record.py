@@ -111,3 +111,14 @@ def find_record(records: list[Record], irs) -> Record:
                               f"{period!r}: expected a positive period; this record cannot "
                               "start a run")
     return rec
+
+
+class ColumnTitle(str):
+    """A b-file column title at a fixed column of its 19-character field (HEADNG's
+    WRITECOL(I, ...)) where a name would otherwise be centred: a state's name as the
+    IPLT column of an algebraic problem (column 2)."""
+
+    def __new__(cls, text: str, column: int):
+        obj = super().__new__(cls, text)
+        obj.column = column
+        return obj

@@ -7,6 +7,7 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont.linalg import dense_factor, null_vectors, orient
+from washer.cont.record import ColumnTitle
 from washer.cont.system import Solution, fold_test
 
 
@@ -104,18 +105,49 @@ class AlgebraicSystem:
         return [orient(d / nd, len(d) - 1, self.settings.EPSL, x[-1])]
 
     # ------------------------------------------------------------- output
+    def measure(self, x) -> float:
+        """The b-file's second column by IPLT (ae.f90 STPLAE's AMP) on AUTO's U(1..NDIM)
+        = x[:-1] (NDIM the system's own: extended on the loci): U(|IPLT|) for 1 <= |IPLT|
+        <= NDIM, U(IPLT - NDIM) up to 2 NDIM, U(IPLT - 2 NDIM) up to 3 NDIM, else the L2
+        norm of the user's U."""
+        s = x[:-1]
+        nd, iplt = len(s), self.settings.IPLT
+        if 0 < abs(iplt) <= nd:
+            return float(s[abs(iplt) - 1])
+        if nd < iplt <= 3 * nd:
+            return float(s[(iplt - 1) % nd])
+        u = x[:self.ndim]
+        return float(np.sqrt((u ** 2).sum()))
+
     def solution(self, x, tangent) -> Solution:
         par = self.params(x)
         u = x[:self.ndim]
         ncols = self.n_columns
-        cols = [float(np.sqrt((u ** 2).sum()))] + u[:ncols].tolist()
+        cols = [self.measure(x)] + u[:ncols].tolist()
         rldot = [float(tangent[-1])] + [float(tangent[-1 - k]) for k in range(1, len(self.free))]
         return Solution(par=par, columns=cols, u=np.array(x[:-1]), udot=np.array(tangent[:-1]),
                         rldot=rldot, ndim_user=self.ndim)
 
     def column_titles(self) -> list:
         un = self.unames
-        return ["L2-NORM"] + [un.get(i, f"U({i})") for i in range(1, self.n_columns + 1)]
+        return [self.measure_title()] + [un.get(i, f"U({i})")
+                                         for i in range(1, self.n_columns + 1)]
+
+    def measure_title(self) -> str:
+        """HEADNG's title of the IPLT column (io.f90), by the user's NDIM (NDM) and
+        unames: 'L2-NORM' for IPLT = 0 or beyond -NDM..3 NDM; else of U(k), k =
+        MOD(|IPLT| - 1, NDM) + 1: its name at column 2 (or 'U(k)') for |IPLT| <= NDM,
+        'INTEGRAL' and 'L2-NORM' with it above NDM and 2 NDM (the value is STPLAE's
+        U(IPLT - NDIM), ...: AUTO titles it so)."""
+        n, iplt = self.ndim, self.settings.IPLT
+        if iplt == 0 or iplt < -n or iplt > 3 * n:
+            return "L2-NORM"
+        k = (abs(iplt) - 1) % n + 1
+        name = self.unames.get(k)
+        if abs(iplt) <= n:
+            return ColumnTitle(name, 2) if name else f"U({k})"
+        what = "INTEGRAL" if iplt <= 2 * n else "L2-NORM"
+        return f"{what} {name}" if name else f"{what} U({k})"
 
     @property
     def n_columns(self) -> int:
