@@ -23,5 +23,17 @@ def segments(rows) -> list:
     return out
 
 
+def header_blocks(path: Path) -> list[list[str]]:
+    """The b-file's header blocks (the '   0' lines before each branch's rows)."""
+    blocks, cur = [], []
+    for line in path.read_text().splitlines():
+        if line.startswith("   0"):
+            cur.append(line)
+        elif cur:
+            blocks.append(cur)
+            cur = []
+    return blocks
+
+
 def labelled(seg) -> list:
     return [r for r in seg if r.lab]

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from b_rows import branch_rows
+from b_rows import branch_rows, header_blocks
 from washer.auto.files import read_b, read_s
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -146,20 +146,6 @@ def test_auto07p_continues_washers_fold_of_cycles_locus(plp, tmp_path):
     assert uz[0].values[-1] == pytest.approx(ours.values[-1], rel=1e-6)       # period
 
 
-
-
-def _header_blocks(path: Path) -> list[list[str]]:
-    """The b-file's header blocks (the '   0' lines before each branch's rows)."""
-    blocks, cur = [], []
-    for line in path.read_text().splitlines():
-        if line.startswith("   0"):
-            cur.append(line)
-        elif cur:
-            blocks.append(cur)
-            cur = []
-    return blocks
-
-
 @pytest.mark.parametrize("demo, name", [("integral", "b.lp"), ("dd2", "b.pd")])
 def test_extended_systems_headers_are_autos(demo, name, request):
     """The header of an extended system's run as AUTO-07p writes it, byte for byte
@@ -169,7 +155,7 @@ def test_extended_systems_headers_are_autos(demo, name, request):
     of dd2's map (NDIM 5, Branch type 7 'PD')."""
     folder = request.getfixturevalue(demo)
     ref = DEMOS / folder.name / "autoref" / name
-    assert _header_blocks(folder / name)[0] == _header_blocks(ref)[0]
+    assert header_blocks(folder / name)[0] == header_blocks(ref)[0]
 
 
 def test_fold_of_cycles_header_is_autos(plp):
@@ -179,8 +165,8 @@ def test_fold_of_cycles_header_is_autos(plp):
     TR is not detected, ISP = 1), the user's NDIM 2, NPAR 5, NBC 0, NINT 0 listed under
     them, Branch type 5 'LP', the active parameters PAR(4), the period, PAR(1) and beta
     (PAR(12))."""
-    ours = [b for b in _header_blocks(plp / "b.loci") if any("Branch type:  5" in x for x in b)]
-    ref = [b for b in _header_blocks(DEMOS / "plp" / "autoref" / "b.loci")
+    ours = [b for b in header_blocks(plp / "b.loci") if any("Branch type:  5" in x for x in b)]
+    ref = [b for b in header_blocks(DEMOS / "plp" / "autoref" / "b.loci")
            if any("Branch type:  5" in x for x in b)]
     assert len(ours) == len(ref) == 1
     assert ours[0] == ref[0]
@@ -265,7 +251,7 @@ def test_branch_point_of_cycles_headers_are_autos(lcbp, name):
     b) and generic (ISW = 3: NPAR 14, no b). (The generating runs, lcbp.2.sw and
     lcbp.3.sw, differ: AUTO's is a system of 4 NDIM components with 9 internal
     parameters, ours starts from the adjoint computed at the BP: 2 NDIM, 3.)"""
-    assert _header_blocks(lcbp / name)[0] == _header_blocks(DEMOS / "lcbp" / "autoref" / name)[0]
+    assert header_blocks(lcbp / name)[0] == header_blocks(DEMOS / "lcbp" / "autoref" / name)[0]
 
 
 @pytest.mark.skipif(not HAVE_AUTO, reason="AUTO-07p (auto-07p and gfortran) is not installed")

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from b_rows import header_blocks
 from washer.auto import clui
 from washer.auto.diagram import Diagram, SolutionList
 from washer.auto.script import ScriptError, run_script, translate
@@ -285,18 +286,6 @@ def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     assert eval(b_labels) == expect and eval(s_labels) == expect
 
 
-def _header_blocks(path: Path) -> list[list[str]]:
-    """The b-file's header blocks (the '   0' lines before each branch's rows)."""
-    blocks, cur = [], []
-    for line in path.read_text().splitlines():
-        if line.startswith("   0"):
-            cur.append(line)
-        elif cur:
-            blocks.append(cur)
-            cur = []
-    return blocks
-
-
 def test_headers_of_a_data_start_and_its_restarts_are_autos(tmp_path, monkeypatch):
     """lor's script (a start from lor.dat, then restarts from its labels, sv='lor'): every
     header block of b.lor is AUTO's byte for byte (autoref): the data start as AUTO's CLUI
@@ -306,8 +295,8 @@ def test_headers_of_a_data_start_and_its_restarts_are_autos(tmp_path, monkeypatc
     shutil.copytree(DEMOS / "lor", work, ignore=shutil.ignore_patterns("autoref"))
     monkeypatch.chdir(work)
     run_script("lor.auto")
-    ours = _header_blocks(work / "b.lor")
-    ref = _header_blocks(DEMOS / "lor" / "autoref" / "b.lor")
+    ours = header_blocks(work / "b.lor")
+    ref = header_blocks(DEMOS / "lor" / "autoref" / "b.lor")
     assert len(ours) == len(ref) == 3
     assert ours == ref
 
@@ -351,4 +340,4 @@ def test_iplt_column_of_an_algebraic_problem(tmp_path, monkeypatch):
                    check=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
     for iplt in IPLT_COLUMN:
         name = f"b.p{abs(iplt)}"
-        assert _header_blocks(work / name) == _header_blocks(ref / name), name
+        assert header_blocks(work / name) == header_blocks(ref / name), name
