@@ -119,14 +119,10 @@ def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_
     assert f.sign_logdet()[1] == pytest.approx(ref.sign_logdet()[1], rel=1e-11)
 
 
-@pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
-                                                    (True, 2, 1)])
-def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc, nbc, nint):
-    """reduction.onto_start (forward substitution over the intervals) against the Schur
-    complement formed with SuperLU on the assembled matrix; periodic and general
-    boundary conditions, NBC = NDIM or not (IPS = 4: NPAR = NBC + NINT - NDIM + 1)."""
-    import scipy.sparse.linalg as spla
-    rng = np.random.default_rng(8)
+def random_general_system(rng, general_bc, nbc, nint):
+    """A collocation Jacobian with random blocks, integral rows and (general_bc) boundary
+    rows: NDIM 3, NTST 11, NCOL 4, NPAR = NBC + NINT - NDIM + 1 (IPS = 4). Returns
+    (coll, J, n, npar)."""
     n, N, m = 3, 11, 4
     npar = nbc + nint - n + 1
     coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc,
@@ -137,6 +133,18 @@ def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc
     J = coll.jacobian_general(blocks, rng.standard_normal((npar, N, m, n)),
                               rng.standard_normal((nint, coll.mesh.n_nodes, n)),
                               rng.standard_normal((nint, npar)), bc_jac=bc)
+    return coll, J, n, npar
+
+
+@pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
+                                                    (True, 2, 1)])
+def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc, nbc, nint):
+    """reduction.onto_start (forward substitution over the intervals) against the Schur
+    complement formed with SuperLU on the assembled matrix; periodic and general
+    boundary conditions, NBC = NDIM or not (IPS = 4: NPAR = NBC + NINT - NDIM + 1)."""
+    import scipy.sparse.linalg as spla
+    rng = np.random.default_rng(8)
+    coll, J, n, npar = random_general_system(rng, general_bc, nbc, nint)
     border = rng.standard_normal(coll.n_x)
     Sc, X = reduction.onto_start(coll, J, border)
     M = coll.bordered(J, border).tocsc()
@@ -186,16 +194,7 @@ def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, n
     solves, a separate elimination): equal to rounding (random blocks of norm ~1 and
     N = 11 intervals: 1e-10 relative)."""
     rng = np.random.default_rng(21 + nbc + nint)
-    n, N, m = 3, 11, 4
-    npar = nbc + nint - n + 1
-    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc,
-                           nbc=nbc, npar=npar)
-    blocks = coll.local_blocks(0.9, rng.standard_normal((N, m, n, n)))
-    bc = (rng.standard_normal((nbc, n)), rng.standard_normal((nbc, n)),
-          rng.standard_normal((nbc, npar))) if general_bc else None
-    J = coll.jacobian_general(blocks, rng.standard_normal((npar, N, m, n)),
-                              rng.standard_normal((nint, coll.mesh.n_nodes, n)),
-                              rng.standard_normal((nint, npar)), bc_jac=bc)
+    coll, J, n, npar = random_general_system(rng, general_bc, nbc, nint)
     f = reduction.BorderedCollocation.from_jacobian(coll, J, rng.standard_normal(coll.n_x))
     J2 = J.copy()
     if nint:
