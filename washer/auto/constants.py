@@ -189,6 +189,14 @@ class ConstantsWarning(UserWarning):
     listing more indices than its NICP)."""
 
 
+def _int_or_name(word: str):
+    """A positional row's index: an integer, else a name from parnames (or a label, IRS)."""
+    try:
+        return int(word)
+    except ValueError:
+        return word
+
+
 def _old_icp(words: list[str], n: int, line: str, source: str, names) -> list:
     """ICP of the old format's second row `NICP ICP(1) .. ICP(NICP) [comment]`: the first
     NICP words after NICP, as AUTO's parseC takes them (integers, or names of parnames:
@@ -226,13 +234,7 @@ def _old_icp(words: list[str], n: int, line: str, source: str, names) -> list:
                       f"indices ({' '.join(listed)}): ICP = [{', '.join(listed[:nicp])}] as AUTO reads it, "
                       f"{' '.join(listed[nicp:])} taken as a comment (raise NICP to "
                       f"{len(listed)} to continue in them all)", ConstantsWarning, stacklevel=2)
-
-    def index(word: str):
-        try:
-            return int(word)
-        except ValueError:
-            return word                 # a name from parnames
-    return [index(w) for w in listed[:nicp]]
+    return [_int_or_name(w) for w in listed[:nicp]]
 
 
 def parse_old(lines: list[str], first: int, source: str,
@@ -255,15 +257,9 @@ def parse_old(lines: list[str], first: int, source: str,
             raise ConstantsError(f"{source}:{n}: expected {what}, found {lines[n - 1]!r}")
         return words, n
 
-    def index(word: str):
-        try:
-            return int(word)
-        except ValueError:
-            return word                 # a name from parnames
-
     words, n = row("NDIM IPS IRS ILP", 4)
     for key, word in zip(("NDIM", "IPS", "IRS", "ILP"), words):
-        out.append((key, index(word) if key == "IRS" else
+        out.append((key, _int_or_name(word) if key == "IRS" else
                     _old_number(word, key, f"{source}:{n}"), n))
     words, n = row("NICP and the NICP indices of ICP", 1)
     out.append(("ICP", _old_icp(words, n, lines[n - 1], source, set(parnames)), n))
@@ -276,7 +272,7 @@ def parse_old(lines: list[str], first: int, source: str,
         entries: dict = {}
         for _ in range(count):
             words, m = row(f"a {key} row: a parameter index and a value", 2)
-            k, v = index(words[0]), _old_number(words[1], key, f"{source}:{m}")
+            k, v = _int_or_name(words[0]), _old_number(words[1], key, f"{source}:{m}")
             if key == "UZR" and k in entries:       # repeated index: a list of values
                 prev = entries[k]
                 entries[k] = (prev if isinstance(prev, list) else [prev]) + [v]
