@@ -10,6 +10,7 @@ import pytest
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.auto.constants import Constants, read_constants
+from washer.auto.files import read_s
 from washer.cont.user_files import load_python_problem
 from washer.cont.runner import build, execute
 from washer.cont.runner import run as run_in_memory
@@ -169,7 +170,7 @@ def test_a_chain_of_runs_restarts_from_branches_in_memory(tmp_path):
     c3 = c2.copy()
     c3.set("IRS", 0)
     from_record = run_in_memory(c3, problem, restart=eq("HB1"))
-    from_sfile = run_in_memory(c2, problem, restart=tmp_path / "s.eq")
+    from_sfile = run_in_memory(c2, problem, restart=read_s(tmp_path / "s.eq"))
     key = lambda b: [(s.ty, s.br, f"{s.par[0]:.10E}", f"{s.par[1]:.10E}") for s in b.specials]
     kind = lambda b: [(s.ty, s.br) for s in b.specials]
     pars = lambda b: np.array([s.par[:2] for s in b.specials])

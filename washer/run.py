@@ -99,10 +99,14 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     # default sv is the restart file's own name, and it must survive.
     records = None
     protect = ()
-    if restart_from is not None:
+    if isinstance(restart_from, (str, os.PathLike)):
+        source, protect = str(restart_from), (Path(restart_from),)
+        try:
+            records = read_s(restart_from)
+        except AutoFileError as exc:
+            raise RunError(str(exc)) from None
+    elif restart_from is not None:
         records, source = restart_records(restart_from, c)
-        if isinstance(restart_from, (str, os.PathLike)):
-            protect = (Path(restart_from),)
     elif c["IRS"] not in (0, "0"):
         source = str(restart)
         protect = (restart,)

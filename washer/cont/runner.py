@@ -267,8 +267,8 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
 
 def restart_records(restart, c) -> tuple[list, str]:
     """The records a run may restart from, and how messages name them: a Branch (its
-    labelled points), one Record (IRS = 0 then means that record), a list of Records,
-    or the path of an s-file."""
+    labelled points), one Record (IRS = 0 then means that record) or a list of Records
+    (an s-file's: washer.auto.files.read_s; the engine reads no files)."""
     if restart is None:
         return [], "the restart file"
     if isinstance(restart, Branch):
@@ -279,11 +279,8 @@ def restart_records(restart, c) -> tuple[list, str]:
         return [restart], "the restart record"
     if isinstance(restart, (list, tuple)):
         return list(restart), "the restart records"
-    from washer.auto.files import AutoFileError, read_s
-    try:
-        return read_s(restart), str(restart)
-    except AutoFileError as exc:
-        raise RunError(str(exc)) from None
+    raise RunError(f"restart={restart!r}: expected a Branch, a Record or a list of Records "
+                   "(an s-file's records: washer.auto.files.read_s)")
 
 
 def solve(c, problem, restart=None):
@@ -302,7 +299,7 @@ def solve(c, problem, restart=None):
 def run(c, problem, restart=None, sinks=(), name: str = "") -> Branch:
     """One run in memory: constants `c` (washer.auto.constants.Constants) and the
     equations `problem` (washer.cont.problem.Problem), restarting at c['IRS'] from
-    `restart` (a Branch, a Record, a list of Records or an s-file path), through
+    `restart` (a Branch, a Record or a list of Records), through
     `sinks` (none needed: nothing is written unless a sink writes it). Returns the
     Branch (rows, labelled points `specials`, status, counters)."""
     c = c.copy()
