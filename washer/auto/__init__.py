@@ -1,5 +1,7 @@
-"""AUTO-07p compatibility: constants, b./s./d. files, type codes, and AUTO's command
-language (`from washer.auto import run, load, save, ...`; `python -m washer.auto NAME.auto`)."""
+"""AUTO-07p compatibility: constants files, b./s./d. files and the sinks that write a run
+into them (the type codes and the record they hold are the engine's: washer.cont.codes,
+washer.cont.record), and AUTO's command language (`from washer.auto import run, load,
+save, ...`; `python -m washer.auto NAME.auto`)."""
 import importlib
 
 _OBJECTS = {"Diagram": "diagram", "Solution": "diagram", "SolutionList": "diagram",

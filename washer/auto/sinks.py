@@ -6,7 +6,8 @@ Each sink receives
 
     begin(run)                  the run is set up (constants, settings, system)
     branch_start(br)            a new branch (numbered br) begins
-    point(lab, point)           a written point (washer.cont.branch.Record)
+    point(lab, point)           a written point (washer.cont.record.Record) and the
+                                converged point it was made from (washer.cont.branch.Point)
     note(br, pt, text)          a diagnostic line ("NOTE:Retrying step" ...)
     end(status, elapsed)        the run is over (status "ok" or a reason)
 

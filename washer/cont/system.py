@@ -190,7 +190,7 @@ class StartData:
 
     u : (NDIM,) start state (IRS = 0 or an algebraic record), or the stored
         (extended) state of the record. par : (NPAR,) full parameter vector.
-    record : the s-file record restarted from (washer.auto.files.Record) or None.
+    record : the s-file record restarted from (washer.cont.record.Record) or None.
     kind : the start kind, AUTO's type name of the record ('EP', 'HB', 'LP',
         'BP', 'PD', ...; '' for a regular point or IRS = 0).
     data : (t (m,), U (m, NDIM)) time-column start data of dat='NAME' (AUTO's STPNUB
