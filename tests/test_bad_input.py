@@ -432,3 +432,23 @@ def test_missing_system_lists_what_exists_for_that_ips():
     msg = err.value.args[0]
     assert "IPS=5, ISW=2 starting at 'LP'" in msg and "with IPS=5: ISW=1 from any point" in msg
     assert "IPS=2" not in msg
+
+
+def test_every_failing_user_function_names_its_line():
+    """A user's function that raises is named with the place it raised, whichever it is
+    (func, the objective FOPT, the flow of shooting): the deepest frame outside washer."""
+    import re
+    from washer.cont.problem import Problem, ProblemError
+
+    def fails(*args):
+        raise ValueError("not here")
+    line = fails.__code__.co_firstlineno + 1
+    p = Problem(1, fails, fopt=fails, flow=fails, name="bad")
+    calls = {"func(u, par)": lambda: p.func(np.zeros(1), np.zeros(1)),
+             "fopt(u, par)": lambda: p.fopt_many(np.zeros((1, 1)), np.zeros(1)),
+             "flow(u0, par, 1)": lambda: p.period_map(np.zeros(1), np.zeros(1), 1)}
+    for what, call in calls.items():
+        with pytest.raises(ProblemError) as info:
+            call()
+        assert re.fullmatch(rf"bad: {re.escape(what)} failed: ValueError: not here "
+                            rf"\(.*test_bad_input\.py:{line}\)", str(info.value)), str(info.value)

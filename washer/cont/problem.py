@@ -102,6 +102,12 @@ class ProblemError(RuntimeError):
     """The user's equations are missing, malformed or failed to evaluate."""
 
 
+def user_failure(name: str, what: str, exc: BaseException) -> "ProblemError":
+    """The ProblemError of a user function that raised: '{name}: {what} failed:
+    {exception type}: {message} (FILE:LINE)', the place as `user_frame` finds it."""
+    return ProblemError(f"{name}: {what} failed: {type(exc).__name__}: {exc}{user_frame(exc)}")
+
+
 class Problem:
     """The user's equations with checks and batched finite-difference fallbacks.
 
@@ -174,8 +180,7 @@ class Problem:
                 try:
                     out = np.array([float(self._fopt(u, p)) for u, p in zip(us, pars)])
                 except Exception as exc:
-                    raise ProblemError(f"{self.name}: fopt(u, par) failed: "
-                                       f"{type(exc).__name__}: {exc}") from exc
+                    raise user_failure(self.name, "fopt(u, par)", exc) from exc
         if out.shape != (len(us),) or not np.all(np.isfinite(out)):
             raise ProblemError(f"{self.name}: fopt(u, par) returned non-finite or non-scalar "
                                "values; expected one finite number per point")
@@ -242,8 +247,7 @@ class Problem:
         except ProblemError:
             raise
         except Exception as exc:
-            raise ProblemError(f"{self.name}: flow(u0, par, {index}) failed: "
-                               f"{type(exc).__name__}: {exc}") from exc
+            raise user_failure(self.name, f"flow(u0, par, {index})", exc) from exc
         n = self.ndim
         uT, Phi, dp = (np.asarray(a, dtype=float) for a in (uT, Phi, dp))
         if uT.shape != (n,) or Phi.shape != (n, n) or dp.shape != (n,):
@@ -262,8 +266,7 @@ class Problem:
         except ProblemError:
             raise
         except Exception as exc:
-            raise ProblemError(f"{self.name}: {what}(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}{user_frame(exc)}") from exc
+            raise user_failure(self.name, f"{what}(u, par)", exc) from exc
 
     def func(self, u, par) -> np.ndarray:
         f = self._call(self._func, "func", u, par)
@@ -296,8 +299,7 @@ class Problem:
         try:
             out = np.array([fn(u, p) for u, p in zip(us, pars)], dtype=float)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}{user_frame(exc)}") from exc
+            raise user_failure(self.name, "func(u, par)", exc) from exc
         if out.shape != (len(us), self.ndim):
             raise ProblemError(f"{self.name}: func returned shape {out.shape[1:]}, expected "
                                f"({self.ndim},)")
@@ -419,8 +421,7 @@ class Problem:
                     rows.append(fn(u.copy(), b))
             F = np.array(rows, dtype=float)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: func(u, par) failed: {type(exc).__name__}: "
-                               f"{exc}{user_frame(exc)}") from exc
+            raise user_failure(self.name, "func(u, par)", exc) from exc
         k = len(hs)
         if F.shape != (2 * k, n):
             raise ProblemError(f"{self.name}: func returned shape {F.shape[1:]}, expected "
@@ -566,8 +567,7 @@ class Problem:
                 # GETP helpers) is a fresh array already: passed as it is.
                 self._pvls(u if isinstance(u, Orbit) else np.array(u, dtype=float), par)
             except Exception as exc:
-                raise ProblemError(f"{self.name}: pvls(u, par) failed: {type(exc).__name__}: "
-                                   f"{exc}{user_frame(exc)}") from exc
+                raise user_failure(self.name, "pvls(u, par)", exc) from exc
         return par
 
     def bcnd(self, u0, u1, par, nbc: int) -> np.ndarray:
@@ -633,8 +633,7 @@ class Problem:
             out = np.array([np.atleast_1d(fn(*[a[j] for a in args], par))[:nint]
                             for j in range(k)], dtype=float)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: icnd(u, uold, udot, upold, par) failed: "
-                               f"{type(exc).__name__}: {exc}") from exc
+            raise user_failure(self.name, "icnd(u, uold, udot, upold, par)", exc) from exc
         if out.shape != (k, nint):
             raise ProblemError(f"{self.name}: icnd returned shape {out.shape[1:]}, expected "
                                f"({nint},) (NINT)")
@@ -675,7 +674,7 @@ class Problem:
                     self._stpnt(u, par)
             except Exception as exc:
                 raise ProblemError(f"{self.name}: stpnt(u, par, t) failed at t = {t}: "
-                                   f"{type(exc).__name__}: {exc}") from exc
+                                   f"{type(exc).__name__}: {exc}{user_frame(exc)}") from exc
             rows.append(u)
         U = np.array(rows)
         if not np.all(np.isfinite(U)):
@@ -706,7 +705,7 @@ class Problem:
             except Exception as exc:
                 raise ProblemError(f"{self.name}: stpnt(u, par, t) failed extending the "
                                    f"restart to NDIM = {self.ndim} at t = {t}: "
-                                   f"{type(exc).__name__}: {exc}") from exc
+                                   f"{type(exc).__name__}: {exc}{user_frame(exc)}") from exc
             out[j, k:] = u[k:]
         if not np.all(np.isfinite(out)):
             raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values "
@@ -724,8 +723,7 @@ class Problem:
         try:
             self._stpnt(*args)
         except Exception as exc:
-            raise ProblemError(f"{self.name}: {what} failed: {type(exc).__name__}: "
-                               f"{exc}{user_frame(exc)}") from exc
+            raise user_failure(self.name, what, exc) from exc
         if not (np.all(np.isfinite(u)) and np.all(np.isfinite(par))):
             raise ProblemError(f"{self.name}: {what} left non-finite values in u or par")
         return u, par
