@@ -52,6 +52,18 @@ EXIT_LOCKED = 75
 RunResult = Branch
 
 
+def _restart_file(path) -> list:
+    """The records of the s-file a run restarts from (a RunError naming what is wrong
+    where it cannot be read); a damaged record is noted and the records before it used."""
+    try:
+        records = read_s(path)
+    except AutoFileError as exc:
+        raise RunError(str(exc)) from None
+    for what in records.damaged:
+        print(f"note: {what}; the records before it are used", file=sys.stderr)
+    return records
+
+
 def run(constants, verbose: bool = True, problem: Problem | None = None, params=None,
         sinks=None, restart=None, files: bool = True, allow_large: bool = False,
         **overrides) -> RunResult:
@@ -101,10 +113,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     protect = ()
     if isinstance(restart_from, (str, os.PathLike)):
         source, protect = str(restart_from), (Path(restart_from),)
-        try:
-            records = read_s(restart_from)
-        except AutoFileError as exc:
-            raise RunError(str(exc)) from None
+        records = _restart_file(restart_from)
     elif restart_from is not None:
         records, source = restart_records(restart_from, c)
     elif c["IRS"] not in (0, "0"):
@@ -113,12 +122,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
         if not restart.exists():
             raise RunError(f"{c.source}: IRS={c['IRS']!r} needs the restart file {restart}, "
                            "which does not exist (set s='NAME' to read s.NAME)")
-        try:
-            records = read_s(restart)
-        except AutoFileError as exc:
-            raise RunError(str(exc)) from None
-        for what in records.damaged:
-            print(f"note: {what}; the records before it are used", file=sys.stderr)
+        records = _restart_file(restart)
     else:
         source = str(restart)
     data = None
