@@ -250,15 +250,31 @@ def run_washer(cases: list, folder: Path, code_root: Path) -> dict:
 
 
 def worktree(rev: str) -> Path:
-    """A detached git worktree of rev with the current compiled kernel copied in."""
+    """A detached git worktree of rev with its own compiled modules: the current ones
+    copied in where rev's C++ sources are the working tree's, else built from rev's
+    (`python build.py cont` when only csrc/cont differs, `python build.py` otherwise):
+    a revision before a change of the compiled engine is timed with its own."""
     tmp = Path(tempfile.mkdtemp(prefix="bench_rev_")) / "tree"
     r = subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(tmp), rev],
                        capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"git worktree {rev}: {r.stderr.strip()}")
+
+    def differs(*paths):
+        return subprocess.run(["git", "-C", str(ROOT), "diff", "--quiet", rev, "--", *paths],
+                              capture_output=True).returncode != 0
+    kernel, cont = differs("csrc", ":(exclude)csrc/cont"), differs("csrc/cont")
     for so in (ROOT / "washer").glob("_*.so"):
-        if not (tmp / "washer" / so.name).exists():
+        mine = so.name.startswith("_kernel") and kernel or so.name.startswith("_cont") and cont
+        if not mine and not (tmp / "washer" / so.name).exists():
             shutil.copy(so, tmp / "washer" / so.name)
+    if kernel or cont:
+        print(f"building {rev}'s compiled modules ({'kernel and ' if kernel else ''}engine) ...",
+              flush=True)
+        r = subprocess.run([sys.executable, "build.py"] + ([] if kernel else ["cont"]),
+                           cwd=tmp, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"building {rev}: {r.stderr[-2000:]}")
     return tmp
 
 
