@@ -385,30 +385,26 @@ class CollocationBVP:
 
     def compiled_factor_of(self, J, factor):
         """`factor` when it is the compiled factorisation (`factor`) of this very J (its
-        eliminations then serve every matrix with J's collocation rows), else None."""
+        eliminations then serve every matrix with J's collocation rows: reduction.
+        BorderedCollocation.reduced), else None."""
         reduced = getattr(self, "_reduced", None)
         if (factor is not None and reduced is not None and reduced[0] is J
                 and reduced[1] is factor and isinstance(factor, reduction.BorderedCollocation)):
             return factor
         return None
 
-    def bp_function(self, J, tangent: np.ndarray, factor=None) -> float:
+    def bp_function(self, J, tangent: np.ndarray) -> float:
         """The BP test of BVPs: det of the bordered Jacobian reduced onto the boundary
-        unknowns (`reduce`), as det(S / |S|_F): bounded by 1, independent of the overall
-        scale, and zero exactly where the bordered Jacobian is singular, like AUTO's
-        FNBPBV (the reduced determinant over det P1). (Normalising each row instead
+        unknowns (`reduce`), as det(S / |S|_F) (`bp_value`)."""
+        return self.bp_value(self.reduce(J, self.weights * tangent)[0])
+
+    @staticmethod
+    def bp_value(Sc: np.ndarray) -> float:
+        """det(S / |S|_F) of a reduced bordered Jacobian S: bounded by 1, independent of
+        the overall scale, and zero exactly where the bordered Jacobian is singular, like
+        AUTO's FNBPBV (the reduced determinant over det P1). (Normalising each row instead
         would divide out the very row that vanishes at a decoupled BP, e.g.
-        1 - exp((mu - a) T) of a symmetry-breaking direction.)
-        factor: a compiled factorisation (reduction.BorderedCollocation) of a matrix with
-        J's collocation rows (the point's own, from `compiled_factor_of`): S is then its
-        eliminations replayed on J's dense rows and this border (the same S to rounding,
-        without a second reduction)."""
-        border = self.weights * tangent
-        Sc = None
-        if factor is not None and self.coll.has_pattern(J):
-            Sc = factor.reduced(reduction.pieces(self.coll, J, border)[2])
-        if Sc is None:
-            Sc = self.reduce(J, border)[0]
+        1 - exp((mu - a) T) of a symmetry-breaking direction.)"""
         scale = np.linalg.norm(Sc)
         if not np.isfinite(scale) or scale == 0:
             return 0.0

@@ -53,7 +53,7 @@ if TYPE_CHECKING:                  # annotations only; imported where used
     import scipy.sparse as sp
 
 from washer.cont import collocation as col
-from washer.cont import floquet
+from washer.cont import floquet, reduction
 from washer.cont.linalg import nullvc
 from washer.cont.codes import Code
 from washer.cont.system import Solution, Stability, register
@@ -380,10 +380,16 @@ class PeriodicOrbits(CollocationBVP):
         def bp():
             # The factorisation of [J; border] at x has J's collocation rows, which the
             # own-phase Jacobian shares (only its phase row differs): its eliminations
-            # give the BP test's reduced matrix.
+            # give the BP test's reduced matrix, from the dense rows alone.
             try:
-                return self.bp_function(self._own_phase(x, J), tangent,
-                                        self.compiled_factor_of(J, factor))
+                compiled = self.compiled_factor_of(J, factor)
+                if compiled is not None and self.coll.has_pattern(J):
+                    extra = reduction.pieces(self.coll, J, self.weights * tangent)[2]
+                    extra[self.coll.nbc] = self._own_phase_row(x)
+                    Sc = compiled.reduced(extra)
+                    if Sc is not None:
+                        return self.bp_value(Sc)
+                return self.bp_function(self._own_phase(x, J), tangent)
             except RuntimeError:
                 return None
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
@@ -399,12 +405,17 @@ class PeriodicOrbits(CollocationBVP):
         J = self.jacobian(x) if J is None else J
         if not self.coll.has_pattern(J):
             return J
-        U, par = self.unpack(x)
         J = J.copy()
         pos = self.coll.integral_positions(0)              # one entry per column, in order
-        up = self.period(par) * self.field.f(U, par)
-        J.data[pos] = np.r_[(self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)]
+        J.data[pos] = self._own_phase_row(x)
         return J
+
+    def _own_phase_row(self, x: np.ndarray) -> np.ndarray:
+        """The phase condition's row of the Jacobian with u'_old = T f(u(x)) (`_own_phase`):
+        the node weights times T f at the nodes, 0 in the parameter columns, (n_x,)."""
+        U, par = self.unpack(x)
+        up = self.period(par) * self.field.f(U, par)
+        return np.r_[(self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)]
 
     def located_code(self, key, point) -> int:
         """PD or TR for a zero of the combined test, as TPSPBV types the located point."""
