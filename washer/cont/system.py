@@ -100,6 +100,33 @@ wants_remesh(n_points) -> bool, remesh(x, *vectors) -> tuple[ndarray, ...]
     tangent by `remesh(x, tangent)` (both moved onto the new mesh; the system moves
     its own reference data). Systems without a mesh answer False
     (`washer.cont.systems.bvp.CollocationBVP` is the base of those with one).
+
+Optional attributes (read with a default where a system lacks them)
+--------------------------------------------------------------------
+run_settings : Settings
+    The settings the run uses instead of the constants' (default: those): a locus'
+    generating run (NMX 5, no tests) or a system with its own NDIM (IPS = 5).
+start_mode : str
+    How the iterator starts: "fresh" or "switch" (default: "switch" at a BP with
+    ISW = -1 on algebraic systems, else "fresh").
+n_state : int
+    How many leading unknowns are the state, on "plane" systems (AUTO's NEWTONBV test:
+    EPSU on them, EPSL on each free parameter); without it, EPSU on every unknown but
+    PAR(ICP(1)) and EPSL on that one.
+null_vector(J, border) -> ndarray
+    With n_state, the tangent at a start from the Jacobian's own null vector (AUTO's
+    STDRBV) instead of a bordered solve.
+header_icp : list[int]
+    The free parameters the b-file header and the s-record list (AUTO's NFPR, ICP),
+    where a locus counts an internal one (the cycle fold's beta); default `free`.
+header_npar : int
+    NPAR as the b-file header states it (default: the settings' NPAR).
+npari : int
+    AUTO's NPARI (s-record field 13): how many of the last PAR are the system's
+    internal unknowns (default 0).
+n_comp, coll, nbc, nint
+    A collocation system's own NDIM, its Collocation, NBC and NINT, which the b-file
+    header states (washer.auto.sinks).
 """
 from __future__ import annotations
 
