@@ -536,7 +536,6 @@ def test_start_direction_without_the_first_parameter(tmp_path):
     assert all(abs(row.par[0]) <= 1e-9 for row in r.rows)
 
 
-
 def test_isw_minus_one_at_a_regular_point_continues_the_branch(tmp_path):
     """A general BVP restarted with ISW = -1 at a label that is not a BP (AUTO's CNRLBV
     takes IPERP = 1 whenever IRS != 0 and ISW < 0: STDRBV's null vector of the Jacobian,
@@ -557,6 +556,7 @@ def test_isw_minus_one_at_a_regular_point_continues_the_branch(tmp_path):
     p2 = [row.par[1] for row in r2.rows]
     assert all(b > a for a, b in zip(p2, p2[1:]))
     assert all(abs(row.par[0]) <= 1e-9 for row in r2.rows)
+
 
 @pytest.mark.slow
 def test_man_demo(tmp_path):

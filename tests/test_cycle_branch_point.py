@@ -349,7 +349,7 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
     assert math.isclose(bp.par[0], types[1][1])
 
     P = np.array(bp.par, float)
-    U, t = np.asarray(bp.U), np.asarray(bp.t)
+    U = np.asarray(bp.U)
 
     def half_map(u0, lam, T):
         f, fu = _tor_field(np.r_[lam, P[1:]])

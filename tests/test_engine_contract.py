@@ -20,6 +20,7 @@ from washer.run import run
 
 DATA = Path(__file__).parent / "data"
 
+
 @pytest.mark.parametrize("key", sorted(SYSTEMS, key=str))
 def test_every_registered_system_has_the_whole_contract(key):
     cls = SYSTEMS[key]

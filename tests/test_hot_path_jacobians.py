@@ -60,7 +60,6 @@ def test_collocation_fp_takes_the_batched_dfdp_with_jac_1():
         assert np.allclose(differenced.fp(U, par, index), exact, rtol=0, atol=1e-7)
 
 
-
 def test_washer_batched_dfdp_is_the_pointwise_kernel_jp():
     """e='washer': dfdp_batch (the kernel's Jp from the jac_rot_batch call that gives
     f_u) equals the per-point dfdp (jac_rot's Jp, the tied dampers summed into C_p) and

@@ -12,6 +12,7 @@ from washer.auto.constants import DEFAULTS, Constants
 STANDARD_KEYS = [k for k in DEFAULTS if k not in ("e", "unames", "parnames")]
 SPECIAL_KEYS = ("e", "unames", "parnames", "homcont")
 
+
 class AutoError(RuntimeError):
     """A command failed (AUTO's AUTORuntimeError)."""
 

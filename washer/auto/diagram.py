@@ -35,7 +35,6 @@ def _run_command(data, **kw):
     raise RuntimeError("solution.run() needs the command language: import washer.auto.clui")
 
 
-
 def type_name(code: int) -> str:
     """AUTO's short type name of a code ('RG' for labelled regular points)."""
     if split_code(code)[0] == 4:
@@ -231,7 +230,7 @@ class Solution:
         if self.rec is None:
             return "Solution without data"
         r = self.rec
-        lines = [f"  BR    PT  TY  LAB  ISW  NTST  NCOL",
+        lines = ["  BR    PT  TY  LAB  ISW  NTST  NCOL",
                  f"{r.br:4d}{r.pt:6d}  {r.ty:>2}{r.lab:5d}{r.isw:5d}{r.ntst:6d}{r.ncol:6d}"]
         pars = ", ".join(f"PAR({i + 1})={v:.6g}" for i, v in enumerate(r.par[:12]))
         lines.append(pars)

@@ -107,7 +107,7 @@ class Branch:
         """AUTO's table of labelled points (the screen format: I4, I6, A3, I5, ES14.5)."""
         titles = self.titles or [f"column {i + 1}" for i in range(
             max((len(r.values) for r in self.rows), default=0))]
-        head = f"  BR    PT  TY  LAB" + "".join(f"{t[:13]:>14}" for t in titles)
+        head = "  BR    PT  TY  LAB" + "".join(f"{t[:13]:>14}" for t in titles)
         lines = [head]
         for r in self.specials:
             pt = (r.pt - 1) % 9999 + 1
