@@ -83,16 +83,17 @@ def user_frame(exc: BaseException) -> str:
     user's func, stpnt, pvls ... failed."""
     import sysconfig
     import traceback
-    own = str(Path(__file__).resolve().parents[1])
-    libs = tuple(str(Path(p).resolve()) for k, p in sysconfig.get_paths().items()
-                 if k in ("stdlib", "platstdlib", "purelib", "platlib"))
+    # whole folders (a user's folder named washer2 beside the package is the user's)
+    skip = [Path(__file__).resolve().parents[1]] + [
+        Path(p).resolve() for k, p in sysconfig.get_paths().items()
+        if k in ("stdlib", "platstdlib", "purelib", "platlib")]
     where = ""
     for fr in traceback.extract_tb(exc.__traceback__):
         name = fr.filename or ""
         if not name or name.startswith("<"):
             continue
-        full = str(Path(name).resolve())
-        if full.startswith(own) or full.startswith(libs):
+        full = Path(name).resolve()
+        if any(full.is_relative_to(folder) for folder in skip):
             continue
         where = f" ({name}:{fr.lineno})"
     return where
