@@ -45,12 +45,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from washer.cont.settings import HMACH
+
 if TYPE_CHECKING:                  # annotations only; imported where used
     import scipy.sparse as sp
 
-#: AUTO's EQDF treats NCOL-th derivatives below this as zero ("small derivative" case:
+#: AUTO's EQDF treats NCOL-th derivatives below HMACH as zero ("small derivative" case:
 #: the mesh then stays uniform).
-EQDF_SMALL = 1e-7
+EQDF_SMALL = HMACH
 
 
 # --------------------------------------------------------------------------- weights

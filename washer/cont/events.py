@@ -36,6 +36,7 @@ import math
 import numpy as np
 
 from washer.cont.codes import Code, curve_code, type_name
+from washer.cont.settings import HMACH
 
 #: A zero estimated within this fraction of a step from a located special
 #: point lies on it: a second test vanishes there too (a transcritical BP is
@@ -272,9 +273,8 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     return pt, s_best
 
 
-#: AUTO's HMACH: LCSPAE / LCSPBV lengthen every secant and Muller correction by this
-#: fraction, so that a trial lands just beyond the estimated zero.
-HMACH = 1e-7
+# AUTO's HMACH (settings.HMACH): LCSPAE / LCSPBV lengthen every secant and Muller
+# correction by this fraction, so that a trial lands just beyond the estimated zero.
 
 
 def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:

@@ -56,10 +56,11 @@ from pathlib import Path
 import numpy as np
 
 from washer.cont.pvls import Orbit
+from washer.cont.settings import HMACH
 
 #: Relative finite-difference step for Jacobians: AUTO's HMACH = 1e-7, central
-#: differences with h = 1e-7 (1 + |u_i|) (ae.f90:FUNI).
-FD_STEP = 1e-7
+#: differences with h = HMACH (1 + |u_i|) (ae.f90:FUNI).
+FD_STEP = HMACH
 #: Stencils of at least this many points call a plain user func once with
 #: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
 #: overhead exceeds a small func's cost).

@@ -15,9 +15,15 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 
-#: AUTO perturbs DS, DSMAX by (1 + 1e-7) and DSMIN by 1 / (1 + 1e-7) (INIT1), so
+#: AUTO's HMACH, its one "machine" constant of relative size: the perturbation of DS,
+#: DSMIN, DSMAX (INIT1), the finite-difference steps HMACH (1 + |u|) (FUNI, BCNI, ICNI,
+#: FOPI), the lengthening of location corrections (LCSPAE, LCSPBV) and EQDF's threshold
+#: of a negligible derivative.
+HMACH = 1e-7
+
+#: AUTO perturbs DS, DSMAX by (1 + HMACH) and DSMIN by 1 / (1 + HMACH) (INIT1), so
 #: that b-files show 8.2000000200 rather than 8.2: we do the same.
-PERTURB = 1 + 1e-7
+PERTURB = 1 + HMACH
 
 
 #: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.

@@ -45,14 +45,10 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont import collocation as col
-from washer.cont.problem import Problem
+from washer.cont.problem import FD_STEP, Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
-
-#: Relative step of the finite differences of bcnd and icnd (AUTO's HMACH).
-FD_REL = 1e-7
-
 
 def _widen(P: np.ndarray, n: int) -> np.ndarray:
     """A stored profile (NTPL, k) with k <= n components, the others 0 (READBV)."""
@@ -253,7 +249,7 @@ class BoundaryValueProblem(CollocationBVP):
             return self.problem.bcnd(zz[:n], zz[n:2 * n], p, self.nbc)
         out = np.empty((self.nbc, len(z)))
         for j in range(len(z)):
-            h = FD_REL * (1 + abs(z[j]))
+            h = FD_STEP * (1 + abs(z[j]))
             zp, zm = z.copy(), z.copy()
             zp[j] += h
             zm[j] -= h
@@ -264,7 +260,7 @@ class BoundaryValueProblem(CollocationBVP):
         n, nn = self.ndim, len(U)
         Ju = np.empty((self.nint, nn, n))
         for l in range(n):
-            h = FD_REL * (1 + np.abs(U[:, l]))
+            h = FD_STEP * (1 + np.abs(U[:, l]))
             Up, Um = U.copy(), U.copy()
             Up[:, l] += h
             Um[:, l] -= h
@@ -274,7 +270,7 @@ class BoundaryValueProblem(CollocationBVP):
         Jp = np.empty((self.nint, self.nfpr))
         base = self.w_node @ self._ic_nodes(U, par)
         for k, i in enumerate(self._order):
-            h = FD_REL * (1 + abs(par[i - 1]))
+            h = FD_STEP * (1 + abs(par[i - 1]))
             pp = par.copy()
             pp[i - 1] += h
             Jp[:, k] = (self.w_node @ self._ic_nodes(U, pp) - base) / h

@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from washer.cont.codes import Code
-from washer.cont.problem import Problem
+from washer.cont.problem import FD_STEP, Problem
 from washer.cont.system import Stability, StartData, register
 from washer.cont.floquet import torus_resonance_tests
 from washer.cont.linalg import null_vectors, orient
@@ -479,7 +479,7 @@ class MapTorusLocus(_MapLocus, LocusSystem):
 
     def jacobian(self, x, frozen_second: bool = False):
         x = np.asarray(x, dtype=float)
-        h = 1e-7 * (1 + np.abs(x))
+        h = FD_STEP * (1 + np.abs(x))
         cols = []
         for j in range(len(x)):
             e = np.zeros(len(x))
