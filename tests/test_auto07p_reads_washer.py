@@ -1,6 +1,6 @@
 """AUTO-07p itself reading what washer writes: its Python parsers (parseB, parseS,
-parseBandS) read every b- and s-file of demos run by washer with the same labels and
-types, and AUTO-07p continues a locus from washer's s-records of it.
+parseBandS, parseD) read every b-, s- and d-file of demos run by washer as washer's readers
+do (tests/auto07p_parsers.py), and AUTO-07p continues a locus from washer's s-records of it.
 
 The s-record header's NPARI (field 13) is what AUTO-07p needs of an extended system's
 record: it reads the user's NPAR as NPAR - NPARI and finds the locus' internal
@@ -14,12 +14,12 @@ from pathlib import Path
 
 import pytest
 
+from auto07p_parsers import auto_python, check_folder
 from b_rows import branch_rows, header_blocks
-from washer.auto.files import read_b, read_s
+from washer.auto.files import read_s
 
 ROOT = Path(__file__).resolve().parents[1]
 DEMOS = Path(__file__).parent / "data" / "auto_demos"
-AUTO_PYTHON = Path("/usr/lib/auto-07p/python")
 HAVE_AUTO = shutil.which("auto-07p") is not None and shutil.which("gfortran") is not None
 
 pytestmark = pytest.mark.slow
@@ -55,62 +55,18 @@ def pen(tmp_path_factory):
     return _washer_demo(tmp_path_factory, "pen")
 
 
-def _auto_parse(folder: Path, names: list[str]) -> dict:
-    import json
-    code = ("import sys, json\nsys.path.insert(0, %r)\n"
-            "from auto import parseB, parseS, parseBandS\n"
-            "out = {}\n"
-            "for name in sys.argv[1:]:\n"
-            "    kind, base = name.split('.', 1)\n"
-            "    if kind == 'b':\n"
-            "        b = parseB.parseB(name)\n"
-            "        out[name] = [[b.getLabel(l)['TY name'], l] for l in b.getLabels()]\n"
-            "    else:\n"
-            "        s = parseS.parseS(name)\n"
-            "        out[name] = [[x['Type name'], x['Label'], x['NPARI'], x['NDIM'], x['IPS']]\n"
-            "                     for x in s]\n"
-            "        bs = parseBandS.parseBandS('b.' + base, name)\n"
-            "        out['bs.' + base] = [[p['TY name'], p['LAB']] for p in\n"
-            "                             [bs.getLabel(l) for l in bs.getLabels()]]\n"
-            "print(json.dumps(out))\n" % str(AUTO_PYTHON))
-    r = subprocess.run([sys.executable, "-c", code, *names], cwd=folder, capture_output=True,
-                       text=True, timeout=300)
-    assert r.returncode == 0, r.stderr[-3000:]
-    return json.loads(r.stdout)
-
-
-@pytest.mark.skipif(not AUTO_PYTHON.exists(), reason="AUTO-07p's Python tools not installed")
+@pytest.mark.skipif(auto_python() is None, reason="AUTO-07p's Python tools not installed")
 @pytest.mark.parametrize("demo", ["plp", "integral", "dd2", "pen"])
 def test_autos_parsers_read_every_file_washer_writes(demo, request):
-    """Every b- and s-file of the demo's runs (equilibria, cycles, the Hopf locus and the
-    fold locus of cycles of plp; the BVP and its fold locus of int; the map and its PD
+    """Every b-, s- and d-file of the demo's runs (equilibria, cycles, the Hopf locus and
+    the fold locus of cycles of plp; the BVP and its fold locus of int; the map and its PD
     locus of dd2; rotations, their branches and the PD locus of cycles of pen): AUTO's
-    parseB and
-    parseS list the labels and types washer's own readers find, parseBandS pairs them,
-    and parseS reads each record's NPARI, NDIM and IPS as washer's reader does. (The
-    records' values are not read: parseS's data reader fails under numpy 2 on AUTO's own
-    files too, comparing an array with [].)"""
+    parseB, parseS, parseBandS and parseD read what washer's own readers find there
+    (tests/auto07p_parsers.py says what is compared)."""
     folder = request.getfixturevalue(demo)
-    names = sorted(p.name for p in folder.iterdir()
-                   if p.name[:2] in ("b.", "s.") and p.stat().st_size > 0
-                   and not p.name.endswith("~"))
-    assert any(n.startswith("s.") for n in names)
-    got = _auto_parse(folder, names)
-    for name in names:
-        if name.startswith("b."):
-            ours = [[r.ty and _ty(r.ty), r.lab] for b in read_b(folder / name) for r in b
-                    if r.lab]
-            assert got[name] == ours, name
-        else:
-            recs = read_s(folder / name)
-            assert got[name] == [[r.ty, r.lab, r.npari, r.ndim_user, r.ips] for r in recs], name
-            if (folder / ("b." + name[2:])).exists():
-                assert [lab for _, lab in got["bs." + name[2:]]] == [r.lab for r in recs]
-
-
-def _ty(code: int) -> str:
-    from washer.cont.codes import type_name
-    return type_name(code)
+    assert any(p.name.startswith("s.") for p in folder.iterdir())
+    problems = check_folder(folder, DEMOS / folder.name)
+    assert not problems, f"{demo}:\n" + "\n".join(problems[:20])
 
 
 @pytest.mark.skipif(not HAVE_AUTO, reason="AUTO-07p (auto-07p and gfortran) is not installed")

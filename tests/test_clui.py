@@ -9,13 +9,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from auto07p_parsers import auto_python
 from b_rows import header_blocks
 from washer.auto import clui
 from washer.auto.diagram import Diagram, SolutionList
 from washer.auto.script import ScriptError, run_script, translate
 
 DEMOS = Path(__file__).parent / "data" / "auto_demos"
-AUTO_PYTHON = Path("/usr/lib/auto-07p/python")
+AUTO_PYTHON = auto_python()
 
 
 def test_python2_print_statements_become_calls():
@@ -262,7 +263,7 @@ def test_merge_joins_a_branch_computed_both_ways(tmp_path, monkeypatch):
     assert len(clui.merge(Diagram([fw, again]))) == 2
 
 
-@pytest.mark.skipif(not AUTO_PYTHON.exists(), reason="AUTO-07p's Python tools not installed")
+@pytest.mark.skipif(AUTO_PYTHON is None, reason="AUTO-07p's Python tools not installed")
 def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     """A demo run and saved by washer's CLUI (frc: run, save(r, name), clean) is read by
     AUTO-07p's own parseB/parseS with the same labels and types."""
