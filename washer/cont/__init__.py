@@ -1,0 +1,24 @@
+"""The continuation engine: AUTO-07p's algorithms on any equations, in memory first. It
+knows nothing of washing machines and reads and writes no b-, s- or d-files (washer.auto
+does: a run's files are sinks attached to it). Its modules:
+
+problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
+              finite-difference derivatives; user_files, compile, compiled, symbolic load
+              them from NAME.py, Fortran/C user files or sympy expressions
+settings      AUTO's constants and defaults (DEFAULTS), resolved into the frozen Settings
+codes, record AUTO's type codes; a written point (b-row and s-record) and FINDLB
+system        the contract of a continued system and the registry SYSTEMS; the systems
+              themselves are in systems/
+linalg, reduction, collocation, floquet, normal_form
+              the numerics the systems share: bordered factorisations, AUTO's condensation
+              of collocation matrices (compiled), collocation, Floquet multipliers and their
+              tests, the first Lyapunov coefficient
+newton, iterator, events
+              the one Newton loop, the pseudo-arclength iterator (predictor, corrector, step
+              control), test functions' sign changes and their location
+start, runner, branch
+              a run: its start from constants and restart records, labels, stops and branch
+              switching (AUTO's AUTOAE/AUTOBV), its result in memory (Branch)
+invariant_circle, pvls
+              invariant circles of maps; what a periodic run's pvls receives
+"""
