@@ -12,7 +12,7 @@ import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.auto.constants import Constants, read_constants
 from washer.auto.files import read_s
 from washer.cont.user_files import load_python_problem
-from washer.cont.runner import build, execute
+from washer.cont.runner import RunError, build, execute
 from washer.cont.runner import run as run_in_memory
 from washer.cont.settings import Settings
 from washer.cont.system import SYSTEMS, ContinuedSystem
@@ -181,6 +181,9 @@ def test_a_chain_of_runs_restarts_from_branches_in_memory(tmp_path):
         assert kind(other) == kind(hb_file)
         np.testing.assert_allclose(pars(other), pars(hb_file), rtol=1e-6)
     assert sorted(p.name for p in tmp_path.iterdir()) == written
+    # the engine reads no files: an s-file's path is read by washer.run or read_s
+    with pytest.raises(RunError, match="read_s"):
+        run_in_memory(c2, problem, restart=tmp_path / "s.eq")
 
 
 def test_the_engine_counts_its_work_and_the_d_file_shows_it(tmp_path):
