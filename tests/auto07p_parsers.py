@@ -78,7 +78,10 @@ for name in sys.argv[2:]:
             except IOError:
                 pass
         elif kind == "d":
-            out[name] = {"labels": [x["Label"] for x in parseD.parseD(name) if x["Label"]]}
+            d = parseD.parseD(name)
+            if len(d.data):
+                d[0]        # parses every block once (indexing item by item reparses all)
+            out[name] = {"labels": [x["Label"] for x in d.data if x["Label"]]}
     except Exception:
         out[name] = {"error": traceback.format_exc(limit=3)[-1500:]}
 with open(sys.argv[1], "w") as f:
