@@ -5,7 +5,9 @@ does: a run's files are sinks attached to it). Its modules:
 problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
               finite-difference derivatives; user_files, compile, compiled, symbolic load
               them from NAME.py, Fortran/C user files or sympy expressions
-settings      AUTO's constants and defaults (DEFAULTS), resolved into the frozen Settings
+constants, settings
+              a run's constants (every one with its default, checked as it is set) and
+              AUTO's defaults (DEFAULTS), resolved into the frozen Settings
 codes, record AUTO's type codes; a written point (b-row and s-record) and FINDLB
 system        the contract of a continued system and the registry SYSTEMS; the systems
               themselves are in systems/

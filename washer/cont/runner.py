@@ -297,7 +297,7 @@ def solve(c, problem, restart=None):
 
 
 def run(c, problem, restart=None, sinks=(), name: str = "") -> Branch:
-    """One run in memory: constants `c` (washer.auto.constants.Constants) and the
+    """One run in memory: constants `c` (washer.cont.constants.Constants) and the
     equations `problem` (washer.cont.problem.Problem), restarting at c['IRS'] from
     `restart` (a Branch, a Record or a list of Records), through
     `sinks` (none needed: nothing is written unless a sink writes it). Returns the

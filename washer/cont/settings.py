@@ -1,7 +1,7 @@
 """The run's constants, resolved for the engine: AUTO's names, checked values.
 
-`Settings.from_constants(c, ...)` maps an AUTO constants object (washer.auto.
-constants.Constants) onto this frozen record once, so that the engine never
+`Settings.from_constants(c, ...)` maps the run's constants (washer.cont.constants.
+Constants) onto this frozen record once, so that the engine never
 parses names or applies AUTO's internal redefinitions again (main.f90:INIT1,
 support.f90:INIT2: DS = 0 -> 0.1, DSMIN = 0 -> 1e-4 |DS|, the 1 + 1e-7
 perturbations, NPAR raised to 11 or 12, THL's default {11: 0} for IPS = 2).
@@ -40,7 +40,7 @@ UNSUPPORTED_IPS = {
 HUGE = 1.7976e308
 
 #: Every constant AUTO-07p knows, with its default (docs/auto.md section 1.2; main.f90:INIT):
-#: one table for the engine and the constants files (washer.auto.constants reads into it).
+#: one table for the engine and the constants files (washer.cont.constants.Constants).
 DEFAULTS: dict[str, object] = {
     "e": "", "s": "", "dat": "", "sv": "", "unames": {}, "parnames": {}, "U": {}, "PAR": {},
     "NDIM": 2, "IPS": 1, "IRS": 0, "ILP": 1, "ICP": [1], "NTST": 20, "NCOL": 4, "IAD": 3,

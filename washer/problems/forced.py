@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.auto.constants import Constants
+from washer.cont.constants import Constants
 from washer.cont import floquet
 from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory, solve

@@ -7,7 +7,7 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
-from washer.auto.constants import Constants
+from washer.cont.constants import Constants
 from washer.cont.problem import Problem
 from washer.cont.runner import RunError
 from washer.cont.user_files import load_user_problem

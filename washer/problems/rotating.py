@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.auto.constants import Constants
+from washer.cont.constants import Constants
 from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory
 from washer.machine import kernel, layout

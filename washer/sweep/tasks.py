@@ -160,11 +160,11 @@ NEUTRAL_MARGIN = 1e-9
 #: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
 CRIT_XTOL = 1e-9
 def critical_constants(name: str, lo: float, hi: float):
-    """The constants (washer.auto.constants.Constants, in memory) of the one-parameter
+    """The constants (washer.cont.constants.Constants, in memory) of the one-parameter
     search for the first HB: the averaged equilibrium (e='washer') continued in `name`
     from lo to hi (as auto_constants/c.washer); the other parameters come with the
     problem (run(..., params=...))."""
-    from washer.auto.constants import Constants
+    from washer.cont.constants import Constants
     from washer.machine.layout import PAR_NAMES
     span = hi - lo
     return Constants({

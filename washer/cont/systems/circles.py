@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from washer.auto.constants import Constants
+from washer.cont.constants import Constants
 from washer.cont import invariant_circle as ic
 from washer.cont.branch import Branch, Record
 from washer.cont.problem import ProblemError
