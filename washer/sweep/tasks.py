@@ -159,6 +159,8 @@ NEUTRAL_MARGIN = 1e-9
 #: Tolerance of the fallback root search, as a fraction of the range (the
 #: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
 CRIT_XTOL = 1e-9
+
+
 def critical_constants(name: str, lo: float, hi: float):
     """The constants (washer.cont.constants.Constants, in memory) of the one-parameter
     search for the first HB: the averaged equilibrium (e='washer') continued in `name`
