@@ -287,19 +287,23 @@ def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     assert eval(b_labels) == expect and eval(s_labels) == expect
 
 
-def test_headers_of_a_data_start_and_its_restarts_are_autos(tmp_path, monkeypatch):
-    """lor's script (a start from lor.dat, then restarts from its labels, sv='lor'): every
-    header block of b.lor is AUTO's byte for byte (autoref): the data start as AUTO's CLUI
-    runs it, IRS = 0 with e = 'lor' s = '/' dat = 'lor' (its marker of constants and data
-    read from one stream), the restarts with IRS = the label and e = 'lor' only."""
-    work = tmp_path / "lor"
-    shutil.copytree(DEMOS / "lor", work, ignore=shutil.ignore_patterns("autoref"))
+@pytest.mark.parametrize("demo, names", [("lor", ["b.lor"]), ("ffn", ["b.1", "b.2", "b.3"])])
+def test_cluis_headers_are_autos(tmp_path, monkeypatch, demo, names):
+    """Every header block of the demo's b-files is AUTO's byte for byte (autoref). lor: a
+    start from lor.dat, then restarts from its labels (sv='lor'): the data start as
+    AUTO's CLUI runs it, IRS = 0 with e = 'lor' s = '/' dat = 'lor' (its marker of
+    constants and data read from one stream), the restarts with IRS = the label and
+    e = 'lor' only. ffn: restarts with LAB=1 from r1('UZ1') (label 2), which AUTO's
+    CLUI relabels 1 (a data keyword of its solutions): IRS = 1; and the IPLT column
+    'L2-NORM x' by unames."""
+    work = tmp_path / demo
+    shutil.copytree(DEMOS / demo, work, ignore=shutil.ignore_patterns("autoref"))
     monkeypatch.chdir(work)
-    run_script("lor.auto")
-    ours = header_blocks(work / "b.lor")
-    ref = header_blocks(DEMOS / "lor" / "autoref" / "b.lor")
-    assert len(ours) == len(ref) == 3
-    assert ours == ref
+    run_script(f"{demo}.auto")
+    for name in names:
+        ours = header_blocks(work / name)
+        ref = header_blocks(DEMOS / demo / "autoref" / name)
+        assert ours and ours == ref, name
 
 
 #: IPLT of lrz's equilibria (NDIM 3, unames x, y, z) and the U(k) its column shows

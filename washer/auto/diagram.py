@@ -239,7 +239,9 @@ class Solution:
     # ------------------------------------------------------------ constants
     def load(self, **kw) -> "Solution":
         """A copy with constants updated (AUTO's AUTOSolution.load): kw 'constants' (an
-        AutoConstants) first, then the keywords; IRS becomes this solution's label."""
+        AutoConstants) first, then the keywords; IRS becomes this solution's label. A
+        keyword LAB also relabels the copy (AUTO's data keyword: run(r1('UZ1'), LAB=1)
+        restarts from a solution labelled 1, its header's IRS = 1)."""
         constants = kw.pop("constants", None)
         c = AutoConstants(self.c)
         oldirs = c.get("IRS")
@@ -248,9 +250,10 @@ class Solution:
         c.update(kw)
         if oldirs is not None and c.get("IRS") == 0:
             return Solution(None, c)
-        new = self._with()
-        if self.rec is not None and self.rec.lab != 0:
-            c["IRS"] = self.rec.lab
+        lab = kw.get("LAB")
+        new = self._with(lab=lab) if lab and self.rec is not None else self._with()
+        if new.rec is not None and new.rec.lab != 0:
+            c["IRS"] = new.rec.lab
         new.c = c
         return new
 
