@@ -98,6 +98,54 @@ def test_isw3_needs_a_branch_point(family, folder):
             ISW=3, ICP=[1, 2, 3, 11])
 
 
+FOLDBP = Path(__file__).parent / "data" / "foldbp"
+
+
+def test_closed_form_bp_at_a_fold():
+    """tests/data/foldbp: the circles p1 = (r^2 - 1)^2 fold at r = 1, p1 = 0 (g = g_r = 0),
+    where the exponent h of the multiplier across z = 0 vanishes: the branch point of
+    cycles is the fold's tip. h has a zero of order 3 there for p2 = 0, of order 1 for
+    p2 = 1 (so has the BP test, the regular in-plane determinant times 1 - exp(h T))."""
+    r, p1, p2 = sp.symbols("r p1 p2", real=True)
+    e = r ** 2 - 1
+    g, h = p1 - e ** 2, e * (e ** 2 + p2)
+    # circles (r > 0) where the family folds
+    folds = [s for s in sp.solve([g, sp.diff(g, r)], [r, p1], dict=True) if s[r] > 0]
+    assert folds == [{r: 1, p1: 0}]
+    assert h.subs(r, 1) == 0
+    for p2v, order in ((0, 3), (1, 1)):
+        hs = sp.expand(h.subs(p2, p2v).subs(r, 1 + sp.Symbol("d")))
+        low = min(sp.Poly(hs, sp.Symbol("d")).monoms())[0]
+        assert low == order
+
+
+@pytest.mark.parametrize("p2, order", [(0.0, 3), (1.0, 1)])
+def test_bp_of_cycles_at_a_fold_tip(tmp_path, p2, order):
+    """The BP of cycles at the fold's tip (r = 1, PAR(1) = 0, T = pi) is located and
+    labelled, its BP test vanishing to the order 1 or 3 (tfc's run 5 shows one of high
+    order). The Muller iteration alone only creeps towards the zero of order 3 (the
+    location ran out of ITMX = 12 and the point was only noted); the power law fitted to
+    its one-sided trials (events._power_secant) converges. Bounds: a simple zero is
+    located to 10 tolerances EPSS (1 + sqrt|DS DSMAX|) in arclength, and r moves by at
+    most the arclength; a zero of order 3 only to the cube root of the test's rounding
+    (~1e-12 of its values over a step of 0.1: ~1e-5), so r to 1e-4; at the fold PAR(1) =
+    (r^2 - 1)^2 is then 0 to 4 (r - 1)^2, and T = 2 pi / (1 + r^2) moves by pi (r - 1)."""
+    for f in FOLDBP.iterdir():
+        shutil.copy(f, tmp_path)
+    c = read_constants(tmp_path / "c.foldbp")
+    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    dr = 10 * tol if order == 1 else 1e-4
+    res = run(tmp_path / "c.foldbp", verbose=False, sv="fold", PAR={2: p2})
+    assert res.status == "ok"
+    assert [r.ty for r in res.rows if r.lab] == ["EP", "BP", "EP"]
+    (bp,) = [r for r in res.rows if r.ty == "BP"]
+    assert bp.par[1] == p2
+    assert bp.values[1] == pytest.approx(1.0, abs=dr)               # MAX U(1) = r
+    assert bp.values[0] == pytest.approx(0.0, abs=4 * dr ** 2 + 1e-12)
+    assert bp.par[10] == pytest.approx(math.pi, abs=math.pi * dr + 1e-9)
+    assert "Possible special point" not in (tmp_path / "d.fold").read_text()
+
+
 def test_isoperiodic_locus_on_autos_curve(tmp_path):
     """The tfc demo's run 6: the BP locus of cycles at fixed period (ICP = [3, 1, 6]: the
     orthogonality conditions against PAR(3) and PAR(1), not the period) from AUTO's own
@@ -418,7 +466,7 @@ def test_abcb_bp_two_points_past_the_tip_is_regular(tmp_path):
     as the branch two steps from the tip: that label is where AUTO's determinant, bordered
     by the previous step's direction, changes sign as that direction turns past the tip
     (+8e-5 at PT 84, -0.67 at the same point bordered by the step back, -0.34 at the
-    'located' point), not a zero. Ours labels no BP past the tip."""
+    'located' point), not a zero. Ours labels the singular tip BP, and no BP past it."""
     import gzip
 
     import numpy as np
@@ -461,4 +509,9 @@ def test_abcb_bp_two_points_past_the_tip_is_regular(tmp_path):
               IRS="HB1", IPS=2, ICP=[1, 11], IPLT=1)
     assert cyc.status == "ok"
     assert max(r.values[0] for r in cyc.rows) < recs[17].par[0] + 1e-6
-    assert not [r for r in cyc.rows if r.lab and r.ty == "BP"]
+    # the singular tip itself is our one BP (its test has a zero of high order there,
+    # located by the power law through the one-sided trials; the fold's location, the
+    # tangent flipping there, ends without converging), at AUTO's LP to within AUTO's
+    # location tolerance 2 EPSS (1 + sqrt|DS DSMAX|) = 2.1e-6 of PAR(1); none past it
+    bps = [r for r in cyc.rows if r.lab and r.ty == "BP"]
+    assert len(bps) == 1 and bps[0].values[0] == pytest.approx(recs[17].par[0], abs=2.1e-6)

@@ -237,26 +237,62 @@ def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     assert sp.x[0] == pytest.approx(0.1, abs=1e-8)
 
 
-def test_a_zero_of_high_order_is_located_where_the_test_has_vanished():
+@pytest.mark.parametrize("order", [3, 5, 1.5])
+def test_a_zero_of_high_order_is_located_to_tolerance(order):
     """At a zero of high order Muller's iteration only creeps (tfc's iso-periodic family:
-    a pitchfork of cycles at the tip of a fold, its BP test ~ the cube of the distance):
-    q(s) = (s - 0.3)^3 is not located to the tolerance within ITMX = 14, but its last
-    trial's q has fallen below ZERO_FACTOR times the step's end values, which places it
-    within (ZERO_FACTOR max|q|)^(1/3) of the zero: located there, not dropped."""
+    a branch point of cycles at the tip of a fold, its BP test ~ the cube of the
+    distance): q(s) = (s - 0.3)^m (odd in s - 0.3, m = 3, 5 and 1.5). Its trials on one
+    side are fitted by the power law through the last three, which converges: located to
+    the tolerance EPSS (1 + sqrt|DS DSMAX|) within ITMX = 14 without any zero threshold
+    (ZERO_FACTOR off); with the fit off (ONE_SIDED out of reach) the location runs out of
+    ITMX, and the d-file's note says what was tried and where it got to."""
     from types import SimpleNamespace
 
     import washer.cont.events as events
     settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=14, DSMIN=1e-12)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
 
-    def cubic(s):
-        return ("point", s), (s - 0.3) ** 3
-    q0, q1 = cubic(0.0)[1], cubic(1.0)[1]
-    pt, s = events.locate(cubic, "BP", q0, q1, 1.0, settings)
-    assert abs(s - 0.3) <= (events.ZERO_FACTOR * max(abs(q0), abs(q1))) ** (1 / 3)
-    saved = events.ZERO_FACTOR
+    def power(s):
+        return ("point", s), math.copysign(abs(s - 0.3) ** order, s - 0.3)
+    q0, q1 = power(0.0)[1], power(1.0)[1]
+    saved = events.ZERO_FACTOR, events.ONE_SIDED
     try:
-        events.ZERO_FACTOR = 0.0              # the rule off: the location runs out of ITMX
-        with pytest.raises(events.LocationFailed, match="ITMX"):
-            events.locate(cubic, "BP", q0, q1, 1.0, settings)
+        events.ZERO_FACTOR = 0.0
+        pt, s = events.locate(power, "BP", q0, q1, 1.0, settings)
+        assert abs(s - 0.3) < tol and pt == ("point", s)
+        if order == 1.5:
+            return                    # Muller alone gets there too (order < 2)
+        events.ONE_SIDED = 10 ** 6
+        with pytest.raises(events.LocationFailed,
+                           match=r"ITMX = 14 .*15 trials, the last at s = 0\.2"):
+            events.locate(power, "BP", q0, q1, 1.0, settings)
     finally:
-        events.ZERO_FACTOR = saved
+        events.ZERO_FACTOR, events.ONE_SIDED = saved
+
+
+def test_a_zero_far_inside_a_flat_test_is_bisected_to():
+    """r3b's vertical family: the BP test of cycles goes from -4e-22 to +6e-20 over the
+    step, flat near the previous point; here q = -1 + 140 (exp(14 s) - 1) / (exp(14) - 1)
+    (the same ratio of its end values), zero at s* = ln(1 + (exp(14) - 1) / 140) / 14.
+    Muller's parabola and the Illinois step creep from the flat end, their steps growing;
+    after three growing steps on one side the bracket is bisected (Brent's safeguard), and
+    the zero is located within ITMX = 10 (AUTO's LCSPBV takes up to ITMX + 1 trials); it
+    is not without the bisection."""
+    from types import SimpleNamespace
+
+    import washer.cont.events as events
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=10, DSMIN=1e-12)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
+
+    def flat(s):
+        return ("point", s), -1 + 140 * math.expm1(14 * s) / math.expm1(14)
+    q0, q1 = flat(0.0)[1], flat(1.0)[1]
+    _, s = events.locate(flat, "BP", q0, q1, 1.0, settings)
+    assert abs(s - math.log1p(math.expm1(14) / 140) / 14) < tol
+    saved = events._widening
+    try:
+        events._widening = lambda streak: False
+        with pytest.raises(events.LocationFailed, match="ITMX"):
+            events.locate(flat, "BP", q0, q1, 1.0, settings)
+    finally:
+        events._widening = saved

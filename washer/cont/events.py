@@ -14,10 +14,17 @@ tolerance below of the step's end, the step's end itself is the special point, w
 no trial (`at_step_end`). Otherwise trial points are continuation steps of arclength s from
 the previous point; the first trial is the secant estimate, then Muller's
 method (a parabola through the last three (s, q) pairs) kept inside the
-bracket, up to ITMX iterations. A trial step that does not converge is retried
-at s halved back towards the last converged trial, down to DSMIN, as AUTO's
-STEPBV halves the step of its location (the bracket is kept). Converged when the last change of s satisfies
-|delta s| / (1 + sqrt(|DS DSMAX|)) < EPSS: that is the location tolerance in
+bracket, up to ITMX + 1 trials as AUTO's LCSPAE / LCSPBV (DO NITSP1 = 0, ITMX).
+Two safeguards where Muller only creeps from one side of the zero: a zero of
+high order (a branch point at a fold's tip: q ~ (s - s*)^3) is approached by
+the power law fitted to the last three one-sided trials (`_power_secant`), and
+a zero far inside a bracket over which the test is flat at one end by a
+bisection once the one-sided steps grow (`_widening`). A trial step that does
+not converge is retried at s halved back towards the last converged trial, down
+to DSMIN, as AUTO's STEPBV halves the step of its location (the bracket is
+kept). Converged when the last change of s satisfies
+|delta s| / (1 + sqrt(|DS DSMAX|)) < EPSS (and the bracket is within 10 times
+that, or the change before was below it too): that is the location tolerance in
 arclength (parameters are located to about that times the parameter's rate
 along the branch; in practice much better, since Muller converges with order
 ~1.84 and the last step is below the tolerance). A location that does not
@@ -72,10 +79,9 @@ def _priority(key) -> int:
 JUMP_FACTOR = 1e3
 
 #: A location that runs out of ITMX iterations with its last trial's test this far below
-#: its values at the ends of the step has found the zero: at a zero of high order
-#: Muller's iteration only creeps (tfc's iso-periodic family: a pitchfork of cycles at
-#: the tip of a fold, where the BP test goes as the cube of the distance and each trial
-#: gains a factor 3, from 1e-5 to 3e-11 in ITMX = 12).
+#: its values at the ends of the step has found the zero: at a zero of high order the
+#: test's rounding (~1e-12 of its values over the step) limits the location to its m-th
+#: root, and the trials may wander there without meeting the tolerance in arclength.
 ZERO_FACTOR = 1e-6
 
 #: A located "zero" whose test value exceeds both bracketing values in
@@ -121,6 +127,68 @@ def _muller(s: list, q: list) -> float | None:
     if den == 0:
         return None
     return s2 - 2 * q2 / den
+
+
+#: Trials (with the step's end on their side) in a row on one side of the zero after
+#: which the location fits a power law to the last three (`_power_secant`): Muller's
+#: parabola has then had three tries and is creeping.
+ONE_SIDED = 4
+
+#: The highest order of a zero `_power_secant` fits.
+MAX_ORDER = 16.0
+
+
+def _widening(streak: list) -> bool:
+    """Whether the last three trials on one side of the zero moved by growing steps
+    (each at least the one before): Muller's parabola then creeps towards a zero far
+    inside a bracket over which the test is far from quadratic (r3b's vertical family:
+    the BP test of cycles goes from -4e-22 to +6e-20 over the step and is flat near the
+    previous point, the trials double their distance from it six times). A bisection of
+    the bracket then halves it at once (the safeguard of Brent's method)."""
+    if len(streak) < 4:
+        return False
+    d = [streak[i + 1][0] - streak[i][0] for i in (-4, -3, -2)]
+    return d[0] * d[1] > 0 and d[1] * d[2] > 0 and abs(d[1]) >= abs(d[0]) and \
+        abs(d[2]) >= abs(d[1])
+
+
+def _power_secant(s: list, q: list) -> float | None:
+    """The zero s* of the power law q = c |s - s*|^m (sign of s - s*) through three trials
+    on one side of it, or None where there is none with 1 <= m <= MAX_ORDER.
+
+    At a zero of order m > 1 (a branch point at the tip of a fold: tfc's iso-periodic
+    cycles, whose BP test goes as the cube of the distance) the secant and Muller
+    iterations lose their superlinear convergence: the trials creep towards s* from one
+    side, their steps shrinking by a steady ratio (about 0.71 for a cube; from a step of
+    1e-2 down to EPSS = 1e-7 would take some 35 trials, more than ITMX). q^(1/m) has a
+    simple zero there: m is such that the three points (s_i, q_i^(1/m)) lie on one line
+    (bisection on m), s* is that line's zero. Exact for a pure power law, so that the
+    iteration converges superlinearly at a zero of any order; at a simple zero m -> 1
+    and this is the secant."""
+    def g(v, m):
+        return math.copysign(abs(v) ** (1 / m), v)
+
+    def bend(m):
+        g0, g1, g2 = (g(v, m) for v in q)
+        return (g2 - g1) / (s[2] - s[1]) - (g1 - g0) / (s[1] - s[0])
+    if len(set(s)) < 3 or 0 in q:
+        return None
+    a, b = 1.0, MAX_ORDER
+    fa, fb = bend(a), bend(b)
+    if not (np.isfinite(fa) and np.isfinite(fb)) or fa * fb > 0:
+        return None
+    for _ in range(60):
+        mid = (a + b) / 2
+        fm = bend(mid)
+        if fm == 0:
+            a = b = mid
+            break
+        a, fa, b, fb = (a, fa, mid, fm) if fa * fm < 0 else (mid, fm, b, fb)
+    m = (a + b) / 2
+    g1, g2 = g(q[1], m), g(q[2], m)
+    if g1 == g2:
+        return None
+    return s[2] - g2 * (s[2] - s[1]) / (g2 - g1)
 
 
 def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
@@ -182,7 +250,10 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     best = last = auto_nit = None
     zero = False
     side = 0                  # which end moved last (Illinois: halve the stale end)
-    for _ in range(max(settings.ITMX, 1)):
+    streak = [(s_cur, q_cur)]  # consecutive trials (s, q) on one side of the zero
+    converged = fitted = False  # fitted: a trial's s came from `_power_secant`
+    # AUTO's LCSPAE and LCSPBV take up to ITMX + 1 trials (DO NITSP1 = 0, ITMX).
+    for _ in range(max(settings.ITMX, 0) + 1):
         try:
             if not from_last and last is not None and position is not None:
                 try:
@@ -215,6 +286,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
         if q == 0:
             best = (pt, s_new, q)
             break
+        streak = streak + [(s_new, q)] if (q < 0) == (streak[0][1] < 0) else [(s_new, q)]
         if (q < 0) == (qlo < 0):
             lo, qlo = s_new, q
             raw["lo"] = q
@@ -228,18 +300,30 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
                 qlo /= 2
             side = 1
         last = (pt, s_new, q)
-        converged = abs(s_new - s_last) < tol
+        converged, was_converged = abs(s_new - s_last) < tol, converged
         if converged:
             best = (pt, s_new, q)
-            if abs(hi - lo) < 10 * tol:
+            if abs(hi - lo) < 10 * tol or (was_converged and fitted):
+                # the bracket is closed, or, at a zero of high order approached from one
+                # side (the power law fitted once), two corrections in a row were below
+                # the tolerance: the bracket's far end stays where it was
                 break
         ss.append(s_new)
         qs.append(q)
         s_last = s_new
-        cand = _muller(ss, qs)
+        cand, fit = _muller(ss, qs), None
+        if len(streak) >= ONE_SIDED:
+            # trials creeping from one side: the zero of the power law through the last
+            # three (`_power_secant`)
+            s3, q3 = zip(*streak[-3:])
+            fit = _power_secant(list(s3), list(q3))
+            cand = cand if fit is None else fit
         a, b = min(lo, hi), max(lo, hi)
-        if cand is None or not (a < cand < b):
+        if _widening(streak):
+            cand = (lo + hi) / 2                          # bisection (`_widening`)
+        elif cand is None or not (a < cand < b):
             cand = hi - qhi * (hi - lo) / (qhi - qlo)     # Illinois regula falsi
+        fitted = fitted or (fit is not None and cand == fit)
         if auto_nit is None and abs(cand - s_new) < tol:
             # AUTO's LCSPBV would stop here (the next correction is below the
             # tolerance): ADPTDS then sees this trial's Newton count.
@@ -249,7 +333,11 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             abs(last[2]) <= ZERO_FACTOR * max(abs(q_prev), abs(q_cur)):
         best, zero = last, True        # crept onto a zero of high order: it is there
     if best is None:
-        raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations")
+        tried = f"; {len(ss) - 2} trials, the last at s = {last[1]:.6g} with test " \
+            f"{last[2]:.3g}" if last is not None else ""
+        raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations (the "
+                             f"step: s = 0 to {s_cur:.6g}, test {q_prev:.3g} to {q_cur:.3g}"
+                             f"{tried}; bracket [{min(lo, hi):.6g}, {max(lo, hi):.6g}])")
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
