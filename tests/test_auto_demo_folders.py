@@ -27,21 +27,19 @@ FAST = {"frc", "lrz", "lor", "chu", "opt"}
 #: Why a demo does not match AUTO yet (README's table has the detail).
 EXPECTED_FAIL = {
     "abcb": "20 of 22: at run 2's tip PAR(1) = 0.3462, where fold and branch point coincide, "
-            "our fold location does not converge (only noted); AUTO's BP two points later is "
-            "not a branch point (shooting, tests/test_cycle_branch_point.py)",
+            "AUTO labels LP, we BP (our fold location does not converge there); AUTO's BP two "
+            "points later is not a branch point (shooting, tests/test_cycle_branch_point.py)",
     "lcbp": "7 of 8: where the generic BP locus meets u = 0 at PAR(1) = 0 (circles of radius "
             "PAR(1) -> 0), AUTO labels the BP, ours turns back there and labels an LP",
-    "tfc": "12 of 18: run 5's first BP of cycles, a fold's tip (a zero of third order), is "
-           "only noted: its location ends ITMX just above the zero threshold, so run 6 cannot "
-           "start from BP2; where the BP locus meets a fold AUTO's forward run labels BP a "
-           "little earlier, ours LP",
+    "tfc": "15 of 18: run 5's first BP of cycles is the tip of a fold (a zero of third "
+           "order): ours there, AUTO's where its location stopped on a jump of its test; the "
+           "BP locus ends at that tip, AUTO's end 0.01 before it; where the BP locus meets a "
+           "fold AUTO's forward run labels BP a little earlier, ours LP",
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
     "enz": "10 of 11: where the branch from the BP passes the other pitchfork (a fold and a "
            "branch point at one point, by symmetry) AUTO's fold test, noise there, meets its "
            "tolerance 14 tolerances early: AUTO labels LP and BP one step apart, we the BP",
-    "r3b": "6 of 7: the vertical family's BP of cycles (a test far from linear over the "
-           "step) is only noted: its location ends ITMX just above the zero threshold",
     "tor": "23 of 24: a symmetry-breaking BP of cycles at PAR(1) = -0.787593 (b.1; shooting "
            "confirms it) that AUTO only notes is labelled by us and takes one step, so AUTO's "
            "last LP (PT 124) is our EP at NMX",
