@@ -137,8 +137,9 @@ def period_slope(rows, k: int, k_per: int, k_l2: int | None) -> float:
     over the steps to the rows before and after it, each at least the step's mean |dT/ds|
     (the arclength of a step is at least that root: PAR(ICP(1)) has weight 1 in it, and the
     L2 norm changes by at most the norm of the change). 0 without an L2-NORM column (then
-    the period is compared at PERIOD_RTOL only); inf where a neighbouring row has the same
-    PAR and L2 norm but another period (nothing in the arclength then bounds the period)."""
+    the period is compared at PERIOD_RTOL only). A neighbouring row with the same printed
+    PAR and L2 norm bounds nothing and is left out (an infinite rate would let any period
+    pass)."""
     if k_l2 is None:
         return 0.0
     best = 0.0
@@ -151,8 +152,8 @@ def period_slope(rows, k: int, k_per: int, k_l2: int | None) -> float:
             continue
         dt = abs(r[k_per] - q[k_per])
         ds = math.hypot(r[0] - q[0], r[k_l2] - q[k_l2])
-        if dt > 0:
-            best = max(best, dt / ds if ds > 0 else math.inf)
+        if dt > 0 and ds > 0:
+            best = max(best, dt / ds)
     return best
 
 

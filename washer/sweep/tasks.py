@@ -156,16 +156,18 @@ CRIT_STEPS = 40
 #: and its real part is round-off, |margin| ~ 1e-15; the smallest true margins
 #: seen near there are ~1e-7.
 NEUTRAL_MARGIN = 1e-9
-#: Tolerance of the fallback root search, as a fraction of the range (the
-#: engine locates HB points to ~1e-8 relative; 1e-9 of the range matches it).
+#: Tolerance of the critical value, as a fraction of the range: the engine's HB
+#: location (its EPSS, in arclength, which PAR(ICP(1)) enters with weight 1: AUTO's
+#: location accepts a step's end whose secant correction is below it, so c.washer's
+#: EPSS = 1e-5 would leave ~1e-5 of C_p) and the fallback root search.
 CRIT_XTOL = 1e-9
 
 
 def critical_constants(name: str, lo: float, hi: float):
     """The constants (washer.cont.constants.Constants, in memory) of the one-parameter
     search for the first HB: the averaged equilibrium (e='washer') continued in `name`
-    from lo to hi (as auto_constants/c.washer); the other parameters come with the
-    problem (run(..., params=...))."""
+    from lo to hi (as auto_constants/c.washer, but located to CRIT_XTOL of the range);
+    the other parameters come with the problem (run(..., params=...))."""
     from washer.cont.constants import Constants
     from washer.machine.layout import PAR_NAMES
     span = hi - lo
@@ -173,7 +175,7 @@ def critical_constants(name: str, lo: float, hi: float):
         "e": "washer", "parnames": dict(PAR_NAMES), "NDIM": 12, "IPS": 1, "IRS": 0,
         "ILP": 1, "ICP": [name], "ISP": 2, "ISW": 1, "MXBF": 0, "NMX": 10 * CRIT_STEPS,
         "NPR": 0, "ITMX": 8, "ITNW": 7, "JAC": 1, "EPSL": 1e-07, "EPSU": 1e-07,
-        "EPSS": 1e-05, "DS": span / (5 * CRIT_STEPS), "DSMIN": span * 1e-6,
+        "EPSS": CRIT_XTOL * span, "DS": span / (5 * CRIT_STEPS), "DSMIN": span * 1e-6,
         "DSMAX": span / CRIT_STEPS, "IADS": 1, "NPAR": 17, "PAR": {name: float(lo)},
         "UZSTOP": {name: float(hi)}}, source=f"<critical search in {name}>")
 
