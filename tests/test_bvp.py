@@ -558,6 +558,61 @@ def test_isw_minus_one_at_a_regular_point_continues_the_branch(tmp_path):
     assert all(abs(row.par[0]) <= 1e-9 for row in r2.rows)
 
 
+STIFF = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[1] * u[0], -par[1] * u[1]])
+def stpnt(u, par, t=0.0):
+    par[0], par[1] = 0.5, 40.0
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u1[0] - par[0] * np.exp(par[1]) * u0[0], u0[1]])
+'''
+
+
+def test_branch_point_test_of_a_stiff_bvp():
+    """u1' = T u1, u2' = -T u2 with T = 40, u1(1) = c e^T u1(0), u2(0) = 0: the trivial
+    branch u = 0 in c has one BP, at c = 1 (where u1 = e^(T t) u1(0) solves it), up to the
+    collocation's growth factor over the 40 intervals (the (4, 4) Pade approximant of
+    e^(hT) at hT = 1, 2e-8 relative per interval). Eliminating the interior onto u(0) is
+    single shooting over growth e^40 (and decay e^-40): the reduced matrix's rounding,
+    eps |M_RI| |X| ~ 1e2, exceeds its smallest singular value, so the test's sign comes
+    from the sparse factorisations of the bordered Jacobian and its interior block."""
+    import tempfile
+    from washer.cont.systems import general_bvp
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "stiff.py").write_text(STIFF)
+        (tmp / "c.stiff").write_text("NDIM=2, IPS=4, ICP=[1], NBC=2, NINT=0, NTST=40, NCOL=4, "
+                                     "ILP=0, ISP=2, NMX=50, DS=0.1, DSMAX=0.1, NPAR=2, "
+                                     "UZSTOP={1: 1.5}\n")
+        seen = []
+        orig = general_bvp.BoundaryValueProblem._schur_unreliable
+
+        def spy(self, *a):
+            seen.append(orig(self, *a))
+            return seen[-1]
+        general_bvp.BoundaryValueProblem._schur_unreliable = spy
+        try:
+            r = run(tmp / "c.stiff", e="stiff", sv="stiff", verbose=False)
+        finally:
+            general_bvp.BoundaryValueProblem._schur_unreliable = orig
+    assert r.status == "ok" and [s.ty for s in r.specials] == ["EP", "BP", "UZ"]
+    assert r("BP1").par[0] == pytest.approx(1.0, abs=1e-5)
+    assert seen and all(seen)
+
+
+def test_permutation_sign():
+    """The sign of a permutation (the factorisations' row and column orders) is the
+    determinant of its matrix."""
+    from washer.cont.systems.general_bvp import _perm_sign
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 5, 12):
+        for _ in range(5):
+            p = rng.permutation(n)
+            assert _perm_sign(p) == round(np.linalg.det(np.eye(n)[p]))
+
+
 @pytest.mark.slow
 def test_man_demo(tmp_path):
     """man: the Lorenz stable manifold grown as orbits from a circle around the origin

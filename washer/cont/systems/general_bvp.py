@@ -50,6 +50,23 @@ from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
 
+def _perm_sign(p: np.ndarray) -> int:
+    """The sign of the permutation i -> p[i] (by its cycles)."""
+    p = np.asarray(p)
+    seen = np.zeros(len(p), bool)
+    sign = 1
+    for i in range(len(p)):
+        if not seen[i]:
+            j, length = i, 0
+            while not seen[j]:
+                seen[j] = True
+                j = p[j]
+                length += 1
+            if length % 2 == 0:
+                sign = -sign
+    return sign
+
+
 def _widen(P: np.ndarray, n: int) -> np.ndarray:
     """A stored profile (NTPL, k) with k <= n components, the others 0 (READBV)."""
     if P.shape[1] >= n:
@@ -399,13 +416,49 @@ class BoundaryValueProblem(CollocationBVP):
         sign. (Scaled by the reduced matrix's own norm, as for cycles, it underflows on
         pcl's trivial branch, where the decoupled Floquet block makes it ~1e-300 long
         before it changes sign at AUTO's BP, mu = -9.2836.)"""
-        Sc = self.reduce(J, self.weights * tangent)[0]
+        border = self.weights * tangent
+        Sc, X = self.reduce(J, border)
         sign, logdet = np.linalg.slogdet(Sc)
+        if self._schur_unreliable(J, border, Sc, X):
+            sign, logdet = self._det_ratio(J, border)
         if sign == 0 or not np.isfinite(logdet):
             return 0.0
         if getattr(self, "_bp_log0", None) is None:
             self._bp_log0 = logdet
         return float(sign * math.exp(min(max(logdet - self._bp_log0, -700.0), 700.0)))
+
+    def _schur_unreliable(self, J, border, Sc, X) -> bool:
+        """Whether the computed reduced matrix Sc = M_RS - M_RI X (X = M_II^-1 M_IS, the
+        interior eliminated onto u(0), which is single shooting over [0, 1]) is too
+        inexact for the sign of its determinant: its rounding, eps |M_RI| |X|, reaches
+        its smallest singular value. On a stiff profile X grows as the fundamental
+        solution (pci's connection, exp(lambda T+) with T+ ~ 1e3: the computed det(Sc)
+        then changes sign from step to step while det M and det M_II do not)."""
+        M = self.coll.bordered(J, border).tocsr()
+        nc, n, nu = self.coll.n_coll, self.n_comp, self.coll.n_u
+        m_ri = float(np.sqrt((M[nc:, n:nu].data ** 2).sum())) if M[nc:, n:nu].nnz else 0.0
+        err = np.finfo(float).eps * m_ri * float(np.linalg.norm(X))
+        smin = float(np.linalg.svd(Sc, compute_uv=False)[-1]) if Sc.size else 0.0
+        return not err < smin
+
+    def _det_ratio(self, J, border) -> tuple[float, float]:
+        """(sign, log|.|) of det M / det M_II from sparse LU factorisations of the bordered
+        Jacobian M and of its interior block M_II (each backward stable, as AUTO's
+        FNBPBV takes the determinant of its condensed system over det P1 rather than
+        forming the reduced matrix): the same quotient as det(Sc)."""
+        import scipy.sparse.linalg as spla
+        M = self.coll.bordered(J, border).tocsc()
+        nc, n, nu = self.coll.n_coll, self.n_comp, self.coll.n_u
+        out_sign, out_log = 1.0, 0.0
+        for A, power in ((M, 1), (M[:nc][:, n:nu].tocsc(), -1)):
+            try:
+                lu = spla.splu(A, permc_spec="COLAMD")
+            except RuntimeError:              # exactly singular
+                return (0.0, -np.inf) if power == 1 else (1.0, np.inf)
+            d = lu.U.diagonal()
+            out_sign *= _perm_sign(lu.perm_r) * _perm_sign(lu.perm_c) * float(np.prod(np.sign(d)))
+            out_log += power * float(np.sum(np.log(np.abs(d))))
+        return out_sign, out_log
 
     # ------------------------------------------------------------------ switching
     def directions(self, x, tangent, code) -> list:
