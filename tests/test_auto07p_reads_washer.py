@@ -55,12 +55,23 @@ def pen(tmp_path_factory):
     return _washer_demo(tmp_path_factory, "pen")
 
 
+@pytest.fixture(scope="module")
+def attr(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "attr")
+
+
+@pytest.fixture(scope="module")
+def pci(tmp_path_factory):
+    return _washer_demo(tmp_path_factory, "pci")
+
+
 @pytest.mark.skipif(auto_python() is None, reason="AUTO-07p's Python tools not installed")
-@pytest.mark.parametrize("demo", ["plp", "integral", "dd2", "pen"])
+@pytest.mark.parametrize("demo", ["plp", "integral", "dd2", "pen", "attr", "pci"])
 def test_autos_parsers_read_every_file_washer_writes(demo, request):
     """Every b-, s- and d-file of the demo's runs (equilibria, cycles, the Hopf locus and
     the fold locus of cycles of plp; the BVP and its fold locus of int; the map and its PD
-    locus of dd2; rotations, their branches and the PD locus of cycles of pen): AUTO's
+    locus of dd2; rotations, their branches and the PD locus of cycles of pen; attr's
+    merged BVP branches; pci's connections of NDIM = 12, NBC = 17, NINT = 2): AUTO's
     parseB, parseS, parseBandS and parseD read what washer's own readers find there
     (tests/auto07p_parsers.py says what is compared)."""
     folder = request.getfixturevalue(demo)
