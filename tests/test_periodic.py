@@ -707,3 +707,40 @@ def test_located_orbits_agree_with_autos_profiles(tmp_path, demo, script):
     ours = next(r for r in read_s(tmp_path / "s.po") if r.ty == script)
     auto = next(r for r in read_s(RECORDS / f"s.{demo}") if r.ty in ("LP", "PD"))
     assert _aligned_difference(ours, auto) < 1e-5
+
+
+LW_FILE = '''
+import numpy as np
+def func(u, par):
+    x, y = u[0], u[1]
+    mu, om, b, c = par[0], par[1], par[2], par[3]
+    r2 = x * x + y * y
+    th = om + b * r2 + c * x
+    return np.array([x * (mu - r2) - y * th, y * (mu - r2) + x * th])
+def stpnt(u, par, t=0.0):
+    par[0:4] = [-0.5, 1.0, 0.5, 0.8]
+    u[:] = 0.0
+'''
+
+
+def test_isw_minus_one_at_a_regular_orbit_continues_the_family(tmp_path):
+    """Periodic orbits restarted with ISW = -1 at a label that is not a BP or PD (AUTO's
+    CNRLBV takes IPERP = 1 whenever IRS != 0 and ISW < 0: STDRBV's null vector, the one
+    family through a regular orbit) go on along the family instead of stopping the run:
+    lw's cycles from their UZ at mu = 0.1 to the UZSTOP at mu = 0.3, every point on the
+    closed-form family r^2 = mu with the closed-form period."""
+    from washer.run import run
+    (tmp_path / "lwf.py").write_text(LW_FILE)
+    (tmp_path / "c.lwf").write_text("NDIM=2, IPS=1, ICP=[1], NMX=40, DS=0.05, DSMAX=0.1, "
+                                    "NPAR=12, UZSTOP={1: 0.2}\n")
+    r1 = run(tmp_path / "c.lwf", e="lwf", sv="eq", verbose=False)
+    r2 = run(tmp_path / "c.lwf", e="lwf", s="eq", IRS=r1("HB1").lab, IPS=2, ICP=[1, 11],
+             NTST=20, NCOL=4, UZR={1: 0.1}, UZSTOP={1: 0.15}, sv="po", verbose=False)
+    r3 = run(tmp_path / "c.lwf", e="lwf", s="po", IRS=r2("UZ1").lab, IPS=2, ICP=[1, 11],
+             ISW=-1, NTST=20, NCOL=4, UZR={}, UZSTOP={1: 0.3}, sv="po2", verbose=False)
+    assert r3.status == "ok" and r3.specials[-1].ty == "UZ"
+    assert r3.specials[-1].par[0] == pytest.approx(0.3)
+    for row in r3.rows[1:]:
+        p = row.par
+        assert p[0] > 0.1 - 1e-9
+        assert p[10] == pytest.approx(lw_period(p), rel=1e-6)

@@ -151,10 +151,13 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # A problem that supplies its period map has its periodic orbits by shooting
     # (washer.cont.systems.shooting), from its stpnt or a record of such a run.
     shooting = s.IPS == 2 and problem.has_flow
-    # A general BVP (AUTO's CNRLBV: IPERP = 1 whenever IRS != 0 and ISW < 0) takes ISW = -1
-    # at any other point as a start along the null vector of its Jacobian (STDRBV's
-    # orientation): where the null space is one-dimensional that is the branch itself.
-    if s.ISW == -1 and kind not in ("BP", "PD") and not (s.IPS == 4 and rec is not None):
+    # A general BVP or a stored periodic orbit (AUTO's CNRLBV: IPERP = 1 whenever IRS != 0
+    # and ISW < 0) takes ISW = -1 at any other point as a start along the null vector of
+    # its Jacobian (STDRBV's orientation): where the null space is one-dimensional that is
+    # the branch itself.
+    # Periodic orbits restarted from a stored orbit run by CNRLBV as well.
+    stored_orbit = rec is not None and (s.IPS == 4 or (s.IPS == 2 and np.ndim(rec.u) == 2))
+    if s.ISW == -1 and kind not in ("BP", "PD") and not stored_orbit:
         raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
                          f"{kind or 'a regular point'} (IRS={irs!r})")
     if s.IPS == 2 and rec is not None and np.ndim(rec.u) == 1 and kind != "HB" \

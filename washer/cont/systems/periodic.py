@@ -213,8 +213,12 @@ class PeriodicOrbits(CollocationBVP):
         if ud is not None and len(rldot) >= 2:
             old = np.r_[ud.ravel(), rldot[1], rldot[0]]
         t0 = None
-        if self.isw == -1:
+        if self.isw == -1 and self.kind in ("BP", "PD"):
             t0 = self._switch_direction(x0, old)
+        elif self.isw == -1:
+            # CNRLBV's IPERP = 1 at any other label: STDRBV's null vector (computed by
+            # the start), the one family through the orbit
+            t0 = None
         elif old is not None and self._same_free(rec):
             nrm = math.sqrt(self.inner(old, old))          # STPNBV1: same free parameters
             t0 = old / nrm if nrm > 0 else None
