@@ -70,9 +70,10 @@ def _run(demo, tmp_path_factory):
     """The demo run in a fresh folder (once: both tests of a demo read the same run)."""
     if demo not in _RUNS:
         work = tmp_path_factory.mktemp(demo)
-        # A demo expected to fall short gets 5 minutes (a run that goes wrong may not
-        # end: with NMX = 0 nothing but a stop condition ends it).
-        r = run_demo(demo, work, timeout=300 if demo in EXPECTED_FAIL else 1800)
+        # A demo expected to fall short gets 15 minutes, five times what the longest of
+        # them (pci, about 3 minutes on one core) takes: a run that goes wrong may not end
+        # (with NMX = 0 nothing but a stop condition ends it).
+        r = run_demo(demo, work, timeout=900 if demo in EXPECTED_FAIL else 1800)
         _RUNS[demo] = (work / demo, r)
     return _RUNS[demo]
 
