@@ -157,7 +157,10 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # the branch itself.
     # Periodic orbits restarted from a stored orbit run by CNRLBV as well.
     stored_orbit = rec is not None and (s.IPS == 4 or (s.IPS == 2 and np.ndim(rec.u) == 2))
-    if s.ISW == -1 and kind not in ("BP", "PD") and not stored_orbit:
+    # Algebraic problems restarted at any other label: CNRLAE's STPRAE with IPERP = 1
+    # (washer.cont.systems.equilibrium).
+    algebraic = rec is not None and s.IPS in (0, 1) and not kind.endswith("curve")
+    if s.ISW == -1 and kind not in ("BP", "PD") and not stored_orbit and not algebraic:
         raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
                          f"{kind or 'a regular point'} (IRS={irs!r})")
     if s.IPS == 2 and rec is not None and np.ndim(rec.u) == 1 and kind != "HB" \
@@ -179,7 +182,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
         # which its stored unknowns mean (b or PAR(ICP(3)))
         s = s.with_(ISW=abs(rec.isw))
     # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
-    isw_key = -1 if s.ISW == -1 and kind == "BP" else \
+    isw_key = -1 if s.ISW == -1 and (kind == "BP" or algebraic) else \
         (2 if s.ISW in (2, 3) or kind.endswith("curve") else 1)
     if kind in CYCLE_CURVES and s.ISW not in (2, 3):
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch

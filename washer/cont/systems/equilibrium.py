@@ -15,7 +15,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
-from washer.cont.linalg import eigvals, null_vectors
+from washer.cont.linalg import eigvals, null_vectors, nullvc
 from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
@@ -63,12 +63,34 @@ def spectrum(lam: np.ndarray) -> Stability:
 @register(1, 1)
 @register(0, -1, "BP")
 @register(1, -1, "BP")
+@register(0, -1, "*")
+@register(1, -1, "*")
 class EquilibriumSystem(AlgebraicSystem):
-    """f(u, par) = 0 with unknowns x = (u, PAR(ICP(1)))."""
+    """f(u, par) = 0 with unknowns x = (u, PAR(ICP(1))).
+
+    ISW = -1 at a BP label switches to the other branch; at any other label (AUTO's
+    CNRLAE: IRS != 0 and ISW < 0) the start direction is STPRAE's with IPERP = 1, the
+    'null vector' of [f_u f_lambda; stored direction], and the first step is a branch
+    switch's (on the plane orthogonal to it): there the null space of [f_u f_lambda] is
+    one-dimensional, so the run continues the one branch, as a new branch."""
 
     def __init__(self, start: StartData):
         self._one_parameter(start)
         self._switch = start.settings.ISW == -1 and start.kind == "BP"
+        self._perp = start.settings.ISW == -1 and start.kind != "BP" and \
+            start.record is not None and start.settings.IPS in (0, 1)
+        self._stored = None
+        rec = start.record
+        if self._perp:
+            # READLB's UDOT: the record's direction whatever its free parameters (none
+            # stored: zeros, and the vector is f's null vector itself)
+            self._stored = np.zeros(self.ndim + 1)
+            if rec.udot is not None and len(rec.rldot) and len(rec.udot) >= self.ndim:
+                self._stored = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+
+    @property
+    def start_mode(self) -> str | None:
+        return "switch" if self._perp else None
 
     # ------------------------------------------------------------ equations
     def params(self, x) -> np.ndarray:
@@ -91,6 +113,15 @@ class EquilibriumSystem(AlgebraicSystem):
         return self.problem.jacobian(x[:-1], self._p(x), self.free)
 
     def start(self):
+        if self._perp:
+            # STPRAE, IPERP = 1: NLVC of the square matrix [f_u f_lambda; UDOT] (its
+            # complete pivoting drops the row eliminated last), scaled to unit length
+            # in the weighted norm, PAR(ICP(1))-dot made positive; DS's sign then
+            # chooses the way.
+            J = np.asarray(self.jacobian(self._x0), dtype=float)
+            d = nullvc(np.vstack([J, self._stored]), 1)
+            d = d / np.sqrt(self.inner(d, d))
+            return self._x0.copy(), (-d if d[-1] < 0 else d)
         if self._switch:
             # ISW = -1 at a BP label: start along the other branch (AUTO's STBIF).
             t = self._t0
