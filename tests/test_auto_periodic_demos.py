@@ -88,11 +88,6 @@ def compare(ours: list, ref: list, branch=True, uz_values=None) -> None:
 # ab: for solution in ab("HB"): run(solution, c='ab.3')
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=False, reason=(
-    "with this folder's ab.py (Python FUNC, rounding unlike ab.f90's) the family from the "
-    "sixth branch's HB10 approaches its homoclinic end in more steps than AUTO's and ends "
-    "at NMX = 500 near PERIOD 470, short of the UZ at 1000; with AUTO's own ab.f90 every "
-    "family ends as AUTO's (tests/test_auto_demo_folders.py, demo ab: 24 of 24)"))
 def test_ab_periodic_families(tmp_path_factory):
     """One family from each of the 7 HBs of the six p1-branches; each ends at the UZSTOP
     p1 = 0.25 or PERIOD = 1000, as in b.ab's periodic branches (in the same order)."""
