@@ -8,23 +8,32 @@ module hands over to the frontend (see the end of the file).
 Eigen's headers are taken from $EIGEN3_INCLUDE_DIR, default /usr/include/eigen3
 (Debian's libeigen3-dev).
 """
+import importlib.util
 import os
 from pathlib import Path
 
 import cffi
 
 HERE = Path(__file__).resolve().parent
+# washer/build_stamp.py by its path: the package itself need not be importable here.
+_spec = importlib.util.spec_from_file_location("_washer_build_stamp",
+                                               HERE / "washer" / "build_stamp.py")
+stamp = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(stamp)
 EIGEN = os.environ.get("EIGEN3_INCLUDE_DIR", "/usr/include/eigen3")
 if not (Path(EIGEN) / "Eigen" / "Dense").exists():
     raise SystemExit(
         f"Eigen headers not found in {EIGEN}: install them (Debian: apt-get install "
         "libeigen3-dev) or set EIGEN3_INCLUDE_DIR")
 
+# Each module carries the hash of the sources it is built from (washer.build_stamp: at
+# import, a checkout whose csrc/ has changed since refuses the module).
+_kernel_stamp = stamp.stamp_code("washer._kernel", HERE)
 ffibuilder = cffi.FFI()
-ffibuilder.cdef((HERE / "csrc" / "washer_api.h").read_text())
+ffibuilder.cdef((HERE / "csrc" / "washer_api.h").read_text() + "\n" + _kernel_stamp[0])
 ffibuilder.set_source(
     "washer._kernel",
-    '#include "washer.h"',
+    '#include "washer.h"\n' + _kernel_stamp[1],
     sources=["csrc/kernel.cpp", "csrc/integrate.cpp", "csrc/generated/washer_model.cpp"],
     include_dirs=["csrc", EIGEN],
     source_extension=".cpp",
@@ -36,11 +45,12 @@ ffibuilder.set_source(
 
 
 #: The continuation engine's compiled linear algebra (washer/cont/reduction.py).
+_cont_stamp = stamp.stamp_code("washer._cont", HERE)
 contbuilder = cffi.FFI()
-contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text())
+contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text() + "\n" + _cont_stamp[0])
 contbuilder.set_source(
     "washer._cont",
-    '#include "cont.h"',
+    '#include "cont.h"\n' + _cont_stamp[1],
     sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",

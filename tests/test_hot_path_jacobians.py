@@ -91,10 +91,7 @@ def test_washer_f_with_its_jacobians_is_f_and_then_the_jacobians_are_the_kernels
     func_many's bit for bit, and the Jacobians asked for next at the same points
     (answered from that pass) are jac_rot_batch's bit for bit; at other points they are
     evaluated afresh."""
-    from washer.machine import kernel
     from washer.problems.rotating import rotating_problem
-    if not kernel.has_rhs_jac_rot_batch():
-        pytest.skip("kernel built from older sources (python build.py)")
     prob = rotating_problem().with_jac(1)
     assert prob.has_func_dfdu_batch
     u0, par0 = prob.start(17)

@@ -9,9 +9,6 @@ import pytest
 from washer.cont import collocation as col
 from washer.cont import floquet, reduction
 
-needs_cont = pytest.mark.skipif(not reduction.available(),
-                                reason="washer._cont not built (python build.py cont)")
-
 
 def random_system(rng, N, m, n, npar):
     mn = m * n
@@ -27,7 +24,6 @@ def random_system(rng, N, m, n, npar):
     return blocks, parcols, extra, M
 
 
-@needs_cont
 @pytest.mark.parametrize("N, m, n, npar", [(1, 1, 1, 0), (1, 3, 2, 2), (2, 1, 3, 1),
                                            (7, 4, 3, 2), (12, 3, 2, 4), (5, 2, 4, 0)])
 def test_solve_and_determinant_match_dense_lapack(N, m, n, npar):
@@ -46,7 +42,6 @@ def test_solve_and_determinant_match_dense_lapack(N, m, n, npar):
     assert l2 == pytest.approx(logdet, rel=1e-10, abs=1e-9)
 
 
-@needs_cont
 def test_floquet_pair_annihilates_the_collocation_null_space():
     rng = np.random.default_rng(3)
     N, m, n, npar = 9, 4, 3, 2
@@ -62,7 +57,6 @@ def test_floquet_pair_annihilates_the_collocation_null_space():
     assert np.linalg.matrix_rank(np.c_[P0, P1]) == n
 
 
-@needs_cont
 def test_collocation_jacobian_against_superlu_and_householder_floquet():
     """A Jacobian assembled by Collocation (a linear periodic system's blocks): the same
     Newton step as the sparse LU, the same determinant, the same multipliers as the
@@ -94,7 +88,6 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)
 
 
-@needs_cont
 @pytest.mark.parametrize("general_bc", [False, True])
 def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_bc):
     """Periodic boundary rows and general ones (B0 u(0) + B1 u(1) + Bp p, the loci of
@@ -156,34 +149,26 @@ def test_reduction_onto_the_start_node_is_the_sparse_schur_complement(general_bc
     np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-12)
 
 
-@pytest.mark.skipif(not reduction.available("cont_coll_blocks"),
-                    reason="washer._cont not built from these sources (python build.py cont)")
 @pytest.mark.parametrize("N, m, n", [(1, 1, 1), (6, 4, 3), (3, 2, 5), (4, 7, 2)])
-def test_compiled_collocation_blocks_are_the_numpy_ones(N, m, n, monkeypatch):
-    """Collocation.local_blocks compiled (reduction.collocation_blocks) gives the numpy
-    expression's values bit for bit (the same operations in the same order: a run does
-    not depend on whether washer._cont is built), and both are the definition
-    WP[k, c] delta_il - dtm[j] T WT[k, c] A[j, c, i, l] written out here."""
+def test_collocation_blocks_are_their_definition(N, m, n):
+    """Collocation.local_blocks (compiled: reduction.collocation_blocks) is the definition
+    WP[k, c] delta_il - dtm[j] T WT[k, c] A[j, c, i, l] written out here, to rounding
+    (two products and a difference of numbers of norm ~1: 1e-14)."""
     rng = np.random.default_rng(N + 10 * m + 100 * n)
     mesh = col.Mesh(np.r_[0.0, np.sort(rng.random(N - 1)), 1.0], m)
     coll = col.Collocation(mesh, n)
     A = rng.standard_normal((N, m, n, n))
     T = 2.7
-    fast = coll.local_blocks(T, A)
-    monkeypatch.setattr(reduction, "available", lambda function=None: False)
-    slow = coll.local_blocks(T, A)
-    assert np.array_equal(fast, slow) and np.array_equal(np.signbit(fast), np.signbit(slow))
+    blocks = coll.local_blocks(T, A)
     WT, WP = col.lagrange_weights(m)
     for j in range(N):
         for c in range(m):
             for k in range(m + 1):
                 want = WP[k, c] * np.eye(n) - mesh.dtm[j] * T * WT[k, c] * A[j, c]
-                got = fast[j, c * n:(c + 1) * n, k * n:(k + 1) * n]
+                got = blocks[j, c * n:(c + 1) * n, k * n:(k + 1) * n]
                 np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)
 
 
-@pytest.mark.skipif(not reduction.available("cont_bvp_schur"),
-                    reason="washer._cont not built from these sources (python build.py cont)")
 @pytest.mark.parametrize("general_bc, nbc, nint", [(False, 3, 1), (True, 3, 2), (True, 4, 0),
                                                     (True, 2, 1)])
 def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, nint):

@@ -265,19 +265,13 @@ class Collocation:
     def local_blocks(self, T: float, A: np.ndarray) -> np.ndarray:
         """The dense collocation blocks d(coll_j)/d(U_j), shape (NTST, NCOL*NDIM,
         (NCOL+1)*NDIM), from A = f_u at the Gauss points (NTST, NCOL, NDIM, NDIM)
-        scaled by T (T = 1 for an already scaled right-hand side). Compiled
-        (washer.cont.reduction.collocation_blocks: the same operations, the same values)
-        when washer._cont is built."""
+        scaled by T (T = 1 for an already scaled right-hand side): block (j, c, k) is
+        WP[k, c] I - dtm[j] T WT[k, c] A[j, c] (compiled:
+        washer.cont.reduction.collocation_blocks)."""
         m, n, N = self.mesh.ncol, self.ndim, self.mesh.ntst
-        from washer.cont import reduction          # compiled, when built
-        if reduction.available("cont_coll_blocks"):
-            return reduction.collocation_blocks(self.WT, self.WP, self.mesh.dtm, T,
-                                                np.reshape(A, (N, m, n, n)))
-        eye = np.eye(n)
-        blk = (self.WP.T[None, :, None, :, None] * eye[None, None, :, None, :]
-               - (self.mesh.dtm[:, None, None, None, None] * T)
-               * self.WT.T[None, :, None, :, None] * A[:, :, :, None, :])
-        return blk.reshape(N, m * n, (m + 1) * n)
+        from washer.cont import reduction
+        return reduction.collocation_blocks(self.WT, self.WP, self.mesh.dtm, T,
+                                            np.reshape(A, (N, m, n, n)))
 
     def jacobian_general(self, blocks: np.ndarray, dF_par: np.ndarray, int_u: np.ndarray,
                          int_par: np.ndarray, bc_jac=None) -> sp.csc_matrix:

@@ -13,24 +13,23 @@ the reduction of the chain of intervals (REDUCE) and the remaining dense system 
 
 The matrix layout is washer.cont.collocation.Collocation's: `BorderedCollocation.from_jacobian`
 takes its sparse Jacobian (the values are unpacked from the fixed sparsity pattern)
-and the border row. Without the compiled module (`available()` False) callers keep the
-sparse LU.
+and the border row.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from washer import build_stamp
+
 try:
     from washer._cont import ffi, lib
-except ImportError:                                      # not built: see build.py
-    ffi = lib = None
+except ImportError as exc:
+    raise ImportError(
+        "the compiled engine washer._cont is missing: install the package with "
+        "`pip install .` (needs a C++ compiler and libeigen3-dev), or build in place "
+        "with `python build.py cont`") from exc
 
-
-def available(function: str | None = None) -> bool:
-    """Whether washer._cont is built (python build.py cont), and when `function` is
-    named, whether the build has it (a module built from older sources lacks the later
-    functions: their callers then keep the numpy path)."""
-    return lib is not None and (function is None or hasattr(lib, function))
+build_stamp.check("washer._cont", ffi, lib)
 
 
 def pieces(coll, J, border) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -114,8 +113,6 @@ class BorderedCollocation:
     `dense` must give)."""
 
     def __init__(self, blocks, parcols, extra, dense=None):
-        if lib is None:
-            raise RuntimeError("washer._cont is not built (python build.py cont)")
         blocks = np.ascontiguousarray(blocks, dtype=float)
         parcols = np.ascontiguousarray(parcols, dtype=float)
         extra = np.ascontiguousarray(extra, dtype=float)
@@ -133,15 +130,11 @@ class BorderedCollocation:
         self.P0 = np.zeros((n, n))
         self.P1 = np.zeros((n, n))
         # the determinant on request (collocation systems never ask: their BP test is the
-        # reduced matrix's), unless the build predates cont_bvp_sign_logdet
+        # reduced matrix's)
         self._sl = None
-        sl = ffi.NULL if available("cont_bvp_sign_logdet") else np.zeros(2)
         rc = lib.cont_bvp_factor(self._f, _ptr(blocks), _ptr(parcols), _ptr(extra),
-                                 sl if sl is ffi.NULL else _ptr(sl), _ptr(self.P0),
-                                 _ptr(self.P1))
+                                 ffi.NULL, _ptr(self.P0), _ptr(self.P1))
         self.singular = rc == 1
-        if sl is not ffi.NULL:
-            self._sl = (float(sl[0]), float(sl[1]))
         self._dense = dense
 
     @classmethod
@@ -173,13 +166,11 @@ class BorderedCollocation:
         (NDIM + NPAR, nx) instead of the factorised ones, reduced onto S = (U(0), the
         parameters): Sc (NDIM + NPAR, NDIM + NPAR), as `onto_start` (the factorisation's
         eliminations replayed on the new rows, csrc/cont/reduce.cpp cont_bvp_schur).
-        None where a pivot of the factorisation was zero (or the build lacks it)."""
+        None where a pivot of the factorisation was zero."""
         N, m, n, npar = self.shape
         extra = np.ascontiguousarray(extra, dtype=float)
         if extra.shape != (n + npar, self.nx):
             raise ValueError(f"dense rows of shape {extra.shape}, expected {(n + npar, self.nx)}")
-        if not available("cont_bvp_schur"):
-            return None
         Sc = np.empty((n + npar, n + npar))
         rc = lib.cont_bvp_schur(self._f, _ptr(extra), _ptr(Sc))
         return Sc if rc == 0 else None

@@ -18,6 +18,10 @@ except ImportError as exc:  # pragma: no cover - exercised only on broken instal
         "`pip install .` (needs a C++ compiler and libeigen3-dev), or build in place "
         "with `python build.py`") from exc
 
+from washer import build_stamp  # noqa: E402  (after the import it checks)
+
+build_stamp.check("washer._kernel", ffi, lib)
+
 #: Speed laws of theta(t) and rotating-frame variants, by name.
 LAWS = {"constant": 0, "spinup": 1}
 FRAMES = {"frozen": 0, "averaged": 1}
@@ -197,12 +201,6 @@ def jac_rot_batch(X, P, frame: str = "averaged"):
     _batch_call(lib.washer_jac_rot_batch, n, "jac_rot_batch", _ptr(X), _ptr(P), stride,
                 _frame(frame), _ptr(J), _ptr(Jp))
     return J, Jp
-
-
-def has_rhs_jac_rot_batch() -> bool:
-    """Whether the built kernel has washer_rhs_jac_rot_batch (a kernel built from older
-    sources lacks it: callers then ask for the rhs and the Jacobians apart)."""
-    return hasattr(lib, "washer_rhs_jac_rot_batch")
 
 
 def rhs_jac_rot_batch(X, P, frame: str = "averaged"):

@@ -111,7 +111,7 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
                    func_batch=func_batch, dfdp_batch=dfdp_batch, parnames=dict(PAR_NAMES),
-                   func_dfdu_batch=func_dfdu_batch if kernel.has_rhs_jac_rot_batch() else None)
+                   func_dfdu_batch=func_dfdu_batch)
 
 
 def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,

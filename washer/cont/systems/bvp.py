@@ -273,13 +273,12 @@ class CollocationBVP:
 
     # ------------------------------------------------------------------ contract
     def factor(self, J, border: np.ndarray):
-        """[J; border] factorised: with COMPILED_FACTOR and washer._cont built, a J
-        assembled by `coll` by the compiled condensation and block reduction
-        (washer.cont.reduction: the same solves and determinant, and the Floquet pair of
-        the same elimination, kept as `self._reduced = (J, factor)` for `multipliers`);
-        else by SuperLU."""
+        """[J; border] factorised: with COMPILED_FACTOR, a J assembled by `coll` by the
+        compiled condensation and block reduction (washer.cont.reduction: the same solves
+        and determinant, and the Floquet pair of the same elimination, kept as
+        `self._reduced = (J, factor)` for `multipliers`); else by SuperLU."""
         border = np.asarray(border, float)
-        if COMPILED_FACTOR and reduction.available() and self.coll.has_pattern(J):
+        if COMPILED_FACTOR and self.coll.has_pattern(J):
             f = reduction.BorderedCollocation.from_jacobian(self.coll, J, border)
             self._reduced = (J, f)
             return f
