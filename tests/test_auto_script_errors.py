@@ -183,12 +183,83 @@ def test_old_format_nicp_smaller_than_the_indices_listed_warns(tmp_path, monkeyp
 
 
 def test_equations_that_raise_name_the_users_file_and_line(ab, capsys):
-    """A Python user file whose func raises: the run stops at its start point, saying
-    which user function failed, how, and where in the user's file."""
+    """A Python user file whose func raises: the run fails at its start point, saying
+    which user function failed, how, and where in the user's file; the script stops
+    there (AUTO's runAUTO raises AUTORuntimeError for a run that ends in an error),
+    the files of the runs before it kept."""
     Path("bad.py").write_text("import numpy as np\n\n\ndef func(u, par):\n    return u[5]\n\n\n"
                               "def stpnt(u, par):\n    pass\n")
-    Path("x.auto").write_text("run(e='bad', c='ab')\n")
-    run_script("x.auto")
-    err = capsys.readouterr().err
-    assert "the equations fail at the start point (bad: func(u, par) failed: IndexError" in err
-    assert f"{Path('bad.py').resolve()}:5)" in err or "bad.py:5)" in err
+    Path("x.auto").write_text("run(e='ab', c='ab', sv='good')\nrun(e='bad', c='ab', sv='bad')\n"
+                              "run(e='ab', c='ab', sv='after')\n")
+    with pytest.raises(ScriptError) as err:
+        run_script("x.auto")
+    msg = str(err.value)
+    assert msg.startswith("x.auto:2: AutoError: run(e='bad') failed at its start:")
+    assert "the equations fail at the start point (bad: func(u, par) failed: IndexError" in msg
+    assert f"{Path('bad.py').resolve()}:5)" in msg or "bad.py:5)" in msg
+    assert isinstance(err.value.__cause__, clui.AutoError)
+    assert Path("b.good").stat().st_size > 0 and Path("s.good").stat().st_size > 0
+    assert Path("b.bad").exists()               # what the failed run wrote is kept
+    assert not Path("b.after").exists()         # the script stopped at the failed run
+
+
+def test_a_start_that_does_not_converge_fails_the_run(ab):
+    """A start point far from any solution (Newton diverging from it) is a failed run."""
+    Path("far.py").write_text("import numpy as np\n\n\ndef func(u, par):\n"
+                              "    return np.array([u[0] ** 2 + 1.0 + 0 * par[0]])\n\n\n"
+                              "def stpnt(u, par):\n    u[0] = 0.3\n    par[0] = 1.0\n")
+    Path("c.far").write_text("NDIM=1, IPS=1, ICP=[1], IRS=0, NMX=10, NPR=10, DS=0.01, DSMIN=1e-4, "
+                             "DSMAX=0.1, NPAR=1\n")
+    msg = _error("run(e='far', c='far')\n")
+    assert msg.startswith("x.auto:1: AutoError: run(e='far') failed at its start:")
+    assert "Newton did not converge" in msg
+
+
+def test_a_failed_run_is_raised_to_the_caller_catchable_as_autos(ab):
+    """Imported use: the failed run raises AutoError, which a script catches under
+    AUTO's name (AUTOExceptions.AUTORuntimeError) and goes on."""
+    Path("bad.py").write_text("def func(u, par):\n    raise ValueError('no')\n\n\n"
+                              "def stpnt(u, par):\n    pass\n")
+    with pytest.raises(clui.AutoError, match="failed at its start"):
+        clui.run(e="bad", c="ab")
+    Path("x.auto").write_text("import AUTOExceptions\ntry:\n    run(e='bad', c='ab')\n"
+                              "except AUTOExceptions.AUTORuntimeError as exc:\n"
+                              "    caught = str(exc)\nrun(e='ab', c='ab', sv='after')\n")
+    ns = run_script("x.auto")
+    assert "ValueError: no" in ns["caught"]
+    assert Path("b.after").stat().st_size > 0
+
+
+def test_a_branch_ending_at_mx_is_not_an_error(ab):
+    """No convergence during the continuation ends the branch at MX (AUTO's STEPAE:
+    'No convergence with minimum step size'); the run is a result and the script goes
+    on, as AUTO's does."""
+    Path("wall.py").write_text("import numpy as np\n\n\ndef func(u, par):\n"
+                               "    if par[0] > 1.5:\n        raise ValueError('beyond')\n"
+                               "    return np.array([u[0] - par[0]])\n\n\n"
+                               "def stpnt(u, par):\n    u[0] = 1.0\n    par[0] = 1.0\n")
+    Path("c.wall").write_text("NDIM=1, IPS=1, ICP=[1], IRS=0, NMX=100, NPR=100, DS=0.1, DSMIN=1e-3, "
+                              "DSMAX=0.1, NPAR=1\n")
+    Path("x.auto").write_text("r = run(e='wall', c='wall', sv='wall')\n"
+                              "run(e='ab', c='ab', sv='after')\n")
+    ns = run_script("x.auto")
+    assert clui.splabs(ns["r"], "MX") == [2]
+    assert Path("b.after").stat().st_size > 0
+
+
+def test_the_command_line_exits_nonzero_after_a_failed_run(ab):
+    """`python -m washer.auto x.auto`: the error on stderr, status 1."""
+    import subprocess
+    import sys
+    import os
+    Path("bad.py").write_text("def func(u, par):\n    raise ValueError('no')\n\n\n"
+                              "def stpnt(u, par):\n    pass\n")
+    Path("x.auto").write_text("run(e='ab', c='ab', sv='good')\nrun(e='bad', c='ab')\n"
+                              "print('after')\n")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]))
+    p = subprocess.run([sys.executable, "-m", "washer.auto", "x.auto"], capture_output=True,
+                       text=True, env=env, timeout=300)
+    assert p.returncode == 1
+    assert "x.auto:2: AutoError: run(e='bad') failed at its start" in p.stderr
+    assert "after" not in p.stdout
+    assert Path("b.good").stat().st_size > 0

@@ -272,6 +272,13 @@ def _execute(sol: Solution) -> Diagram:
         for p, f in zip(paths, FORT):
             os.replace(p, f)
         paths = [Path(f) for f in FORT]
+    if not result.started:
+        # AUTO's runAUTO raises AUTORuntimeError when its run fails (the executable
+        # ending in an error, no b-file written): the script stops there, unless it
+        # catches the error. A branch ending at MX is a result, not an error.
+        why = result.status.removeprefix("stopped: ")
+        raise AutoError(f"run(e='{e}') failed at its start: {why} (what was written is in "
+                        f"{', '.join(str(p) for p in paths)})")
     print(f"{e} ... done", flush=True)
     keep = AutoConstants(c)
     for k in NONE_KEYS:

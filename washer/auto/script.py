@@ -146,6 +146,11 @@ def _register_modules(ns: dict) -> None:
         mod = types.ModuleType("AUTOclui", "washer's AUTO commands under AUTO's module name")
         mod.__dict__.update({k: v for k, v in ns.items() if not k.startswith("__")})
         sys.modules["AUTOclui"] = mod
+    if "AUTOExceptions" not in sys.modules:
+        # `except AUTOExceptions.AUTORuntimeError:` in a script catches a failed command
+        mod = types.ModuleType("AUTOExceptions", "AUTO's exceptions: washer's AutoError")
+        mod.AUTORuntimeError = clui.AutoError
+        sys.modules["AUTOExceptions"] = mod
 
 
 def auto(script):

@@ -77,6 +77,10 @@ class Branch:
     """
     rows: list = field(default_factory=list)        # every Record (lab 0 included)
     status: str = "ok"
+    #: False when the run failed before its first point (the equations failing at the
+    #: start, the start's Newton not converging): AUTO's run that ends in an error,
+    #: unlike a branch that ends at MX.
+    started: bool = True
     elapsed: float = 0.0
     counters: Counters = field(default_factory=Counters)    # summed over the branches
     #: The b-file's column titles of `Record.values` (PAR(ICP(1)) or its name, the

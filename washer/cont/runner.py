@@ -251,6 +251,9 @@ def execute(run: Run, br: int, mode: str = "fresh", sinks=()) -> Branch:
         interrupted = True
     except (ConvergenceError, ProblemError, FloatingPointError, np.linalg.LinAlgError) as exc:
         status = f"stopped: {exc}"
+        # Failing before the first point is a failed run (the caller may raise, as
+        # AUTO's CLUI does); a failure after it ends the run with what it computed.
+        run.branch.started = bool(run.branch.rows)
     finally:
         np.seterr(**err)
     run.branch.status = status
