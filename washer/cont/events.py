@@ -477,4 +477,26 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         sec = (sp.x - prev.x) / span
         sp.tangent = sec / math.sqrt(inner(sec, sec))
         refresh(sp)
+    clear_located(prev, sp, span, [key] + same, settings)
     return sp, best, same
+
+
+def clear_located(prev, sp, s_sp: float, located, settings) -> None:
+    """The stored values of the tests at a located special point sp, reached by a step of
+    arclength s_sp from prev: AUTO's LCSPAE (ae.f90) and LCSPBV (bvp.f90) return Q = 0
+    for the test they located, and, once a point is located (AP%ITP /= 0), set Q1 = 0
+    for every test whose zero lies within the location tolerance of it
+    (|(1 + HMACH) Q1 DSTEST| < EPSS (1 + sqrt|DS DSMAX|) |Q0 - Q1|, `at_step_end` with
+    DSTEST = s_sp). A stored 0 never makes a sign change with the next point's value
+    (`sign_changes`), so the zero just located is not counted again on the next step,
+    whatever sign noise gives the test there: next to a double zero (a fold and a
+    branch point together at a symmetric pitchfork) the test's value at the located
+    point and at the next one are both rounding noise.
+
+    located: the tests labelled at sp (the one located and those merged with it)."""
+    for k, q in sp.tests.items():
+        if q is None:
+            continue
+        q0 = prev.tests.get(k)
+        if k in located or (q0 is not None and at_step_end(q0, q, s_sp, settings)):
+            sp.tests[k] = 0.0

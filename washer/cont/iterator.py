@@ -544,10 +544,8 @@ class Continuation:
         hit = self._first_zero(current, nxt, st.ds)
         yield from self._flush()
         if hit is not None:
+            # sp's located tests are stored as 0 (`events.clear_located`).
             sp, key, same = hit
-            # Past the located zero the tests keep the sign they have beyond it.
-            for k in [key] + same:
-                sp.tests[k] = math.copysign(1e-300, nxt.tests[k])
             sysm.update(sp.x, sp.tangent)
             st.point = sp
             st.n_points += 1
