@@ -296,3 +296,40 @@ def test_a_zero_far_inside_a_flat_test_is_bisected_to():
             events.locate(flat, "BP", q0, q1, 1.0, settings)
     finally:
         events._widening = saved
+
+
+def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
+    """AUTO's LCSPAE / LCSPBV store 0 as the value of the test they located and of every
+    test whose zero lies within the location tolerance of the point; a stored 0 makes no
+    sign change with the next point. Here a fold test 0.3 - s (simple zero) and a
+    branch-point test (s - 0.3)^3 (a zero of order three, vanishing with it) change sign
+    over one step: both are stored as 0 at the point located, so that on the next step
+    the branch-point test's rounding noise, of either sign, is no new sign change (with
+    the sign beyond the zero stored instead, noise of the other sign was one: a second
+    label for the one point)."""
+    from types import SimpleNamespace
+    from washer.cont.codes import Code
+    from washer.cont.branch import Point
+    from washer.cont.events import first_zero, sign_changes
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-6)
+    tests = {Code.LP: lambda s: 0.3 - s, Code.BP: lambda s: (s - 0.3) ** 3}
+
+    def point(s):
+        return Point(np.array([s]), np.array([1.0]), None,
+                     {k: f(s) for k, f in tests.items()})
+
+    def refresh(p):
+        p.tests = {k: f(p.x[0]) for k, f in tests.items()}
+    prev, cur = point(0.0), point(1.0)
+    sp, key, same = first_zero(prev, cur, 1.0, settings,
+                               trial=lambda s, k, base=None, chord=None: (point(s),
+                                                                         tests[k](s)),
+                               accepted=lambda k, a, b: True, refresh=refresh,
+                               inner=lambda a, b: float(a @ b), note=lambda text: None)
+    assert key == Code.BP and Code.LP in same          # one point, BP first (PRIORITY)
+    assert sp.x[0] == pytest.approx(0.3, abs=1e-6)
+    assert sp.tests[Code.LP] == 0.0 and sp.tests[Code.BP] == 0.0
+    for noise in (1e-17, -1e-17):
+        nxt = point(sp.x[0] + 1e-3)
+        nxt.tests[Code.BP] = noise
+        assert sign_changes(sp.tests, nxt.tests) == []

@@ -83,3 +83,17 @@ def test_the_bifurcating_branch_turns_at_the_other_pitchfork(enz):
     # the asymmetry changes sign across it: branch 2 passes from s1 > s2 to s1 < s2
     assert (rows[k - 1].values[2] - rows[k - 1].values[3]) * \
         (rows[k + 1].values[2] - rows[k + 1].values[3]) < 0
+
+
+def test_the_bifurcating_branch_labels_the_fold_at_the_first_pitchfork_once(enz):
+    """Branch 2 runs on back to the pitchfork 34.22289, where its fold test and its
+    branch-point test vanish at one point (its parameter is even in the asymmetry) and
+    both are rounding noise next to it. Once a zero is located, its test's stored value is
+    0 (AUTO's LCSPAE), so the next step does not count it again: one LP there, at the
+    closed-form pitchfork. (Before, the LP was labelled on two of four consecutive points,
+    BP LP BP LP, the second one the first one's zero counted again.)"""
+    bp = _closed_form()["BP"][1]
+    near = [r for r in enz.rows if r.br == 2 and r.lab and abs(r.values[0] - bp) < 1e-3]
+    lps = [r for r in near if r.ty == "LP"]
+    assert len(lps) == 1
+    assert lps[0].values[0] == pytest.approx(bp, abs=tol(bp))

@@ -493,10 +493,13 @@ def clear_located(prev, sp, s_sp: float, located, settings) -> None:
     branch point together at a symmetric pitchfork) the test's value at the located
     point and at the next one are both rounding noise.
 
-    located: the tests labelled at sp (the one located and those merged with it)."""
+    located: the tests labelled at sp (the one located and those merged with it).
+    User values (UZ tests) are kept apart as in the merge (`first_zero`): two UZR values
+    within the tolerance of each other are two points, so only a located UZ is cleared."""
     for k, q in sp.tests.items():
         if q is None:
             continue
         q0 = prev.tests.get(k)
-        if k in located or (q0 is not None and at_step_end(q0, q, s_sp, settings)):
+        if k in located or (not isinstance(k, tuple) and q0 is not None
+                            and at_step_end(q0, q, s_sp, settings)):
             sp.tests[k] = 0.0
