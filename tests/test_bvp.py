@@ -605,12 +605,12 @@ def test_branch_point_test_of_a_stiff_bvp():
 def test_permutation_sign():
     """The sign of a permutation (the factorisations' row and column orders) is the
     determinant of its matrix."""
-    from washer.cont.systems.general_bvp import _perm_sign
+    from washer.cont.linalg import permutation_sign
     rng = np.random.default_rng(3)
     for n in (1, 2, 5, 12):
         for _ in range(5):
             p = rng.permutation(n)
-            assert _perm_sign(p) == round(np.linalg.det(np.eye(n)[p]))
+            assert permutation_sign(p) == round(np.linalg.det(np.eye(n)[p]))
 
 
 @pytest.mark.slow

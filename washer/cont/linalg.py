@@ -165,12 +165,14 @@ class SparseFactor:
         d = self.lu.U.diagonal()
         if np.any(d == 0):
             return 0.0, -np.inf
-        sign = _perm_sign(self.lu.perm_r) * _perm_sign(self.lu.perm_c) * np.prod(np.sign(d))
+        sign = (permutation_sign(self.lu.perm_r) * permutation_sign(self.lu.perm_c)
+                * np.prod(np.sign(d)))
         return float(sign), float(np.sum(np.log(np.abs(d))))
 
 
-def _perm_sign(p: np.ndarray) -> float:
-    """Sign (+1/-1) of a permutation given as an index array."""
+def permutation_sign(p: np.ndarray) -> float:
+    """Sign (+1/-1) of the permutation i -> p[i], an index array (n,) (by its cycles: a
+    sparse LU's perm_r/perm_c enter the sign of its determinant)."""
     p = np.asarray(p)
     seen = np.zeros(len(p), bool)
     sign = 1.0

@@ -45,27 +45,11 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont import collocation as col
+from washer.cont.linalg import permutation_sign
 from washer.cont.problem import FD_STEP, Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
-
-def _perm_sign(p: np.ndarray) -> int:
-    """The sign of the permutation i -> p[i] (by its cycles)."""
-    p = np.asarray(p)
-    seen = np.zeros(len(p), bool)
-    sign = 1
-    for i in range(len(p)):
-        if not seen[i]:
-            j, length = i, 0
-            while not seen[j]:
-                seen[j] = True
-                j = p[j]
-                length += 1
-            if length % 2 == 0:
-                sign = -sign
-    return sign
-
 
 def _widen(P: np.ndarray, n: int) -> np.ndarray:
     """A stored profile (NTPL, k) with k <= n components, the others 0 (READBV)."""
@@ -456,7 +440,8 @@ class BoundaryValueProblem(CollocationBVP):
             except RuntimeError:              # exactly singular
                 return (0.0, -np.inf) if power == 1 else (1.0, np.inf)
             d = lu.U.diagonal()
-            out_sign *= _perm_sign(lu.perm_r) * _perm_sign(lu.perm_c) * float(np.prod(np.sign(d)))
+            out_sign *= (permutation_sign(lu.perm_r) * permutation_sign(lu.perm_c)
+                         * float(np.prod(np.sign(d))))
             out_log += power * float(np.sum(np.log(np.abs(d))))
         return out_sign, out_log
 
