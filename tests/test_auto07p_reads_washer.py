@@ -1,6 +1,6 @@
-"""AUTO-07p itself reading what washer writes: its Python parsers (parseB, parseS,
-parseBandS, parseD) read every b-, s- and d-file of demos run by washer as washer's readers
-do (tests/auto07p_parsers.py), and AUTO-07p continues a locus from washer's s-records of it.
+"""AUTO-07p itself reading what washer writes: the headers and records of extended systems
+as AUTO's, and AUTO-07p continuing a locus from washer's s-records of it. (AUTO's Python
+parsers read every file of every demo folder's run in tests/test_auto_demo_folders.py.)
 
 The s-record header's NPARI (field 13) is what AUTO-07p needs of an extended system's
 record: it reads the user's NPAR as NPAR - NPARI and finds the locus' internal
@@ -14,7 +14,6 @@ from pathlib import Path
 
 import pytest
 
-from auto07p_parsers import auto_python, check_folder
 from b_rows import branch_rows, header_blocks
 from washer.auto.files import read_s
 
@@ -48,36 +47,6 @@ def integral(tmp_path_factory):
 @pytest.fixture(scope="module")
 def dd2(tmp_path_factory):
     return _washer_demo(tmp_path_factory, "dd2")
-
-
-@pytest.fixture(scope="module")
-def pen(tmp_path_factory):
-    return _washer_demo(tmp_path_factory, "pen")
-
-
-@pytest.fixture(scope="module")
-def attr(tmp_path_factory):
-    return _washer_demo(tmp_path_factory, "attr")
-
-
-@pytest.fixture(scope="module")
-def pci(tmp_path_factory):
-    return _washer_demo(tmp_path_factory, "pci")
-
-
-@pytest.mark.skipif(auto_python() is None, reason="AUTO-07p's Python tools not installed")
-@pytest.mark.parametrize("demo", ["plp", "integral", "dd2", "pen", "attr", "pci"])
-def test_autos_parsers_read_every_file_washer_writes(demo, request):
-    """Every b-, s- and d-file of the demo's runs (equilibria, cycles, the Hopf locus and
-    the fold locus of cycles of plp; the BVP and its fold locus of int; the map and its PD
-    locus of dd2; rotations, their branches and the PD locus of cycles of pen; attr's
-    merged BVP branches; pci's connections of NDIM = 12, NBC = 17, NINT = 2): AUTO's
-    parseB, parseS, parseBandS and parseD read what washer's own readers find there
-    (tests/auto07p_parsers.py says what is compared)."""
-    folder = request.getfixturevalue(demo)
-    assert any(p.name.startswith("s.") for p in folder.iterdir())
-    problems = check_folder(folder, DEMOS / folder.name)
-    assert not problems, f"{demo}:\n" + "\n".join(problems[:20])
 
 
 @pytest.mark.skipif(not HAVE_AUTO, reason="AUTO-07p (auto-07p and gfortran) is not installed")
