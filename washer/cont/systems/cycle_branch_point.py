@@ -254,13 +254,18 @@ class CycleBranchPointLocus(CycleLocus):
         return -self.coll.integral(np.sum(Phi * self._dG(U, par, q), axis=1))
 
     # ------------------------------------------------------------------ contract
-    def residual(self, x):
+    def _at_gauss(self, x):
+        """What residual and jacobian read at an iterate x: (W (nodes, 2n), par, (T, b,
+        phi3, a), u, phi and the previous point's u' at the Gauss points, each (k, n))."""
         W, par = self.unpack(x)
-        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
-        T, b, phi3, a = self._internal(par)
+        n = self.n
         Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
-        ug, pg = Wg[:, :n], Wg[:, n:]
         upg = self.coll.at_gauss(self.up_old).reshape(-1, n)
+        return W, par, self._internal(par), Wg[:, :n], Wg[:, n:], upg
+
+    def residual(self, x):
+        n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
+        W, par, (T, b, phi3, a), ug, pg, upg = self._at_gauss(x)
         A = self.field.fu(ug, par)
         Fu = T * self.field.f(ug, par) - b * pg
         Fp = -T * np.einsum("kji,kj->ki", A, pg) + phi3 * upg
@@ -276,12 +281,8 @@ class CycleBranchPointLocus(CycleLocus):
         return self.coll.residual_general(W, F, ints, bc)
 
     def jacobian(self, x):
-        W, par = self.unpack(x)
         n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
-        T, b, phi3, a = self._internal(par)
-        Wg = self.coll.at_gauss(W).reshape(-1, 2 * n)
-        ug, pg = Wg[:, :n], Wg[:, n:]
-        upg = self.coll.at_gauss(self.up_old).reshape(-1, n)
+        W, par, (T, b, phi3, a), ug, pg, upg = self._at_gauss(x)
         fg, A = self.field.f(ug, par), self.field.fu(ug, par)
         k = len(ug)
         I = np.eye(n)
