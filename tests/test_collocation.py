@@ -153,3 +153,35 @@ def test_multipliers_of_a_time_periodic_linear_system():
     mu = pencil_multipliers(P0, P1)
     for m in expect:
         assert np.min(np.abs(mu - m)) < 1e-9 * max(1, abs(m))
+
+
+@pytest.mark.parametrize("general_bc", [False, True])
+def test_jacobians_on_one_mesh_are_scipys_matrices_with_their_own_values(general_bc):
+    """jacobian_general builds the first Jacobian of a mesh with scipy and the next ones
+    as copies of its pattern: each must be the matrix scipy's constructor gives from the
+    same values (dense comparison, products, a CSC matrix of the right shape), and an
+    earlier Jacobian must keep its values when a later one is assembled."""
+    import scipy.sparse as sp
+    rng = np.random.default_rng(11)
+    n, N, m, nint = 3, 7, 4, 1
+    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc)
+    mats, dense = [], []
+    for k in range(3):
+        blocks = coll.local_blocks(1.0 + k, rng.standard_normal((N, m, n, n)))
+        dF = rng.standard_normal((nint + 1, N, m, n))
+        int_u = rng.standard_normal((nint, coll.mesh.n_nodes, n))
+        int_par = rng.standard_normal((nint, nint + 1))
+        bc = (rng.standard_normal((n, n)), rng.standard_normal((n, n)),
+              rng.standard_normal((n, nint + 1))) if general_bc else None
+        J = coll.jacobian_general(blocks, dF, int_u, int_par, bc_jac=bc)
+        ref = sp.csc_matrix((J.assembly[1][coll._order], coll._indices, coll._indptr),
+                            shape=(coll.n_eq, coll.n_x))
+        assert sp.isspmatrix_csc(J) and J.shape == ref.shape and coll.has_pattern(J)
+        np.testing.assert_array_equal(J.toarray(), ref.toarray())
+        v = rng.standard_normal(coll.n_x)
+        np.testing.assert_array_equal(J @ v, ref @ v)
+        mats.append(J)
+        dense.append(ref.toarray())
+    for J, D in zip(mats, dense):
+        np.testing.assert_array_equal(J.toarray(), D)
+    assert not np.array_equal(dense[0], dense[1])

@@ -295,8 +295,18 @@ class Collocation:
         else:
             bc_vals = self._bc_vals
         vals = np.concatenate([blocks.ravel(), dpar.ravel(), bc_vals, rows_int.ravel()])
-        J = sp.csc_matrix((vals[self._order], self._indices, self._indptr),
-                          shape=(self.n_eq, self.n_x))
+        # Every Jacobian on this mesh has the same pattern: the first is built (and
+        # checked) by scipy, later ones are its shallow copies with their own values
+        # (scipy's constructor re-validates the pattern each time, ~10-60 us; Newton asks
+        # for a Jacobian per iteration). The index arrays are shared, as they already
+        # are with the pattern (`_sparsity`): nothing changes a Jacobian's pattern.
+        template = self.__dict__.get("_csc_template")
+        if template is None:
+            template = self._csc_template = sp.csc_matrix(
+                (vals[self._order], self._indices, self._indptr), shape=(self.n_eq, self.n_x))
+        J = object.__new__(type(template))
+        J.__dict__.update(template.__dict__)
+        J.data = vals[self._order]
         # The values in assembly order, for washer.cont.reduction.pieces (which would
         # otherwise scatter J.data back): J is never changed in place (a variant is a
         # copy, which does not carry this).
