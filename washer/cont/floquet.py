@@ -57,13 +57,61 @@ def sort_multipliers(mu, trivial: bool = True) -> np.ndarray:
     mu = np.asarray(mu, complex)
     if len(mu) == 0:
         return mu
+    out = np.empty(len(mu), complex)
     with np.errstate(invalid="ignore"):
-        head = []
         if trivial:
-            i1 = int(np.nanargmin(np.abs(mu - 1)))
-            head, mu = [mu[i1]], np.delete(mu, i1)
-        rest = mu[np.argsort(np.abs(np.abs(mu) - 1), kind="stable")]
-    return np.r_[head, rest].astype(complex)
+            # np.nanargmin's choice (NaN distances never win; all NaN is an error),
+            # without its wrappers: this runs at every point of a periodic branch
+            d = np.abs(mu - 1)
+            nan = np.isnan(d)
+            if nan.all():
+                raise ValueError("All-NaN slice encountered")
+            i1 = int(np.argmin(np.where(nan, np.inf, d)))
+            out[0] = mu[i1]
+            mu = np.concatenate((mu[:i1], mu[i1 + 1:]))
+        out[len(out) - len(mu):] = mu[np.argsort(np.abs(np.abs(mu) - 1), kind="stable")]
+    return out
+
+
+#: The imaginary unit as scipy.linalg._decomp's _geneig writes alpha = alphar + _I alphai
+#: (the same bits, so that `_pencil_eigvals` is scipy.linalg.eigvals exactly).
+_I = np.array(1j, dtype="F")
+_GGEV = []
+
+
+def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """scipy.linalg.eigvals(A, B) for finite real square A, B: the same LAPACK calls
+    (dggev's workspace query, then dggev without vectors) and the same alpha / beta
+    (beta = 0: inf, or nan when alpha = 0 too), without scipy's argument checks and
+    wrappers (about 100 us a call; the multipliers are asked for at every point).
+    Anything else (non-finite entries, LAPACK's failure) goes to scipy.linalg.eigvals,
+    which raises what it raises."""
+    import scipy.linalg      # here: scipy.linalg's import outweighs a short run
+    A = np.asarray(A)
+    B = np.asarray(B)
+    if (A.dtype != np.float64 or B.dtype != np.float64 or A.ndim != 2 or A.shape != B.shape
+            or A.shape[0] != A.shape[1] or A.size == 0
+            or not (np.isfinite(A).all() and np.isfinite(B).all())):
+        return scipy.linalg.eigvals(A, B)
+    if not _GGEV:
+        _GGEV.append(scipy.linalg.get_lapack_funcs(("ggev",), (A, B))[0])
+    ggev = _GGEV[0]
+    lwork = ggev(A, B, lwork=-1)[-2][0].real.astype(np.int_)
+    alphar, alphai, beta, _, _, _, info = ggev(A, B, 0, 0, lwork, False, False)
+    if info != 0:
+        return scipy.linalg.eigvals(A, B)
+    alpha = alphar + _I * alphai
+    w = np.empty_like(alpha)
+    alpha_zero = alpha == 0
+    beta_zero = beta == 0
+    beta_nonzero = ~beta_zero
+    w[beta_nonzero] = alpha[beta_nonzero] / beta[beta_nonzero]
+    w[~alpha_zero & beta_zero] = np.inf
+    if np.all(alpha.imag == 0):
+        w[alpha_zero & beta_zero] = np.nan
+    else:
+        w[alpha_zero & beta_zero] = complex(np.nan, np.nan)
+    return w
 
 
 def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
@@ -72,9 +120,8 @@ def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
     pencil (P0, -P1) by QZ, so that huge multipliers (long orbits near a homoclinic one)
     come out as large or infinite values instead of overflowing; infinite ones are inf.
     Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
-    import scipy.linalg      # here: scipy.linalg's import outweighs a short run
     with np.errstate(all="ignore"):
-        mu = scipy.linalg.eigvals(P0, -P1)
+        mu = _pencil_eigvals(P0, -P1)
     mu = np.where(np.isfinite(mu), mu, np.inf + 0j)
     return sort_multipliers(mu)
 
