@@ -185,3 +185,16 @@ def test_jacobians_on_one_mesh_are_scipys_matrices_with_their_own_values(general
     for J, D in zip(mats, dense):
         np.testing.assert_array_equal(J.toarray(), D)
     assert not np.array_equal(dense[0], dense[1])
+
+
+def test_interval_lengths_follow_the_mesh_when_tm_changes_in_place():
+    """Mesh.dtm is kept between calls (every residual asks for it); a tm changed in place
+    (as the restart reader does) must give the new lengths, and the kept array is
+    read-only so no caller can change it for the next."""
+    mesh = col.Mesh(np.array([0.0, 0.25, 0.5, 1.0]), 4)
+    np.testing.assert_array_equal(mesh.dtm, [0.25, 0.25, 0.5])
+    assert mesh.dtm is mesh.dtm and not mesh.dtm.flags.writeable
+    mesh.tm[-1] = 0.75
+    np.testing.assert_array_equal(mesh.dtm, [0.25, 0.25, 0.25])
+    mesh.tm = np.array([0.0, 0.5, 1.0])
+    np.testing.assert_array_equal(mesh.dtm, [0.5, 0.5])

@@ -110,3 +110,42 @@ def test_washer_f_with_its_jacobians_is_f_and_then_the_jacobians_are_the_kernels
     assert np.array_equal(fp, fresh.dfdp_many(us, pars, 1))
     assert np.array_equal(fu_other, fresh.dfdu_many(other, pars))
     assert not np.array_equal(fu_other, fu)
+
+
+def test_parameter_rows_are_broadcast_to_s_view():
+    """broadcast_rows (func_many's one parameter vector for k points) is the view
+    np.broadcast_to gives: same values, row stride 0, read-only, whatever the input."""
+    from washer.cont.problem import broadcast_rows
+    par = np.array([0.5, -2.0, 3.25])
+    frozen = par.copy()
+    frozen.setflags(write=False)
+    for p in (par, frozen, np.arange(10.0)[::3]):
+        for k in (0, 1, 7):
+            got, ref = broadcast_rows(p, k), np.broadcast_to(p, (k, len(p)))
+            assert got.shape == ref.shape and got.strides == (0, 8)
+            np.testing.assert_array_equal(got, ref)
+            assert not got.flags.writeable
+    par[1] = 9.0                              # a view: it follows its vector
+    assert broadcast_rows(par, 2)[1, 1] == 9.0
+
+
+def test_difference_quotient_in_a_parameter_leaves_the_kept_f_and_is_the_quotient():
+    """VectorField.fp by central differences (JAC = 0) is the quotient of two func_many
+    calls at PAR(i) +- h, and f at the iterate, kept for the PERIOD column, is still
+    answered from the kept copy afterwards."""
+    from washer.cont.problem import FD_STEP
+    prob = Problem(2, ab, npar=3)
+    field = VectorField(prob, 2)
+    rng = np.random.default_rng(2)
+    U, par = rng.standard_normal((40, 2)), np.array([0.1, 8.0, 3.0])
+    f0 = field.f(U, par)
+    h = FD_STEP * (1 + abs(par[0]))
+    pp, pm = par.copy(), par.copy()
+    pp[0] += h
+    pm[0] -= h
+    ref = (prob.func_many(U, pp) - prob.func_many(U, pm)) / (2 * h)
+    np.testing.assert_array_equal(field.fp(U, par, 1), ref)
+    calls = []
+    prob.func_many = lambda *a: calls.append(a) or 0 / 0     # f must not be re-evaluated
+    np.testing.assert_array_equal(field.f(U, par), f0)
+    assert not calls

@@ -144,7 +144,16 @@ class Mesh:
 
     @property
     def dtm(self) -> np.ndarray:
-        return np.diff(self.tm)
+        """The interval lengths (NTST,), read-only: asked for by every residual and
+        Jacobian, so kept with the tm they were taken from (tm may be changed in place:
+        the key is its bytes)."""
+        key = self.tm.tobytes()
+        kept = self.__dict__.get("_dtm")
+        if kept is None or kept[0] != key:
+            d = np.diff(self.tm)
+            d.setflags(write=False)
+            self._dtm = kept = (key, d)
+        return kept[1]
 
     @property
     def n_nodes(self) -> int:

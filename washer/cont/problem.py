@@ -100,6 +100,16 @@ def user_frame(exc: BaseException) -> str:
     return where
 
 
+def broadcast_rows(par: np.ndarray, k: int) -> np.ndarray:
+    """np.broadcast_to(par, (k, len(par))) for a 1-D float array: the same read-only
+    view (row stride 0) without broadcast_to's generic set-up (several us; func_many
+    makes one per stencil)."""
+    par = np.ascontiguousarray(par)
+    v = np.ndarray((k, par.shape[0]), dtype=par.dtype, buffer=par, strides=(0, par.itemsize))
+    v.flags.writeable = False
+    return v
+
+
 class ProblemError(RuntimeError):
     """The user's equations are missing, malformed or failed to evaluate."""
 
@@ -284,7 +294,7 @@ class Problem:
         us = np.asarray(us, dtype=float)
         pars = np.asarray(pars, dtype=float)
         if pars.ndim == 1:
-            pars = np.broadcast_to(pars, (len(us), len(pars)))
+            pars = broadcast_rows(pars, len(us))
         if self._func_batch is not None:
             out = self._call(self._func_batch, "func_batch", us, np.ascontiguousarray(pars))
             if out.shape != (len(us), self.ndim):
@@ -325,7 +335,7 @@ class Problem:
         us = np.asarray(us, dtype=float)
         pars = np.asarray(pars, dtype=float)
         if pars.ndim == 1:
-            pars = np.broadcast_to(pars, (len(us), len(pars)))
+            pars = broadcast_rows(pars, len(us))
         out = self._call(self._func_dfdu_batch, "func_dfdu_batch", us, np.ascontiguousarray(pars))
         if out.shape != (len(us), self.ndim):
             raise ProblemError(f"{self.name}: func_dfdu_batch returned shape {out.shape}, "
@@ -450,7 +460,7 @@ class Problem:
         pts[:, n + idx, idx] -= h
         # one parameter vector for all points (the callers' broadcast view, row stride 0)
         # stays a view: only its values reach the user's func
-        rep = (np.broadcast_to(pars[0], (2 * n * k, pars.shape[1]))
+        rep = (broadcast_rows(pars[0], 2 * n * k)
                if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
         F = self.func_many(pts.reshape(-1, n), rep).reshape(k, 2 * n, n)
         return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))

@@ -29,7 +29,7 @@ from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
-from washer.cont.problem import FD_STEP
+from washer.cont.problem import FD_STEP, broadcast_rows
 from washer.cont.pvls import Orbit
 from washer.cont.system import Solution, fold_test
 
@@ -77,7 +77,7 @@ class VectorField:
     def fu(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
         """f_u at the rows of U -> (k, NDIM, NDIM)."""
         U = np.asarray(U, float)
-        return self.problem.dfdu_many(U, np.broadcast_to(par, (len(U), len(par))))
+        return self.problem.dfdu_many(U, broadcast_rows(np.asarray(par, float), len(U)))
 
     def fp(self, U: np.ndarray, par: np.ndarray, index: int) -> np.ndarray:
         """d f / d PAR(index) at the rows of U -> (k, NDIM): the user's batched dfdp
@@ -87,12 +87,15 @@ class VectorField:
         quotient is accurate to ~1e-9 relative, ample for Newton's parameter column)."""
         if self.problem.has_dfdp_batch:
             U = np.asarray(U, float)
-            return self.problem.dfdp_many(U, np.broadcast_to(par, (len(U), len(par))), index)
+            return self.problem.dfdp_many(U, broadcast_rows(np.asarray(par, float), len(U)), index)
         h = FD_STEP * (1 + abs(par[index - 1]))
         pp, pm = np.array(par, float), np.array(par, float)
         pp[index - 1] += h
         pm[index - 1] -= h
-        return (self.f(U, pp) - self.f(U, pm)) / (2 * h)
+        # straight to the problem: nobody asks for f at these parameters again, and
+        # `f`'s copy kept for the PERIOD column stays
+        U = np.asarray(U, float)
+        return (self.problem.func_many(U, pp) - self.problem.func_many(U, pm)) / (2 * h)
 
     def fuu_v(self, U: np.ndarray, V: np.ndarray, par: np.ndarray) -> np.ndarray:
         """The matrices d/du (f_u(u) v) at the rows of U, V (k, NDIM) -> (k, NDIM, NDIM)
