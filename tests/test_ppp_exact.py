@@ -23,7 +23,8 @@ block and lambda3 = -p3 + p5 u2. On it the Hopf locus in (p1, p4) is explicit in
    1e-11 moves it by O(1); its corrector accepts PT 4 after one iteration, and its
    "located" GH has a test value of -0.662 (its GH moves with DS: PT 5 at DS = 0.005,
    none at DS = 0.02). washer's test (washer.cont.normal_form) keeps f(x) in its
-   differences and agrees with the closed form.
+   differences and agrees with the closed form. The GH points both engines find, on the
+   interior locus, are zeros of the same l1.
 2. The cycles from HB8 shrink onto HB7 (p4 = 3 on this locus: p1 = 0.2923570163,
    period 8.3834185), where the family ends on the equilibria (a branch point of the
    periodic problem, both engines label it BP). washer's BP is there; AUTO's lies 7.0e-4
@@ -227,6 +228,31 @@ def test_washers_gh_test_on_the_switched_branches_agrees_with_the_closed_form(ru
             shifted = r.U + np.linalg.solve(A, np.array([1e-9, -1e-9, 0.0]))
             assert first_lyapunov(problem, shifted, r.par, omega) == \
                 pytest.approx(exact, abs=1e-6)
+
+
+@pytest.mark.slow
+def test_washers_gh_on_the_interior_locus_are_zeros_of_the_exact_l1(runs):
+    """The GH points both engines find (on the interior locus u2 = 1/6, PAR(1) = 0.49876
+    and 0.068383) are zeros of the same exact l1, with a sign change between the points
+    either side: the closed form tells real GH points from AUTO's."""
+    _, _, _, hb = runs
+    found = 0
+    for seg in _segments(hb.rows):
+        for k, r in enumerate(seg):
+            if r.ty != "GH":
+                continue
+            found += 1
+            assert r.U[1] == pytest.approx(1 / 6, abs=1e-9)
+            l1 = [float(lyapunov_exact(q.U, q.par[0], q.par[3])[0])
+                  for q in (seg[k - 1], r, seg[k + 1])]
+            assert l1[0] * l1[2] < 0
+            # located to EPSS (1 + sqrt(DS DSMAX)) = 1.03e-4 in arclength: l1 within that
+            # times its rate, at most |dl1| / chord between the neighbours (the chord in
+            # (PAR(1), PAR(4), U) is at most their arclength)
+            chord = np.linalg.norm(np.r_[seg[k + 1].par[[0, 3]] - seg[k - 1].par[[0, 3]],
+                                         seg[k + 1].U - seg[k - 1].U])
+            assert abs(l1[1]) < 1.03e-4 * abs(l1[2] - l1[0]) / chord
+    assert found == 16                  # 0.49876 and 0.068383 on 4 branches, both ways
 
 
 # ------------------------------------------------------- the cycles end at HB7
