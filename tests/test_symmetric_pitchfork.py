@@ -85,15 +85,19 @@ def test_the_bifurcating_branch_turns_at_the_other_pitchfork(enz):
         (rows[k + 1].values[2] - rows[k + 1].values[3]) < 0
 
 
-def test_the_bifurcating_branch_labels_the_fold_at_the_first_pitchfork_once(enz):
+def test_the_bifurcating_branch_labels_the_first_pitchfork_once(enz):
     """Branch 2 runs on back to the pitchfork 34.22289, where its fold test and its
-    branch-point test vanish at one point (its parameter is even in the asymmetry) and
-    both are rounding noise next to it. Once a zero is located, its test's stored value is
-    0 (AUTO's LCSPAE), so the next step does not count it again: one LP there, at the
-    closed-form pitchfork. (Before, the LP was labelled on two of four consecutive points,
-    BP LP BP LP, the second one the first one's zero counted again.)"""
+    branch-point test vanish at one point (its parameter is even in the asymmetry). The
+    fold is located first in the step, then the branch point between the previous point
+    and it, within the tolerance of it: one special point, labelled once, BP (AUTO's
+    order), at the closed-form pitchfork and symmetric to within the tolerance. (Before,
+    BP LP BP on three consecutive points: the fold's last trial, a step from the one
+    before, was measured by its projection on the previous point's direction, the other
+    trials by their distance from it, so the branch point's bracket closed 3.4e-4 short
+    of the pitchfork in U(1) - U(2), and its test changed sign again at the next step.)"""
     bp = _closed_form()["BP"][1]
     near = [r for r in enz.rows if r.br == 2 and r.lab and abs(r.values[0] - bp) < 1e-3]
-    lps = [r for r in near if r.ty == "LP"]
-    assert len(lps) == 1
-    assert lps[0].values[0] == pytest.approx(bp, abs=tol(bp))
+    assert [r.ty for r in near] == ["BP"]
+    assert near[0].values[0] == pytest.approx(bp, abs=tol(bp))
+    # U(1) - U(2) moves at most at rate sqrt(2) per unit of arclength
+    assert abs(near[0].values[2] - near[0].values[3]) < 2 ** 0.5 * tol(1.0)

@@ -378,7 +378,7 @@ def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:
 
 
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
-               curve_type: int = 0, secant: bool = False):
+               curve_type: int = 0, secant: bool = False, sphere: bool = False):
     """The earliest accepted zero between the points prev and cur (a step of arclength
     ds): (point, key, keys of other tests vanishing at the same point) or None. A zero
     that cannot be located is left (`note` says so, AUTO's "Possible special point")
@@ -393,6 +393,11 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     note(text): a d-file note.
     secant: leave every located point along the secant from prev (AUTO's CONTBV on
         BVPs: UDOTPS = (UPS - UOLDPS) / DSOLD after every point), not only branch points.
+    sphere: the arclength is the sphere about prev (`System.arclength`): a trial's s is
+        its distance from prev (signed as the step), else its projection on prev's step
+        direction (the plane). The location's bracket holds trials from prev and trials
+        from the last trial (`locate`'s position): both must be measured in the
+        coordinate in which a step from prev of arclength s lands at s.
 
     Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
     two Hopf loci crossing) are one special point: its type is the first in AUTO's
@@ -401,9 +406,17 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     is then the object cur."""
     target, span, found = cur, ds, None
     failed: set = set()
+    tol = 10 * settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    # Zeros located in this step: key -> s. One located within the tolerance of the
+    # interval's far end lies there (a fold located first, then a branch point between
+    # prev and it, at a symmetric pitchfork where both vanish at one point): its test is
+    # not searched again short of it, where its value at the branch point (next to a
+    # crossing branch, whatever tangent the trial took) says nothing of this branch.
+    located: dict = {}
     for _ in range(2 * len(cur.tests) + 1):
         keys = [k for k in sign_changes(prev.tests, target.tests)
                 if (found is None or k != found[1]) and k not in failed
+                and not (k in located and abs(located[k] - span) < tol)
                 and accepted(k, prev, target)
                 and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
                 < (1 - SIMULTANEOUS if found is not None else 2)]
@@ -431,12 +444,15 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             # AUTO's LCSPAE / LCSPBV: the step's end is the special point itself.
             refresh(target)
             found = (target, key)
+            located[key] = span
             continue
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
                               from_last=secant,
-                              position=lambda p: inner(p.x - prev.x, prev.step_direction))
+                              position=(lambda p: _radius(p.x - prev.x, span, inner))
+                              if sphere else
+                              (lambda p: inner(p.x - prev.x, prev.step_direction)))
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other
@@ -447,18 +463,23 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             continue
         refresh(sp)
         found = (sp, key)
+        located[key] = s_sp
         target, span = sp, s_sp
     if found is None:
         return None
     sp, key = found
     # Other tests that change sign over the step and vanish at sp, to within the
-    # location tolerance (their linear zero estimate from sp's value).
-    tol = 10 * settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    # location tolerance: located there in this step, or by their linear zero estimate
+    # from sp's value.
     same = []
     for k in sign_changes(prev.tests, cur.tests):
         # User values (UZ) are never merged: two UZR values are two points.
-        if k == key or isinstance(k, tuple) or isinstance(key, tuple) \
-                or k not in sp.tests or sp.tests[k] is None:
+        if k == key or isinstance(k, tuple) or isinstance(key, tuple):
+            continue
+        if k in located and abs(located[k] - span) < tol:
+            same.append(k)
+            continue
+        if k not in sp.tests or sp.tests[k] is None:
             continue
         slope = abs(cur.tests[k] - prev.tests[k]) / abs(ds)
         if slope > 0 and abs(sp.tests[k]) / slope < tol and accepted(k, prev, cur):
@@ -479,6 +500,12 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         refresh(sp)
     clear_located(prev, sp, span, [key] + same, settings)
     return sp, best, same
+
+
+def _radius(d: np.ndarray, s: float, inner) -> float:
+    """The distance |d| in the system's inner product, signed as s: where a step of
+    arclength s from a point lands on the sphere arclength (AUTO's SOLVAE)."""
+    return math.copysign(math.sqrt(inner(d, d)), s)
 
 
 def clear_located(prev, sp, s_sp: float, located, settings) -> None:

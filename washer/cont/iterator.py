@@ -34,7 +34,7 @@ import numpy as np
 
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
-from washer.cont.events import first_zero
+from washer.cont.events import _radius, first_zero
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient
 from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
@@ -371,7 +371,8 @@ class Continuation:
                           accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
                           note=lambda text: self._pending.append(Step("note", text=text)),
                           curve_type=self.sys.curve_type,
-                          secant=self.sys.arclength == "plane")
+                          secant=self.sys.arclength == "plane",
+                          sphere=self.sys.arclength == "sphere")
 
     def _refresh(self, sp: Point) -> None:
         """All test values at a located point, at its (possibly replaced) tangent; the
@@ -401,7 +402,13 @@ class Continuation:
             # prev's tangent within one step, the plain step falls short by that cosine
             # at every trial and the location creeps (pcl's LP of its heteroclinic
             # connections: ITMX used up with the trials moving 60 % of the way).
-            c = self.sys.inner(p0.tangent, prev.step_direction)
+            # On the sphere arclength s is the distance from prev (the step from p0,
+            # on the sphere about p0, moves it by d times the cosine of p0's tangent
+            # with the radius from prev); on the plane, the projection on prev's step
+            # direction.
+            c = self.sys.inner(p0.tangent, self._radial(prev, p0, s0)) \
+                if self.sys.arclength == "sphere" else \
+                self.sys.inner(p0.tangent, prev.step_direction)
             if abs(c) > 0.05:
                 ds /= c
             try:
@@ -454,6 +461,14 @@ class Continuation:
         else:
             pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)
+
+    def _radial(self, prev: Point, p: Point, s: float) -> np.ndarray:
+        """The unit vector from prev to p in the system's inner product, signed as the
+        step s that reached p (the direction in which the sphere coordinate s grows, as
+        prev's step direction does; that direction where p is prev)."""
+        d = p.x - prev.x
+        n = _radius(d, s, self.sys.inner)
+        return prev.step_direction if n == 0 else d / n
 
     def _accepted(self, key, prev, cur) -> bool:
         return True if isinstance(key, tuple) else self.sys.accept(key, prev, cur)

@@ -1,0 +1,77 @@
+"""A branch that passes a symmetric pitchfork at its fold: the fold and the branch point
+are one point, located once and labelled once (BP), on the branch, against the closed form
+(sympy).
+
+u = (u1, u2), m = (u1 + u2) / 2, a = (u1 - u2) / 2, p = PAR(1), k = PAR(2):
+    F1 = m - p,  F2 = a (k m - a^2),  f = (F1 + F2, F1 - F2),
+symmetric under u1 <-> u2 (a -> -a). The symmetric branch is a = 0, m = p; the
+asymmetric one m = p = a^2 / k crosses it at the origin, where, p being even in a along
+it, p is extremal: a fold (the tangent's p-component vanishes) and a branch point
+(det f_u = 0 with the two branches crossing) at one point. Followed from a = -1 through
+the origin, the step over it sees both tests change sign; the fold is located first
+(AUTO's LCSPAE), then the branch point between the previous point and the fold. Both
+locations measure their trials by the distance from the previous point (the sphere
+arclength), whether a trial is a step from the previous point or from the last trial.
+"""
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from washer.cont.problem import Problem
+from washer.run import run
+
+EPSS, DSMAX = 1e-5, 0.25
+
+
+def func(u, par):
+    m, a = (u[0] + u[1]) / 2, (u[0] - u[1]) / 2
+    F1, F2 = m - par[0], a * (par[1] * m - a * a)
+    return np.array([F1 + F2, F1 - F2])
+
+
+def closed_form(k: float):
+    """The crossing of the asymmetric branch with the symmetric one (sympy): its (u1, u2,
+    p), checked to be a fold of the asymmetric branch and a singular f_u."""
+    a = sp.Symbol("a", real=True)
+    u1_, u2_, p_ = sp.symbols("u1 u2 p", real=True)
+    m_, a_ = (u1_ + u2_) / 2, (u1_ - u2_) / 2
+    F1, F2 = m_ - p_, a_ * (k * m_ - a_**2)
+    f = sp.Matrix([F1 + F2, F1 - F2])
+    branch = {u1_: a**2 / k + a, u2_: a**2 / k - a, p_: a**2 / k}
+    assert sp.simplify(f.subs(branch)) == sp.zeros(2, 1)
+    (a0,) = sp.solve(sp.diff(branch[p_], a), a)          # the fold: dp/da = 0
+    at = {s: e.subs(a, a0) for s, e in branch.items()}
+    assert sp.simplify(f.jacobian([u1_, u2_]).subs(at).det()) == 0
+    return np.array([float(at[u1_]), float(at[u2_]), float(at[p_])])
+
+
+def stpnt_at(a0: float, k: float):
+    def stpnt(u, par):
+        par[0], par[1] = a0 * a0 / k, k
+        u[0], u[1] = a0 * a0 / k + a0, a0 * a0 / k - a0
+    return stpnt
+
+
+@pytest.mark.parametrize("k, ds", [(1.0, 0.05), (1.0, 0.0625), (1.0, 0.1), (1.0, 0.2),
+                                   (3.0, 0.13), (3.0, 0.2)])
+def test_the_pitchfork_at_the_fold_is_one_branch_point_on_the_branch(k, ds):
+    P = closed_form(k)
+    with tempfile.TemporaryDirectory() as d:
+        c = Path(d) / "c.pf"
+        c.write_text(f"NDIM = 2, IPS = 1, IRS = 0, ICP = [1], ISP = 1, ILP = 1, NMX = 60, "
+                     f"DS = {-ds}, DSMIN = 0.01, DSMAX = {DSMAX}, EPSS = {EPSS}, "
+                     "EPSL = 1e-7, EPSU = 1e-7, ITMX = 8, RL0 = -5, RL1 = 5\n")
+        r = run(c, verbose=False, problem=Problem(2, func, stpnt_at(-1.0, k), name="pf"),
+                files=False)
+    labelled = [s for s in r.specials if s.ty != "EP"]
+    assert [s.ty for s in labelled] == ["BP"]
+    (bp,) = labelled
+    # The location tolerance in arclength (AUTO's EPSS (1 + sqrt|DS DSMAX|)), twice: along
+    # the asymmetric branch at the crossing the unknowns move at most at rate 1 per unit
+    # of arclength (the tangent is unit), and the location converges to within it.
+    tol = 2 * EPSS * (1 + np.sqrt(ds * DSMAX))
+    got = np.r_[bp.u, bp.par[0]]
+    assert np.abs(got - P).max() < tol, (got, P)
