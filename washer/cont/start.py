@@ -101,6 +101,9 @@ def start_values(c, s: Settings, problem, rec, data=None) -> tuple[np.ndarray, n
 #: Start kinds of points of the loci of cycles (IPS = 2, ISW = 2).
 CYCLE_CURVES = ("LPC-curve", "BPC-curve", "PD-curve", "TR-curve")
 
+#: Start kinds of points of the loci of equilibria (IPS = 0 or 1, ISW = 2 or 3).
+ALGEBRAIC_CURVES = ("LP-curve", "HB-curve", "BP-curve")
+
 
 def start_kind(rec) -> str:
     """The registry's start kind of a record: its type name, or 'HB-curve' / 'LP-curve'
@@ -158,8 +161,13 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # Periodic orbits restarted from a stored orbit run by CNRLBV as well.
     stored_orbit = rec is not None and (s.IPS == 4 or (s.IPS == 2 and np.ndim(rec.u) == 2))
     # Algebraic problems restarted at any other label: CNRLAE's STPRAE with IPERP = 1
-    # (washer.cont.systems.equilibrium).
-    algebraic = rec is not None and s.IPS in (0, 1) and not kind.endswith("curve")
+    # (washer.cont.systems.equilibrium). A label of a fold, Hopf or branch-point curve
+    # too: with |ISW| < 2 FINDLB sets ITPST = 0, so AUTO continues the equilibria in
+    # PAR(ICP(1)) alone, the curve's other parameters fixed at the label's values, from
+    # the record's first NDIM unknowns and its direction's (READLB).
+    algebraic = rec is not None and s.IPS in (0, 1) and \
+        (not kind.endswith("curve") or
+         (s.ISW == -1 and kind in ALGEBRAIC_CURVES and np.ndim(rec.u) == 1))
     if s.ISW == -1 and kind not in ("BP", "PD") and not stored_orbit and not algebraic:
         raise RunError(f"{c.source}: ISW=-1 switches branches at a BP or PD label, got "
                          f"{kind or 'a regular point'} (IRS={irs!r})")

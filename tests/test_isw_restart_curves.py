@@ -1,0 +1,101 @@
+"""ISW = -1 at labels of the two-parameter curves of equilibria (fold and Hopf curves,
+computed with ISW = 2), on AUTO's ab demo, against Debian AUTO-07p's own output of the same
+script (tests/data/isw_curves, constants unchanged).
+
+AUTO's FINDLB sets ITPST = 0 wherever |ISW| < 2, whatever the label's type, so the run is
+an ordinary continuation of the equilibria in PAR(ICP(1)), the curve's other parameters
+fixed at the label's values, from the record's first NDIM unknowns, started along CNRLAE's
+STPRAE direction with IPERP = 1 (READLB's stored direction: the curve's) as a new branch.
+At a point of a fold curve (the CP, a regular label, the UZ, the EP, the BT) the equilibria
+have a fold: that direction's PAR(1) component is zero to rounding (1e-11), so the way
+STPRAE's 'PAR(ICP(1))-dot made positive' takes is decided by rounding, in AUTO and here;
+there the two runs (DS and DS = '-') are compared with AUTO's two as a pair. On the Hopf
+curve away from the BT the component is 0.02 to 0.07 and each run goes AUTO's way."""
+import gzip
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.auto import clui
+from washer.auto.script import run_script
+
+DATA = Path(__file__).parent / "data"
+
+#: Labels at which the equilibria have a fold (the way is rounding's), and the others.
+AT_FOLDS = ("cp", "lrg", "luz", "lep", "lbt", "hbt")
+ON_HOPF_CURVE = ("hrg", "hep")
+
+
+def _rows(text: str) -> np.ndarray:
+    """The b-file's point rows: BR, PT, TY, LAB, then the columns."""
+    out = []
+    for line in text.splitlines():
+        words = line.split()
+        if len(words) > 4 and words[0] != "0":
+            out.append([float(w) for w in words])
+    return np.array(out)
+
+
+def _auto(name: str) -> np.ndarray:
+    return _rows(gzip.decompress((DATA / "isw_curves" / f"b.{name}.gz").read_bytes())
+                 .decode())
+
+
+def _same(ours: np.ndarray, auto: np.ndarray) -> bool:
+    """The same points: branch, PT with its stability sign, type and label, and values
+    to 1e-6 relative to 1 + |value| (each point a Newton solution to EPSU = EPSL = 1e-7).
+    The first row is the label itself, where the eigenvalues with zero real part (a
+    Hopf pair, the BT's double zero) make the stability sign rounding's: |PT| there."""
+    if ours.shape != auto.shape:
+        return False
+    head_o, head_a = ours[:, :4].copy(), auto[:, :4].copy()
+    head_o[0, 1], head_a[0, 1] = abs(head_o[0, 1]), abs(head_a[0, 1])
+    if not np.array_equal(head_o, head_a):
+        return False
+    return float((np.abs(ours[:, 4:] - auto[:, 4:]) / (1 + np.abs(auto[:, 4:]))).max()) \
+        < 1e-6
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    if shutil.which("gfortran") is None:
+        pytest.skip("ab.f90 needs gfortran")
+    d = tmp_path_factory.mktemp("isw_curves")
+    for f in ("ab.f90", "c.ab.1", "c.ab.2"):
+        shutil.copy(DATA / "auto_demos" / "ab" / f, d)
+    shutil.copy(DATA / "isw_curves" / "isw.auto", d)
+    mp = pytest.MonkeyPatch()
+    mp.chdir(d)
+    try:
+        clui._runner.refused.clear()
+        run_script("isw.auto")
+        assert not clui._runner.refused
+    finally:
+        mp.undo()
+    return {p.name[2:]: _rows(p.read_text()) for p in d.glob("b.*")}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ON_HOPF_CURVE)
+def test_isw_minus_one_on_the_hopf_curve_continues_the_equilibria_as_auto(runs, name):
+    for suffix in ("", "m"):
+        assert _same(runs[name + suffix], _auto(name + suffix)), name + suffix
+    # a new branch (the file's highest + 1) along PAR(1) alone, PAR(3) held at the label's
+    forward = runs[name]
+    assert np.all(forward[:, 0] == 10)
+    assert np.ptp(forward[:, -1]) == 0 and np.ptp(forward[:, 4]) > 0.01
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", AT_FOLDS)
+def test_isw_minus_one_at_a_fold_of_the_equilibria_continues_them_as_auto(runs, name):
+    ours = (runs[name], runs[name + "m"])
+    auto = (_auto(name), _auto(name + "m"))
+    assert (_same(ours[0], auto[0]) and _same(ours[1], auto[1])) or \
+        (_same(ours[0], auto[1]) and _same(ours[1], auto[0])), name
+    # the two runs leave the label on the two sides of the fold: U(1) up and down
+    start = ours[0][0, 6]
+    assert (ours[0][-1, 6] - start) * (ours[1][-1, 6] - start) < 0
+    assert np.ptp(ours[0][:, -1]) == 0          # PAR(3) held at the label's value
