@@ -99,3 +99,27 @@ def test_isw_minus_one_at_a_fold_of_the_equilibria_continues_them_as_auto(runs, 
     start = ours[0][0, 6]
     assert (ours[0][-1, 6] - start) * (ours[1][-1, 6] - start) < 0
     assert np.ptp(ours[0][:, -1]) == 0          # PAR(3) held at the label's value
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="pf.f90 needs gfortran")
+def test_isw_minus_one_on_a_branch_point_locus_switches_as_auto(tmp_path, monkeypatch):
+    """At a label of a branch-point locus (generic, ISW = 3, and non-generic, ISW = 2) the
+    equilibria in PAR(1) have a branch point, so STPRAE's IPERP = 1 direction (the null
+    vector of [f_u f_p1; the locus's direction]) leaves along the other branch: the
+    pitchfork u1^2 + u2^2 = p1 (closed form), both ways, as AUTO's b-files."""
+    src = DATA / "isw_curves" / "bp"
+    for f in ("pf.f90", "c.pf", "pf.auto"):
+        shutil.copy(src / f, tmp_path)
+    monkeypatch.chdir(tmp_path)
+    clui._runner.refused.clear()
+    run_script("pf.auto")
+    assert not clui._runner.refused
+    for name in ("g", "gm", "n", "nm", "ge", "gem"):
+        ours = _rows(Path(f"b.{name}").read_text())
+        assert _same(ours, _rows((src / f"b.{name}").read_text())), name
+        # columns PAR(1), L2-NORM, U(1), U(2): on the pitchfork, off the trivial branch;
+        # each point a Newton solution to EPSU = 1e-7
+        p1, u1, u2 = ours[:, 4], ours[:, 6], ours[:, 7]
+        assert np.abs(u1**2 + u2**2 - p1).max() < 1e-6
+        assert np.all(np.abs(u1[1:]) > 0.01)
+        assert np.all(u1[1:] > 0) if not name.endswith("m") else np.all(u1[1:] < 0)
