@@ -34,9 +34,12 @@ def settings_for(c, problem) -> tuple[Settings, object]:
         raise RunError(f"{c.source}: NDIM={s.NDIM} but the equations '{problem.name}' have "
                          f"{problem.ndim} unknowns")
     if s.ISW not in (1, -1, 2, 3):
-        raise RunError(f"{c.source}: ISW={s.ISW}: expected 1, -1 (branch switching), 2 "
-                         "(the locus of a special point) or 3 (the branch-point locus of a "
-                         "generic problem)")
+        # (AUTO's ISW = -2 is the generating run of a locus of cycles, which ISW = 2 at an
+        # LP, PD or TR label of cycles does here; at a label of a curve of equilibria
+        # AUTO-07p takes one step and ends MX, and with one free parameter refuses.)
+        raise RunError(f"{c.source}: ISW={s.ISW} (IRS={c['IRS']!r}): expected 1, -1 (branch "
+                         "switching), 2 (the locus of a special point) or 3 (the "
+                         "branch-point locus of a generic problem)")
     for key in ("LAB", "IBR"):
         if c[key] < 0:
             raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 "
