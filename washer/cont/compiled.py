@@ -60,6 +60,11 @@ void washer_fopt(int ndim, const double *u, const int *icp, const double *par, i
                  double *fs, double *dfdu, double *dfdp);
 void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, int par_stride,
                        const int *icp, double *fs, double *scratch);
+int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *par,
+                      const double *x_pred, const double *x_ref, const double *theta,
+                      double ds, double epsl, double epsu, int itnw, double divergence,
+                      double hmach, double *x, int *iterations, double *jac,
+                      double *work, double *scratch);
 """
 
 _ffi = FFI()
@@ -96,6 +101,7 @@ def _open(lib_path: Path):
 #: The C type of the arrays passed, resolved once (a type string is parsed again on
 #: every from_buffer call: a tenth of a collocation run's time in man's profile).
 _DOUBLES = _ffi.typeof("double[]")
+_INTS = _ffi.typeof("int[]")
 
 
 def _dptr(a: np.ndarray):
@@ -203,6 +209,22 @@ class CompiledUser:
                                   _dptr(P) if with_dfdp else _ffi.NULL,
                                   self._scratch_for(npar))
         return fs, J, P
+
+    @property
+    def func_ready(self) -> bool:
+        """Whether FUNC may be called directly (the first PVLS call has been made)."""
+        return self._pvls_seen
+
+    def ae_correct(self, ndim, npar, ip, par, x_pred, x_ref, theta, ds, epsl, epsu, itnw,
+                   divergence, hmach, x, iterations, jac, work) -> int:
+        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton): x (NDIM + 1,),
+        iterations (int32 (1,)) and jac ((NDIM, NDIM + 1), the Jacobian at the converged
+        x) are written; the arrays are float64, C-contiguous."""
+        return self.lib.washer_ae_correct(
+            ndim, npar, ip, self._icp_ptr, _dptr(par), _dptr(x_pred), _dptr(x_ref),
+            _dptr(theta), ds, epsl, epsu, itnw, divergence, hmach, _dptr(x),
+            _ffi.from_buffer(_INTS, iterations), _dptr(jac), _dptr(work),
+            self._scratch_for(npar))
 
     def dfdu(self, u, par) -> np.ndarray:
         return self.jac_batch(np.asarray(u, float).reshape(1, -1), par)[1][0]

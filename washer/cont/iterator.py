@@ -142,6 +142,10 @@ class Continuation:
         self.counters = Counters()
         self.failure = "No convergence with minimum step size"
         self._located_J = None
+        # The corrector's compiled form where it applies (washer.cont.compiled_newton),
+        # else None: the Python loop below.
+        from washer.cont.compiled_newton import compiled_corrector
+        self._compiled = compiled_corrector(system, settings, DIVERGENCE_FACTOR)
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -150,6 +154,10 @@ class Continuation:
 
     def _jacobian(self, x, frozen: bool = False):
         self.counters.jacobians += 1
+        if self._compiled is not None:
+            J = self._compiled.jacobian_at(x)       # evaluated by the compiled corrector
+            if J is not None:
+                return J.copy()
         return self.sys.jacobian(x, frozen_second=True) if frozen else self.sys.jacobian(x)
 
     def _factor(self, J, border):
@@ -162,6 +170,11 @@ class Continuation:
         radius |ds|, or the plane <x - x_ref, t_ref> = ds). Returns (x, iterations)."""
         s, sysm = self.s, self.sys
         plane = (sysm.arclength == "plane") if plane is None else plane
+        if self._compiled is not None and not plane:
+            # the same loop compiled (one foreign call); None: it hands over to this one
+            done = self._compiled.correct(x_pred, x_ref, ds, self.counters)
+            if done is not None:
+                return done
         row_plane = sysm.border(t_ref) if plane else None
         ns = getattr(sysm, "n_state", None) if plane else None
         held = {"factor": None, "delref": None}

@@ -1,0 +1,120 @@
+"""The compiled corrector of algebraic continuation (washer.cont.compiled_newton, C in
+washer/cont/compiled_shim.c) against the Python Newton loop it is the compiled form of
+(washer.cont.newton through Continuation.correct): the same branches, special points,
+iteration counts and failures, on AUTO's ab and lrz user files (Fortran), run both ways.
+
+Tolerances: the two loops make the same function calls and the same quotients; only the
+bordered solve is a different elimination (partial pivoting in C against LAPACK's
+GESV), whose rounding differs in the last bits of a correction that converges to EPSU =
+1e-7: the converged points agree to far below that (1e-9 relative is asserted, the b-file
+prints 11 digits), and where the location of a special point iterates on them, to EPSS.
+"""
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.cont import compiled_newton
+from washer.cont.newton import ConvergenceError
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+DEMOS = DATA / "auto_demos"
+
+pytestmark = pytest.mark.skipif(shutil.which("gfortran") is None or shutil.which("gcc") is None,
+                                reason="gcc and gfortran are needed (Debian: gcc gfortran)")
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+
+
+def _folder(tmp_path, name, sub):
+    d = tmp_path / sub
+    d.mkdir()
+    shutil.copy(DATA / name / f"c.{name}", d)
+    shutil.copy(DEMOS / name / f"{name}.f90", d)
+    return d
+
+
+def _both(tmp_path, monkeypatch, name, **ov):
+    """The run with the compiled corrector (and how many steps it took), then the same
+    run with the Python loop only."""
+    used = []
+    real = compiled_newton.CompiledCorrector.correct
+
+    def spy(self, *a, **k):
+        try:
+            out = real(self, *a, **k)
+        except ConvergenceError:
+            used.append(True)                      # decided in C: no convergence
+            raise
+        used.append(out is not None)
+        return out
+    with monkeypatch.context() as m:
+        m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
+        fast = run(_folder(tmp_path, name, "fast") / f"c.{name}", verbose=False, **ov)
+    with monkeypatch.context() as m:
+        m.setattr(compiled_newton, "compiled_corrector", lambda *a, **k: None)
+        slow = run(_folder(tmp_path, name, "slow") / f"c.{name}", verbose=False, **ov)
+    return fast, slow, used
+
+
+@pytest.mark.parametrize("name", ["ab", "lrz"])
+def test_compiled_corrector_follows_the_python_loop(name, tmp_path, monkeypatch, cache):
+    fast, slow, used = _both(tmp_path, monkeypatch, name)
+    # every step through C but those the Python loop takes over: at lrz's branch point
+    # (the Newton matrix exactly singular on the trivial branch, where the Python loop's
+    # solve falls back to least squares)
+    assert len(used) > 50 and sum(used) >= len(used) - 5, used
+    assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
+    assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+    a = np.array([r.values for r in fast.rows])
+    b = np.array([r.values for r in slow.rows])
+    np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
+    assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
+        == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
+    assert fast.status == slow.status
+
+
+def test_compiled_corrector_fails_as_the_python_loop(tmp_path, monkeypatch, cache):
+    """ITNW = 2 is too few for many of ab's steps: both loops give up on the same steps
+    with the same message, halve DS the same way (the same notes in the d-files) and
+    go on to the same branch."""
+    fast, slow, used = _both(tmp_path, monkeypatch, "ab", ITNW=2)
+    assert len(used) > 100 and all(used)
+
+    def notes(sub):
+        return [line for line in (tmp_path / sub / "d.ab").read_text().splitlines()
+                if "NOTE" in line]
+    assert len(notes("fast")) > 20
+    assert notes("fast") == notes("slow")
+    assert "no convergence in ITNW = 2 iterations" in notes("fast")[0]
+    assert fast.status == slow.status
+    a = np.array([r.values for r in fast.rows])
+    b = np.array([r.values for r in slow.rows])
+    np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
+
+
+def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
+    """Python equations, JAC = 1 and loci keep the Python loop."""
+    from washer.cont.compiled import load_compiled_problem
+    from washer.cont.settings import Settings
+    from washer.cont.user_files import load_python_problem
+    from washer.cont.system import StartData
+    from washer.cont.systems.equilibrium import EquilibriumSystem
+
+    def system(problem, jac):
+        s = Settings(NDIM=2, ICP=[1], IPS=1, JAC=jac)
+        u, par = problem.start(36)
+        return EquilibriumSystem(StartData(problem=problem.with_jac(jac), settings=s,
+                                           u=u, par=par))
+
+    compiled = load_compiled_problem(DEMOS / "ab" / "ab.f90", 2)
+    python = load_python_problem("ab", DATA / "ab", 2)
+    s = Settings(NDIM=2, ICP=[1], IPS=1)
+    assert compiled_newton.compiled_corrector(system(compiled, 0), s, 20.0) is not None
+    assert compiled_newton.compiled_corrector(system(compiled, 1), s, 20.0) is None
+    assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is None
