@@ -533,12 +533,14 @@ class Problem:
         us = np.empty((ns, m, 4, n))
         np.add(u, _SIGN_B[:, None] * (k[:, None] * ws)[:, None, :], out=us)
         ah = _SIGN_A * h[:, None]                                            # (ns, 4)
-        idx = np.arange(n)
-        us[idx, :, :, idx] += ah[:n, None, :]
+        # one direction at a time: basic slices (the same additions as one fancy-indexed
+        # update, which costs more than the whole loop at these sizes)
+        for j in range(n):
+            us[j, :, :, j] += ah[j]
         ps = np.empty((ns, m, 4, npar))
         ps[:] = par
-        if q:
-            ps[n + np.arange(q), :, :, pidx] += ah[n:, None, :]
+        for j, i in enumerate(pidx):
+            ps[n + j, :, :, i] += ah[n + j]
         F = self.func_many(us.reshape(-1, n), ps.reshape(-1, npar)).reshape(ns, m, 4, n)
         num = F[:, :, 0] - F[:, :, 1] - F[:, :, 2] + F[:, :, 3]
         return num / (4 * h[:, None, None] * k[None, :, None])
