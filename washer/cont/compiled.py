@@ -64,7 +64,7 @@ int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *
                       const double *x_pred, const double *x_ref, const double *theta,
                       double ds, double epsl, double epsu, int itnw, double divergence,
                       double hmach, double *x, int *iterations, double *jac,
-                      double *work, double *scratch);
+                      double *tangent, double *work, double *scratch);
 """
 
 _ffi = FFI()
@@ -216,14 +216,15 @@ class CompiledUser:
         return self._pvls_seen
 
     def ae_correct(self, ndim, npar, ip, par, x_pred, x_ref, theta, ds, epsl, epsu, itnw,
-                   divergence, hmach, x, iterations, jac, work) -> int:
+                   divergence, hmach, x, iterations, jac, tangent, work) -> int:
         """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton): x (NDIM + 1,),
-        iterations (int32 (1,)) and jac ((NDIM, NDIM + 1), the Jacobian at the converged
-        x) are written; the arrays are float64, C-contiguous."""
+        iterations (int32 (1,)), jac ((NDIM, NDIM + 1), the Jacobian at the converged x)
+        and tangent (3 NDIM + 6: the tangent system's solution, the secant, the
+        determinant) are written; the arrays are float64, C-contiguous."""
         return self.lib.washer_ae_correct(
             ndim, npar, ip, self._icp_ptr, _dptr(par), _dptr(x_pred), _dptr(x_ref),
             _dptr(theta), ds, epsl, epsu, itnw, divergence, hmach, _dptr(x),
-            _ffi.from_buffer(_INTS, iterations), _dptr(jac), _dptr(work),
+            _ffi.from_buffer(_INTS, iterations), _dptr(jac), _dptr(tangent), _dptr(work),
             self._scratch_for(npar))
 
     def dfdu(self, u, par) -> np.ndarray:

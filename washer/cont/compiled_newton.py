@@ -48,7 +48,8 @@ class CompiledCorrector:
         self.x = np.empty(n + 1)
         self.iterations = np.zeros(1, dtype=np.int32)
         self.jac = np.empty((n, n + 1))
-        self.last = None          # (x, [f_u, f_lambda] at x) of the last converged point
+        self.tan = np.empty(3 * (n + 1) + 3)
+        self.last = None          # (x, [f_u, f_lambda] at x, tangent data) of the last point
 
     def correct(self, x_pred, x_ref, ds: float, counters):
         """(x, iterations) of the corrector from x_pred on the sphere of radius |ds|
@@ -64,7 +65,7 @@ class CompiledCorrector:
         status = user.ae_correct(self.sys.ndim, self.npar, self.ip, par, x_pred, x_ref,
                                  self.theta, float(ds), s.EPSL, s.EPSU, s.ITNW,
                                  self.divergence, HMACH, self.x, self.iterations, self.jac,
-                                 self.work)
+                                 self.tan, self.work)
         self.last = None
         if status == 3:
             return None
@@ -79,7 +80,7 @@ class CompiledCorrector:
             raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
         x = self.x.copy()
         if status == 0:
-            self.last = (x, self.jac.copy())
+            self.last = (x, self.jac.copy(), self.tan.copy() if self.tan[-1] == 1.0 else None)
         return x, it
 
     def jacobian_at(self, x):
@@ -90,6 +91,39 @@ class CompiledCorrector:
         if last is not None and (last[0] is x or np.array_equal(last[0], x)):
             return last[1]
         return None
+
+    def tangent_system(self, J, ref):
+        """(z, factor) of Continuation.tangent's system [J; theta ref] z = e_last if J is
+        the Jacobian of the point just converged to and ref its secant (x - x_ref) / ds:
+        solved in the same foreign call, the factor giving its determinant (the BP test)
+        and solves with LAPACK if anything asks for more; else None."""
+        last = self.last
+        if last is None or last[2] is None or J is not last[1]:
+            return None
+        m = len(ref)
+        t = last[2]
+        if not np.array_equal(t[m:2 * m], ref):
+            return None
+        return t[:m].copy(), _SolvedFactor(J, self.sys.border(ref), float(t[2 * m]),
+                                           float(t[2 * m + 1]))
+
+
+class _SolvedFactor:
+    """The factor of [J; border] whose determinant the compiled corrector has computed:
+    sign_logdet from it, solves (none on the continuation's path) with LAPACK."""
+
+    def __init__(self, J, border, sign, logdet):
+        self.J, self.border, self._sign_logdet = J, border, (sign, logdet)
+        self._factor = None
+
+    def sign_logdet(self) -> tuple[float, float]:
+        return self._sign_logdet
+
+    def solve(self, rhs):
+        if self._factor is None:
+            from washer.cont.linalg import dense_factor
+            self._factor = dense_factor(self.J, self.border)
+        return self._factor.solve(rhs)
 
 
 def compiled_corrector(system, settings, divergence: float):

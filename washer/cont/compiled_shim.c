@@ -411,6 +411,59 @@ static int ae_jacobian(int n, const double *fs, const double *h, double *J, int 
     return 0;
 }
 
+/* Gaussian elimination with partial pivoting (LAPACK's GETRF order: the largest |entry|
+   of the column, the first one of equal size) of M (m, m) row-major, applied to b (m,);
+   the determinant as sign and log|det| into det (if not NULL). Returns 0, or 3 for a
+   zero or non-finite pivot. */
+static int ae_eliminate(int m, double *M, double *b, double *det)
+{
+    double sign = 1.0, logdet = 0.0;
+    for (int col = 0; col < m; col++) {
+        int p = col;
+        double best = fabs(M[(size_t)col * m + col]);
+        for (int r = col + 1; r < m; r++) {
+            double v = fabs(M[(size_t)r * m + col]);
+            if (v > best) { best = v; p = r; }
+        }
+        if (best == 0.0 || !isfinite(best)) return 3;
+        if (p != col) {
+            for (int j = 0; j < m; j++) {
+                double t = M[(size_t)col * m + j];
+                M[(size_t)col * m + j] = M[(size_t)p * m + j];
+                M[(size_t)p * m + j] = t;
+            }
+            double t = b[col]; b[col] = b[p]; b[p] = t;
+            sign = -sign;
+        }
+        double piv = M[(size_t)col * m + col];
+        if (det) {
+            if (piv < 0) sign = -sign;
+            logdet += log(fabs(piv));
+        }
+        for (int r = col + 1; r < m; r++) {
+            double f = M[(size_t)r * m + col] / piv;
+            if (f == 0.0) continue;
+            for (int j = col + 1; j < m; j++)
+                M[(size_t)r * m + j] -= f * M[(size_t)col * m + j];
+            b[r] -= f * b[col];
+        }
+    }
+    if (det) { det[0] = sign; det[1] = logdet; }
+    return 0;
+}
+
+/* Back substitution of ae_eliminate's upper triangle: y (m,) from b. 0, or 3 if not finite. */
+static int ae_back(int m, const double *M, const double *b, double *y)
+{
+    for (int i = m - 1; i >= 0; i--) {
+        double s = b[i];
+        for (int j = i + 1; j < m; j++) s -= M[(size_t)i * m + j] * y[j];
+        y[i] = s / M[(size_t)i * m + i];
+        if (!isfinite(y[i])) return 3;
+    }
+    return 0;
+}
+
 /* The corrector of algebraic continuation in one foreign call: the compiled form of the
    package's one Newton loop (washer.cont.newton.newton) as iterator.Continuation.correct
    runs it on equilibria with the sphere arclength (AUTO's SOLVAE/STEPAE), for FUNC with
@@ -424,7 +477,10 @@ static int ae_jacobian(int n, const double *fs, const double *h, double *J, int 
      stop when |dx_lambda| / (1 + |x_lambda|) <= epsl and max|dx_u| / (1 + max|x_u|) <=
      epsu; diverging when max of the two grows beyond `divergence` times its first value.
    jac: NULL, or (NDIM, NDIM + 1) row-major: [f_u, f_PAR(ip + 1)] at the converged x (the
-   Jacobian the continuation evaluates there next, the same values).
+   Jacobian the continuation evaluates there next, the same values). tangent: NULL, or
+   3 (NDIM + 1) + 3 doubles (with jac): z of [J; theta ref] z = e_last, the secant ref =
+   (x - x_ref) / ds, the determinant of [J; theta ref] as sign and log|det|, and 1 when
+   they were computed (0: a zero pivot; the caller computes them).
 
    work: at least (2 NDIM + 3) (2 NDIM + npar) + (NDIM + 1) (NDIM + 4) doubles; scratch:
    NDIM (NDIM + npar) for FUNC's DFDU/DFDP. Returns 0 converged (x, *iterations set),
@@ -433,8 +489,8 @@ static int ae_jacobian(int n, const double *fs, const double *h, double *J, int 
 int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *par,
                       const double *x_pred, const double *x_ref, const double *theta,
                       double ds, double epsl, double epsu, int itnw, double divergence,
-                      double hmach, double *x, int *iterations, double *jac, double *work,
-                      double *scratch)
+                      double hmach, double *x, int *iterations, double *jac,
+                      double *tangent, double *work, double *scratch)
 {
     const int n = ndim, k = ndim + 1, np1 = ndim + 1, rows = 2 * k + 1;
     double *us = work;                              /* (rows, n) */
@@ -462,39 +518,8 @@ int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *
         }
         for (int j = 0; j < np1; j++) c += M[(size_t)n * np1 + j] * d[j];
         b[n] = -(c / 2 - ads);
-        /* Gaussian elimination with partial pivoting (LAPACK's GETRF order: the largest
-           |entry| of the column, the first one of equal size) */
-        for (int col = 0; col < np1; col++) {
-            int p = col;
-            double best = fabs(M[(size_t)col * np1 + col]);
-            for (int r = col + 1; r < np1; r++) {
-                double v = fabs(M[(size_t)r * np1 + col]);
-                if (v > best) { best = v; p = r; }
-            }
-            if (best == 0.0 || !isfinite(best)) return 3;
-            if (p != col) {
-                for (int j = 0; j < np1; j++) {
-                    double t = M[(size_t)col * np1 + j];
-                    M[(size_t)col * np1 + j] = M[(size_t)p * np1 + j];
-                    M[(size_t)p * np1 + j] = t;
-                }
-                double t = b[col]; b[col] = b[p]; b[p] = t;
-            }
-            double piv = M[(size_t)col * np1 + col];
-            for (int r = col + 1; r < np1; r++) {
-                double m = M[(size_t)r * np1 + col] / piv;
-                if (m == 0.0) continue;
-                for (int j = col + 1; j < np1; j++)
-                    M[(size_t)r * np1 + j] -= m * M[(size_t)col * np1 + j];
-                b[r] -= m * b[col];
-            }
-        }
-        for (int i = n; i >= 0; i--) {               /* d becomes the correction dx */
-            double s = b[i];
-            for (int j = i + 1; j < np1; j++) s -= M[(size_t)i * np1 + j] * d[j];
-            d[i] = s / M[(size_t)i * np1 + i];
-            if (!isfinite(d[i])) return 3;
-        }
+        if (ae_eliminate(np1, M, b, NULL)) return 3;
+        if (ae_back(np1, M, b, d)) return 3;          /* d becomes the correction dx */
         for (int j = 0; j < np1; j++) x[j] += d[j];
         double mdx = 0.0, mx = 0.0;
         for (int j = 0; j < n; j++) {
@@ -507,6 +532,20 @@ int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *
             if (jac) {
                 ae_points(n, npar, ip, icp, par, x, hmach, 1, us, ps, fs, h, scratch);
                 if (ae_jacobian(n, fs, h, jac, np1)) return 4;
+                if (tangent) {
+                    /* the secant ref = (x - x_ref) / ds, z of [J; theta ref] z = e_last
+                       and the determinant of that matrix (Continuation.tangent) */
+                    tangent[2 * np1 + 2] = 0.0;
+                    for (int j = 0; j < np1; j++) tangent[np1 + j] = (x[j] - x_ref[j]) / ds;
+                    memcpy(M, jac, sizeof(double) * (size_t)n * np1);
+                    for (int j = 0; j < np1; j++) {
+                        M[(size_t)n * np1 + j] = theta[j] * tangent[np1 + j];
+                        b[j] = j == n ? 1.0 : 0.0;
+                    }
+                    if (ae_eliminate(np1, M, b, tangent + 2 * np1) == 0
+                            && ae_back(np1, M, b, tangent) == 0)
+                        tangent[2 * np1 + 2] = 1.0;
+                }
             }
             return 0;
         }

@@ -157,7 +157,7 @@ class Continuation:
         if self._compiled is not None:
             J = self._compiled.jacobian_at(x)       # evaluated by the compiled corrector
             if J is not None:
-                return J.copy()
+                return J
         return self.sys.jacobian(x, frozen_second=True) if frozen else self.sys.jacobian(x)
 
     def _factor(self, J, border):
@@ -276,11 +276,16 @@ class Continuation:
         secant just taken); also the factorisation of [J; border(ref)], whose
         determinant is AUTO's BP test."""
         sysm = self.sys
-        factor = self._factor(J, sysm.border(ref))
-        e = np.zeros(len(ref))
-        e[-1] = 1.0
-        with np.errstate(all="ignore"):
-            z = factor.solve(e)
+        solved = self._compiled.tangent_system(J, ref) if self._compiled is not None else None
+        if solved is not None:                      # solved with the corrector's last call
+            self.counters.factorisations += 1
+            z, factor = solved
+        else:
+            factor = self._factor(J, sysm.border(ref))
+            e = np.zeros(len(ref))
+            e[-1] = 1.0
+            with np.errstate(all="ignore"):
+                z = factor.solve(e)
         nz = math.sqrt(abs(sysm.inner(z, z))) if np.isfinite(z).all() else math.inf
         if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:
             z, nz = ref, math.sqrt(sysm.inner(ref, ref))
