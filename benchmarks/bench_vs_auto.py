@@ -21,6 +21,9 @@ tests/data/auto_reference):
   lrz_po200   the same at NTST 200
   chu_po      chu periodic orbits from HB1 (NTST 25, a period doubling)
   ab_po       ab's seven periodic families from every HB of the p1-branches (ab.auto)
+  ab_eq_f90, lrz_eq_f90   ab_eq and lrz_eq with AUTO's Fortran user files on both sides
+              (washer compiles ab.f90 / lrz.f90: the corrector of equilibria in one
+              foreign call per point, washer.cont.compiled_newton)
   lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
               expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
 the washer's own model (skipped with --quick), AUTO-07p running the same compiled
@@ -88,6 +91,13 @@ CASES = [
     Case("ab_po", [Step("start", "ab.1", "ab", timed=False),
                    Step("eq", "ab.2", "ab", start="start", each="*", timed=False),
                    Step("po", "ab.3", "ab", start="eq_", each="HB")], ABPO_FILES),
+]
+AB_F90 = [(DATA / "ab" / "c.ab", "c.ab"), (DEMOS / "ab" / "ab.f90", "ab.f90")]
+LRZ_F90 = [(DATA / "lrz" / "c.lrz", "c.lrz"), (DEMOS / "lrz" / "lrz.f90", "lrz.f90")]
+CASES += [
+    # the same equilibria from the Fortran user files alone (no NAME.py beside them)
+    Case("ab_eq_f90", [Step("eq", "ab", "ab")], AB_F90),
+    Case("lrz_eq_f90", [Step("eq", "lrz", "lrz")], LRZ_F90),
 ]
 SYM = [(DATA / "lrz_sym" / "lrz.py", "lrz.py"), (DATA / "lrz_sym" / "c.lrz", "c.lrz")]
 CASES += [
