@@ -65,14 +65,19 @@ def test_algebraic_branch_point_locus_closed_form(tmp_path, isw):
             assert abs(phi1) == pytest.approx(1.0, abs=1e-8)
             assert u2 == pytest.approx(p2, abs=1e-8)
     assert ends == {-1, 1}
-    # A point of the locus restarted with ISW = 1 continues the locus it lies on, with
-    # its own meaning of z (b or p3)
-    r = run(tmp_path / "c.pf", e="pf", s="bp", IRS=r.specials[-1].lab, ICP=icp, ISW=1,
+    # A point of the locus restarted with ISW = 1: AUTO's FINDLB sets ITPST = 0 for
+    # |ISW| < 2, so the equilibria in PAR(1) go on from it, PAR(2) held (AUTO-07p does
+    # so on this problem): from the branch point the label is, along the trivial branch
+    # u1 = 0, u2 = p2, PAR(1) growing.
+    end = r.specials[-1]
+    r = run(tmp_path / "c.pf", e="pf", s="bp", IRS=end.lab, ICP=icp, ISW=1,
             DS=0.05, DSMAX=0.1, NMX=5, sv="again", verbose=False)
-    assert r.status == "ok" and len(r.rows) == 5 and r.rows[-1].isw == isw
+    assert r.status == "ok" and len(r.rows) == 5 and r.rows[-1].isw == 1
     for row in r.rows:
-        assert row.par[0] == pytest.approx(row.par[1] ** 2, abs=1e-8)
-        assert abs(row.par[2]) < 1e-8
+        assert abs(row.u[0]) < 1e-8 and row.u[1] == pytest.approx(end.par[1], abs=1e-8)
+        assert row.par[1] == pytest.approx(end.par[1], abs=1e-12)
+    assert np.all(np.diff([row.par[0] for row in r.rows]) > 0.04)
+    assert all(abs(row.par[2]) < 1e-8 for row in r.rows)
 
 
 # u'' + p1 u + u^3 = 0 (u1 = u, u2 = u'), u(0) = 0, u'(1) = p2 u(1) [+ p3 in the ODE]:

@@ -123,3 +123,54 @@ def test_isw_minus_one_on_a_branch_point_locus_switches_as_auto(tmp_path, monkey
         assert np.abs(u1**2 + u2**2 - p1).max() < 1e-6
         assert np.all(np.abs(u1[1:]) > 0.01)
         assert np.all(u1[1:] > 0) if not name.endswith("m") else np.all(u1[1:] < 0)
+
+
+@pytest.fixture(scope="module")
+def runs_isw1(tmp_path_factory):
+    if shutil.which("gfortran") is None:
+        pytest.skip("ab.f90 needs gfortran")
+    d = tmp_path_factory.mktemp("isw1_curves")
+    for f in ("ab.f90", "c.ab.1", "c.ab.2"):
+        shutil.copy(DATA / "auto_demos" / "ab" / f, d)
+    shutil.copy(DATA / "isw_curves" / "isw1.auto", d)
+    mp = pytest.MonkeyPatch()
+    mp.chdir(d)
+    try:
+        clui._runner.refused.clear()
+        run_script("isw1.auto")
+        assert not clui._runner.refused
+    finally:
+        mp.undo()
+    return {p.name[2:]: _rows(p.read_text()) for p in d.glob("b.*")}
+
+
+@pytest.mark.slow
+def test_isw_one_at_curve_labels_continues_the_equilibria_as_auto(runs_isw1):
+    """ISW = 1 at a label of a fold or Hopf curve: FINDLB's ITPST = 0 as for ISW = -1, so
+    the equilibria in PAR(1) go on (the record's branch number: no switch), from the
+    null vector of [f_u f_p] (STPRAE, IPERP = 0: the record's free parameters are not
+    the run's). At the fold curve's labels that vector's PAR(1) component is rounding's,
+    so the two ways are compared as a pair; on the Hopf curve each run goes AUTO's way."""
+    for name in ("ehrg", "ehep"):
+        for suffix in ("", "m"):
+            assert _same(runs_isw1[name + suffix], _auto(name + suffix)), name + suffix
+    for name in ("ecp", "elrg"):
+        ours = (runs_isw1[name], runs_isw1[name + "m"])
+        auto = (_auto(name), _auto(name + "m"))
+        assert (_same(ours[0], auto[0]) and _same(ours[1], auto[1])) or \
+            (_same(ours[0], auto[1]) and _same(ours[1], auto[0])), name
+    assert np.all(runs_isw1["ecp"][:, 0] == 10)          # the fold curve's branch
+    assert np.ptp(runs_isw1["ehrg"][:, -1]) == 0          # PAR(3) held
+
+
+@pytest.mark.slow
+def test_a_restart_along_a_stored_direction_turns_it_to_a_growing_parameter_as_auto(
+        runs_isw1):
+    """IPS = 1: CNRLAE's STPRAE with IPERP = -1 turns the stored direction so that
+    PAR(ICP(1))-dot is positive before DS's sign chooses the way. At the fold curve's UZ
+    (its run's constants, ISW = 2) the curve runs towards PAR(1) growing, back towards
+    the cusp; at label 12 of the equilibria, past their fold where PAR(1) decreases along
+    the branch, the run goes back towards the fold. Both as AUTO's b-files."""
+    for name in ("cont", "d12"):
+        assert _same(runs_isw1[name], _auto(name)), name
+        assert np.all(np.diff(runs_isw1[name][:, 4]) > 0), name

@@ -186,15 +186,19 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     if s.ISW == 3 and kind not in ("BP", "BP-curve", "BPC-curve"):
         raise RunError(f"{c.source}: ISW=3 continues the branch points of a generic problem: "
                        f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")
-    if s.IPS in (0, 1) and s.ISW == 1 and kind in ("HB-curve", "LP-curve"):
-        s = s.with_(ISW=2)          # restarting a point of a curve continues the curve
-    if s.ISW == 1 and kind == "BP-curve" and abs(rec.isw) in (2, 3):
-        # ... a branch-point locus as it was computed: non-generic (2) or generic (3),
-        # which its stored unknowns mean (b or PAR(ICP(3)))
+    # ISW = 1 at a label of a curve of equilibria: FINDLB's ITPST = 0 (|ISW| < 2), so
+    # AUTO continues the equilibria in PAR(ICP(1)) from it, as from any label (a curve's
+    # solutions carry the constants of their run, ISW = 2 or 3, so run(curve('UZ1'))
+    # goes on along the curve).
+    equilibria = s.IPS in (0, 1) and s.ISW == 1 and kind in ALGEBRAIC_CURVES and \
+        np.ndim(rec.u) == 1
+    if s.ISW == 1 and kind == "BP-curve" and abs(rec.isw) in (2, 3) and not equilibria:
+        # ... a branch-point locus of a BVP as it was computed: non-generic (2) or
+        # generic (3), which its stored unknowns mean (b or PAR(ICP(3)))
         s = s.with_(ISW=abs(rec.isw))
     # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
     isw_key = -1 if s.ISW == -1 and (kind == "BP" or algebraic) else \
-        (2 if s.ISW in (2, 3) or kind.endswith("curve") else 1)
+        (2 if s.ISW in (2, 3) or (kind.endswith("curve") and not equilibria) else 1)
     if kind in CYCLE_CURVES and s.ISW not in (2, 3):
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:

@@ -36,9 +36,22 @@ class AlgebraicSystem:
         self._x0 = np.r_[u, self.par[s.ICP[0] - 1]]
         self._t0 = None
         rec = start.record
+        # STPNAE: the stored direction only where the record has the run's free
+        # parameters (NFPR and ICP(1:NFPR) the same; a point of a two-parameter curve
+        # restarted in one parameter gets a fresh one)
         if rec is not None and rec.udot is not None and len(rec.rldot) and \
-                list(rec.icp[:1]) == self.free and len(rec.udot) >= self.ndim:
+                rec.nfpr == 1 and list(rec.icp[:1]) == self.free and \
+                len(rec.udot) >= self.ndim:
             self._t0 = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+
+    def restart_direction(self, t):
+        """A stored direction the run restarts along (AUTO's CNRLAE: STPRAE with
+        IPERP = -1 where |IPS| = 1 or IPS = 11): turned so that PAR(ICP(1))-dot is not
+        negative, DS's sign then choosing the way; kept as stored for IPS = 0. None
+        stays None."""
+        if t is None or abs(self.settings.IPS) != 1 and self.settings.IPS != 11:
+            return t
+        return -t if t[-1] < 0 else t
 
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:

@@ -61,7 +61,7 @@ class LocusSystem(AlgebraicSystem):
         return np.r_[rec.udot, rec.rldot[0]]
 
     def start(self):
-        return self._x0.copy(), self._t0
+        return self._x0.copy(), self.restart_direction(self._t0)
 
     def _p(self, x) -> np.ndarray:
         p = self.par.copy()

@@ -129,7 +129,7 @@ class EquilibriumSystem(AlgebraicSystem):
                 t = null_vectors(self.jacobian(self._x0), 1)[:, 0]
             d = self.directions(self._x0, t / np.sqrt(self.inner(t, t)), Code.BP)
             return self._x0.copy(), (d[0] if d else None)
-        return self._x0.copy(), self._t0
+        return self._x0.copy(), self.restart_direction(self._t0)
 
     # ------------------------------------------------------------ stability
     def stability(self, x, J) -> Stability | None:
