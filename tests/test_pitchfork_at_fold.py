@@ -55,8 +55,25 @@ def stpnt_at(a0: float, k: float):
     return stpnt
 
 
-@pytest.mark.parametrize("k, ds", [(1.0, 0.05), (1.0, 0.0625), (1.0, 0.1), (1.0, 0.2),
-                                   (3.0, 0.13), (3.0, 0.2)])
+#: Steps that do not give one BP, and why (kept to be seen when they change).
+NOT_YET = {
+    (1.0, 0.13): "a step lands 1.2e-4 from the crossing: the fold's location stops 14 "
+                 "tolerances early on the creeping test (AUTO's rule, as AUTO at enz's other "
+                 "pitchfork), the BP is located on the next step, and the fold test counts "
+                 "again one step on: the BP's tangent is the secant of its whole step, whose "
+                 "PAR(1) component keeps the approach's sign (AUTO's, of its last trial step, "
+                 "is the local tangent): LP, BP, LP",
+    (0.3, 0.1): "a retried step converges onto the symmetric branch before the crossing "
+                "(a branch jump: no test changes sign, nothing labelled)",
+    (0.3, 0.0625): "as (0.3, 0.1): the step jumps onto the symmetric branch",
+}
+
+
+@pytest.mark.parametrize("k, ds", [
+    pytest.param(k, ds, marks=pytest.mark.xfail(reason=NOT_YET[(k, ds)], strict=True))
+    if (k, ds) in NOT_YET else (k, ds)
+    for k, ds in [(1.0, 0.05), (1.0, 0.0625), (1.0, 0.1), (1.0, 0.2), (1.0, 0.13),
+                  (0.3, 0.05), (0.3, 0.1), (0.3, 0.0625), (3.0, 0.13), (3.0, 0.2)]])
 def test_the_pitchfork_at_the_fold_is_one_branch_point_on_the_branch(k, ds):
     P = closed_form(k)
     with tempfile.TemporaryDirectory() as d:
