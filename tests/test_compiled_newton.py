@@ -1,7 +1,8 @@
 """The compiled corrector of algebraic continuation (washer.cont.compiled_newton, C in
-washer/cont/compiled_shim.c) against the Python Newton loop it is the compiled form of
-(washer.cont.newton through Continuation.correct): the same branches, special points,
-iteration counts and failures, on AUTO's ab and lrz user files (Fortran), run both ways.
+washer/cont/include/ae_correct.h) against the Python Newton loop it is the compiled form
+of (washer.cont.newton through Continuation.correct): the same branches, special points,
+iteration counts and failures, on AUTO's ab and lrz user files (Fortran: FUNC called from
+C) and their Python transcriptions (func called back from C), run both ways.
 
 Tolerances: the two loops make the same function calls and the same quotients; only the
 bordered solve is a different elimination (partial pivoting in C against LAPACK's
@@ -31,15 +32,18 @@ def cache(tmp_path, monkeypatch):
     monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
 
 
-def _folder(tmp_path, name, sub):
+def _folder(tmp_path, name, sub, kind):
     d = tmp_path / sub
     d.mkdir()
     shutil.copy(DATA / name / f"c.{name}", d)
-    shutil.copy(DEMOS / name / f"{name}.f90", d)
+    if kind == "f90":
+        shutil.copy(DEMOS / name / f"{name}.f90", d)
+    else:
+        shutil.copy(DATA / name / f"{name}.py", d)
     return d
 
 
-def _both(tmp_path, monkeypatch, name, **ov):
+def _both(tmp_path, monkeypatch, name, kind="f90", **ov):
     """The run with the compiled corrector (and how many steps it took), then the same
     run with the Python loop only."""
     used = []
@@ -55,16 +59,17 @@ def _both(tmp_path, monkeypatch, name, **ov):
         return out
     with monkeypatch.context() as m:
         m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
-        fast = run(_folder(tmp_path, name, "fast") / f"c.{name}", verbose=False, **ov)
+        fast = run(_folder(tmp_path, name, "fast", kind) / f"c.{name}", verbose=False, **ov)
     with monkeypatch.context() as m:
         m.setattr(compiled_newton, "compiled_corrector", lambda *a, **k: None)
-        slow = run(_folder(tmp_path, name, "slow") / f"c.{name}", verbose=False, **ov)
+        slow = run(_folder(tmp_path, name, "slow", kind) / f"c.{name}", verbose=False, **ov)
     return fast, slow, used
 
 
+@pytest.mark.parametrize("kind", ["f90", "py"])
 @pytest.mark.parametrize("name", ["ab", "lrz"])
-def test_compiled_corrector_follows_the_python_loop(name, tmp_path, monkeypatch, cache):
-    fast, slow, used = _both(tmp_path, monkeypatch, name)
+def test_compiled_corrector_follows_the_python_loop(name, kind, tmp_path, monkeypatch, cache):
+    fast, slow, used = _both(tmp_path, monkeypatch, name, kind)
     # every step through C but those the Python loop takes over: at lrz's branch point
     # (the Newton matrix exactly singular on the trivial branch, where the Python loop's
     # solve falls back to least squares)
@@ -79,11 +84,12 @@ def test_compiled_corrector_follows_the_python_loop(name, tmp_path, monkeypatch,
     assert fast.status == slow.status
 
 
-def test_compiled_corrector_fails_as_the_python_loop(tmp_path, monkeypatch, cache):
+@pytest.mark.parametrize("kind", ["f90", "py"])
+def test_compiled_corrector_fails_as_the_python_loop(kind, tmp_path, monkeypatch, cache):
     """ITNW = 2 is too few for many of ab's steps: both loops give up on the same steps
     with the same message, halve DS the same way (the same notes in the d-files) and
     go on to the same branch."""
-    fast, slow, used = _both(tmp_path, monkeypatch, "ab", ITNW=2)
+    fast, slow, used = _both(tmp_path, monkeypatch, "ab", kind, ITNW=2)
     assert len(used) > 100 and all(used)
 
     def notes(sub):
@@ -98,8 +104,33 @@ def test_compiled_corrector_fails_as_the_python_loop(tmp_path, monkeypatch, cach
     np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
 
 
+def test_failing_func_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache):
+    """A func that fails beyond PAR(1) = 0.1 (an exception from the user's code, called
+    back from C): the Python loop takes the step over and reports the failure as it
+    does without the compiled corrector; the runs end the same."""
+    src = (DATA / "ab" / "ab.py").read_text() + (
+        "\n_func = func\n\n\ndef func(u, par):\n    if par[0] > 0.1:\n"
+        "        raise ValueError('outside the model')\n    return _func(u, par)\n")
+    out = {}
+    for sub, patch in (("fast", False), ("slow", True)):
+        d = tmp_path / sub
+        d.mkdir()
+        shutil.copy(DATA / "ab" / "c.ab", d)
+        (d / "ab.py").write_text(src)
+        with monkeypatch.context() as m:
+            if patch:
+                m.setattr(compiled_newton, "compiled_corrector", lambda *a, **k: None)
+            out[sub] = run(d / "c.ab", verbose=False)
+    fast, slow = out["fast"], out["slow"]
+    assert "outside the model" in fast.status
+    assert fast.status == slow.status.replace("/slow/", "/fast/")    # the file is named
+    np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
+                               rtol=1e-9, atol=1e-12)
+
+
 def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
-    """Python equations, JAC = 1 and loci keep the Python loop."""
+    """Compiled and Python equations with difference Jacobians take the compiled loop;
+    with the user's Jacobians (JAC = 1) they keep the Python loop."""
     from washer.cont.compiled import load_compiled_problem
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
@@ -114,7 +145,14 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
 
     compiled = load_compiled_problem(DEMOS / "ab" / "ab.f90", 2)
     python = load_python_problem("ab", DATA / "ab", 2)
+    jac_py = tmp_path / "jac"
+    jac_py.mkdir()
+    (jac_py / "ab.py").write_text((DATA / "ab" / "ab.py").read_text()
+                                  + "\n\ndef dfdu(u, par):\n    return np.eye(2)\n")
+    with_dfdu = load_python_problem("ab", jac_py, 2)
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     assert compiled_newton.compiled_corrector(system(compiled, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(compiled, 1), s, 20.0) is None
-    assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is None
+    assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is not None
+    assert compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
+    assert compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0) is None

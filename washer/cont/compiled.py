@@ -215,17 +215,19 @@ class CompiledUser:
         """Whether FUNC may be called directly (the first PVLS call has been made)."""
         return self._pvls_seen
 
-    def ae_correct(self, ndim, npar, ip, par, x_pred, x_ref, theta, ds, epsl, epsu, itnw,
-                   divergence, hmach, x, iterations, jac, tangent, work) -> int:
-        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton): x (NDIM + 1,),
-        iterations (int32 (1,)), jac ((NDIM, NDIM + 1), the Jacobian at the converged x)
-        and tangent (3 NDIM + 6: the tangent system's solution, the secant, the
-        determinant) are written; the arrays are float64, C-contiguous."""
-        return self.lib.washer_ae_correct(
-            ndim, npar, ip, self._icp_ptr, _dptr(par), _dptr(x_pred), _dptr(x_ref),
-            _dptr(theta), ds, epsl, epsu, itnw, divergence, hmach, _dptr(x),
-            _ffi.from_buffer(_INTS, iterations), _dptr(jac), _dptr(tangent), _dptr(work),
-            self._scratch_for(npar))
+    def ae_binder(self, ndim, npar, ip, arrays):
+        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton) bound to the
+        corrector's arrays (float64, C-contiguous; `iterations` int32): a function of
+        (ds, epsl, epsu, itnw, divergence, hmach) returning the status."""
+        p = {k: (_ffi.from_buffer(_INTS, a) if k == "iterations" else _dptr(a))
+             for k, a in arrays.items()}
+
+        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+            return self.lib.washer_ae_correct(
+                ndim, npar, ip, self._icp_ptr, p["par"], p["x_pred"], p["x_ref"],
+                p["theta"], ds, epsl, epsu, itnw, divergence, hmach, p["x"],
+                p["iterations"], p["jac"], p["tangent"], p["work"], self._scratch_for(npar))
+        return call
 
     def dfdu(self, u, par) -> np.ndarray:
         return self.jac_batch(np.asarray(u, float).reshape(1, -1), par)[1][0]

@@ -1,27 +1,37 @@
-"""The corrector of algebraic continuation in one foreign call, for compiled equations.
+"""The corrector of algebraic continuation in one foreign call per point.
 
-    corrector = compiled_corrector(system, settings)     # None where it does not apply
-    result = corrector.correct(x_pred, x_ref, ds)         # (x, iterations) or None
+    corrector = compiled_corrector(system, settings, DIVERGENCE_FACTOR)   # or None
+    result = corrector.correct(x_pred, x_ref, ds, counters)    # (x, iterations) or None
 
 This is the compiled form of the package's one Newton loop (washer.cont.newton.newton as
 washer.cont.iterator.Continuation.correct runs it on the sphere arclength): the same
 iteration (the residual f(u, PAR), the central differences [f_u, f_PAR(ICP(1))] of
 Problem.jacobian with the same points and quotients, the bordered matrix [J; 2 theta
 (x - x_ref) / |ds|], x += dx) and the same stopping test (AUTO's EPSL on the parameter,
-EPSU on the state, the divergence test of Continuation.correct), written in C in the
-bridge of the user's file (washer/cont/compiled_shim.c: washer_ae_correct), which calls
-FUNC directly: one foreign call per continuation point instead of a few hundred numpy
-operations. The linear solve is Gaussian elimination with partial pivoting (LAPACK's
-pivot order; its rounding may differ from LAPACK's in the last bit, far inside EPSU).
+EPSU on the state, the divergence test of Continuation.correct), written once in C
+(washer/cont/include/ae_correct.h). At the converged point the same call evaluates the
+Jacobian there and solves the tangent system [J; theta secant] z = e_last with its
+determinant (Continuation.tangent, the BP test). The linear solves are Gaussian
+elimination with partial pivoting (LAPACK's pivot order; the rounding may differ from
+LAPACK's in the last bit, far inside EPSU).
 
-It applies to equilibria (IPS 0, 1; the system EquilibriumSystem with one free
-parameter, the sphere arclength) of compiled AUTO user files (washer.cont.compiled) with
-JAC = 0 (difference Jacobians). Everything else, and every case the compiled loop does
-not finish cleanly (a non-finite residual, Jacobian or correction, a zero pivot: the
-Python loop then repeats the correction and reports or resolves it as before), is the
-Python loop. Continuation.correct makes the choice, in one place.
+f is evaluated by
+* compiled AUTO user files (washer.cont.compiled): the C is part of the file's bridge
+  (compiled_shim.c) and calls FUNC directly;
+* equations in Python (NAME.py with func): washer/cont/ae_callback.c, compiled on first
+  use, calls back into Python once per Newton iteration, where the user's func is called
+  point by point (or in one batch) exactly as the Python loop calls it: the same values.
+
+It applies to equilibria (IPS 0, 1: EquilibriumSystem, one free parameter, the sphere
+arclength) with difference Jacobians (JAC = 0, or no Jacobian given). Everything else, and
+every case the compiled loop does not finish cleanly (a failing or non-finite f, a
+non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
+correction and reports or resolves it as before), is the Python loop.
+Continuation.correct makes the choice, in one place.
 """
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 
@@ -32,23 +42,106 @@ from washer.cont.settings import HMACH
 #: and numpy's LAPACK is the better solver).
 MAX_NDIM = 50
 
+HERE = Path(__file__).parent
+_CALLBACK_CDEF = """
+typedef int (*ae_callback)(int rows, int first, const double *us, const double *ps,
+                           double *fs);
+int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const double *par,
+                         const double *x_pred, const double *x_ref, const double *theta,
+                         double ds, double epsl, double epsu, int itnw, double divergence,
+                         double hmach, double *x, int *iterations, double *jac,
+                         double *tangent, double *work);
+"""
+_callback_lib = None
+
+
+def _callback_library():
+    """(ffi, lib) of ae_callback.c, compiled on first use (cached by content)."""
+    global _callback_lib
+    if _callback_lib is None:
+        from cffi import FFI
+        from washer.cont.compile import build_library, source_file
+        from washer.cont.compiled import INCLUDE
+        ffi = FFI()
+        ffi.cdef(_CALLBACK_CDEF)
+        path = build_library([source_file(HERE / "ae_callback.c")], "ae_callback",
+                             includes=[INCLUDE])
+        _callback_lib = (ffi, ffi.dlopen(str(path)))
+    return _callback_lib
+
+
+class PythonEquations:
+    """The user's Python func behind ae_callback.c: f at the rows of the corrector's
+    points, as the Python loop evaluates them (Problem.func at the point itself, then
+    Problem.jacobian's stencil: one call per point below VECTORISE_MIN points, else
+    Problem.func_many)."""
+
+    func_ready = True
+
+    def __init__(self, problem, ndim: int, npar: int):
+        from washer.cont import problem as problem_module
+        self.problem, self.n, self.npar = problem, ndim, npar
+        self.by_calls = 2 * (ndim + 1) < problem_module.VECTORISE_MIN
+        self.ffi, self.lib = _callback_library()
+        self.error = None
+        self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
+        self._dptr_type = self.ffi.typeof("double[]")
+
+    def _onerror(self, exc, val, tb):
+        self.error = val
+        return 1
+
+    def _evaluate(self, rows, first, us, ps, fs):
+        ffi, n, npar = self.ffi, self.n, self.npar
+        # fresh copies: every call of func gets arrays of its own, as in the Python loop
+        U = np.frombuffer(ffi.buffer(us, rows * n * 8), dtype=float).reshape(rows, n).copy()
+        P = np.frombuffer(ffi.buffer(ps, rows * npar * 8), dtype=float).reshape(rows,
+                                                                              npar).copy()
+        F = np.frombuffer(ffi.buffer(fs, rows * n * 8), dtype=float).reshape(rows, n)
+        problem = self.problem
+        if first == 0:
+            F[0] = problem.func(U[0], P[0])
+        if self.by_calls:
+            fn = problem._func
+            S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
+            if S.shape != (rows - 1, n) or not np.isfinite(S).all():
+                return 1
+        else:
+            S = problem.func_many(U[1:], P[1:])
+        F[1:] = S
+        return 0
+
+    def ae_binder(self, ndim, npar, ip, arrays):
+        """washer_ae_correct_cb bound to the corrector's arrays (CompiledUser.ae_binder)."""
+        ffi, d = self.ffi, self._dptr_type
+        p = {k: (ffi.from_buffer("int[]", a) if k == "iterations" else ffi.from_buffer(d, a))
+             for k, a in arrays.items()}
+        lib, cb = self.lib, self._cb
+
+        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+            return lib.washer_ae_correct_cb(
+                cb, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
+                epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
+                p["tangent"], p["work"])
+        return call
+
 
 class CompiledCorrector:
     """washer_ae_correct of one run's compiled problem (see the module's docstring)."""
 
-    def __init__(self, system, settings, divergence: float):
+    def __init__(self, system, settings, divergence: float, equations):
         self.sys, self.s, self.divergence = system, settings, divergence
-        self.user = system.problem.user
+        self.user = equations           # CompiledUser or PythonEquations
         n = system.ndim
         self.npar = len(system.par)
-        self.ip = system.free[0] - 1
-        self.theta = np.ascontiguousarray(system.theta, dtype=float)
         k = n + 1
-        self.work = np.zeros((2 * k + 1) * (2 * n + self.npar) + (n + 1) * (n + 4))
-        self.x = np.empty(n + 1)
-        self.iterations = np.zeros(1, dtype=np.int32)
-        self.jac = np.empty((n, n + 1))
-        self.tan = np.empty(3 * (n + 1) + 3)
+        # the arrays the C reads and writes, bound once (their addresses stay)
+        self.a = dict(par=np.empty(self.npar), x_pred=np.empty(n + 1), x_ref=np.empty(n + 1),
+                      theta=np.ascontiguousarray(system.theta, dtype=float),
+                      x=np.empty(n + 1), iterations=np.zeros(1, dtype=np.int32),
+                      jac=np.empty((n, n + 1)), tangent=np.empty(3 * (n + 1) + 3),
+                      work=np.zeros((2 * k + 1) * (2 * n + self.npar) + (n + 1) * (n + 4)))
+        self._call = equations.ae_binder(n, self.npar, system.free[0] - 1, self.a)
         self.last = None          # (x, [f_u, f_lambda] at x, tangent data) of the last point
 
     def correct(self, x_pred, x_ref, ds: float, counters):
@@ -59,17 +152,15 @@ class CompiledCorrector:
         user, s = self.user, self.s
         if not user.func_ready:
             return None
-        par = np.ascontiguousarray(self.sys.par, dtype=float)
-        x_pred = np.ascontiguousarray(x_pred, dtype=float)
-        x_ref = np.ascontiguousarray(x_ref, dtype=float)
-        status = user.ae_correct(self.sys.ndim, self.npar, self.ip, par, x_pred, x_ref,
-                                 self.theta, float(ds), s.EPSL, s.EPSU, s.ITNW,
-                                 self.divergence, HMACH, self.x, self.iterations, self.jac,
-                                 self.tan, self.work)
+        a = self.a
+        a["par"][:] = self.sys.par
+        a["x_pred"][:] = x_pred
+        a["x_ref"][:] = x_ref
+        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH)
         self.last = None
         if status == 3:
             return None
-        it = int(self.iterations[0])
+        it = int(a["iterations"][0])
         c = counters
         c.residuals += it
         c.jacobians += it
@@ -78,9 +169,10 @@ class CompiledCorrector:
             raise ConvergenceError("Newton iterates diverge")
         if status == 2:
             raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
-        x = self.x.copy()
+        x = a["x"].copy()
         if status == 0:
-            self.last = (x, self.jac.copy(), self.tan.copy() if self.tan[-1] == 1.0 else None)
+            t = a["tangent"]
+            self.last = (x, a["jac"].copy(), t.copy() if t[-1] == 1.0 else None)
         return x, it
 
     def jacobian_at(self, x):
@@ -129,13 +221,27 @@ class _SolvedFactor:
 def compiled_corrector(system, settings, divergence: float):
     """The compiled corrector of `system`, or None where the Python loop runs."""
     from washer.cont.compiled import CompiledProblem
+    from washer.cont.problem import Problem
     from washer.cont.systems.equilibrium import EquilibriumSystem
     problem = getattr(system, "problem", None)
-    if type(system) is not EquilibriumSystem or not isinstance(problem, CompiledProblem):
-        return None
-    if problem.jac != 0 or problem.has_func_dfdu_batch or len(system.free) != 1 \
+    if type(system) is not EquilibriumSystem or len(system.free) != 1 \
             or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM:
         return None
-    if not hasattr(problem.user.lib, "washer_ae_correct"):
+    if isinstance(problem, CompiledProblem):
+        if problem.jac != 0 or problem.has_func_dfdu_batch \
+                or not hasattr(problem.user.lib, "washer_ae_correct"):
+            return None
+        equations = problem.user
+    elif type(problem) is Problem:
+        # difference Jacobians of a plain func (Problem.jacobian's stencil)
+        if (problem._dfdu is not None and problem.jac != 0) \
+                or (problem._dfdp is not None and problem.jac == 1) \
+                or problem._func_batch is not None or problem.has_func_dfdu_batch:
+            return None
+        try:
+            equations = PythonEquations(problem, system.ndim, len(system.par))
+        except Exception:              # no C compiler: the Python loop
+            return None
+    else:
         return None
-    return CompiledCorrector(system, settings, divergence)
+    return CompiledCorrector(system, settings, divergence, equations)

@@ -367,191 +367,28 @@ void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, in
 }
 
 /* ------------------------------------------------------- the algebraic corrector */
-/* The points of Problem.jacobian's central differences at x = (u, PAR(ip + 1)) after the
-   point (u, PAR) itself: row 0 (u, PAR), rows 1..k u_j + h_j then PAR(ip + 1) + h, rows
-   k + 1..2k the minus side (k = NDIM + 1; us (2k + 1, NDIM), ps (2k + 1, npar)), f at
-   rows first..2k into fs; h_j = hmach (1 + |x_j|). */
-static void ae_points(int n, int npar, int ip, const int *icp, const double *par,
-                      const double *x, double hmach, int first, double *us, double *ps,
-                      double *fs, double *h, double *scratch)
+static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int first,
+                   const double *us, const double *ps, double *fs, double *scratch)
 {
-    const int k = n + 1, rows = 2 * k + 1;
-    for (int j = 0; j <= n; j++) h[j] = hmach * (1 + fabs(x[j]));
-    for (int r = 0; r < rows; r++) {
-        memcpy(us + (size_t)r * n, x, sizeof(double) * n);
-        memcpy(ps + (size_t)r * npar, par, sizeof(double) * npar);
-        ps[(size_t)r * npar + ip] = x[n];
-    }
-    for (int j = 0; j < n; j++) {
-        us[(size_t)(1 + j) * n + j] = x[j] + h[j];
-        us[(size_t)(1 + k + j) * n + j] = x[j] - h[j];
-    }
-    ps[(size_t)(1 + n) * npar + ip] = x[n] + h[n];
-    ps[(size_t)(1 + k + n) * npar + ip] = x[n] - h[n];
+    (void)ctx;
     for (int r = first; r < rows; r++) {
-        double *f = fs + (size_t)r * n;
-        memset(f, 0, sizeof(double) * n);
-        call_func(n, us + (size_t)r * n, icp, ps + (size_t)r * npar, 0, f, scratch,
-                  scratch + (size_t)n * n);
-    }
-}
-
-/* [f_u, f_PAR(ip + 1)] (n, n + 1) row-major, with row stride `stride`, from ae_points'
-   values: (f(z + h_j e_j) - f(z - h_j e_j)) / (2 h_j). Returns 0, or 3 if not finite. */
-static int ae_jacobian(int n, const double *fs, const double *h, double *J, int stride)
-{
-    const int k = n + 1;
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < k; j++) {
-            double v = (fs[(size_t)(1 + j) * n + i] - fs[(size_t)(1 + k + j) * n + i])
-                       / (2 * h[j]);
-            if (!isfinite(v)) return 3;
-            J[(size_t)i * stride + j] = v;
-        }
-    return 0;
-}
-
-/* Gaussian elimination with partial pivoting (LAPACK's GETRF order: the largest |entry|
-   of the column, the first one of equal size) of M (m, m) row-major, applied to b (m,);
-   the determinant as sign and log|det| into det (if not NULL). Returns 0, or 3 for a
-   zero or non-finite pivot. */
-static int ae_eliminate(int m, double *M, double *b, double *det)
-{
-    double sign = 1.0, logdet = 0.0;
-    for (int col = 0; col < m; col++) {
-        int p = col;
-        double best = fabs(M[(size_t)col * m + col]);
-        for (int r = col + 1; r < m; r++) {
-            double v = fabs(M[(size_t)r * m + col]);
-            if (v > best) { best = v; p = r; }
-        }
-        if (best == 0.0 || !isfinite(best)) return 3;
-        if (p != col) {
-            for (int j = 0; j < m; j++) {
-                double t = M[(size_t)col * m + j];
-                M[(size_t)col * m + j] = M[(size_t)p * m + j];
-                M[(size_t)p * m + j] = t;
-            }
-            double t = b[col]; b[col] = b[p]; b[p] = t;
-            sign = -sign;
-        }
-        double piv = M[(size_t)col * m + col];
-        if (det) {
-            if (piv < 0) sign = -sign;
-            logdet += log(fabs(piv));
-        }
-        for (int r = col + 1; r < m; r++) {
-            double f = M[(size_t)r * m + col] / piv;
-            if (f == 0.0) continue;
-            for (int j = col + 1; j < m; j++)
-                M[(size_t)r * m + j] -= f * M[(size_t)col * m + j];
-            b[r] -= f * b[col];
-        }
-    }
-    if (det) { det[0] = sign; det[1] = logdet; }
-    return 0;
-}
-
-/* Back substitution of ae_eliminate's upper triangle: y (m,) from b. 0, or 3 if not finite. */
-static int ae_back(int m, const double *M, const double *b, double *y)
-{
-    for (int i = m - 1; i >= 0; i--) {
-        double s = b[i];
-        for (int j = i + 1; j < m; j++) s -= M[(size_t)i * m + j] * y[j];
-        y[i] = s / M[(size_t)i * m + i];
-        if (!isfinite(y[i])) return 3;
+        double *f = fs + (size_t)r * ndim;
+        memset(f, 0, sizeof(double) * ndim);
+        call_func(ndim, us + (size_t)r * ndim, icp, ps + (size_t)r * npar, 0, f, scratch,
+                  scratch + (size_t)ndim * ndim);
     }
     return 0;
 }
 
-/* The corrector of algebraic continuation in one foreign call: the compiled form of the
-   package's one Newton loop (washer.cont.newton.newton) as iterator.Continuation.correct
-   runs it on equilibria with the sphere arclength (AUTO's SOLVAE/STEPAE), for FUNC with
-   JAC = 0 (washer.cont.compiled_newton chooses it; every other case is the Python loop):
+#include "ae_correct.h"
 
-     unknowns x = (U(1..NDIM), PAR(ip + 1)), PAR the other parameters (npar), ICP icp;
-     per iteration: F = f(u, PAR), the central differences [f_u, f_PAR(ip + 1)] with
-     h_j = hmach (1 + |z_j|) (Problem.jacobian's stencil: the same points and quotients),
-     the arclength row r = 2 theta (x - x_ref) / |ds| and c = <r, x - x_ref> / 2 - |ds|,
-     the correction dx of [J; r] dx = -[F; c] (LU with partial pivoting), x += dx;
-     stop when |dx_lambda| / (1 + |x_lambda|) <= epsl and max|dx_u| / (1 + max|x_u|) <=
-     epsu; diverging when max of the two grows beyond `divergence` times its first value.
-   jac: NULL, or (NDIM, NDIM + 1) row-major: [f_u, f_PAR(ip + 1)] at the converged x (the
-   Jacobian the continuation evaluates there next, the same values). tangent: NULL, or
-   3 (NDIM + 1) + 3 doubles (with jac): z of [J; theta ref] z = e_last, the secant ref =
-   (x - x_ref) / ds, the determinant of [J; theta ref] as sign and log|det|, and 1 when
-   they were computed (0: a zero pivot; the caller computes them).
-
-   work: at least (2 NDIM + 3) (2 NDIM + npar) + (NDIM + 1) (NDIM + 4) doubles; scratch:
-   NDIM (NDIM + npar) for FUNC's DFDU/DFDP. Returns 0 converged (x, *iterations set),
-   1 diverging, 2 no convergence in itnw iterations (*iterations = itnw), 3 a non-finite
-   residual, Jacobian or correction, or a zero pivot: the caller runs the Python loop. */
+/* washer.cont.compiled_newton's corrector with this file's FUNC (ae_correct.h). */
 int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *par,
                       const double *x_pred, const double *x_ref, const double *theta,
                       double ds, double epsl, double epsu, int itnw, double divergence,
                       double hmach, double *x, int *iterations, double *jac,
                       double *tangent, double *work, double *scratch)
 {
-    const int n = ndim, k = ndim + 1, np1 = ndim + 1, rows = 2 * k + 1;
-    double *us = work;                              /* (rows, n) */
-    double *ps = us + (size_t)rows * n;             /* (rows, npar) */
-    double *fs = ps + (size_t)rows * npar;          /* (rows, n) */
-    double *M = fs + (size_t)rows * n;              /* (np1, np1) row-major */
-    double *b = M + (size_t)np1 * np1;              /* (np1,) */
-    double *h = b + np1;                            /* (k,) */
-    double *d = h + k;                              /* (np1,) */
-    const double ads = fabs(ds);
-    double delref = -1.0;
-    for (int i = 0; i < np1; i++) x[i] = x_pred[i];
-    *iterations = 0;
-    for (int it = 1; it <= itnw; it++) {
-        ae_points(n, npar, ip, icp, par, x, hmach, 0, us, ps, fs, h, scratch);
-        for (int i = 0; i < n; i++) {
-            if (!isfinite(fs[i])) return 3;
-            b[i] = -fs[i];
-        }
-        if (ae_jacobian(n, fs, h, M, np1)) return 3;
-        double c = 0.0;
-        for (int j = 0; j < np1; j++) {
-            d[j] = x[j] - x_ref[j];
-            M[(size_t)n * np1 + j] = 2 * (theta[j] * d[j]) / ads;
-        }
-        for (int j = 0; j < np1; j++) c += M[(size_t)n * np1 + j] * d[j];
-        b[n] = -(c / 2 - ads);
-        if (ae_eliminate(np1, M, b, NULL)) return 3;
-        if (ae_back(np1, M, b, d)) return 3;          /* d becomes the correction dx */
-        for (int j = 0; j < np1; j++) x[j] += d[j];
-        double mdx = 0.0, mx = 0.0;
-        for (int j = 0; j < n; j++) {
-            if (fabs(d[j]) > mdx) mdx = fabs(d[j]);
-            if (fabs(x[j]) > mx) mx = fabs(x[j]);
-        }
-        double du = mdx / (1 + mx), dl = fabs(d[n]) / (1 + fabs(x[n]));
-        *iterations = it;
-        if (dl <= epsl && du <= epsu) {
-            if (jac) {
-                ae_points(n, npar, ip, icp, par, x, hmach, 1, us, ps, fs, h, scratch);
-                if (ae_jacobian(n, fs, h, jac, np1)) return 4;
-                if (tangent) {
-                    /* the secant ref = (x - x_ref) / ds, z of [J; theta ref] z = e_last
-                       and the determinant of that matrix (Continuation.tangent) */
-                    tangent[2 * np1 + 2] = 0.0;
-                    for (int j = 0; j < np1; j++) tangent[np1 + j] = (x[j] - x_ref[j]) / ds;
-                    memcpy(M, jac, sizeof(double) * (size_t)n * np1);
-                    for (int j = 0; j < np1; j++) {
-                        M[(size_t)n * np1 + j] = theta[j] * tangent[np1 + j];
-                        b[j] = j == n ? 1.0 : 0.0;
-                    }
-                    if (ae_eliminate(np1, M, b, tangent + 2 * np1) == 0
-                            && ae_back(np1, M, b, tangent) == 0)
-                        tangent[2 * np1 + 2] = 1.0;
-                }
-            }
-            return 0;
-        }
-        double size = du > dl ? du : dl;
-        if (delref < 0) delref = divergence * (size > 1e-300 ? size : 1e-300);
-        else if (size > delref) return 1;
-    }
-    return 2;
+    return ae_correct(NULL, ndim, npar, ip, icp, par, x_pred, x_ref, theta, ds, epsl, epsu,
+                      itnw, divergence, hmach, x, iterations, jac, tangent, work, scratch);
 }

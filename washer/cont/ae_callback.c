@@ -1,0 +1,30 @@
+/* The corrector of algebraic continuation (include/ae_correct.h) for equations given in
+ * Python (washer.cont.compiled_newton): f is evaluated by a call back into Python, which
+ * calls the user's func point by point (or in one batch) exactly as the Python loop
+ * does. Compiled on first use (washer.cont.compile), as the bridge of user files is.
+ */
+#include <stddef.h>
+
+typedef int (*ae_callback)(int rows, int first, const double *us, const double *ps,
+                           double *fs);
+
+static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int first,
+                   const double *us, const double *ps, double *fs, double *scratch)
+{
+    (void)ndim; (void)npar; (void)icp; (void)scratch;
+    return (*(ae_callback *)ctx)(rows, first, us, ps, fs);
+}
+
+#include "ae_correct.h"
+
+/* ae_correct with f from `callback` (nonzero return: the evaluation failed, the corrector
+   returns 3 and the caller runs the Python loop). */
+int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const double *par,
+                         const double *x_pred, const double *x_ref, const double *theta,
+                         double ds, double epsl, double epsu, int itnw, double divergence,
+                         double hmach, double *x, int *iterations, double *jac,
+                         double *tangent, double *work)
+{
+    return ae_correct(&callback, ndim, npar, ip, NULL, par, x_pred, x_ref, theta, ds, epsl,
+                      epsu, itnw, divergence, hmach, x, iterations, jac, tangent, work, NULL);
+}
