@@ -149,3 +149,55 @@ def test_difference_quotient_in_a_parameter_leaves_the_kept_f_and_is_the_quotien
     prob.func_many = lambda *a: calls.append(a) or 0 / 0     # f must not be re-evaluated
     np.testing.assert_array_equal(field.f(U, par), f0)
     assert not calls
+
+
+def chua(u, par):
+    """demos/chu's right-hand side (arctan: not just + - * /)."""
+    alpha, beta, rk, a0, a1 = par[:5]
+    x, y, z = u
+
+    def ab_(v):
+        return 2 * v * np.arctan(rk * v) / np.pi
+
+    h = a1 * x + 0.5 * (a0 - a1) * (ab_(x + 1) - ab_(x - 1))
+    return np.array([alpha * (y - h), x - y + z, -beta * y])
+
+
+@pytest.mark.parametrize("func, ndim, par", [
+    (ab, 2, [0.13, 8.0, 3.0]),
+    (chua, 3, [-1.3, 14.3, 10.0, -1.0 / 7.0, 2.0 / 7.0]),
+])
+def test_one_stencil_for_f_u_and_f_p_is_the_separate_quotients(func, ndim, par):
+    """VectorField.fu_fp sends f_u's and f_p's difference stencils to the user's func in
+    one call: the same quotients as fu and fp computed apart (bit for bit here: numpy's
+    arithmetic is elementwise), for one and for two parameters, and fu alone without
+    parameters."""
+    rng = np.random.default_rng(7)
+    U = rng.standard_normal((100, ndim))
+    par = np.array(par + [0.0] * 6)
+    prob = Problem(ndim, func, npar=len(par))
+    field = VectorField(prob, ndim)
+    field.f(U[:3], par)                   # the first vectorised call's check, out of the way
+    for indices in ([1], [2, 1], []):
+        A, fps = field.fu_fp(U, par, indices)
+        np.testing.assert_array_equal(A, field.fu(U, par))
+        assert len(fps) == len(indices)
+        for i, fp in zip(indices, fps):
+            np.testing.assert_array_equal(fp, field.fp(U, par, i))
+    calls = []
+    real = prob.func_many
+    prob.func_many = lambda us, ps: calls.append(len(us)) or real(us, ps)
+    field.fu_fp(U, par, [1, 3])
+    assert calls == [100 * (2 * ndim + 4)]
+
+
+def test_one_stencil_leaves_the_users_jacobians_alone():
+    """With the user's f_u in use (JAC = 1) fu_fp is fu and fp: the analytic f_u."""
+    def dfdu_batch(us, pars):
+        return np.full((len(us), 2, 2), 7.0)
+    prob = Problem(2, ab, npar=3, dfdu_batch=dfdu_batch, jac=1)
+    field = VectorField(prob, 2)
+    U, par = np.zeros((5, 2)), np.array([0.1, 8.0, 3.0])
+    A, (fp,) = field.fu_fp(U, par, [1])
+    assert np.all(A == 7.0)
+    np.testing.assert_array_equal(fp, field.fp(U, par, 1))

@@ -452,17 +452,36 @@ class Problem:
         us = np.asarray(us, dtype=float)
         pars = np.asarray(pars, dtype=float)
         k, n = us.shape
+        pts, h = self.fd_u_stencil(us)
+        # one parameter vector for all points (the callers' broadcast view, row stride 0)
+        # stays a view: only its values reach the user's func
+        rep = (broadcast_rows(pars[0], 2 * n * k)
+               if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
+        return self.fd_u_quotient(self.func_many(pts, rep), h)
+
+    @property
+    def differenced_u(self) -> bool:
+        """Whether dfdu_many takes central differences of f (no user Jacobian in use)."""
+        return not (self.jac != 0 and (self._dfdu_batch is not None or self._dfdu is not None))
+
+    def fd_u_stencil(self, us: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The points of dfdu_many's central differences at the rows of us (k, ndim):
+        (pts (2 ndim k, ndim): for each point u, u + h_j e_j then u - h_j e_j, j =
+        0..ndim-1; h (k, ndim) = FD_STEP (1 + |u|), AUTO's step)."""
+        k, n = us.shape
         h = FD_STEP * (1 + np.abs(us))                      # (k, n)
         pts = np.empty((k, 2 * n, n))
         pts[:] = us[:, None, :]
         idx = np.arange(n)
         pts[:, idx, idx] += h
         pts[:, n + idx, idx] -= h
-        # one parameter vector for all points (the callers' broadcast view, row stride 0)
-        # stays a view: only its values reach the user's func
-        rep = (broadcast_rows(pars[0], 2 * n * k)
-               if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
-        F = self.func_many(pts.reshape(-1, n), rep).reshape(k, 2 * n, n)
+        return pts.reshape(-1, n), h
+
+    @staticmethod
+    def fd_u_quotient(F: np.ndarray, h: np.ndarray) -> np.ndarray:
+        """f_u (k, ndim, ndim) from f at `fd_u_stencil`'s points (2 ndim k, ndim)."""
+        k, n = h.shape
+        F = F.reshape(k, 2 * n, n)
         return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))
 
     @property

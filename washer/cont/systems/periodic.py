@@ -290,14 +290,18 @@ class PeriodicOrbits(CollocationBVP):
             # f (the PERIOD column) and f_u, f_p in one evaluation, unless the residual
             # at x has just made it (then every call below is answered from it)
             self.field.f(ug, par, with_jacobian=True)
-        A = self.field.fu(ug, par).reshape(N, m, n, n)
+        slots = ((0, self.free[1]), (1, self.free[0]))
+        # f_u and the parameter columns other than the period's: one stencil (fu_fp)
+        A, fps = self.field.fu_fp(ug, par, [i for _, i in slots if i != 11])
+        A = A.reshape(N, m, n, n)
         blocks = self.coll.local_blocks(T, A)
         dF = np.empty((2, N, m, n))              # d(T f)/d(PAR(ICP(2)), PAR(ICP(1)))
-        for slot, index in ((0, self.free[1]), (1, self.free[0])):
+        fps = iter(fps)
+        for slot, index in slots:
             if index == 11:
                 dF[slot] = self.field.f(ug, par).reshape(N, m, n)
             else:
-                dF[slot] = T * self.field.fp(ug, par, index).reshape(N, m, n)
+                dF[slot] = T * next(fps).reshape(N, m, n)
         J = self.coll.jacobian_general(blocks, dF, self.up_old[None], np.zeros((1, 2)))
         self._last_blocks = (x.copy(), blocks, J)
         return J
