@@ -185,6 +185,25 @@ def test_jacobians_on_one_mesh_are_scipys_matrices_with_their_own_values(general
     for J, D in zip(mats, dense):
         np.testing.assert_array_equal(J.toarray(), D)
     assert not np.array_equal(dense[0], dense[1])
+    # a changed copy keeps the pattern and its own values reach the factorisation's pieces
+    from washer.cont import reduction
+    J2 = mats[0].copy()
+    J2.data[:] = rng.standard_normal(J2.nnz)
+    assert coll.has_pattern(J2) and not coll.has_pattern(J2[:, :-1])
+    border = rng.standard_normal(coll.n_x)
+    for got, want in zip(reduction.pieces(coll, J2, border),
+                         reduction.pieces(coll, _reassembled(coll, J2), border)):
+        np.testing.assert_array_equal(got, want)
+
+
+def _reassembled(coll, J):
+    """J rebuilt by scipy from its dense values on coll's pattern (no `assembly`)."""
+    import scipy.sparse as sp
+    D = J.toarray()
+    rows = coll._indices
+    cols = np.repeat(np.arange(coll.n_x), np.diff(coll._indptr))
+    return sp.csc_matrix((D[rows, cols], coll._indices.copy(), coll._indptr.copy()),
+                         shape=J.shape)
 
 
 def test_interval_lengths_follow_the_mesh_when_tm_changes_in_place():

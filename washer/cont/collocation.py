@@ -313,6 +313,11 @@ class Collocation:
         if template is None:
             template = self._csc_template = sp.csc_matrix(
                 (vals[self._order], self._indices, self._indptr), shape=(self.n_eq, self.n_x))
+            if (template.indptr.dtype == self._indptr.dtype
+                    and template.indices.dtype == self._indices.dtype):
+                # the pattern's own arrays (scipy's may be views of them): `has_pattern`
+                # then knows it by identity instead of comparing indptr at every factor
+                template.indices, template.indptr = self._indices, self._indptr
         J = object.__new__(type(template))
         J.__dict__.update(template.__dict__)
         J.data = vals[self._order]
@@ -332,6 +337,9 @@ class Collocation:
 
     def has_pattern(self, J) -> bool:
         """Whether J was assembled by `jacobian_general` on this mesh (this CSC pattern)."""
+        kept = getattr(J, "assembly", None)
+        if kept is not None and kept[0] is self:      # assembled here (never changed in place)
+            return True
         import scipy.sparse as sp
         return (sp.isspmatrix_csc(J) and J.shape == (self.n_eq, self.n_x) and J.nnz == self.nnz
                 and J.indices is not None
