@@ -217,3 +217,17 @@ def test_interval_lengths_follow_the_mesh_when_tm_changes_in_place():
     np.testing.assert_array_equal(mesh.dtm, [0.25, 0.25, 0.25])
     mesh.tm = np.array([0.0, 0.5, 1.0])
     np.testing.assert_array_equal(mesh.dtm, [0.5, 0.5])
+
+
+def test_node_times_follow_the_mesh_and_are_the_callers_own():
+    """Mesh.node_times is kept per mesh: the value for a tm changed in place is new, and
+    every caller gets its own array (a record may change its t column)."""
+    mesh = col.Mesh(np.array([0.0, 0.5, 1.0]), 2)
+    t = mesh.node_times()
+    np.testing.assert_array_equal(t, [0.0, 0.25, 0.5, 0.75, 1.0])
+    t[:] = -1.0
+    np.testing.assert_array_equal(mesh.node_times(), [0.0, 0.25, 0.5, 0.75, 1.0])
+    mesh.tm[1] = 0.25
+    np.testing.assert_array_equal(mesh.node_times(), [0.0, 0.125, 0.25, 0.625, 1.0])
+    mesh.ncol = 1
+    np.testing.assert_array_equal(mesh.node_times(), [0.0, 0.25, 1.0])

@@ -161,10 +161,15 @@ class Mesh:
 
     def node_times(self) -> np.ndarray:
         """t of every node, (NTST*NCOL + 1,): tm[j] + k dtm[j]/NCOL and finally 1
-        (the t column of an s-record)."""
-        k = np.arange(self.ncol) / self.ncol
-        t = (self.tm[:-1, None] + self.dtm[:, None] * k[None, :]).ravel()
-        return np.r_[t, self.tm[-1]]
+        (the t column of an s-record). Kept with the mesh it was taken on (every point's
+        record asks for it); a copy is returned."""
+        key = (self.tm.tobytes(), self.ncol)
+        kept = self.__dict__.get("_node_times")
+        if kept is None or kept[0] != key:
+            k = np.arange(self.ncol) / self.ncol
+            t = (self.tm[:-1, None] + self.dtm[:, None] * k[None, :]).ravel()
+            self._node_times = kept = (key, np.concatenate((t, self.tm[-1:])))
+        return kept[1].copy()
 
     def node_weights(self) -> np.ndarray:
         """Quadrature weight of every node, (NTST*NCOL + 1,): sum_j dtm[j] WI[k] over
@@ -524,7 +529,7 @@ def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) ->
         eqf = eqf + 1e-12 * eqf[-1] * np.arange(len(eqf)) / max(len(eqf) - 1, 1)
     targets = eqf[-1] * np.arange(1, ntst_new) / ntst_new
     tm_new = np.interp(targets, eqf, mesh.tm)
-    return np.r_[mesh.tm[0], tm_new, mesh.tm[-1]]
+    return np.concatenate((mesh.tm[:1], tm_new, mesh.tm[-1:]))
 
 
 def interpolate(mesh: Mesh, U: np.ndarray, tm_new: np.ndarray, ncol_new: int) -> np.ndarray:

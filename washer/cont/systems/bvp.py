@@ -254,7 +254,7 @@ class CollocationBVP:
         self.n_eq = self.coll.n_eq
         thu = self.settings.theta_u(self.ndim)
         th = np.r_[thu, np.ones(self.n_comp - self.ndim)]
-        self.weights = np.r_[np.kron(self.coll.w_node, th), self.tail_weights()]
+        self.weights = np.concatenate((np.kron(self.coll.w_node, th), self.tail_weights()))
 
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
@@ -366,7 +366,7 @@ class CollocationBVP:
         def move(v):
             v = np.asarray(v, float)
             Wv = v[:self.coll.n_u].reshape(-1, self.n_comp)
-            return np.r_[onto(Wv).ravel(), v[-nt:]]
+            return np.concatenate((onto(Wv).ravel(), v[-nt:]))
         out = [move(x)] + [move(v) for v in vectors]
         # CONTBV after ADAPT: the phase reference's derivative is T f of the
         # interpolated profile (STUPBV), not the interpolant of the old T f: where the

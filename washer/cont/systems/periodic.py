@@ -104,7 +104,8 @@ class PeriodicOrbits(CollocationBVP):
 
     # ------------------------------------------------------------------ set-up
     def tail_weights(self) -> np.ndarray:
-        return np.r_[self.settings.theta_par(self.free[1]), self.settings.theta_par(self.free[0])]
+        return np.array([self.settings.theta_par(self.free[1]),
+                         self.settings.theta_par(self.free[0])])
 
     def _x(self, U: np.ndarray, par: np.ndarray) -> np.ndarray:
         return np.r_[U.ravel(), par[self.free[1] - 1], par[self.free[0] - 1]]
@@ -423,7 +424,7 @@ class PeriodicOrbits(CollocationBVP):
         the node weights times T f at the nodes, 0 in the parameter columns, (n_x,)."""
         U, par = self.unpack(x)
         up = self.period(par) * self.field.f(U, par)
-        return np.r_[(self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)]
+        return np.concatenate(((self.coll.w_node[:, None] * up).ravel(), np.zeros(self.n_tail)))
 
     def located_code(self, key, point) -> int:
         """PD or TR for a zero of the combined test, as TPSPBV types the located point."""
