@@ -629,3 +629,33 @@ def test_man_demo(tmp_path):
     ref = [r for r in branch_rows(DATA / "man" / "autoref" / "b.1") if r.lab]
     assert r1.specials[-1].ty == type_name(ref[-1].ty) == "UZ"
     assert r1.specials[-1].par[4] == pytest.approx(1.1, abs=1e-9)
+
+
+def test_the_a1_window_and_the_row_share_one_solution_per_point(tmp_path, monkeypatch):
+    """With an A0..A1 window the runner measures each point's Solution for the window
+    (STPLBV) and writes the same Solution to the b-row: one evaluation per regular
+    point, and the rows the same as those of a run without the window."""
+    from washer.cont.systems.general_bvp import BoundaryValueProblem
+    d = demo(tmp_path, "lin")
+    r1 = run(d / "c.lin", e="lin", sv="lin", verbose=False)
+    kw = dict(e="lin", s="lin", IRS=r1("BP1").lab, NTST=6, ISW=-1, DSMAX=0.5, verbose=False)
+    plain = run(d / "c.lin", sv="lin2", **kw)
+    calls = []
+    real = BoundaryValueProblem.solution
+
+    def counted(self, x, tangent):
+        calls.append(1)
+        return real(self, x, tangent)
+    monkeypatch.setattr(BoundaryValueProblem, "solution", counted)
+    windowed = run(d / "c.lin", A1=1e6, sv="lin3", **kw)      # a window that never ends it
+    assert windowed.status == plain.status == "ok"
+
+    def data_rows(name):
+        return [ln for ln in (tmp_path / name).read_text().splitlines()
+                if ln.split() and ln.split()[0].lstrip("-").isdigit() and ln.split()[0] != "0"]
+    rows = data_rows("b.lin3")
+    # regular points (TY 0, RG 4, EP 9, MX -9) once; a located special point twice (its
+    # info is evaluated between the window's check and the row, which drops the kept one)
+    special = sum(1 for r in rows if int(r.split()[2]) not in (0, 4, 9, -9))
+    assert len(rows) > 5 and len(calls) == len(rows) + special
+    assert rows == data_rows("b.lin2")

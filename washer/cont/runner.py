@@ -50,6 +50,10 @@ class _Executor:
         self.counts: dict[str, int] = {}
         self.bp_queue: deque = deque()
         self.n_bp = 0
+        #: (point, its Solution) made by `_ends_here` for the A0..A1 window, taken by the
+        #: `labelled` that follows for the same point (a periodic orbit's Solution costs a
+        #: pass over its profile); anything else in between drops it.
+        self._window_solution = None
 
     def emit(self, what: str, *args) -> None:
         for sink in self.sinks:
@@ -61,7 +65,12 @@ class _Executor:
         if label:
             self.label += 1
             lab = self.label
-        sol = sysm.solution(point.x, point.tangent)
+        kept, self._window_solution = self._window_solution, None
+        if kept is not None and kept[0] is point and kept[1] is point.x \
+                and kept[2] is point.tangent:
+            sol = kept[3]
+        else:
+            sol = sysm.solution(point.x, point.tangent)
         values = [float(point.x[-1])] + list(sol.columns) + [float(sol.par[i - 1]) for i in s.ICP[1:]]
         # The record's NFPR, ICP and RLDOT are AUTO's: all the free parameters, a locus'
         # internal ones included where AUTO counts them (the cycle fold's beta, PAR(NPAR+1):
@@ -78,6 +87,7 @@ class _Executor:
         return out
 
     def info_at(self, point: Point, base: int) -> dict:
+        self._window_solution = None
         try:
             info = self.run.system.info(point.x, base)
         except (ProblemError, np.linalg.LinAlgError, ValueError):
@@ -167,7 +177,9 @@ class _Executor:
         if not (s.RL0 <= (p.x[-1] if lam is None else lam) <= s.RL1):
             return True
         if s.A0 > -1e307 or s.A1 < 1e307:
-            measure = self.run.system.solution(p.x, p.tangent).columns[0]
+            sol = self.run.system.solution(p.x, p.tangent)
+            self._window_solution = (p, p.x, p.tangent, sol)
+            measure = sol.columns[0]
             return not (s.A0 <= measure <= s.A1)
         return False
 
