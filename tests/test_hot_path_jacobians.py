@@ -201,3 +201,44 @@ def test_one_stencil_leaves_the_users_jacobians_alone():
     A, (fp,) = field.fu_fp(U, par, [1])
     assert np.all(A == 7.0)
     np.testing.assert_array_equal(fp, field.fp(U, par, 1))
+
+
+def test_vectorised_func_is_checked_on_a_few_points_of_its_first_call():
+    """A user func that takes (ndim, k) arrays is called once for a large stencil after
+    its first call's first VECTORISE_CHECK points agree with separate calls; the values
+    are the separate calls' (bit for bit here)."""
+    from washer.cont.problem import VECTORISE_CHECK
+    calls = []
+
+    def counted(u, par):
+        calls.append(np.ndim(u))
+        return ab(u, par)
+    prob = Problem(2, counted, npar=3)
+    rng = np.random.default_rng(3)
+    us, par = rng.standard_normal((500, 2)), np.array([0.2, 8.0, 3.0])
+    F = prob.func_many(us, par)
+    assert calls.count(1) == VECTORISE_CHECK and calls.count(2) == 1
+    np.testing.assert_array_equal(F, np.array([ab(u, par) for u in us]))
+    prob.func_many(us, par)
+    assert calls.count(1) == VECTORISE_CHECK and calls.count(2) == 2
+
+
+@pytest.mark.parametrize("kind", ["mixes points", "raises on arrays"])
+def test_a_func_that_is_not_pointwise_on_arrays_is_called_point_by_point(kind):
+    """A func that reduces over the whole batch (wrong with (ndim, k) arrays, and wrong
+    on every point but by a different amount) or that raises on arrays is detected on
+    the first call: its values are the separate calls', now and after."""
+    def mixing(u, par):
+        return np.array([u[0] / np.sum(np.abs(u)), u[1]])
+
+    def scalar_only(u, par):
+        if u[0] > 0:                      # ValueError with an array
+            return np.array([u[0], u[1]])
+        return np.array([-u[0], u[1]])
+    fn = mixing if kind == "mixes points" else scalar_only
+    prob = Problem(2, fn, npar=1)
+    rng = np.random.default_rng(4)
+    for k in (300, 40):
+        us, par = rng.standard_normal((k, 2)), np.array([0.0])
+        np.testing.assert_array_equal(prob.func_many(us, par),
+                                      np.array([fn(u, par) for u in us]))
