@@ -189,6 +189,15 @@ def test_one_stencil_for_f_u_and_f_p_is_the_separate_quotients(func, ndim, par):
     prob.func_many = lambda us, ps: calls.append(len(us)) or real(us, ps)
     field.fu_fp(U, par, [1, 3])
     assert calls == [100 * (2 * ndim + 4)]
+    # beyond FU_FP_ONE_CALL_MAX points: separate calls, the same values
+    from washer.cont.systems.bvp import FU_FP_ONE_CALL_MAX
+    big = rng.standard_normal((FU_FP_ONE_CALL_MAX + 1, ndim))
+    calls.clear()
+    A, (fp,) = field.fu_fp(big, par, [1])
+    assert len(calls) == 3
+    prob.func_many = real
+    np.testing.assert_array_equal(A, field.fu(big, par))
+    np.testing.assert_array_equal(fp, field.fp(big, par, 1))
 
 
 def test_one_stencil_leaves_the_users_jacobians_alone():
