@@ -81,7 +81,10 @@ def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _ptr(a: np.ndarray):
-    return ffi.cast("double *", ffi.from_buffer(a))
+    """The data of a C-contiguous float64 array as a double[] for the compiled calls (one
+    from_buffer with the type: a fifth of the cost of from_buffer and a cast, and a
+    factorisation passes a dozen)."""
+    return ffi.from_buffer("double[]", a)
 
 
 def collocation_blocks(WT: np.ndarray, WP: np.ndarray, dtm: np.ndarray, T: float,
