@@ -65,6 +65,19 @@ def gauss_points(ncol: int) -> np.ndarray:
     return 0.5 * (x + 1.0)
 
 
+@lru_cache(maxsize=64)
+def _lagrange_nodes(nodes: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """What `_lagrange` needs of the nodes alone (every ADAPT asks for the same NCOL + 1
+    equally spaced ones): the other nodes' indices of each basis function (n, n - 1),
+    the denominators prod_k (x_b - x_k) (n,), and the other nodes as (n - 1, n, 1)."""
+    nodes = np.array(nodes, float)
+    n = len(nodes)
+    others = np.array([[k for k in range(n) if k != b] for b in range(n)], dtype=int)
+    others = others.reshape(n, n - 1)
+    denom = np.array([np.prod(nodes[b] - nodes[others[b]]) for b in range(n)])
+    return _frozen(others), _frozen(denom), _frozen(nodes[others.T][:, :, None])
+
+
 def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Values and derivatives of the Lagrange basis on `nodes` at points `z`:
     both of shape (len(nodes), len(z)). Every basis function b is the product over the
@@ -73,10 +86,8 @@ def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     nodes = np.asarray(nodes, float)
     z = np.atleast_1d(np.asarray(z, float))
     n = len(nodes)
-    others = np.array([[k for k in range(n) if k != b] for b in range(n)], dtype=int)
-    others = others.reshape(n, n - 1)
-    denom = np.array([np.prod(nodes[b] - nodes[others[b]]) for b in range(n)])
-    dz = z[None, :] - nodes[others.T][:, :, None]            # (n - 1, n, len(z)): z - x_k
+    others, denom, nodes_others = _lagrange_nodes(tuple(nodes.tolist()))
+    dz = z[None, :] - nodes_others                           # (n - 1, n, len(z)): z - x_k
     L = np.ones((n, len(z)))
     D = np.zeros((n, len(z)))
     for s in range(n - 1):
