@@ -77,13 +77,15 @@ def sort_multipliers(mu, trivial: bool = True) -> np.ndarray:
 #: (the same bits, so that `_pencil_eigvals` is scipy.linalg.eigvals exactly).
 _I = np.array(1j, dtype="F")
 _GGEV = []
+_GGEV_LWORK: dict = {}
 
 
 def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """scipy.linalg.eigvals(A, B) for finite real square A, B: the same LAPACK calls
-    (dggev's workspace query, then dggev without vectors) and the same alpha / beta
-    (beta = 0: inf, or nan when alpha = 0 too), without scipy's argument checks and
-    wrappers (about 100 us a call; the multipliers are asked for at every point).
+    (dggev's workspace query, made once per order, then dggev without vectors) and the
+    same alpha / beta (beta = 0: inf, or nan when alpha = 0 too), without scipy's argument
+    checks and wrappers (about 100 us a call; the multipliers are asked for at every
+    point).
     Anything else (non-finite entries, LAPACK's failure) goes to scipy.linalg.eigvals,
     which raises what it raises."""
     import scipy.linalg      # here: scipy.linalg's import outweighs a short run
@@ -96,7 +98,10 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     if not _GGEV:
         _GGEV.append(scipy.linalg.get_lapack_funcs(("ggev",), (A, B))[0])
     ggev = _GGEV[0]
-    lwork = ggev(A, B, lwork=-1)[-2][0].real.astype(np.int_)
+    n = A.shape[0]
+    lwork = _GGEV_LWORK.get(n)
+    if lwork is None:        # LAPACK's workspace query: a function of the order alone
+        lwork = _GGEV_LWORK[n] = ggev(A, B, lwork=-1)[-2][0].real.astype(np.int_)
     alphar, alphai, beta, _, _, _, info = ggev(A, B, 0, 0, lwork, False, False)
     if info != 0:
         return scipy.linalg.eigvals(A, B)
