@@ -112,7 +112,7 @@ def test_washer_f_with_its_jacobians_is_f_and_then_the_jacobians_are_the_kernels
     assert not np.array_equal(fu_other, fu)
 
 
-def test_parameter_rows_are_broadcast_to_s_view():
+def test_parameter_rows_are_the_view_broadcast_to_gives():
     """broadcast_rows (func_many's one parameter vector for k points) is the view
     np.broadcast_to gives: same values, row stride 0, read-only, whatever the input."""
     from washer.cont.problem import broadcast_rows

@@ -9,7 +9,8 @@ plane's normal, so its predictor lands off the sphere and Newton takes 3 iterati
 the step one point before AUTO: branch 3 has 50 rows to AUTO's 51, 6.6e-3 apart in PAR(1)
 from its fourth row on. Predicting along that secant makes every row AUTO's (to 1.8e-5),
 but moves branch 2's HB by 1e-9 and the demo's periodic run from it then ends MX one step
-after its BP of cycles (AUTO's goes on to its EP): that fragility comes first."""
+after its BP of cycles (AUTO's goes on to its EP): a run that a 1e-9 shift of its start
+ends early is the fault to mend before that predictor."""
 import gzip
 import shutil
 from pathlib import Path

@@ -50,9 +50,10 @@ class _Executor:
         self.counts: dict[str, int] = {}
         self.bp_queue: deque = deque()
         self.n_bp = 0
-        #: (point, its Solution) made by `_ends_here` for the A0..A1 window, taken by the
-        #: `labelled` that follows for the same point (a periodic orbit's Solution costs a
-        #: pass over its profile); anything else in between drops it.
+        #: (point, its x, its tangent, their Solution) made by `_ends_here` for the A0..A1
+        #: window, taken by the `labelled` that follows for the same point while its x and
+        #: tangent are still those objects (a periodic orbit's Solution costs a pass over
+        #: its profile); anything else in between drops it.
         self._window_solution = None
 
     def emit(self, what: str, *args) -> None:
