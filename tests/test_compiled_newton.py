@@ -128,6 +128,22 @@ def test_failing_func_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache
                                rtol=1e-9, atol=1e-12)
 
 
+def test_ctrl_c_in_func_is_not_taken_for_a_failure(tmp_path, cache):
+    """KeyboardInterrupt raised in the user's func while the C corrector calls it back
+    (Ctrl-C arrives in Python code) interrupts the run, as it does from the Python loop,
+    instead of being handed over as a failed evaluation."""
+    d = tmp_path / "int"
+    d.mkdir()
+    shutil.copy(DATA / "ab" / "c.ab", d)
+    # once, as a Ctrl-C arrives once (the Python loop would not call func into it again)
+    (d / "ab.py").write_text((DATA / "ab" / "ab.py").read_text() + (
+        "\n_func = func\n_sent = []\n\n\ndef func(u, par):\n"
+        "    if par[0] > 0.1 and not _sent:\n        _sent.append(1)\n"
+        "        raise KeyboardInterrupt\n    return _func(u, par)\n"))
+    with pytest.raises(KeyboardInterrupt):
+        run(d / "c.ab", verbose=False)
+
+
 def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     """Compiled and Python equations with difference Jacobians take the compiled loop;
     with the user's Jacobians (JAC = 1) they keep the Python loop."""

@@ -88,6 +88,8 @@ class PythonEquations:
         self._dptr_type = self.ffi.typeof("double[]")
 
     def _onerror(self, exc, val, tb):
+        # The failure is the Python loop's to report (it evaluates f again); what is not
+        # a failure of f (Ctrl-C: KeyboardInterrupt) is raised once the C has returned.
         self.error = val
         return 1
 
@@ -119,6 +121,7 @@ class PythonEquations:
         lib, cb = self.lib, self._cb
 
         def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+            self.error = None
             return lib.washer_ae_correct_cb(
                 cb, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
                 epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
@@ -157,6 +160,10 @@ class CompiledCorrector:
         a["x_pred"][:] = x_pred
         a["x_ref"][:] = x_ref
         status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH)
+        err = getattr(user, "error", None)
+        if err is not None and not isinstance(err, Exception):
+            user.error = None
+            raise err                      # KeyboardInterrupt, SystemExit in the callback
         self.last = None
         if status == 3:
             return None
