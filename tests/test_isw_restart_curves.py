@@ -58,26 +58,31 @@ def _same(ours: np.ndarray, auto: np.ndarray) -> bool:
         < 1e-6
 
 
-@pytest.fixture(scope="module")
-def runs(tmp_path_factory):
+def _ab_script(tmp_path_factory, script: str) -> dict:
+    """The b-files' rows {NAME: rows of b.NAME} of tests/data/isw_curves/`script` run in a
+    fresh folder with AUTO's ab demo files; no command of it refused."""
     if shutil.which("gfortran") is None:
         pytest.skip("ab.f90 needs gfortran")
-    d = tmp_path_factory.mktemp("isw_curves")
+    d = tmp_path_factory.mktemp(script.replace(".", "_"))
     for f in ("ab.f90", "c.ab.1", "c.ab.2"):
         shutil.copy(DATA / "auto_demos" / "ab" / f, d)
-    shutil.copy(DATA / "isw_curves" / "isw.auto", d)
+    shutil.copy(DATA / "isw_curves" / script, d)
     mp = pytest.MonkeyPatch()
     mp.chdir(d)
     try:
         clui._runner.refused.clear()
-        run_script("isw.auto")
+        run_script(script)
         assert not clui._runner.refused
     finally:
         mp.undo()
     return {p.name[2:]: _rows(p.read_text()) for p in d.glob("b.*")}
 
 
-@pytest.mark.slow
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    return _ab_script(tmp_path_factory, "isw.auto")
+
+
 @pytest.mark.parametrize("name", ON_HOPF_CURVE)
 def test_isw_minus_one_on_the_hopf_curve_continues_the_equilibria_as_auto(runs, name):
     for suffix in ("", "m"):
@@ -88,7 +93,6 @@ def test_isw_minus_one_on_the_hopf_curve_continues_the_equilibria_as_auto(runs, 
     assert np.ptp(forward[:, -1]) == 0 and np.ptp(forward[:, 4]) > 0.01
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", AT_FOLDS)
 def test_isw_minus_one_at_a_fold_of_the_equilibria_continues_them_as_auto(runs, name):
     ours = (runs[name], runs[name + "m"])
@@ -127,24 +131,9 @@ def test_isw_minus_one_on_a_branch_point_locus_switches_as_auto(tmp_path, monkey
 
 @pytest.fixture(scope="module")
 def runs_isw1(tmp_path_factory):
-    if shutil.which("gfortran") is None:
-        pytest.skip("ab.f90 needs gfortran")
-    d = tmp_path_factory.mktemp("isw1_curves")
-    for f in ("ab.f90", "c.ab.1", "c.ab.2"):
-        shutil.copy(DATA / "auto_demos" / "ab" / f, d)
-    shutil.copy(DATA / "isw_curves" / "isw1.auto", d)
-    mp = pytest.MonkeyPatch()
-    mp.chdir(d)
-    try:
-        clui._runner.refused.clear()
-        run_script("isw1.auto")
-        assert not clui._runner.refused
-    finally:
-        mp.undo()
-    return {p.name[2:]: _rows(p.read_text()) for p in d.glob("b.*")}
+    return _ab_script(tmp_path_factory, "isw1.auto")
 
 
-@pytest.mark.slow
 def test_isw_one_at_curve_labels_continues_the_equilibria_as_auto(runs_isw1):
     """ISW = 1 at a label of a fold or Hopf curve: FINDLB's ITPST = 0 as for ISW = -1, so
     the equilibria in PAR(1) go on (the record's branch number: no switch), from the
@@ -163,7 +152,6 @@ def test_isw_one_at_curve_labels_continues_the_equilibria_as_auto(runs_isw1):
     assert np.ptp(runs_isw1["ehrg"][:, -1]) == 0          # PAR(3) held
 
 
-@pytest.mark.slow
 def test_a_restart_along_a_stored_direction_turns_it_to_a_growing_parameter_as_auto(
         runs_isw1):
     """IPS = 1: CNRLAE's STPRAE with IPERP = -1 turns the stored direction so that
