@@ -162,3 +162,20 @@ def test_a_restart_along_a_stored_direction_turns_it_to_a_growing_parameter_as_a
     for name in ("cont", "d12"):
         assert _same(runs_isw1[name], _auto(name)), name
         assert np.all(np.diff(runs_isw1[name][:, 4]) > 0), name
+
+
+def test_isw_minus_two_is_refused_with_the_restart_label_named(tmp_path):
+    """ISW = -2 is AUTO's generating run of a locus of cycles (ISW = 2 at an LP, PD or TR
+    label of cycles does that here); at a label of a curve of equilibria AUTO-07p takes one
+    step and ends MX. It is refused before any work, naming the constants file, ISW and
+    the restart label, and nothing is written."""
+    from washer.run import RunError, run
+    for f in ("c.ab", "ab.py"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    run(tmp_path / "c.ab", sv="eq", verbose=False)
+    hb = run(tmp_path / "c.ab", s="eq", IRS="HB1", ICP=[1, 3], ISW=2, NMX=10, NPR=5, sv="hb",
+             verbose=False)
+    lab = next(r.lab for r in hb.rows if r.lab)
+    with pytest.raises(RunError, match=rf"c\.ab.*ISW=-2 \(IRS={lab}\)"):
+        run(tmp_path / "c.ab", s="hb", IRS=lab, ICP=[1], ISW=-2, sv="again", verbose=False)
+    assert not list(tmp_path.glob("*.again"))
