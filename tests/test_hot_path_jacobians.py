@@ -8,6 +8,9 @@ the general evaluation gives.
   kernel returns it with f_u): exactly that column, and within the difference
   quotient's error of central differences.
 """
+import importlib.util
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -17,10 +20,17 @@ from washer.cont.systems.bvp import VectorField
 from test_periodic import lw       # the closed-form Hopf normal form the periodic tests continue
 
 
-def ab(u, par):
-    e = np.exp(u[1])
-    return np.array([-u[0] + par[0] * (1 - u[0]) * e,
-                     -u[1] + par[0] * par[1] * (1 - u[0]) * e - par[2] * u[1]])
+def _demo_func(name: str):
+    """func of tests/data/NAME/NAME.py, an AUTO demo's equations in Python."""
+    path = Path(__file__).parent / "data" / name / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"demo_{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.func
+
+
+ab = _demo_func("ab")
+chua = _demo_func("chu")          # Chua's circuit: arctan, not just + - * /
 
 
 def test_small_stencil_jacobian_equals_the_batched_stencil_bit_for_bit():
@@ -149,18 +159,6 @@ def test_difference_quotient_in_a_parameter_leaves_the_kept_f_and_is_the_quotien
     prob.func_many = lambda *a: calls.append(a) or 0 / 0     # f must not be re-evaluated
     np.testing.assert_array_equal(field.f(U, par), f0)
     assert not calls
-
-
-def chua(u, par):
-    """demos/chu's right-hand side (arctan: not just + - * /)."""
-    alpha, beta, rk, a0, a1 = par[:5]
-    x, y, z = u
-
-    def ab_(v):
-        return 2 * v * np.arctan(rk * v) / np.pi
-
-    h = a1 * x + 0.5 * (a0 - a1) * (ab_(x + 1) - ab_(x - 1))
-    return np.array([alpha * (y - h), x - y + z, -beta * y])
 
 
 @pytest.mark.parametrize("func, ndim, par", [
