@@ -9,6 +9,8 @@ import pytest
 from washer.cont import collocation as col
 from washer.cont.floquet import pencil_multipliers
 
+from test_reduction import random_jacobian       # a collocation Jacobian with random entries
+
 
 # ---------------------------------------------------------------- weights (AUTO tables)
 
@@ -167,13 +169,7 @@ def test_jacobians_on_one_mesh_are_scipys_matrices_with_their_own_values(general
     coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc)
     mats, dense = [], []
     for k in range(3):
-        blocks = coll.local_blocks(1.0 + k, rng.standard_normal((N, m, n, n)))
-        dF = rng.standard_normal((nint + 1, N, m, n))
-        int_u = rng.standard_normal((nint, coll.mesh.n_nodes, n))
-        int_par = rng.standard_normal((nint, nint + 1))
-        bc = (rng.standard_normal((n, n)), rng.standard_normal((n, n)),
-              rng.standard_normal((n, nint + 1))) if general_bc else None
-        J = coll.jacobian_general(blocks, dF, int_u, int_par, bc_jac=bc)
+        J = random_jacobian(coll, rng, 1.0 + k)
         ref = sp.csc_matrix((J.assembly[1][coll._order], coll._indices, coll._indptr),
                             shape=(coll.n_eq, coll.n_x))
         assert sp.isspmatrix_csc(J) and J.shape == ref.shape and coll.has_pattern(J)

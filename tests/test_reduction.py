@@ -96,13 +96,7 @@ def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_
     rng = np.random.default_rng(5)
     n, N, m, nint = 4, 9, 3, 3
     coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc)
-    blocks = coll.local_blocks(1.3, rng.standard_normal((N, m, n, n)))
-    dF = rng.standard_normal((nint + 1, N, m, n))
-    int_u = rng.standard_normal((nint, coll.mesh.n_nodes, n))
-    int_par = rng.standard_normal((nint, nint + 1))
-    bc = (rng.standard_normal((n, n)), rng.standard_normal((n, n)),
-          rng.standard_normal((n, nint + 1))) if general_bc else None
-    J = coll.jacobian_general(blocks, dF, int_u, int_par, bc_jac=bc)
+    J = random_jacobian(coll, rng, 1.3)
     border = rng.standard_normal(coll.n_x)
     f = reduction.BorderedCollocation.from_jacobian(coll, J, border)
     ref = SparseFactor(coll.bordered(J, border))
@@ -110,6 +104,19 @@ def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_
     np.testing.assert_allclose(f.solve(rhs), ref.solve(rhs), rtol=1e-9, atol=1e-11)
     assert f.sign_logdet()[0] == ref.sign_logdet()[0]
     assert f.sign_logdet()[1] == pytest.approx(ref.sign_logdet()[1], rel=1e-11)
+
+
+def random_jacobian(coll, rng, T: float):
+    """coll.jacobian_general with random entries: f_u blocks at period T, the parameter
+    columns, the integral rows and, with coll.general_bc, boundary rows B0, B1, Bp."""
+    n, N, m, nint = coll.ndim, coll.mesh.ntst, coll.mesh.ncol, coll.nint
+    blocks = coll.local_blocks(T, rng.standard_normal((N, m, n, n)))
+    dF = rng.standard_normal((nint + 1, N, m, n))
+    int_u = rng.standard_normal((nint, coll.mesh.n_nodes, n))
+    int_par = rng.standard_normal((nint, nint + 1))
+    bc = (rng.standard_normal((n, n)), rng.standard_normal((n, n)),
+          rng.standard_normal((n, nint + 1))) if coll.general_bc else None
+    return coll.jacobian_general(blocks, dF, int_u, int_par, bc_jac=bc)
 
 
 def random_general_system(rng, general_bc, nbc, nint):
