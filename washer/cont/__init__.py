@@ -15,9 +15,11 @@ linalg, reduction, collocation, floquet, normal_form
               the numerics the systems share: bordered factorisations, AUTO's condensation
               of collocation matrices (compiled), collocation, Floquet multipliers and their
               tests, the first Lyapunov coefficient
-newton, iterator, events
-              the one Newton loop, the pseudo-arclength iterator (predictor, corrector, step
-              control), test functions' sign changes and their location
+newton, compiled_newton, iterator, events
+              the one Newton loop and its compiled form for equilibria (C written once in
+              include/ae_correct.h; compiled_corrector chooses where it applies), the
+              pseudo-arclength iterator (predictor, corrector, step control), test
+              functions' sign changes and their location
 start, runner, branch
               a run: its start from constants and restart records, labels, stops and branch
               switching (AUTO's AUTOAE/AUTOBV), its result in memory (Branch)
