@@ -146,6 +146,9 @@ class Continuation:
         # else None: the Python loop below.
         from washer.cont.compiled_newton import compiled_corrector
         self._compiled = compiled_corrector(system, settings, DIVERGENCE_FACTOR)
+        # (x, J): the converged point of the last corrector and the Jacobian of its last
+        # Newton iteration, where that serves x (`correct`); else None.
+        self._newton = None
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -170,6 +173,7 @@ class Continuation:
         radius |ds|, or the plane <x - x_ref, t_ref> = ds). Returns (x, iterations)."""
         s, sysm = self.s, self.sys
         plane = (sysm.arclength == "plane") if plane is None else plane
+        self._newton = None
         if self._compiled is not None and not plane:
             # the same loop compiled (one foreign call); None: it hands over to this one
             done = self._compiled.correct(x_pred, x_ref, ds, self.counters)
@@ -177,7 +181,7 @@ class Continuation:
                 return done
         row_plane = sysm.border(t_ref) if plane else None
         ns = getattr(sysm, "n_state", None) if plane else None
-        held = {"factor": None, "delref": None}
+        held = {"factor": None, "delref": None, "J": None, "it_J": 0}
 
         # A trial point outside the equations' domain: a failed step.
         residual = _failing_as("equations failed at a Newton iterate", self._residual)
@@ -195,6 +199,7 @@ class Continuation:
                 J = jacobian(x, frozen=sysm.freezes_second_derivatives)
                 if plane:
                     factor = self._factor(J, row_plane)
+                    held["J"], held["it_J"] = J, it
             if plane:
                 c = row_plane @ (x - x_ref) - ds
             else:
@@ -229,12 +234,25 @@ class Continuation:
                 raise ConvergenceError("Newton iterates diverge")
             return False
 
-        # (At the converged point `evaluate` takes a fresh Jacobian, as AUTO's CONTBV and
-        # SOLVAE do: the last iteration's, up to 1e-9 away, was tried on BVPs and is not
-        # close enough near a homoclinic end: ab's family from HB10 in c.ab.3 then stopped
-        # with MX at PERIOD = 51.8, short of AUTO's UZ at PERIOD = 1000.)
-        return newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
-                      exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
+        x, it = newton(residual, step, x_pred, max_iter=s.ITNW, converged=converged,
+                       exhausted=f"no convergence in ITNW = {s.ITNW} iterations")
+        # AUTO's NEWTONBV: the matrix factorised at the last Newton iteration serves the
+        # converged point (the fold test's direction, the Floquet multipliers of its
+        # condensation, the branch-point test): no Jacobian is evaluated at x. Here for
+        # the systems that say so (`newton_jacobian_at_point`: collocation BVPs, where a
+        # Jacobian is f_u at every Gauss point), and only where that matrix was evaluated
+        # at the iterate the converging correction started from, so that x lies within
+        # EPSU / EPSL of it. (After chord iterations, beyond NWTN, AUTO takes the matrix
+        # of an earlier iterate: on r3b's halo orbits, whose double trivial multiplier
+        # splits as the square root of the matrix's error, it came out 0.4 off 1 from an
+        # iterate 4e-5 away, and their BP of cycles went undetected while the
+        # multipliers counted as inaccurate.) Algebraic systems evaluate the Jacobian at
+        # x, as SOLVAE does.
+        self._newton = (x, held["J"]) \
+            if plane and held["J"] is not None and held["it_J"] == it \
+            and not sysm.freezes_second_derivatives \
+            and getattr(sysm, "newton_jacobian_at_point", False) else None
+        return x, it
 
     def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
@@ -323,11 +341,28 @@ class Continuation:
         return orient(t, len(t) - 1, self.s.EPSL, x[-1])
 
     # ----------------------------------------------------------- evaluation
-    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0) -> Point:
+    def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0,
+                 newton=None) -> Point:
         """A converged point: tangent, stability and the test values `keys`
-        (all active tests and UZ values when None)."""
-        J = self._jacobian(x)
+        (all active tests and UZ values when None). newton: the corrector's (x, J)
+        (`correct`): when it is this x's and no tangent is given, J serves as the
+        Jacobian at x (AUTO's NEWTONBV) unless the system finds the stability it gives
+        too inexact (`newton_jacobian_serves`); else the Jacobian is evaluated at x."""
         direction = None
+        if newton is not None and newton[0] is x and tangent is None:
+            J = newton[1]
+            stab = self.sys.stability(x, J)
+            if getattr(self.sys, "newton_jacobian_serves", lambda st: True)(stab):
+                # The tangent is bordered by the secant, as below (the arclength row's
+                # direction, the previous step's, gives another vector where the null
+                # space is nearly two-dimensional: abcb's fold test then jumped next to
+                # its BP of cycles).
+                t, factor = self.tangent(J, ref)
+                direction = ref / math.sqrt(self.sys.inner(ref, ref))     # CONTBV, SCALEB
+                pt = Point(np.array(x), t, stab, {}, ds, it, direction)
+                pt.tests = self._tests(pt, J, factor, keys)
+                return pt
+        J = self._jacobian(x)
         if tangent is None:
             t, factor = self.tangent(J, ref)
             if self.sys.arclength == "plane":
@@ -362,7 +397,10 @@ class Continuation:
         """The continuation step of arclength ds from p (predictor + corrector)."""
         d = p.step_direction
         x, it = self.correct(p.x + ds * d, p.x, d, ds)
-        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it)
+        # A continuation step's point takes the corrector's last matrix; the trials of a
+        # location (keys given) evaluate the Jacobian at the point (`_trial`).
+        return self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it,
+                             newton=self._newton if keys is None else None)
 
     def _retrying_step(self, p: Point, ds):
         """AUTO's STEPAE: on failure halve the step and retry, until below DSMIN.

@@ -242,6 +242,10 @@ class CollocationBVP:
     curve_type = 0
     arclength = "plane"
     freezes_second_derivatives = False
+    #: The corrector's last Newton matrix serves as the Jacobian at a converged point of a
+    #: continuation step (tangent, Floquet multipliers, tests: AUTO's NEWTONBV), instead
+    #: of f_u at every Gauss point once more (`washer.cont.iterator.Continuation.correct`).
+    newton_jacobian_at_point = True
     nint = 1
     #: True: the boundary conditions are the subclass's own (`Collocation` general_bc:
     #: dense blocks in u(0), u(1) and the parameters), else periodicity u(0) = u(1).

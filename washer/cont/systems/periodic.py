@@ -37,10 +37,13 @@ Differences from AUTO worth knowing:
   closely (lrz PT 3: AUTO rho 24.6903, ours with the exact tangent 24.6947; located
   points agree either way).
 * `border(t)` is `weights * t` (weights: the inner product's diagonal).
-* Floquet multipliers are computed from the Jacobian at x itself (not from a chord
-  Jacobian of the last iteration as AUTO does), so they are slightly more accurate
-  than AUTO's at equal NTST (chu's PD: -1.33941e-2 against AUTO's -1.33946e-2; the
-  mesh-converged value is -1.33941e-2).
+* At a continuation step's point the Floquet multipliers, the tangent and the tests
+  come from the Jacobian of the last Newton iteration, as AUTO's NEWTONBV takes them,
+  where that iteration refactorised the matrix at the iterate the converging
+  correction started from (within EPSU of the point) and its trivial multiplier is
+  within ACCURATE of 1 (`floquet.newton_jacobian_serves`); elsewhere, and at located
+  points, from the Jacobian at x itself (chu's PD: -1.33941e-2 against AUTO's
+  -1.33946e-2; the mesh-converged value is -1.33941e-2).
 """
 from __future__ import annotations
 
@@ -372,11 +375,17 @@ class PeriodicOrbits(CollocationBVP):
             return None
         cached = getattr(self, "_stab_cache", None)
         if (cached is not None and cached[1] == self._suspended and cached[0].shape == x.shape
-                and np.array_equal(cached[0], x)):
+                and np.array_equal(cached[0], x) and (J is None or cached[3] is J)):
             return cached[2]
         out = floquet.stability(self.multipliers(x, J), self.ndim, self._suspended)
-        self._stab_cache = (np.array(x), self._suspended, out)
+        self._stab_cache = (np.array(x), self._suspended, out, J)
         return out
+
+    def newton_jacobian_serves(self, stability) -> bool:
+        """Whether the last Newton iteration's Jacobian, whose multipliers are
+        `stability`, serves as the Jacobian at the converged point
+        (`washer.cont.floquet.newton_jacobian_serves`)."""
+        return floquet.newton_jacobian_serves(stability)
 
     def active_tests(self) -> list:
         return floquet.active_tests(self.settings, self.ndim)
