@@ -28,9 +28,9 @@ FAST = {"frc", "lrz", "lor", "chu", "opt"}
 EXPECTED_FAIL = {
     "pci": "6 of 7: AUTO's backward run 8 turns to NaN after its BP and ends with an EP of "
            "NaNs at NMX = 1000; ours goes on through finite solutions and ends MX",
-    "abcb": "20 of 22: at run 2's tip PAR(1) = 0.3462, where fold and branch point coincide, "
-            "AUTO labels LP, we BP (our fold location does not converge there); AUTO's BP two "
-            "points later is not a branch point (shooting, tests/test_cycle_branch_point.py)",
+    "abcb": "21 of 22: AUTO's BP two points past run 2's tip (PAR(1) = 0.3462, where fold "
+            "and branch point coincide, both label LP) is not a branch point (shooting, "
+            "tests/test_cycle_branch_point.py)",
     "lcbp": "6 of 8: where the generic BP locus meets u = 0 at PAR(1) = 0 (circles of radius "
             "PAR(1) -> 0), AUTO labels the BP, ours turns back there and labels an LP; the "
             "non-generic locus ends where AUTO's MX is, on orbits of amplitude 4e-20, and our BP "

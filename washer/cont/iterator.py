@@ -34,7 +34,7 @@ import numpy as np
 
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
-from washer.cont.events import _radius, first_zero
+from washer.cont.events import _radius, first_zero, sign_changes
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient
 from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
@@ -149,6 +149,8 @@ class Continuation:
         # (x, J): the converged point of the last corrector and the Jacobian of its last
         # Newton iteration, where that serves x (`correct`); else None.
         self._newton = None
+        # The last point evaluated from the corrector's Newton matrix (`evaluate`).
+        self._newton_point = None
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -361,6 +363,7 @@ class Continuation:
                 direction = ref / math.sqrt(self.sys.inner(ref, ref))     # CONTBV, SCALEB
                 pt = Point(np.array(x), t, stab, {}, ds, it, direction)
                 pt.tests = self._tests(pt, J, factor, keys)
+                self._newton_point = pt
                 return pt
         J = self._jacobian(x)
         if tangent is None:
@@ -612,6 +615,15 @@ class Continuation:
             yield from self._accept(nxt, current)
             self._adapt_step(nxt.iterations)
             return
+        if nxt is self._newton_point and sign_changes(current.tests, nxt.tests):
+            # A test changes sign over the step: the point is evaluated again from the
+            # Jacobian at it (as the location's trials are), so that the zeros are found
+            # and located from exact values. Next to a zero of high order the Newton
+            # matrix's error exceeds the test itself: at abcb's tip of its cycles, where
+            # fold and branch point coincide (BP test 3e-28 against 1e-8 a step away),
+            # the fold's sign change showed and the branch point's did not.
+            nxt = self.evaluate(nxt.x, (nxt.x - current.x) / nxt.ds, ds=nxt.ds,
+                                it=nxt.iterations)
         hit = self._first_zero(current, nxt, st.ds)
         yield from self._flush()
         if hit is not None:
