@@ -31,10 +31,6 @@ EXPECTED_FAIL = {
     "abcb": "21 of 22: AUTO's BP two points past run 2's tip (PAR(1) = 0.3462, where fold "
             "and branch point coincide, both label LP) is not a branch point (shooting, "
             "tests/test_cycle_branch_point.py)",
-    "lcbp": "6 of 8: where the generic BP locus meets u = 0 at PAR(1) = 0 (circles of radius "
-            "PAR(1) -> 0), AUTO labels the BP, ours turns back there and labels an LP; the "
-            "non-generic locus ends where AUTO's MX is, on orbits of amplitude 4e-20, and our BP "
-            "test changes sign on rounding there: a BP label instead of the MX",
     "tfc": "15 of 18: run 5's first BP of cycles is the tip of a fold (a zero of third "
            "order): ours there, AUTO's where its location stopped on a jump of its test; the "
            "BP locus ends at that tip, AUTO's end 0.01 before it; where the BP locus meets a "
