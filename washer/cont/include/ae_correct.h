@@ -129,7 +129,9 @@ static int ae_back(int m, const double *M, const double *b, double *y)
    work: at least (2 NDIM + 3) (2 NDIM + npar) + (NDIM + 1) (NDIM + 4) doubles; scratch:
    NDIM (NDIM + npar) for FUNC's DFDU/DFDP. Returns 0 converged (x, *iterations set),
    1 diverging, 2 no convergence in itnw iterations (*iterations = itnw), 3 a non-finite
-   residual, Jacobian or correction, or a zero pivot: the caller runs the Python loop. */
+   residual, Jacobian or correction, or a zero pivot: the caller runs the Python loop;
+   4 converged (x, *iterations set) but f failed, or gave a non-finite Jacobian, at the
+   converged point: jac and tangent not set (the caller evaluates the Jacobian there). */
 static int ae_correct(void *ctx, int ndim, int npar, int ip, const int *icp, const double *par,
                       const double *x_pred, const double *x_ref, const double *theta,
                       double ds, double epsl, double epsu, int itnw, double divergence,
