@@ -116,6 +116,16 @@ n_state : int
 null_vector(J, border) -> ndarray
     With n_state, the tangent at a start from the Jacobian's own null vector (AUTO's
     STDRBV) instead of a bordered solve.
+newton_jacobian_at_point : bool
+    True: at a continuation step's converged point the Jacobian of the corrector's last
+    Newton iteration serves as the Jacobian there (tangent, stability, tests: AUTO's
+    NEWTONBV), where that iteration evaluated it at the iterate the converging
+    correction started from; default False, the Jacobian is evaluated at the point
+    (collocation systems: True, `washer.cont.systems.bvp.CollocationBVP`).
+newton_jacobian_serves(stability) -> bool
+    With newton_jacobian_at_point, whether the stability that matrix gives is exact
+    enough to stand for the point's; False: the Jacobian is evaluated at the point
+    (default: always True; periodic orbits: `floquet.newton_jacobian_serves`).
 header_icp : list[int]
     The free parameters the b-file header and the s-record list (AUTO's NFPR, ICP),
     where a locus counts an internal one (the cycle fold's beta); default `free`.
