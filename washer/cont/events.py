@@ -450,7 +450,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
                               from_last=secant,
-                              position=(lambda p: _radius(p.x - prev.x, span, inner))
+                              position=(lambda p: signed_distance(p.x - prev.x, span, inner))
                               if sphere else
                               (lambda p: inner(p.x - prev.x, prev.step_direction)))
         except RuntimeError as exc:
@@ -502,7 +502,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     return sp, best, same
 
 
-def _radius(d: np.ndarray, s: float, inner) -> float:
+def signed_distance(d: np.ndarray, s: float, inner) -> float:
     """The distance |d| in the system's inner product, signed as s: where a step of
     arclength s from a point lands on the sphere arclength (AUTO's SOLVAE)."""
     return math.copysign(math.sqrt(inner(d, d)), s)

@@ -34,7 +34,7 @@ import numpy as np
 
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
-from washer.cont.events import _radius, first_zero, sign_changes
+from washer.cont.events import first_zero, sign_changes, signed_distance
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient
 from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
@@ -526,7 +526,7 @@ class Continuation:
         step s that reached p (the direction in which the sphere coordinate s grows, as
         prev's step direction does; that direction where p is prev)."""
         d = p.x - prev.x
-        n = _radius(d, s, self.sys.inner)
+        n = signed_distance(d, s, self.sys.inner)
         return prev.step_direction if n == 0 else d / n
 
     def _accepted(self, key, prev, cur) -> bool:
