@@ -79,9 +79,8 @@ class PythonEquations:
     func_ready = True
 
     def __init__(self, problem, ndim: int, npar: int):
-        from washer.cont import problem as problem_module
         self.problem, self.n, self.npar = problem, ndim, npar
-        self.by_calls = 2 * (ndim + 1) < problem_module.VECTORISE_MIN
+        self.by_calls = problem.stencil_by_calls(1)     # one free parameter
         self.ffi, self.lib = _callback_library()
         self.error = None
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
@@ -241,9 +240,8 @@ def compiled_corrector(system, settings, divergence: float):
         equations = problem.user
     elif type(problem) is Problem:
         # difference Jacobians of a plain func (Problem.jacobian's stencil)
-        if (problem._dfdu is not None and problem.jac != 0) \
-                or (problem._dfdp is not None and problem.jac == 1) \
-                or problem._func_batch is not None or problem.has_func_dfdu_batch:
+        if not problem.differenced_jacobian or problem._func_batch is not None \
+                or problem.has_func_dfdu_batch:
             return None
         try:
             equations = PythonEquations(problem, system.ndim, len(system.par))

@@ -384,7 +384,7 @@ class Problem:
                 raise ProblemError(f"{self.name}: dfdu(u, par) returned non-finite values")
             return J
         u = np.asarray(u, dtype=float)
-        if self._func_batch is None and 2 * self.ndim < VECTORISE_MIN:
+        if self.stencil_by_calls(0):
             return self._jacobian_by_calls(u, np.asarray(par, dtype=float), [])
         h = FD_STEP * (1 + np.abs(u))
         E = np.diag(h)
@@ -392,20 +392,31 @@ class Problem:
         n = self.ndim
         return ((F[:n] - F[n:]) / (2 * h[:, None])).T
 
+    @property
+    def differenced_jacobian(self) -> bool:
+        """Whether `jacobian` takes central differences of f for [f_u, f_p] (neither the
+        user's dfdu with JAC != 0 nor the user's dfdp with JAC = 1 in use)."""
+        return not ((self._dfdu is not None and self.jac != 0)
+                    or (self._dfdp is not None and self.jac == 1))
+
+    def stencil_by_calls(self, m: int) -> bool:
+        """Whether central differences over u and m parameters, 2 (NDIM + m) points, are
+        evaluated one call of the user's func per point (`_jacobian_by_calls`, as
+        func_many makes them): no batched func, and fewer points than VECTORISE_MIN."""
+        return self._func_batch is None and 2 * (self.ndim + m) < VECTORISE_MIN
+
     def jacobian(self, u, par, indices) -> np.ndarray:
         """[f_u, f_PAR(indices)], shape (ndim, ndim + len(indices)): the user's
         Jacobians where JAC allows, else central differences over u and the
         parameters together, one stencil of 2 (ndim + m) points (AUTO's FUNI)."""
-        analytic_u = self._dfdu is not None and self.jac != 0
-        analytic_p = self._dfdp is not None and self.jac == 1
-        if analytic_u or analytic_p:
+        if not self.differenced_jacobian:
             return np.hstack([self.dfdu(u, par), self.dfdp(u, par, indices)])
         u = np.asarray(u, dtype=float)
         par = np.asarray(par, dtype=float)
         n, m = self.ndim, len(indices)
         k = n + m
         pidx = [i - 1 for i in indices]
-        if self._func_batch is None and 2 * k < VECTORISE_MIN:
+        if self.stencil_by_calls(m):
             return self._jacobian_by_calls(u, par, pidx)
         z = np.concatenate((u, par[pidx]))
         h = FD_STEP * (1 + np.abs(z))
@@ -472,7 +483,7 @@ class Problem:
     @property
     def differenced_u(self) -> bool:
         """Whether dfdu_many takes central differences of f (no user Jacobian in use)."""
-        return not (self.jac != 0 and (self._dfdu_batch is not None or self._dfdu is not None))
+        return not self.has_dfdu
 
     def fd_u_stencil(self, us: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The points of dfdu_many's central differences at the rows of us (k, ndim):
