@@ -34,6 +34,7 @@ import numpy as np
 
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
+from washer.cont.compiled_newton import compiled_corrector
 from washer.cont.events import first_zero, sign_changes, signed_distance
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient
@@ -144,7 +145,6 @@ class Continuation:
         self._located_J = None
         # The corrector's compiled form where it applies (washer.cont.compiled_newton),
         # else None: the Python loop below.
-        from washer.cont.compiled_newton import compiled_corrector
         self._compiled = compiled_corrector(system, settings, DIVERGENCE_FACTOR)
         # (x, J): the converged point of the last corrector and the Jacobian of its last
         # Newton iteration, where that serves x (`correct`); else None.
