@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.cont import compiled_newton
+from washer.cont import compiled_newton, iterator
 from washer.cont.newton import ConvergenceError
 from washer.run import run
 
@@ -60,9 +60,13 @@ def _both(tmp_path, monkeypatch, name, kind="f90", **ov):
     with monkeypatch.context() as m:
         m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
         fast = run(_folder(tmp_path, name, "fast", kind) / f"c.{name}", verbose=False, **ov)
+    n_fast = len(used)
     with monkeypatch.context() as m:
-        m.setattr(compiled_newton, "compiled_corrector", lambda *a, **k: None)
+        # the choice Continuation makes: no compiled corrector, the Python loop
+        m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
+        m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
         slow = run(_folder(tmp_path, name, "slow", kind) / f"c.{name}", verbose=False, **ov)
+    assert len(used) == n_fast                     # the reference never went through C
     return fast, slow, used
 
 
@@ -119,7 +123,7 @@ def test_failing_func_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache
         (d / "ab.py").write_text(src)
         with monkeypatch.context() as m:
             if patch:
-                m.setattr(compiled_newton, "compiled_corrector", lambda *a, **k: None)
+                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
             out[sub] = run(d / "c.ab", verbose=False)
     fast, slow = out["fast"], out["slow"]
     assert "outside the model" in fast.status
