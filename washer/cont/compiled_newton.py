@@ -85,6 +85,7 @@ class PythonEquations:
         self.error = None
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
         self._dptr_type = self.ffi.typeof("double[]")
+        self._views = None
 
     def _onerror(self, exc, val, tb):
         # The failure is the Python loop's to report (it evaluates f again); what is not
@@ -94,11 +95,17 @@ class PythonEquations:
 
     def _evaluate(self, rows, first, us, ps, fs):
         ffi, n, npar = self.ffi, self.n, self.npar
+        views = self._views
+        if views is not None and views[0].shape[0] == rows:
+            # the points are in the corrector's work array (ae_correct.h's layout: us, ps,
+            # fs at its start): numpy views of it, made once
+            U, P, F = views
+        else:
+            U = np.frombuffer(ffi.buffer(us, rows * n * 8), dtype=float).reshape(rows, n)
+            P = np.frombuffer(ffi.buffer(ps, rows * npar * 8), dtype=float).reshape(rows, npar)
+            F = np.frombuffer(ffi.buffer(fs, rows * n * 8), dtype=float).reshape(rows, n)
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
-        U = np.frombuffer(ffi.buffer(us, rows * n * 8), dtype=float).reshape(rows, n).copy()
-        P = np.frombuffer(ffi.buffer(ps, rows * npar * 8), dtype=float).reshape(rows,
-                                                                              npar).copy()
-        F = np.frombuffer(ffi.buffer(fs, rows * n * 8), dtype=float).reshape(rows, n)
+        U, P = U.copy(), P.copy()
         problem = self.problem
         if first == 0:
             F[0] = problem.func(U[0], P[0])
@@ -118,6 +125,10 @@ class PythonEquations:
         p = {k: (ffi.from_buffer("int[]", a) if k == "iterations" else ffi.from_buffer(d, a))
              for k, a in arrays.items()}
         lib, cb = self.lib, self._cb
+        rows, w = 2 * ndim + 3, arrays["work"]
+        self._views = (w[:rows * ndim].reshape(rows, ndim),
+                       w[rows * ndim:rows * (ndim + npar)].reshape(rows, npar),
+                       w[rows * (ndim + npar):rows * (2 * ndim + npar)].reshape(rows, ndim))
 
         def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
             self.error = None
