@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parents[2]
 CSRC = ROOT / "csrc"
 #: The kernel's sources and compiler flags, as build.py compiles washer._kernel.
 KERNEL_SOURCES = ("kernel.cpp", "generated/washer_model.cpp")
-CXXFLAGS = ("-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG", "-fPIC")
+CXXFLAGS = ("-std=c++17", "-O3", "-fno-math-errno", "-DNDEBUG", "-fPIC")
 FRAMES = {"frozen": 0, "averaged": 1}
 
 
