@@ -176,3 +176,64 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0) is None
+
+
+def _ab_system(problem, settings):
+    from washer.cont.system import StartData
+    from washer.cont.systems.equilibrium import EquilibriumSystem
+    u, par = problem.start(36)
+    return EquilibriumSystem(StartData(problem=problem, settings=settings, u=u, par=par))
+
+
+def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypatch, cache):
+    """Python equations need ae_callback.c compiled: where that cannot be done
+    (CompileError: no compiler, a failed compile) the Python loop runs; any other error
+    of the set-up is raised, not taken for a missing compiler."""
+    from washer.cont import compile as compile_module
+    from washer.cont.compile import CompileError
+    from washer.cont.settings import Settings
+    from washer.cont.user_files import load_python_problem
+    s = Settings(NDIM=2, ICP=[1], IPS=1)
+    system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
+    monkeypatch.setattr(compiled_newton, "_callback_lib", None)
+
+    def no_compiler(*a, **k):
+        raise CompileError("no c compiler: 'cc' is not on PATH")
+    monkeypatch.setattr(compile_module, "build_library", no_compiler)
+    assert compiled_newton.compiled_corrector(system, s, 20.0) is None
+
+    def broken(*a, **k):
+        raise TypeError("a bug, not a missing compiler")
+    monkeypatch.setattr(compile_module, "build_library", broken)
+    with pytest.raises(TypeError, match="a bug"):
+        compiled_newton.compiled_corrector(system, s, 20.0)
+
+
+def test_a_work_layout_out_of_step_with_c_fails_loudly(cache):
+    """The call back reads the points through views of the C corrector's work array: if
+    the pointers C passes are not where the views start (a layout changed on one side
+    only), the correction raises instead of reading other numbers as the points."""
+    from washer.cont.branch import Counters
+    from washer.cont.settings import Settings
+    from washer.cont.user_files import load_python_problem
+    s = Settings(NDIM=2, ICP=[1], IPS=1)
+    system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
+    corrector = compiled_newton.compiled_corrector(system, s, 20.0)
+    x0, _ = system.start()
+    t = np.array([1.0, 14 / 3, 1.0])      # the branch's tangent at 0: u = PAR(1) (1, 14/3)
+    x_pred = x0 + 0.01 * t / np.linalg.norm(t)
+    assert corrector.correct(x_pred, x0, 0.01, Counters()) is not None   # in step: runs
+    eq = corrector.user
+    us, ps, fs = eq._where
+    eq._where = (ps, us, fs)             # C's ps where the views read us
+    with pytest.raises(compiled_newton.WorkLayoutError):
+        corrector.correct(x_pred, x0, 0.01, Counters())
+
+
+def test_fixed_points_of_maps_keep_the_python_loop():
+    """Only a system whose residual is the problem's f itself declares it
+    (residual_is_func): equilibria do, the fixed points of f^k (f^k(u) - u) do not."""
+    from washer.cont.systems.equilibrium import EquilibriumSystem
+    from washer.cont.systems.maps import FixedPoints
+    assert EquilibriumSystem.residual_is_func is True
+    assert FixedPoints.residual_is_func is False

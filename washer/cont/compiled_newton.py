@@ -22,8 +22,9 @@ f is evaluated by
   use, calls back into Python once per Newton iteration, where the user's func is called
   point by point (or in one batch) exactly as the Python loop calls it: the same values.
 
-It applies to equilibria (IPS 0, 1: EquilibriumSystem, one free parameter, the sphere
-arclength) with difference Jacobians (JAC = 0, or no Jacobian given). Everything else, and
+It applies to systems that declare their residual the problem's f itself (IPS 0, 1:
+EquilibriumSystem.residual_is_func; FixedPoints, f^k - u, does not), with one free
+parameter and the sphere arclength, and difference Jacobians (JAC = 0, or no Jacobian given). Everything else, and
 every case the compiled loop does not finish cleanly (a failing or non-finite f, a
 non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
 correction and reports or resolves it as before), is the Python loop.
@@ -35,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from washer.cont.compile import CompileError
 from washer.cont.newton import ConvergenceError
 from washer.cont.settings import HMACH
 
@@ -53,6 +55,12 @@ int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const
                          double *tangent, double *work);
 """
 _callback_lib = None
+
+
+class WorkLayoutError(RuntimeError):
+    """The pointers ae_correct.h passes to the call back are not where PythonEquations
+    reads the points (its views of the work array): the two layouts have drifted apart.
+    Raised, never handed to the Python loop as a failure of f."""
 
 
 def _callback_library():
@@ -86,6 +94,7 @@ class PythonEquations:
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
         self._dptr_type = self.ffi.typeof("double[]")
         self._views = None
+        self._where = None           # (us, ps, fs) pointers the views start at
 
     def _onerror(self, exc, val, tb):
         # The failure is the Python loop's to report (it evaluates f again); what is not
@@ -94,23 +103,23 @@ class PythonEquations:
         return 1
 
     def _evaluate(self, rows, first, us, ps, fs):
-        ffi, n, npar = self.ffi, self.n, self.npar
-        views = self._views
-        if views is not None and views[0].shape[0] == rows:
-            # the points are in the corrector's work array (ae_correct.h's layout: us, ps,
-            # fs at its start): numpy views of it, made once
-            U, P, F = views
-        else:
-            U = np.frombuffer(ffi.buffer(us, rows * n * 8), dtype=float).reshape(rows, n)
-            P = np.frombuffer(ffi.buffer(ps, rows * npar * 8), dtype=float).reshape(rows, npar)
-            F = np.frombuffer(ffi.buffer(fs, rows * n * 8), dtype=float).reshape(rows, n)
+        # the points are in the corrector's work array, read through numpy views of it
+        # made once (ae_binder: ae_correct.h's layout, us, ps, fs at its start); a C
+        # that passes other pointers or another number of rows fails loudly (three
+        # pointer comparisons a call)
+        U, P, F = self._views
+        where, n = self._where, self.n
+        if us != where[0] or ps != where[1] or fs != where[2] or rows != U.shape[0]:
+            raise WorkLayoutError(
+                "ae_correct.h passed points outside the views of its work array that "
+                "compiled_newton.PythonEquations reads (the layouts differ)")
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
         U, P = U.copy(), P.copy()
         problem = self.problem
         if first == 0:
             F[0] = problem.func(U[0], P[0])
         if self.by_calls:
-            fn = problem._func
+            fn = problem.user_func
             S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
             if S.shape != (rows - 1, n) or not np.isfinite(S).all():
                 return 1
@@ -129,6 +138,8 @@ class PythonEquations:
         self._views = (w[:rows * ndim].reshape(rows, ndim),
                        w[rows * ndim:rows * (ndim + npar)].reshape(rows, npar),
                        w[rows * (ndim + npar):rows * (2 * ndim + npar)].reshape(rows, ndim))
+        work = p["work"]
+        self._where = (work + 0, work + rows * ndim, work + rows * (ndim + npar))
 
         def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
             self.error = None
@@ -171,9 +182,11 @@ class CompiledCorrector:
         a["x_ref"][:] = x_ref
         status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH)
         err = getattr(user, "error", None)
-        if err is not None and not isinstance(err, Exception):
+        if err is not None and (not isinstance(err, Exception)
+                                or isinstance(err, WorkLayoutError)):
             user.error = None
-            raise err                      # KeyboardInterrupt, SystemExit in the callback
+            # KeyboardInterrupt, SystemExit in the callback; a layout out of step with C
+            raise err
         self.last = None
         if status == 3:
             return None
@@ -239,9 +252,8 @@ def compiled_corrector(system, settings, divergence: float):
     """The compiled corrector of `system`, or None where the Python loop runs."""
     from washer.cont.compiled import CompiledProblem
     from washer.cont.problem import Problem
-    from washer.cont.systems.equilibrium import EquilibriumSystem
     problem = getattr(system, "problem", None)
-    if type(system) is not EquilibriumSystem or len(system.free) != 1 \
+    if not getattr(system, "residual_is_func", False) or len(system.free) != 1 \
             or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM:
         return None
     if isinstance(problem, CompiledProblem):
@@ -251,12 +263,14 @@ def compiled_corrector(system, settings, divergence: float):
         equations = problem.user
     elif type(problem) is Problem:
         # difference Jacobians of a plain func (Problem.jacobian's stencil)
-        if not problem.differenced_jacobian or problem._func_batch is not None \
+        if not problem.differenced_jacobian or problem.has_func_batch \
                 or problem.has_func_dfdu_batch:
             return None
         try:
             equations = PythonEquations(problem, system.ndim, len(system.par))
-        except Exception:              # no C compiler: the Python loop
+        except (CompileError, OSError):
+            # no C compiler, or the compiled callback cannot be built or loaded here
+            # (cffi's dlopen raises OSError): the Python loop. Anything else is a bug.
             return None
     else:
         return None

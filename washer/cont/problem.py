@@ -322,6 +322,18 @@ class Problem:
         return out
 
     @property
+    def has_func_batch(self) -> bool:
+        """Whether f at many points is the user's func_batch (one call for them all)."""
+        return self._func_batch is not None
+
+    @property
+    def user_func(self):
+        """The user's func(u, par) itself, without `func`'s checks: what the difference
+        stencils call point by point (`_jacobian_by_calls`), checking the whole stencil
+        once."""
+        return self._func
+
+    @property
     def has_func_dfdu_batch(self) -> bool:
         """Whether `func_many_with_jacobian` evaluates the Jacobians with f (a
         func_dfdu_batch given and the user's Jacobians in use, JAC != 0)."""

@@ -8,6 +8,13 @@
  *
  * f at the rows first..rows-1 of us (rows, ndim) with PAR the rows of ps (rows, npar),
  * into fs (rows, ndim), in the order of the rows; nonzero: the evaluation failed.
+ *
+ * This is a second copy of one meaning, the package's one Newton loop
+ * (washer/cont/newton.py's newton as washer.cont.iterator.Continuation.correct runs it,
+ * with washer.cont.problem.Problem.jacobian's difference stencil): a change to either
+ * must be made in both (tests/test_compiled_newton.py holds them to the same iterates).
+ * The layout of `work` (us, ps, fs at its start) is read by compiled_newton.py's
+ * PythonEquations too, which checks the pointers it is passed against it.
  */
 #ifndef WASHER_AE_CORRECT_H
 #define WASHER_AE_CORRECT_H

@@ -74,6 +74,12 @@ class EquilibriumSystem(AlgebraicSystem):
     switch's (on the plane orthogonal to it): there the null space of [f_u f_lambda] is
     one-dimensional, so the run continues the one branch, as a new branch."""
 
+    #: residual(x) is the problem's f(u, PAR) at x = (u, PAR(ICP(1))) and jacobian(x)
+    #: Problem.jacobian's [f_u, f_PAR(ICP(1))], nothing more: the compiled corrector of
+    #: equilibria (washer.cont.compiled_newton) may stand in for the Python loop.
+    #: A subclass that changes the equations sets it False (FixedPoints).
+    residual_is_func = True
+
     def __init__(self, start: StartData):
         self._one_parameter(start)
         self._switch = start.settings.ISW == -1 and start.kind == "BP"

@@ -151,6 +151,9 @@ class FixedPoints(EquilibriumSystem):
     starts the period-doubled branch (k doubled) in the direction orthogonal to
     the stored one (STPRAE with IPERP = 1): `start_mode` is then "switch"."""
 
+    #: the residual is f^k(u) - u (iterated_problem), not the user's f: the Python loop
+    residual_is_func = False
+
     def __init__(self, start: StartData):
         par = np.array(start.par, dtype=float)
         if len(par) > 10 and par[10] == 0:
