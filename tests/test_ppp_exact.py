@@ -174,11 +174,14 @@ def test_the_hopf_loci_cross_where_lambda3_vanishes_with_one_imaginary_pair(tmp_
     # lam (lam^2 + w^2): trace 0 (Hopf), det 0 (lambda3 = -p3 + p5 u2 = 0), w^2 > 0
     assert abs(c[1]) < 1e-25 and abs(c[3]) < 1e-25 and c[2] > 0.4
     # AUTO's BP of the Hopf locus there (b.hb label 18, PAR(1), PAR(4)): the same point
-    # within its location tolerance EPSS (1 + sqrt(DS DSMAX)) = 1.03e-4
+    # within its location tolerance in arclength, EPSS (1 + sqrt(DS DSMAX)) = 1.03e-4
+    # (the third run's DS = 0.01, DSMAX = 0.1), which bounds PAR(1) and PAR(4) (weight 1:
+    # each moves at most as fast as the arclength). Measured: 1.6e-6 and 1.7e-5.
+    located = 1e-4 * (1 + (0.01 * 0.1) ** 0.5)
     bp = [r for r in _auto_rows("hb", tmp_path) if r.lab == 18][0]
     assert bp.ty == "BP"
-    assert bp.values[0] == pytest.approx(float(q1), abs=1.1e-4)
-    assert bp.values[-1] == pytest.approx(float(q4), abs=1.1e-4)
+    assert bp.values[0] == pytest.approx(float(q1), abs=located)
+    assert bp.values[-1] == pytest.approx(float(q4), abs=located)
 
 
 # ------------------------------------------------------- l1 on the boundary locus
@@ -189,11 +192,20 @@ def test_l1_on_the_boundary_hopf_locus_is_negative_and_smooth_across_autos_gh_po
     for r in gh:
         assert r.pt == 4
         x1, x2, q1, q4 = boundary_hopf(r.values[3])       # U(2)
-        # AUTO's point lies on the closed-form locus (its PAR(1), PAR(4), U(1))
-        assert float(q1) == pytest.approx(r.values[0], abs=1e-8)
-        assert float(q4) == pytest.approx(r.values[-1], abs=1e-6)
-        assert float(x1) == pytest.approx(r.values[2], abs=1e-8)
+        # AUTO's point lies on the closed-form locus (its PAR(1), PAR(4), U(1)) as closely
+        # as its Newton leaves it: the last correction was below EPSL = EPSU = 1e-6
+        # relative, and the iterates contract (quadratically, up to its difference
+        # Jacobians' error) far below that after it: 1e-8 (1 + |x|), a hundredth of the
+        # last correction's bound, allows a contraction of 1e-2. U(2), the input, is
+        # printed to 11 digits: its rounding (5e-12) moves the closed form by up to 2e-10
+        # (PAR(4) moves 37 times as fast as U(2) here). Measured: 1.3e-10 on PAR(1),
+        # 7.2e-10 on PAR(4), 9.2e-11 on U(1).
+        for exact, auto in ((q1, r.values[0]), (q4, r.values[-1]), (x1, r.values[2])):
+            assert float(exact) == pytest.approx(auto, abs=1e-8 * (1 + abs(auto)))
         l1, _ = lyapunov_exact((x1, x2, 0), q1, q4)
+        # exact (30 digits) at these points: -0.66198 .. -0.66172, l1's own variation
+        # along them (U(2) 0.16577 .. 0.16758); the band is that again either side: the
+        # value -0.662 with no zero, not a tolerance on a computation
         assert -0.6622 < l1 < -0.6616, (r.br, r.lab, l1)
     # The whole stretch of AUTO's PT 1 .. 6 either side of the crossing (U(2) from
     # 0.16499 to 0.16838), 1/6 itself left out (there A is singular): one sign, no zero.
@@ -267,10 +279,16 @@ def _hb7():
 
 def test_hb7_in_closed_form(tmp_path):
     x1, x2, q1, period = _hb7()
-    assert q1 == pytest.approx(0.292357016267, abs=1e-11)
-    assert period == pytest.approx(8.383418464, abs=1e-8)
+    # The closed form's values (mpmath at 30 digits, exact to the float's last bit) as
+    # first computed, kept to 12 and 9 decimals so that a change in the derivation (the
+    # quadratic's root, findroot's start) shows: half a unit of the last digit kept.
+    assert q1 == pytest.approx(0.292357016267, abs=5e-13)
+    assert period == pytest.approx(8.383418464, abs=5e-10)
+    # AUTO's HB7 (first run, PAR(1) of weight 1): within its location tolerance in
+    # arclength EPSS (1 + sqrt(DS DSMAX)) = 1.014e-4 (DS = 0.01, DSMAX = 0.02; 2.6e-5)
     hb7 = [r for r in _auto_rows("ppp", tmp_path) if r.lab == 7][0]
-    assert hb7.ty == "HB" and hb7.values[0] == pytest.approx(q1, abs=1.1e-4)
+    assert hb7.ty == "HB" and \
+        hb7.values[0] == pytest.approx(q1, abs=1e-4 * (1 + (0.01 * 0.02) ** 0.5))
 
 
 @pytest.mark.slow
