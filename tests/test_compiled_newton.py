@@ -237,3 +237,19 @@ def test_fixed_points_of_maps_keep_the_python_loop():
     from washer.cont.systems.maps import FixedPoints
     assert EquilibriumSystem.residual_is_func is True
     assert FixedPoints.residual_is_func is False
+
+
+def test_an_error_of_the_call_back_itself_is_raised(cache):
+    """Only the user's func failing hands a correction over to the Python loop: an
+    error in the call back's own code is raised, not hidden behind a Python-loop step."""
+    from washer.cont.branch import Counters
+    from washer.cont.settings import Settings
+    from washer.cont.user_files import load_python_problem
+    s = Settings(NDIM=2, ICP=[1], IPS=1)
+    system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
+    corrector = compiled_newton.compiled_corrector(system, s, 20.0)
+    x0, _ = system.start()
+    t = np.array([1.0, 14 / 3, 1.0])
+    corrector.user._views = None          # a bug of the bridge: no views to read
+    with pytest.raises(TypeError):
+        corrector.correct(x0 + 0.01 * t / np.linalg.norm(t), x0, 0.01, Counters())

@@ -60,7 +60,8 @@ _callback_lib = None
 class WorkLayoutError(RuntimeError):
     """The pointers ae_correct.h passes to the call back are not where PythonEquations
     reads the points (its views of the work array): the two layouts have drifted apart.
-    Raised, never handed to the Python loop as a failure of f."""
+    Raised by the correction, as every error of the call back that is not the user's
+    func failing."""
 
 
 def _callback_library():
@@ -97,8 +98,10 @@ class PythonEquations:
         self._where = None           # (us, ps, fs) pointers the views start at
 
     def _onerror(self, exc, val, tb):
-        # The failure is the Python loop's to report (it evaluates f again); what is not
-        # a failure of f (Ctrl-C: KeyboardInterrupt) is raised once the C has returned.
+        # Whatever escapes _evaluate is not a failure of f (those it returns as 1, for
+        # the Python loop to evaluate again and report): Ctrl-C (KeyboardInterrupt) in
+        # the user's func, SystemExit, a WorkLayoutError, an error of this code. The C
+        # corrector is stopped (1: as a failed evaluation) and the correction raises it.
         self.error = val
         return 1
 
@@ -116,16 +119,19 @@ class PythonEquations:
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
         U, P = U.copy(), P.copy()
         problem = self.problem
-        if first == 0:
-            F[0] = problem.func(U[0], P[0])
-        if self.by_calls:
-            fn = problem.user_func
-            S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
-            if S.shape != (rows - 1, n) or not np.isfinite(S).all():
-                return 1
-        else:
-            S = problem.func_many(U[1:], P[1:])
-        F[1:] = S
+        try:
+            if first == 0:
+                F[0] = problem.func(U[0], P[0])
+            if self.by_calls:
+                fn = problem.user_func
+                S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
+                if S.shape != (rows - 1, n) or not np.isfinite(S).all():
+                    return 1
+            else:
+                S = problem.func_many(U[1:], P[1:])
+            F[1:] = S
+        except Exception:
+            return 1            # f failed: the Python loop evaluates it again and reports
         return 0
 
     def ae_binder(self, ndim, npar, ip, arrays):
@@ -182,10 +188,9 @@ class CompiledCorrector:
         a["x_ref"][:] = x_ref
         status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH)
         err = getattr(user, "error", None)
-        if err is not None and (not isinstance(err, Exception)
-                                or isinstance(err, WorkLayoutError)):
+        if err is not None:
+            # what stopped the call back and is not a failure of f (PythonEquations._onerror)
             user.error = None
-            # KeyboardInterrupt, SystemExit in the callback; a layout out of step with C
             raise err
         self.last = None
         if status == 3:
