@@ -38,6 +38,11 @@ def test_isw_minus_one_at_labels_that_are_not_branch_points_as_auto(tmp_path, mo
         ours, auto = _rows(Path(f"b.{name}")), _rows(DATA / "isw_ae" / f"b.{name}")
         # the same points: branch 2 (a new branch), PT with stability sign, types, labels
         assert ours.shape == auto.shape, name
+        if name == "hb":
+            # The restart point is a located Hopf point: its pair's real part is zero to
+            # the location's tolerance (AUTO's and ours within +-3e-9 of it, either
+            # sign), so its stability sign is either; every other row's is compared.
+            ours[0, 1], auto[0, 1] = abs(ours[0, 1]), abs(auto[0, 1])
         np.testing.assert_array_equal(ours[:, :4], auto[:, :4], err_msg=name)
         # values: each point is a Newton solution to EPSU = EPSL = 1e-7 (relative to
         # 1 + |value|); the UZ restart starts from the UZ each located (AUTO's 4.5e-7

@@ -66,6 +66,10 @@ NOT_YET = {
     (0.3, 0.1): "a retried step converges onto the symmetric branch before the crossing "
                 "(a branch jump: no test changes sign, nothing labelled)",
     (0.3, 0.0625): "as (0.3, 0.1): the step jumps onto the symmetric branch",
+    (0.3, 0.05): "the step to PT 28, predicted along the secant of the last step (AUTO's "
+                 "SOLVAE), converges onto the symmetric branch before the crossing and the "
+                 "next ends MX: AUTO-07p's own run of these equations (Fortran, the same "
+                 "constants) does the same, its PT 26-29 ours to their 11 digits",
 }
 
 

@@ -2,15 +2,12 @@
 (AUTO's demo, constants unchanged) switches at its BPs (MXBF = 10); every row of its
 branches as AUTO's b.ppp (tests/data/auto_demos/ppp/autoref).
 
-Not yet: AUTO predicts the step after the switch along UDOT = (U - UOLD) / RDS, the secant
-of the switch's plane step (SOLVAE), longer than unit where the new branch leaves the
-plane's normal, so its predictor lands off the sphere and Newton takes 3 iterations (d-file:
-'Iterations : 3', the step kept); here the unit tangent converges in 1 and ADPTDS doubles
-the step one point before AUTO: branch 3 has 50 rows to AUTO's 51, 6.6e-3 apart in PAR(1)
-from its fourth row on. Predicting along that secant makes every row AUTO's (to 1.8e-5),
-but moves branch 2's HB by 1e-9 and the demo's periodic run from it then ends MX one step
-after its BP of cycles (AUTO's goes on to its EP): a run that a 1e-9 shift of its start
-ends early is the fault to mend before that predictor."""
+AUTO predicts the step after the switch along UDOT = (U - UOLD) / RDS, the secant of the
+switch's plane step (SOLVAE), longer than unit where the new branch leaves the plane's
+normal, so its predictor lands off the sphere and Newton takes 3 iterations (d-file:
+'Iterations : 3', the step kept); the unit tangent converged in 1 and ADPTDS doubled the
+step one point before AUTO (branch 3 had 50 rows to AUTO's 51, 6.6e-3 apart in PAR(1) from
+its fourth row on). With that secant every row is AUTO's."""
 import gzip
 import shutil
 from pathlib import Path
@@ -34,8 +31,6 @@ def _rows(text: str) -> np.ndarray:
 
 
 @pytest.mark.skipif(shutil.which("gfortran") is None, reason="ppp.f90 needs gfortran")
-@pytest.mark.xfail(strict=True, reason="the step after a switch predicts along the unit "
-                   "tangent, not AUTO's secant of the switch step (module docstring)")
 def test_switched_branches_step_as_auto(tmp_path):
     for f in ("ppp.f90", "c.ppp"):
         shutil.copy(DEMO / f, tmp_path)
