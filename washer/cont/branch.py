@@ -42,7 +42,8 @@ class Point:
     iterations of that step. direction : the predictor's direction and the
     arclength plane's normal for the step from this point where it is not the
     tangent: on BVP branches the unit secant of the step that reached the point
-    (AUTO's CONTBV); None means the tangent.
+    (AUTO's CONTBV), on algebraic ones that step's secant (x - x_old) / ds
+    (SOLVAE's UDOT, not the arclength's normal there); None means the tangent.
     """
     x: np.ndarray
     tangent: np.ndarray

@@ -13,7 +13,10 @@ stops: the consumer (`washer.cont.runner`) numbers, labels, stops and writes.
 
 Arclength conditions (the system's `arclength`):
 * "sphere" (algebraic, SOLVAE): |x - x_old|^2_theta = ds^2, full Newton each
-  iteration; one hidden first step (AUTO's unwritten first STEPAE).
+  iteration; one hidden first step (AUTO's unwritten first STEPAE). The predictor's
+  direction is AUTO's UDOT: the secant (x - x_old) / ds of the step that reached x_old
+  (a regular step, the hidden one, a switch's first step; `_secant`), the start's
+  direction at the start, the tangent at a located point.
 * "plane" (BVP, SOLVBV): <x - x_old, d_old>_theta = ds, Newton-chord: the
   matrix is refactorised for the first NWTN iterations only. The predictor's
   direction d_old is AUTO's: the unit secant of the step that reached x_old
