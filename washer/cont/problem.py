@@ -492,11 +492,6 @@ class Problem:
                if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
         return self.fd_u_quotient(self.func_many(pts, rep), h)
 
-    @property
-    def differenced_u(self) -> bool:
-        """Whether dfdu_many takes central differences of f (no user Jacobian in use)."""
-        return not self.has_dfdu
-
     def fd_u_stencil(self, us: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The points of dfdu_many's central differences at the rows of us (k, ndim):
         (pts (2 ndim k, ndim): for each point u, u + h_j e_j then u - h_j e_j, j =

@@ -120,7 +120,7 @@ class VectorField:
         arithmetic), for up to FU_FP_ONE_CALL_MAX points."""
         prob = self.problem
         indices = list(indices)
-        if (not indices or not prob.differenced_u or prob.has_dfdp_batch
+        if (not indices or prob.has_dfdu or prob.has_dfdp_batch
                 or len(U) > FU_FP_ONE_CALL_MAX):
             return self.fu(U, par), [self.fp(U, par, i) for i in indices]
         U = np.asarray(U, float)

@@ -81,6 +81,8 @@ class EquilibriumSystem(AlgebraicSystem):
     residual_is_func = True
 
     def __init__(self, start: StartData):
+        # (x's bytes, PAR, PVLS's PAR) of the last point PVLS was called at (`params`)
+        self._pvls_memo = None
         self._one_parameter(start)
         self._switch = start.settings.ISW == -1 and start.kind == "BP"
         self._perp = start.settings.ISW == -1 and start.kind != "BP" and \
@@ -106,7 +108,7 @@ class EquilibriumSystem(AlgebraicSystem):
             # PVLS once a point (as AUTO calls it): the UZ tests and the output row ask
             # for the same x one after the other
             key = x.tobytes()
-            memo = getattr(self, "_pvls_memo", None)
+            memo = self._pvls_memo
             if memo is not None and memo[0] == key and np.array_equal(memo[1], p):
                 return memo[2].copy()
             out = self.problem.pvls(x[:self.ndim], p.copy())
