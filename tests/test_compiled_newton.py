@@ -188,7 +188,8 @@ def _ab_system(problem, settings):
 def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypatch, cache):
     """Python equations need ae_callback.c compiled: where that cannot be done
     (CompileError: no compiler, a failed compile) the Python loop runs; any other error
-    of the set-up is raised, not taken for a missing compiler."""
+    of the set-up is raised, not taken for a missing compiler. A failed build is
+    remembered: the next run's start does not compile again."""
     from washer.cont import compile as compile_module
     from washer.cont.compile import CompileError
     from washer.cont.settings import Settings
@@ -196,11 +197,18 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
     monkeypatch.setattr(compiled_newton, "_callback_lib", None)
+    monkeypatch.setattr(compiled_newton, "_callback_failure", None)
+    builds = []
 
     def no_compiler(*a, **k):
+        builds.append(1)
         raise CompileError("no c compiler: 'cc' is not on PATH")
     monkeypatch.setattr(compile_module, "build_library", no_compiler)
     assert compiled_newton.compiled_corrector(system, s, 20.0) is None
+    assert compiled_newton.compiled_corrector(system, s, 20.0) is None
+    assert len(builds) == 1
+
+    monkeypatch.setattr(compiled_newton, "_callback_failure", None)
 
     def broken(*a, **k):
         raise TypeError("a bug, not a missing compiler")

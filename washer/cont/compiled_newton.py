@@ -55,6 +55,9 @@ int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const
                          double *tangent, double *work);
 """
 _callback_lib = None
+#: Why ae_callback.c could not be built or loaded in this process (CompileError, OSError),
+#: raised again instead of compiling again at every run's start.
+_callback_failure: Exception | None = None
 
 
 class WorkLayoutError(RuntimeError):
@@ -65,17 +68,24 @@ class WorkLayoutError(RuntimeError):
 
 
 def _callback_library():
-    """(ffi, lib) of ae_callback.c, compiled on first use (cached by content)."""
-    global _callback_lib
+    """(ffi, lib) of ae_callback.c, compiled on first use (cached by content); a build or
+    load that failed once raises the same error again."""
+    global _callback_lib, _callback_failure
+    if _callback_failure is not None:
+        raise _callback_failure
     if _callback_lib is None:
         from cffi import FFI
         from washer.cont.compile import build_library, source_file
         from washer.cont.compiled import INCLUDE
         ffi = FFI()
         ffi.cdef(_CALLBACK_CDEF)
-        path = build_library([source_file(HERE / "ae_callback.c")], "ae_callback",
-                             includes=[INCLUDE])
-        _callback_lib = (ffi, ffi.dlopen(str(path)))
+        try:
+            path = build_library([source_file(HERE / "ae_callback.c")], "ae_callback",
+                                 includes=[INCLUDE])
+            _callback_lib = (ffi, ffi.dlopen(str(path)))
+        except (CompileError, OSError) as exc:
+            _callback_failure = exc
+            raise
     return _callback_lib
 
 
