@@ -38,6 +38,8 @@ def _folder(tmp_path, name, sub, kind):
     shutil.copy(DATA / name / f"c.{name}", d)
     if kind == "f90":
         shutil.copy(DEMOS / name / f"{name}.f90", d)
+    elif kind == "sym":
+        shutil.copy(DATA / f"{name}_sym" / f"{name}.py", d)
     else:
         shutil.copy(DATA / name / f"{name}.py", d)
     return d
@@ -83,6 +85,23 @@ def test_compiled_corrector_follows_the_python_loop(name, kind, tmp_path, monkey
     a = np.array([r.values for r in fast.rows])
     b = np.array([r.values for r in slow.rows])
     np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
+    assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
+        == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
+    assert fast.status == slow.status
+
+
+@pytest.mark.parametrize("jac", [1, 0])
+def test_compiled_corrector_follows_the_python_loop_on_sympy_equations(jac, tmp_path,
+                                                                       monkeypatch, cache):
+    """lrz as sympy expressions (tests/data/lrz_sym): the generated f and, with JAC = 1,
+    its exact f_u and f_p called from C through function pointers take the same steps
+    as the Python loop calling them through Problem."""
+    fast, slow, used = _both(tmp_path, monkeypatch, "lrz", "sym", JAC=jac)
+    assert len(used) > 50 and sum(used) >= len(used) - 5, used
+    assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
+    assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+    np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
+                               rtol=1e-9, atol=1e-12)
     assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
         == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
     assert fast.status == slow.status
@@ -150,7 +169,8 @@ def test_ctrl_c_in_func_is_not_taken_for_a_failure(tmp_path, cache):
 
 def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     """Compiled and Python equations with difference Jacobians take the compiled loop;
-    with the user's Jacobians (JAC = 1) they keep the Python loop."""
+    with the user's Jacobians (JAC = 1) they keep the Python loop; sympy equations take
+    it with differences or their generated exact Jacobians."""
     from washer.cont.compiled import load_compiled_problem
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
@@ -176,6 +196,20 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0) is None
+    # sympy equations: their generated f and exact Jacobians are C (JAC = 1; JAC = -1,
+    # exact f_u with differenced f_p, keeps the Python loop)
+    sym_dir = tmp_path / "sym"
+    sym_dir.mkdir()
+    (sym_dir / "ab.py").write_text(
+        "import sympy as sp\nu = sp.symbols('u1 u2')\npar = sp.symbols('p1 p2 p3')\n"
+        "(u1, u2), (p1, p2, p3) = u, par\n"
+        "f = [-u1 + p1 * (1 - u1) * sp.exp(u2),\n"
+        "     -u2 + p1 * p2 * (1 - u1) * sp.exp(u2) - p3 * u2]\n"
+        "def stpnt(u, par):\n    u[:] = 0.0\n    par[:3] = [0.0, 14.0, 2.0]\n")
+    sym = load_python_problem("ab", sym_dir, 2)
+    for jac, chosen in ((0, True), (1, True), (-1, False)):
+        c = compiled_newton.compiled_corrector(system(sym, jac), s, 20.0)
+        assert (c is not None) == chosen, jac
 
 
 def _ab_system(problem, settings):
@@ -196,8 +230,8 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     from washer.cont.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
-    monkeypatch.setattr(compiled_newton, "_callback_lib", None)
-    monkeypatch.setattr(compiled_newton, "_callback_failure", None)
+    monkeypatch.setattr(compiled_newton, "_libraries", {})
+    monkeypatch.setattr(compiled_newton, "_failures", {})
     builds = []
 
     def no_compiler(*a, **k):
@@ -208,7 +242,7 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     assert compiled_newton.compiled_corrector(system, s, 20.0) is None
     assert len(builds) == 1
 
-    monkeypatch.setattr(compiled_newton, "_callback_failure", None)
+    monkeypatch.setattr(compiled_newton, "_failures", {})
 
     def broken(*a, **k):
         raise TypeError("a bug, not a missing compiler")

@@ -20,11 +20,16 @@ f is evaluated by
   (compiled_shim.c) and calls FUNC directly;
 * equations in Python (NAME.py with func): washer/cont/ae_callback.c, compiled on first
   use, calls back into Python once per Newton iteration, where the user's func is called
-  point by point (or in one batch) exactly as the Python loop calls it: the same values.
+  point by point (or in one batch) exactly as the Python loop calls it: the same values;
+* equations as sympy expressions (washer.cont.symbolic): washer/cont/ae_generated.c,
+  compiled on first use, calls the generated C's f (a stencil's points in one call, as
+  the Python loop's func_many) and, with JAC = 1, its exact f_u and f_p (as the Python
+  loop's Problem.jacobian) through C function pointers.
 
 It applies to systems that declare their residual the problem's f itself (IPS 0, 1:
 EquilibriumSystem.residual_is_func; FixedPoints, f^k - u, does not), with one free
-parameter and the sphere arclength, and difference Jacobians (JAC = 0, or no Jacobian given). Everything else, and
+parameter and the sphere arclength, and difference Jacobians (JAC = 0, or no Jacobian
+given) or a sympy problem's exact ones (JAC = 1). Everything else, and
 every case the compiled loop does not finish cleanly (a failing or non-finite f, a
 non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
 correction and reports or resolves it as before), is the Python loop.
@@ -54,12 +59,27 @@ int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const
                          double hmach, double *x, int *iterations, double *jac,
                          double *tangent, double *work);
 """
-_callback_lib = None
-#: Why ae_callback.c could not be built or loaded in this process (CompileError, OSError),
+_GENERATED_CDEF = """
+typedef void (*ae_sym_func)(int k, const double *U, const double *P, int pstride, double *F);
+typedef void (*ae_sym_jac)(int k, const double *U, const double *P, int pstride, double *J,
+                           double *Jp);
+typedef struct {
+    ae_sym_func func;
+    ae_sym_jac jac;
+    int npar_sym;
+    double *jwork;
+} ae_generated;
+int washer_ae_correct_gen(ae_generated *g, int ndim, int npar, int ip, const double *par,
+                          const double *x_pred, const double *x_ref, const double *theta,
+                          double ds, double epsl, double epsu, int itnw, double divergence,
+                          double hmach, double *x, int *iterations, double *jac,
+                          double *tangent, double *work);
+"""
+#: (ffi, lib) of ae_callback.c and ae_generated.c once built and loaded in this process
+_libraries: dict = {}
+#: Why one of them could not be built or loaded in this process (CompileError, OSError),
 #: raised again instead of compiling again at every run's start.
-_callback_failure: Exception | None = None
-
-
+_failures: dict = {}
 class WorkLayoutError(RuntimeError):
     """The pointers ae_correct.h passes to the call back are not where PythonEquations
     reads the points (its views of the work array): the two layouts have drifted apart.
@@ -67,26 +87,64 @@ class WorkLayoutError(RuntimeError):
     func failing."""
 
 
-def _callback_library():
-    """(ffi, lib) of ae_callback.c, compiled on first use (cached by content); a build or
-    load that failed once raises the same error again."""
-    global _callback_lib, _callback_failure
-    if _callback_failure is not None:
-        raise _callback_failure
-    if _callback_lib is None:
+def _library(source: str, cdef: str):
+    """(ffi, lib) of the C file `source` beside this module (ae_generated.c), compiled
+    on first use (cached by content); a build or load that failed once raises the same
+    error again."""
+    if source in _failures:
+        raise _failures[source]
+    if source not in _libraries:
         from cffi import FFI
         from washer.cont.compile import build_library, source_file
         from washer.cont.compiled import INCLUDE
         ffi = FFI()
-        ffi.cdef(_CALLBACK_CDEF)
+        ffi.cdef(cdef)
         try:
-            path = build_library([source_file(HERE / "ae_callback.c")], "ae_callback",
+            path = build_library([source_file(HERE / source)], Path(source).stem,
                                  includes=[INCLUDE])
-            _callback_lib = (ffi, ffi.dlopen(str(path)))
+            _libraries[source] = (ffi, ffi.dlopen(str(path)))
         except (CompileError, OSError) as exc:
-            _callback_failure = exc
+            _failures[source] = exc
             raise
-    return _callback_lib
+    return _libraries[source]
+
+
+class GeneratedEquations:
+    """The generated C of a sympy problem (washer.cont.symbolic) behind ae_generated.c:
+    its washer_sym_func and (JAC = 1) washer_sym_jac passed as C function pointers, so
+    the corrector calls them directly, as the Python loop calls them through
+    Problem.func, func_many (the stencil in one call) and Problem.jacobian's dfdu and
+    dfdp: the same values."""
+
+    func_ready = True
+
+    def __init__(self, compiled, ndim: int, exact: bool):
+        self.ffi, self.lib = _library("ae_generated.c", _GENERATED_CDEF)
+        ffi, src = self.ffi, compiled.ffi
+
+        def pointer(fn, kind):
+            return ffi.cast(kind, int(src.cast("uintptr_t", fn)))
+        self._jwork = np.empty(ndim * (ndim + max(compiled.npar, 1)))
+        g = self._g = ffi.new("ae_generated *")
+        g.func = pointer(compiled.lib.washer_sym_func, "ae_sym_func")
+        g.jac = pointer(compiled.lib.washer_sym_jac, "ae_sym_jac") if exact else ffi.NULL
+        g.npar_sym = compiled.npar
+        g.jwork = ffi.from_buffer("double[]", self._jwork)
+        self._keep = compiled           # the library stays loaded while the pointers live
+
+    def ae_binder(self, ndim, npar, ip, arrays):
+        """washer_ae_correct_gen bound to the corrector's arrays (CompiledUser.ae_binder)."""
+        ffi = self.ffi
+        p = {k: (ffi.from_buffer("int[]", a) if k == "iterations"
+                 else ffi.from_buffer("double[]", a)) for k, a in arrays.items()}
+        lib, g = self.lib, self._g
+
+        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+            return lib.washer_ae_correct_gen(
+                g, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
+                epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
+                p["tangent"], p["work"])
+        return call
 
 
 class PythonEquations:
@@ -100,7 +158,7 @@ class PythonEquations:
     def __init__(self, problem, ndim: int, npar: int):
         self.problem, self.n, self.npar = problem, ndim, npar
         self.by_calls = problem.stencil_by_calls(1)     # one free parameter
-        self.ffi, self.lib = _callback_library()
+        self.ffi, self.lib = _library("ae_callback.c", _CALLBACK_CDEF)
         self.error = None
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
         self._dptr_type = self.ffi.typeof("double[]")
@@ -267,6 +325,7 @@ def compiled_corrector(system, settings, divergence: float):
     """The compiled corrector of `system`, or None where the Python loop runs."""
     from washer.cont.compiled import CompiledProblem
     from washer.cont.problem import Problem
+    from washer.cont.symbolic import SymbolicProblem
     problem = getattr(system, "problem", None)
     if not getattr(system, "residual_is_func", False) or len(system.free) != 1 \
             or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM:
@@ -276,6 +335,16 @@ def compiled_corrector(system, settings, divergence: float):
                 or not hasattr(problem.user.lib, "washer_ae_correct"):
             return None
         equations = problem.user
+    elif type(problem) is SymbolicProblem:
+        # the generated f with differences (JAC = 0) or with its exact f_u and f_p
+        # (JAC = 1; JAC = -1, exact f_u with differenced f_p, is the Python loop)
+        generated = problem.generated
+        if problem.jac not in (0, 1) or len(system.par) < generated.npar:
+            return None
+        try:
+            equations = GeneratedEquations(generated, system.ndim, exact=problem.jac == 1)
+        except (CompileError, OSError):
+            return None
     elif type(problem) is Problem:
         # difference Jacobians of a plain func (Problem.jacobian's stencil)
         if not problem.differenced_jacobian or problem.has_func_batch \

@@ -195,6 +195,11 @@ class SymbolicProblem(Problem):
         super().__init__(*args, **kw)
         self._compiled = compiled
 
+    @property
+    def generated(self) -> _Compiled:
+        """The compiled functions (the compiled corrector calls them from C)."""
+        return self._compiled
+
     def second_derivatives(self, u, par, ws, par_indices) -> np.ndarray:
         """f_zz[e_s, w_k] (see Problem.second_derivatives), from the generated Hessian:
         shape (NDIM + len(par_indices), len(ws), NDIM)."""

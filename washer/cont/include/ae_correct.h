@@ -8,6 +8,14 @@
  *
  * f at the rows first..rows-1 of us (rows, ndim) with PAR the rows of ps (rows, npar),
  * into fs (rows, ndim), in the order of the rows; nonzero: the evaluation failed.
+ * An includer whose equations come with their exact Jacobians (the generated C of
+ * sympy problems: ae_generated.c) also defines AE_EXACT_JACOBIAN and
+ *
+ *   static int ae_exact(void *ctx, int ndim, int npar, int ip, const double *u,
+ *                       const double *par, double *J, int stride);
+ *
+ * [f_u, f_PAR(ip + 1)] at (u, par) into J (ndim rows of stride `stride`): -1 where this
+ * run's Jacobians are differences (JAC = 0), 0 evaluated, else the evaluation failed.
  *
  * This is a second copy of one meaning, the package's one Newton loop
  * (washer/cont/newton.py's newton as washer.cont.iterator.Continuation.correct runs it,
@@ -60,6 +68,33 @@ static int ae_jacobian(int n, const double *fs, const double *h, double *J, int 
             J[(size_t)i * stride + j] = v;
         }
     return 0;
+}
+
+/* f at x into fs's row 0 (not if first = 1: already there) and [f_u, f_PAR(ip + 1)] at x
+   into J (n rows of stride `stride`): the includer's exact Jacobian (ae_exact) where it
+   gives one, else ae_points' central differences (ae_jacobian). Returns 0, nonzero if
+   f failed or the Jacobian is not finite. */
+static int ae_f_jacobian(void *ctx, int n, int npar, int ip, const int *icp, const double *par,
+                         const double *x, double hmach, int first, double *us, double *ps,
+                         double *fs, double *h, double *scratch, double *J, int stride)
+{
+#ifdef AE_EXACT_JACOBIAN
+    memcpy(us, x, sizeof(double) * n);
+    memcpy(ps, par, sizeof(double) * npar);
+    ps[ip] = x[n];
+    int e = ae_exact(ctx, n, npar, ip, us, ps, J, stride);
+    if (e > 0) return 1;
+    if (e == 0) {
+        if (!first && ae_eval(ctx, n, npar, icp, 1, 0, us, ps, fs, scratch)) return 1;
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j <= n; j++)
+                if (!isfinite(J[(size_t)i * stride + j])) return 3;
+        return 0;
+    }
+#endif
+    if (ae_points(ctx, n, npar, ip, icp, par, x, hmach, first, us, ps, fs, h, scratch))
+        return 1;
+    return ae_jacobian(n, fs, h, J, stride);
 }
 
 /* Gaussian elimination with partial pivoting (LAPACK's GETRF order: the largest |entry|
@@ -118,11 +153,13 @@ static int ae_back(int m, const double *M, const double *b, double *y)
 /* The corrector of algebraic continuation in one foreign call: the compiled form of the
    package's one Newton loop (washer.cont.newton.newton) as iterator.Continuation.correct
    runs it on equilibria with the sphere arclength (AUTO's SOLVAE/STEPAE), for FUNC with
-   JAC = 0 (washer.cont.compiled_newton chooses it; every other case is the Python loop):
+   JAC = 0, or generated equations with their exact Jacobians (AE_EXACT_JACOBIAN)
+   (washer.cont.compiled_newton chooses it; every other case is the Python loop):
 
      unknowns x = (U(1..NDIM), PAR(ip + 1)), PAR the other parameters (npar), ICP icp;
      per iteration: F = f(u, PAR), the central differences [f_u, f_PAR(ip + 1)] with
-     h_j = hmach (1 + |z_j|) (Problem.jacobian's stencil: the same points and quotients),
+     h_j = hmach (1 + |z_j|) (Problem.jacobian's stencil: the same points and quotients)
+     or the exact ones (ae_exact: Problem.jacobian's dfdu and dfdp with JAC = 1),
      the arclength row r = 2 theta (x - x_ref) / |ds| and c = <r, x - x_ref> / 2 - |ds|,
      the correction dx of [J; r] dx = -[F; c] (LU with partial pivoting), x += dx;
      stop when |dx_lambda| / (1 + |x_lambda|) <= epsl and max|dx_u| / (1 + max|x_u|) <=
@@ -158,13 +195,13 @@ static int ae_correct(void *ctx, int ndim, int npar, int ip, const int *icp, con
     for (int i = 0; i < np1; i++) x[i] = x_pred[i];
     *iterations = 0;
     for (int it = 1; it <= itnw; it++) {
-        if (ae_points(ctx, n, npar, ip, icp, par, x, hmach, 0, us, ps, fs, h, scratch))
+        if (ae_f_jacobian(ctx, n, npar, ip, icp, par, x, hmach, 0, us, ps, fs, h, scratch,
+                          M, np1))
             return 3;
         for (int i = 0; i < n; i++) {
             if (!isfinite(fs[i])) return 3;
             b[i] = -fs[i];
         }
-        if (ae_jacobian(n, fs, h, M, np1)) return 3;
         double c = 0.0;
         for (int j = 0; j < np1; j++) {
             d[j] = x[j] - x_ref[j];
@@ -184,8 +221,8 @@ static int ae_correct(void *ctx, int ndim, int npar, int ip, const int *icp, con
         *iterations = it;
         if (dl <= epsl && du <= epsu) {
             if (jac) {
-                if (ae_points(ctx, n, npar, ip, icp, par, x, hmach, 1, us, ps, fs, h, scratch)
-                        || ae_jacobian(n, fs, h, jac, np1))
+                if (ae_f_jacobian(ctx, n, npar, ip, icp, par, x, hmach, 1, us, ps, fs, h,
+                                  scratch, jac, np1))
                     return 4;
                 if (tangent) {
                     /* the secant ref = (x - x_ref) / ds, z of [J; theta ref] z = e_last
