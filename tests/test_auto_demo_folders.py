@@ -41,15 +41,13 @@ EXPECTED_FAIL = {
            "branch point at one point, by symmetry) AUTO's fold test, noise there, meets its "
            "tolerance 14 tolerances early: AUTO labels LP and BP one step apart, we the BP",
     "tor": "23 of 24: a symmetry-breaking BP of cycles at PAR(1) = -0.787593 (b.1; shooting "
-           "confirms it) that AUTO only notes is labelled by us and takes one step, so AUTO's "
-           "last LP (PT 124) is our EP at NMX",
-    "ppp": "46 of 58, AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "
+           "confirms it, tests/test_cycle_branch_point.py) whose location fails in AUTO "
+           "(it only notes it) is labelled by us and takes one step, so AUTO's last LP "
+           "(PT 124) is our EP at NMX",
+    "ppp": "47 of 58, AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "
            "switched Hopf loci where the exact l1 is -0.662 (its test reads a Newton "
            "residual), and its BP of cycles 7.0e-4 before HB7, where the family ends "
-           "(ours at HB7 to 1e-7); and its BP at PAR(1) = 0.0772911 on the forward half "
-           "of the 18th Hopf locus, which ours does not reach within NMX = 100 points (that "
-           "locus leaves its BP 1.3e-4 from AUTO's in PAR(1) at PT 2 and steps "
-           "differently)",
+           "(ours at HB7 to 1e-7)",
 }
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import StartData, register
-from washer.cont.linalg import null_vectors
+from washer.cont.linalg import nullvc
 from washer.cont.systems._loci import LocusSystem
 from washer.cont.systems.equilibrium import eigenvalues_sorted
 
@@ -43,7 +43,11 @@ class HopfSystem(LocusSystem):
                                  "curve from")
             kappa = (2 * np.pi / period) ** 2
             A = self.problem.dfdu(u, self.par)
-            v = null_vectors(A @ A + kappa * np.eye(n), 2)[:, 0]
+            # STPNHBF: which vector of the two-dimensional null space is AUTO's
+            # NLVC's (the last two pivoted unknowns set to 1); the phase condition then
+            # keeps v near it, so the locus's v, and every tangent with components in
+            # v (the first step of a branch switched at a BP on the locus), are AUTO's.
+            v = nullvc(A @ A + kappa * np.eye(n), 2)
             ext = np.r_[u, v / np.linalg.norm(v), kappa, p2]
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
         self.v_old = self._x0[n:2 * n] / np.linalg.norm(self._x0[n:2 * n])
