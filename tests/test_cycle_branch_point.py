@@ -367,12 +367,20 @@ def _tor_field(p):
 
 
 @pytest.mark.slow
-def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
+@pytest.mark.parametrize("window, order", [((-0.8326, -0.832), ["LP", "BP"]),
+                                           ((-0.7880, -0.7870), ["BP", "LP"])],
+                         ids=["PT79", "PT93"])
+def test_symmetry_breaking_bp_just_past_a_fold(tmp_path, window, order):
     """tor's cycles from its Hopf point (run 2) fold at PAR(1) = -0.832514 and, 2.9e-3
     further in arclength, break their symmetry u(t + T/2) = -u(t) at PAR(1) = -0.832438
     (AUTO labels it BP at PT 79). Next to that branch point the period is so ill-determined
     that the location's short steps from its trial points fail in ITNW = 5; the branch
-    point must still be located. Checked independently by shooting over half a period
+    point must still be located. The pair recurs further on, branch point first: a
+    symmetry-breaking BP at PAR(1) = -0.787593 and the fold 3e-6 past it (-0.787590).
+    There AUTO's BP test changes sign (+360, then -146 and -73 at its trials) and its
+    location fails ('No convergence using minimum step size', then 'Possible special
+    point'): it labels only the LP, one point earlier than ours from there on (its last LP,
+    PT 124, is our PT 125, the EP at NMX). Checked independently by shooting over half a period
     (DOP853, rtol 1e-12): a symmetric orbit is a fixed point of u0 -> -phi_{T/2}(u0), and
     the symmetry breaks where -Dphi_{T/2} has the eigenvalue -1 (the fold is its +1).
     Tolerance: the location tolerance EPSS (1 + sqrt(DS DSMAX)) in arclength, in which
@@ -391,10 +399,9 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
     eq = run(tmp_path / "c.tor", verbose=False, sv="eq", e="tor")
     cyc = run(tmp_path / "c.tor", verbose=False, sv="cyc", e="tor", restart=eq, IRS="HB1",
               IPS=2, ICP=[1, 11])
-    types = [(r.ty, r.values[0]) for r in cyc.rows if r.lab and -0.8326 < r.values[0] < -0.832]
-    assert [t for t, _ in types] == ["LP", "BP"]
-    bp = cyc("BP2")
-    assert math.isclose(bp.par[0], types[1][1])
+    labelled = [r for r in cyc.rows if r.lab and window[0] < r.values[0] < window[1]]
+    assert [r.ty for r in labelled] == order
+    bp = labelled[order.index("BP")]
 
     P = np.array(bp.par, float)
     U = np.asarray(bp.U)
@@ -427,6 +434,12 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path):
     T_bp = brentq(r_plus_one, T0 - 0.02, T0 + 0.02, xtol=1e-10)
     lam_bp = orbit(T_bp)[3]
     assert abs(bp.par[0] - lam_bp) < tol
+    # The fold is within that tolerance of the branch point in PAR(1) at PT 93 (2.7e-6):
+    # the period, which changes fast there, tells them apart. The shooting's period at
+    # the -1 eigenvalue is the BP's, not the fold's (measured: 3.4e-3 against 0.22 at
+    # PT 79, 1.6e-3 against 0.062 at PT 93).
+    fold = labelled[order.index("LP")]
+    assert abs(bp.par[10] - T_bp) < 0.1 * abs(fold.par[10] - T_bp)
 
 
 def _abcb_field(p):
