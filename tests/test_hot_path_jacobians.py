@@ -143,7 +143,7 @@ def test_difference_quotient_in_a_parameter_leaves_the_kept_f_and_is_the_quotien
     """VectorField.fp by central differences (JAC = 0) is the quotient of two func_many
     calls at PAR(i) +- h, and f at the iterate, kept for the PERIOD column, is still
     answered from the kept copy afterwards."""
-    from washer.cont.problem import FD_STEP
+    from washer.cont.differences import FD_STEP
     prob = Problem(2, ab, npar=3)
     field = VectorField(prob, 2)
     rng = np.random.default_rng(2)

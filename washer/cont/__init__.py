@@ -5,6 +5,8 @@ does: a run's files are sinks attached to it). Its modules:
 problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
               finite-difference derivatives; user_files, compile, compiled, symbolic load
               them from NAME.py, Fortran/C user files or sympy expressions
+differences   central differences: AUTO's step, the points and the quotient, the one
+              definition every finite-difference derivative of the engine uses
 constants, settings
               a run's constants (every one with its default, checked as it is set) and
               AUTO's defaults (DEFAULTS), resolved into the frozen Settings

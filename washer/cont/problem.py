@@ -55,12 +55,8 @@ from pathlib import Path
 
 import numpy as np
 
+from washer.cont.differences import par_points, quotient, step, u_points, u_quotient
 from washer.cont.pvls import Orbit
-from washer.cont.settings import HMACH
-
-#: Relative finite-difference step for Jacobians: AUTO's HMACH = 1e-7, central
-#: differences with h = HMACH (1 + |u_i|) (ae.f90:FUNI).
-FD_STEP = HMACH
 #: Stencils of at least this many points call a plain user func once with
 #: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
 #: overhead exceeds a small func's cost).
@@ -209,8 +205,8 @@ class Problem:
         par = np.asarray(par, dtype=float)
         k, n = us.shape
         m, nu = len(indices), (n if with_u else 0)
-        hu = FD_STEP * (1 + np.max(np.abs(us), axis=1))
-        hp = np.array([FD_STEP * (1 + abs(par[i - 1])) for i in indices])
+        hu = step(np.max(np.abs(us), axis=1))
+        hp = np.array([step(par[i - 1]) for i in indices])
         s = 2 * (nu + m)
         U = np.repeat(us[:, None], s, axis=1)
         P = np.repeat(par[None, None], k, axis=0).repeat(s, axis=1)
@@ -221,9 +217,8 @@ class Problem:
             P[:, 2 * (nu + q), i - 1] += hp[q]
             P[:, 2 * (nu + q) + 1, i - 1] -= hp[q]
         F = self.fopt_many(U.reshape(-1, n), P.reshape(k * s, -1)).reshape(k, s)
-        d = F[:, 0::2] - F[:, 1::2]
-        gu = d[:, :nu] / (2 * hu[:, None]) if with_u else None
-        return gu, d[:, nu:] / (2 * hp) if m else np.zeros((k, 0))
+        gu = quotient(F[:, 0:2 * nu:2], F[:, 1:2 * nu:2], hu[:, None]) if with_u else None
+        return gu, quotient(F[:, 2 * nu::2], F[:, 2 * nu + 1::2], hp) if m else np.zeros((k, 0))
 
     def _fopt_at_once(self, us, pars):
         """fopt at k points in one call with u (ndim, k), par (npar, k), as func's
@@ -398,11 +393,11 @@ class Problem:
         u = np.asarray(u, dtype=float)
         if self.stencil_by_calls(0):
             return self._jacobian_by_calls(u, np.asarray(par, dtype=float), [])
-        h = FD_STEP * (1 + np.abs(u))
+        h = step(u)
         E = np.diag(h)
         F = self.func_many(np.vstack([u + E, u - E]), par)
         n = self.ndim
-        return ((F[:n] - F[n:]) / (2 * h[:, None])).T
+        return quotient(F[:n], F[n:], h[:, None]).T
 
     @property
     def differenced_jacobian(self) -> bool:
@@ -431,7 +426,7 @@ class Problem:
         if self.stencil_by_calls(m):
             return self._jacobian_by_calls(u, par, pidx)
         z = np.concatenate((u, par[pidx]))
-        h = FD_STEP * (1 + np.abs(z))
+        h = step(z)
         us = np.repeat(u[None, :], 2 * k, axis=0)
         ps = np.repeat(par[None, :], 2 * k, axis=0)
         idx = np.arange(n)
@@ -441,7 +436,7 @@ class Problem:
             ps[n + j, i] += h[n + j]
             ps[k + n + j, i] -= h[n + j]
         F = self.func_many(us, ps)
-        return ((F[:k] - F[k:]) / (2 * h[:, None])).T
+        return quotient(F[:k], F[k:], h[:, None]).T
 
     def _jacobian_by_calls(self, u, par, pidx) -> np.ndarray:
         """`jacobian`'s central differences for a small stencil, one call of the user's
@@ -451,7 +446,7 @@ class Problem:
         at these sizes. Every call gets its own copies of u and par."""
         n = self.ndim
         ul, pl = u.tolist(), par.tolist()
-        hs = [FD_STEP * (1 + abs(v)) for v in ul] + [FD_STEP * (1 + abs(pl[i])) for i in pidx]
+        hs = [step(v) for v in ul] + [step(pl[i]) for i in pidx]
         fn = self._func
         rows = []
         try:
@@ -473,7 +468,7 @@ class Problem:
                                f"({n},)")
         if not np.isfinite(F).all():
             raise ProblemError(f"{self.name}: func(u, par) returned non-finite values")
-        return ((F[:k] - F[k:]) / (2 * np.array(hs)[:, None])).T
+        return quotient(F[:k], F[k:], np.array(hs)[:, None]).T
 
     def dfdu_many(self, us, pars) -> np.ndarray:
         """Jacobians at k points at once: us (k, ndim), pars (k, npar) -> (k, ndim, ndim)."""
@@ -485,34 +480,12 @@ class Problem:
         us = np.asarray(us, dtype=float)
         pars = np.asarray(pars, dtype=float)
         k, n = us.shape
-        pts, h = self.fd_u_stencil(us)
+        pts, h = u_points(us)
         # one parameter vector for all points (the callers' broadcast view, row stride 0)
         # stays a view: only its values reach the user's func
         rep = (broadcast_rows(pars[0], 2 * n * k)
                if k and pars.ndim == 2 and pars.strides[0] == 0 else np.repeat(pars, 2 * n, axis=0))
-        return self.fd_u_quotient(self.func_many(pts, rep), h)
-
-    def fd_u_stencil(self, us: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The points of dfdu_many's central differences at the rows of us (k, ndim):
-        (pts (2 ndim k, ndim): for each point u, u + h_j e_j then u - h_j e_j, j =
-        0..ndim-1; h (k, ndim) = FD_STEP (1 + |u|), AUTO's step)."""
-        k, n = us.shape
-        h = FD_STEP * (1 + np.abs(us))                      # (k, n)
-        pts = np.empty((k, 2 * n, n))
-        pts[:] = us[:, None, :]
-        # the diagonals of the +h and -h blocks as strided views (basic slices: no
-        # fancy-index set-up; the same additions)
-        flat = pts.reshape(k, 2 * n * n)
-        flat[:, 0:n * n:n + 1] += h
-        flat[:, n * n::n + 1] -= h
-        return pts.reshape(-1, n), h
-
-    @staticmethod
-    def fd_u_quotient(F: np.ndarray, h: np.ndarray) -> np.ndarray:
-        """f_u (k, ndim, ndim) from f at `fd_u_stencil`'s points (2 ndim k, ndim)."""
-        k, n = h.shape
-        F = F.reshape(k, 2 * n, n)
-        return np.transpose((F[:, :n] - F[:, n:]) / (2 * h[:, :, None]), (0, 2, 1))
+        return u_quotient(self.func_many(pts, rep), h)
 
     @property
     def has_dfdp_batch(self) -> bool:
@@ -544,14 +517,12 @@ class Problem:
             return full[:, [i - 1 for i in indices]]
         par = np.asarray(par, dtype=float)
         m = len(indices)
-        pars = np.repeat(par[None, :], 2 * m, axis=0)
-        h = np.empty(m)
-        for k, i in enumerate(indices):
-            h[k] = FD_STEP * (1 + abs(par[i - 1]))
-            pars[k, i - 1] += h[k]
-            pars[m + k, i - 1] -= h[k]
+        points = [par_points(par, i) for i in indices]
+        h = np.array([hi for hi, _, _ in points])
+        pars = np.array([pp for _, pp, _ in points] + [pm for _, _, pm in points]).reshape(
+            2 * m, len(par))
         F = self.func_many(np.repeat(np.asarray(u, float)[None, :], 2 * m, axis=0), pars)
-        return ((F[:m] - F[m:]) / (2 * h[:, None])).T
+        return quotient(F[:m], F[m:], h[:, None]).T
 
     def second_derivatives(self, u, par, ws, par_indices) -> np.ndarray:
         """Mixed second derivatives f_zz[e_s, w_k] along every unit direction e_s

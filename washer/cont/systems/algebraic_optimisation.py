@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from washer.cont.differences import columns
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, register
 from washer.cont.systems._algebraic import AlgebraicSystem
@@ -156,13 +157,7 @@ class AlgebraicOptimisation(AlgebraicSystem):
         out[-1, -1] = 1.0
         if self.nfpr > 2:
             cols = list(range(n)) + list(range(n, 2 * n + 1)) + slots
-            for j in cols:
-                h = H2 * (1 + abs(x[j]))
-                xp, xm = x.copy(), x.copy()
-                xp[j] += h
-                xm[j] -= h
-                out[n:-1, j] = (self._multiplier_rows(xp, self._p(xp))
-                                - self._multiplier_rows(xm, self._p(xm))) / (2 * h)
+            out[n:-1, cols] = columns(lambda z: self._multiplier_rows(z, self._p(z)), x, cols, H2)
         return out
 
     # ------------------------------------------------------------ start

@@ -29,7 +29,8 @@ from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont import reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
-from washer.cont.problem import FD_STEP, broadcast_rows
+from washer.cont.differences import par_points, quotient, u_points, u_quotient
+from washer.cont.problem import broadcast_rows
 from washer.cont.pvls import Orbit
 from washer.cont.system import Solution, fold_test
 
@@ -57,7 +58,7 @@ class VectorField:
     """f, f_u, f_p of a washer.cont.problem.Problem at many points at once: a thin
     adapter over Problem.func_many / dfdu_many (one batched or vectorised call per
     stencil, the user's Jacobian when JAC != 0, else central differences with AUTO's
-    step FD_STEP (1 + |u_i|))."""
+    step, washer.cont.differences)."""
 
     def __init__(self, problem, ndim: int):
         self.problem, self.ndim = problem, ndim
@@ -95,21 +96,11 @@ class VectorField:
         if self.problem.has_dfdp_batch:
             U = np.asarray(U, float)
             return self.problem.dfdp_many(U, broadcast_rows(np.asarray(par, float), len(U)), index)
-        h, pp, pm = self._par_step(par, index)
+        h, pp, pm = par_points(par, index)
         # straight to the problem: nobody asks for f at these parameters again, and
         # `f`'s copy kept for the PERIOD column stays
         U = np.asarray(U, float)
-        return (self.problem.func_many(U, pp) - self.problem.func_many(U, pm)) / (2 * h)
-
-    @staticmethod
-    def _par_step(par, index: int):
-        """(h, PAR + h e_index, PAR - h e_index) of fp's central differences, h = FD_STEP
-        (1 + |PAR(index)|)."""
-        h = FD_STEP * (1 + abs(par[index - 1]))
-        pp, pm = np.array(par, float), np.array(par, float)
-        pp[index - 1] += h
-        pm[index - 1] -= h
-        return h, pp, pm
+        return quotient(self.problem.func_many(U, pp), self.problem.func_many(U, pm), h)
 
     def fu_fp(self, U: np.ndarray, par: np.ndarray, indices) -> tuple[np.ndarray, list]:
         """(fu(U, par), [fp(U, par, i) for i in indices]). When all of them are central
@@ -126,9 +117,9 @@ class VectorField:
         U = np.asarray(U, float)
         par = np.asarray(par, float)
         k = len(U)
-        pts, h = prob.fd_u_stencil(U)
+        pts, h = u_points(U)
         m = len(pts)
-        steps = [self._par_step(par, i) for i in indices]
+        steps = [par_points(par, i) for i in indices]
         us = np.concatenate([pts] + [U] * (2 * len(steps)))
         # the parameters column by column (the user's func reads the rows of pars.T:
         # contiguous ones)
@@ -138,9 +129,10 @@ class VectorField:
             parsT[:, m + 2 * j * k:m + (2 * j + 1) * k] = pp[:, None]
             parsT[:, m + (2 * j + 1) * k:m + (2 * j + 2) * k] = pm[:, None]
         F = prob.func_many(us, parsT.T)
-        A = prob.fd_u_quotient(F[:m], h)
-        fps = [(F[m + 2 * j * k:m + (2 * j + 1) * k] - F[m + (2 * j + 1) * k:m + (2 * j + 2) * k])
-               / (2 * hj) for j, (hj, _, _) in enumerate(steps)]
+        A = u_quotient(F[:m], h)
+        fps = [quotient(F[m + 2 * j * k:m + (2 * j + 1) * k],
+                        F[m + (2 * j + 1) * k:m + (2 * j + 2) * k], hj)
+               for j, (hj, _, _) in enumerate(steps)]
         return A, fps
 
     def fuu_v(self, U: np.ndarray, V: np.ndarray, par: np.ndarray) -> np.ndarray:
@@ -162,17 +154,15 @@ class VectorField:
     def fuu_adjoint(self, U: np.ndarray, Phi: np.ndarray, par: np.ndarray) -> np.ndarray:
         """The matrices d/du (f_u(u)^T phi) at the rows of U, Phi (k, NDIM) -> (k, NDIM,
         NDIM) ([:, row, column]; the Hessian of phi . f, symmetric). With the user's f_u:
-        its central differences, AUTO's step FD_STEP (1 + |u_j|) (FNPBP differences its
+        its central differences, AUTO's step HMACH (1 + |u_j|) (FNPBP differences its
         extended system so; the steps stay below a small orbit's size, where the mixed
         differences of f, steps ~1e-4, straddle a non-smooth |u|: lcbp's circles shrinking
         to their Hopf point); else `fuu_v` along each unit vector (one batched call)."""
         k, n = U.shape
         if getattr(self.problem, "has_dfdu", False):
-            h = FD_STEP * (1 + np.abs(U))                                   # (k, n)
-            E = np.eye(n)[None] * h[:, :, None]                             # (k, j, n)
-            pts = np.concatenate([U[:, None] + E, U[:, None] - E], axis=1).reshape(-1, n)
+            pts, h = u_points(U)                                            # h (k, n)
             A = self.fu(pts, par).reshape(k, 2, n, n, n)                    # [k, +-, j, l, i]
-            dA = (A[:, 0] - A[:, 1]) / (2 * h[:, :, None, None])
+            dA = quotient(A[:, 0], A[:, 1], h[:, :, None, None])
             return np.einsum("kl,kjli->kij", Phi, dA)
         M = self.fuu_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par)
         return np.einsum("kl,iklj->kij", Phi, M.reshape(n, k, n, n))
@@ -181,15 +171,12 @@ class VectorField:
                     index: int) -> np.ndarray:
         """d/dp (f_u(u)^T phi) for p = PAR(index) at the rows of U, Phi -> (k, NDIM):
         component i is phi . (d f_u / dp) e_i. With the user's f_u: its central
-        difference in p (step FD_STEP (1 + |p|)); else `fup_v` along each unit vector
+        difference in p (step HMACH (1 + |p|)); else `fup_v` along each unit vector
         (one batched call)."""
         k, n = U.shape
         if getattr(self.problem, "has_dfdu", False):
-            h = FD_STEP * (1 + abs(par[index - 1]))
-            pp, pm = np.array(par, float), np.array(par, float)
-            pp[index - 1] += h
-            pm[index - 1] -= h
-            dA = (self.fu(U, pp) - self.fu(U, pm)) / (2 * h)
+            h, pp, pm = par_points(par, index)
+            dA = quotient(self.fu(U, pp), self.fu(U, pm), h)
             return np.einsum("kl,kli->ki", Phi, dA)
         M = self.fup_v(np.tile(U, (n, 1)), np.repeat(np.eye(n), k, axis=0), par, index)
         return np.einsum("kl,ikl->ki", Phi, M.reshape(n, k, n))

@@ -45,6 +45,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from washer.cont.differences import columns, par_points, quotient, step, u_points, u_quotient
 from washer.cont.linalg import tall_null_vector
 from washer.cont.problem import Problem
 from washer.cont.settings import SettingsError
@@ -85,18 +86,6 @@ class Layout:
         return user + [second, third] + self.psi + self.d
 
 
-def _central(fun, z, cols, h_rel=DIR_STEP):
-    """Columns d fun / d z_j (j in cols) by central differences, steps h_rel (1 + |z_j|)."""
-    out = []
-    for j in cols:
-        h = h_rel * (1 + abs(z[j]))
-        zp, zm = z.copy(), z.copy()
-        zp[j] += h
-        zm[j] -= h
-        out.append((fun(zp) - fun(zm)) / (2 * h))
-    return np.array(out).T
-
-
 def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
     """The extended BVP of the branch-point locus in W = (u, w) (module docstring) as a
     Problem of NDIM = 2n with its bcnd and icnd."""
@@ -110,19 +99,15 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
         central differences with steps DIR_STEP (1 + |u_l|)."""
         if exact:
             return problem.dfdu_many(u, pars)
-        k = len(u)
-        h = DIR_STEP * (1 + np.abs(u))                                   # (k, n)
-        E = np.eye(n)[None] * h[:, :, None]                              # (k, n, n)
-        pts = np.concatenate([u[:, None] + E, u[:, None] - E], axis=1).reshape(-1, n)
+        pts, h = u_points(u, DIR_STEP)                                   # h (k, n)
         pp = np.repeat(pars, 2 * n, axis=0)
-        F = problem.func_many(pts, pp).reshape(k, 2, n, n)
-        return np.transpose((F[:, 0] - F[:, 1]) / (2 * h[:, :, None]), (0, 2, 1))
+        return u_quotient(problem.func_many(pts, pp), h)
 
     def fp_dot(u, w, pars):
         """f_pi . w at the rows, (k, NFPX), by central differences in p_i."""
         out = np.empty((len(u), m))
         for c, i in enumerate(pidx):
-            h = DIR_STEP * (1 + abs(pars[0, i]))
+            h = step(pars[0, i], DIR_STEP)
             pp, pm = pars.copy(), pars.copy()
             pp[:, i] += h
             pm[:, i] -= h
@@ -141,11 +126,11 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
         uo, ud, up = g_refs(u, par)
         out = np.zeros_like(u)
         for l in range(n):
-            h = DIR_STEP * (1 + np.abs(u[:, l]))[:, None]
+            h = step(u[:, l], DIR_STEP)[:, None]
             E = np.zeros_like(u)
             E[:, l] = h[:, 0]
-            G = (problem.icnd_many(u + E, uo, ud, up, par, nnt0)
-                 - problem.icnd_many(u - E, uo, ud, up, par, nnt0)) / (2 * h)
+            G = quotient(problem.icnd_many(u + E, uo, ud, up, par, nnt0),
+                         problem.icnd_many(u - E, uo, ud, up, par, nnt0), h)
             out[:, l] = G @ psi_g
         return out
 
@@ -181,7 +166,7 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
                 p = par.copy()
                 p[pidx] = zz[2 * n:]
                 return problem.bcnd(zz[:n], zz[n:2 * n], p, nbc0)
-            last_jb["key"], last_jb["Jb"] = key, _central(fb, z, range(len(z)))
+            last_jb["key"], last_jb["Jb"] = key, columns(fb, z, range(len(z)), DIR_STEP)
         Jb = last_jb["Jb"]                                      # (nbc0, 2n + NFPX)
         return np.r_[b, -w0 + Jb[:, :n].T @ psi_b, w1 + Jb[:, n:2 * n].T @ psi_b,
                      par[np.array(lay.d) - 1] + Jb[:, 2 * n:].T @ psi_b]
@@ -202,12 +187,9 @@ def branch_point_problem(problem, lay: Layout, generic: bool) -> Problem:
             parts.append(g)
             uo, ud, up = g_refs(u, par)
             for c, i in enumerate(pidx):
-                h = DIR_STEP * (1 + abs(par[i]))
-                pp, pm = np.array(par, float), np.array(par, float)
-                pp[i] += h
-                pm[i] -= h
-                gp = (problem.icnd_many(u, uo, ud, up, pp, nnt0)
-                      - problem.icnd_many(u, uo, ud, up, pm, nnt0)) / (2 * h)
+                h, pp, pm = par_points(par, i + 1, DIR_STEP)
+                gp = quotient(problem.icnd_many(u, uo, ud, up, pp, nnt0),
+                              problem.icnd_many(u, uo, ud, up, pm, nnt0), h)
                 adj[:, c] += gp @ psi[nbc0:]
         parts.append(adj)
         parts.append((np.sum(w * w, axis=1) + psi @ psi - par[lay.a - 1])[:, None])

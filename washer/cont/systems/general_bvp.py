@@ -46,7 +46,8 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont import collocation as col
 from washer.cont.linalg import permutation_sign
-from washer.cont.problem import FD_STEP, Problem
+from washer.cont.differences import columns, quotient, step
+from washer.cont.problem import Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
 from washer.cont.systems.bvp import CollocationBVP, VectorField
@@ -248,30 +249,23 @@ class BoundaryValueProblem(CollocationBVP):
             for k, i in enumerate(self._order):
                 p[i - 1] = zz[2 * n + k]
             return self.problem.bcnd(zz[:n], zz[n:2 * n], p, self.nbc)
-        out = np.empty((self.nbc, len(z)))
-        for j in range(len(z)):
-            h = FD_STEP * (1 + abs(z[j]))
-            zp, zm = z.copy(), z.copy()
-            zp[j] += h
-            zm[j] -= h
-            out[:, j] = (fb(zp) - fb(zm)) / (2 * h)
-        return out
+        return columns(fb, z, range(len(z)))
 
     def _ic_jacobian(self, U, par):
         n, nn = self.ndim, len(U)
         Ju = np.empty((self.nint, nn, n))
         for l in range(n):
-            h = FD_STEP * (1 + np.abs(U[:, l]))
+            h = step(U[:, l])
             Up, Um = U.copy(), U.copy()
             Up[:, l] += h
             Um[:, l] -= h
-            Ju[:, :, l] = ((self._ic_nodes(Up, par) - self._ic_nodes(Um, par)) / (2 * h[:, None])).T
+            Ju[:, :, l] = quotient(self._ic_nodes(Up, par), self._ic_nodes(Um, par), h[:, None]).T
         # Parameter columns by forward differences from the unperturbed integrands, as
         # AUTO's ICNI (one sweep of the mesh per parameter instead of two).
         Jp = np.empty((self.nint, self.nfpr))
         base = self.w_node @ self._ic_nodes(U, par)
         for k, i in enumerate(self._order):
-            h = FD_STEP * (1 + abs(par[i - 1]))
+            h = step(par[i - 1])
             pp = par.copy()
             pp[i - 1] += h
             Jp[:, k] = (self.w_node @ self._ic_nodes(U, pp) - base) / h

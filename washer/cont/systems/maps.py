@@ -30,7 +30,8 @@ import math
 import numpy as np
 
 from washer.cont.codes import Code
-from washer.cont.problem import FD_STEP, Problem
+from washer.cont.differences import columns
+from washer.cont.problem import Problem
 from washer.cont.system import Stability, StartData, register
 from washer.cont.floquet import torus_resonance_tests
 from washer.cont.linalg import null_vectors, orient
@@ -482,13 +483,7 @@ class MapTorusLocus(_MapLocus, LocusSystem):
 
     def jacobian(self, x, frozen_second: bool = False):
         x = np.asarray(x, dtype=float)
-        h = FD_STEP * (1 + np.abs(x))
-        cols = []
-        for j in range(len(x)):
-            e = np.zeros(len(x))
-            e[j] = h[j]
-            cols.append((self.residual(x + e) - self.residual(x - e)) / (2 * h[j]))
-        return np.array(cols).T
+        return columns(self.residual, x, range(len(x)))
 
     def update(self, x, tangent):
         v = x[self.ndim:2 * self.ndim]

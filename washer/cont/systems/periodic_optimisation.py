@@ -52,6 +52,7 @@ import numpy as np
 from washer.cont.problem import Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
+from washer.cont.differences import par_points, quotient, step
 from washer.cont.systems.bvp import H2, VectorField, stored_profile
 from washer.cont.systems.general_bvp import BoundaryValueProblem
 
@@ -179,18 +180,15 @@ class PeriodicOptimisation(BoundaryValueProblem):
         nn, nc = U.shape
         Ju = np.empty((self.nint, nn, nc))
         for l in range(nc):
-            h = H2 * (1 + np.abs(U[:, l]))
+            h = step(U[:, l], H2)
             Up, Um = U.copy(), U.copy()
             Up[:, l] += h
             Um[:, l] -= h
-            Ju[:, :, l] = ((self._ic_nodes(Up, par) - self._ic_nodes(Um, par))
-                           / (2 * h[:, None])).T
+            Ju[:, :, l] = quotient(self._ic_nodes(Up, par), self._ic_nodes(Um, par),
+                                   h[:, None]).T
         Jp = np.empty((self.nint, self.nfpr))
         for j, i in enumerate(self._order):
-            h = H2 * (1 + abs(par[i - 1]))
-            pp, pm = par.copy(), par.copy()
-            pp[i - 1] += h
-            pm[i - 1] -= h
+            h, pp, pm = par_points(par, i, H2)
             Jp[:, j] = self.w_node @ (self._ic_nodes(U, pp) - self._ic_nodes(U, pm)) / (2 * h)
         return Ju, Jp
 
@@ -216,7 +214,7 @@ class PeriodicOptimisation(BoundaryValueProblem):
         A[:, n:, n:] = -T * np.transpose(fu, (0, 2, 1))
         # d(w')/du: f_u^T w and grad phi differenced along each u_l, all points at once.
         k = len(W)
-        h = H2 * (1 + np.abs(u))                                        # (k, n)
+        h = step(u, H2)                                                 # (k, n)
         E = np.eye(n)[None] * h[:, :, None]                             # (k, n, n)
         up = (u[:, None] + E).reshape(-1, n)
         um = (u[:, None] - E).reshape(-1, n)
@@ -227,11 +225,8 @@ class PeriodicOptimisation(BoundaryValueProblem):
         blocks = self.coll.local_blocks(1.0, A.reshape(N, m, nc, nc))
         dF = np.empty((self.nfpr, N, m, nc))
         for j, i in enumerate(self._order):
-            hp = H2 * (1 + abs(par[i - 1]))
-            pp, pm = par.copy(), par.copy()
-            pp[i - 1] += hp
-            pm[i - 1] -= hp
-            dF[j] = ((self._rhs(W, Uo, pp) - self._rhs(W, Uo, pm)) / (2 * hp)).reshape(N, m, nc)
+            hp, pp, pm = par_points(par, i, H2)
+            dF[j] = quotient(self._rhs(W, Uo, pp), self._rhs(W, Uo, pm), hp).reshape(N, m, nc)
         Ju, Jp = self._ic_jacobian(U, par)
         return self.coll.jacobian_general(blocks, dF, Ju, Jp)
 
