@@ -346,3 +346,37 @@ def test_iplt_column_of_an_algebraic_problem(tmp_path, monkeypatch):
     for iplt in IPLT_COLUMN:
         name = f"b.p{abs(iplt)}"
         assert header_blocks(work / name) == header_blocks(ref / name), name
+
+
+def test_the_washers_equations_by_name_start_where_washer_run_starts(tmp_path, monkeypatch):
+    """run(e='washer', c='washer') in the command language builds the washer's problem
+    from the run's constants, as `washer.run` does: its first point is the equilibrium at
+    the file's PAR (C_p = 0, not the reference set's C_p = 0.101) and its labelled points
+    are washer.run's. The s-file holds 11 significant digits (AUTO's E19.10 format), so
+    the values read back agree with the run in memory to 1e-9 relative (1e-12 absolute for
+    C_p = 0 itself, where the start is exact to rounding)."""
+    from washer.run import run
+    shutil.copy(Path(__file__).parent.parent / "auto_constants" / "c.washer", tmp_path)
+    monkeypatch.chdir(tmp_path)
+    ours = clui.COMMANDS["run"](e="washer", c="washer", NMX=3, sv="w")()
+    ref = run(tmp_path / "c.washer", verbose=False, files=False, NMX=3).specials
+    assert [s["TY"] for s in ours] == [r.ty for r in ref] == ["EP", "EP"]
+    assert abs(ours[0]["PAR"][0]) < 1e-12
+    for s, r in zip(ours, ref):
+        np.testing.assert_allclose(s["PAR"][0], r.par[0], rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(np.asarray(s["U"])[:12], r.U[:12], rtol=1e-9, atol=1e-12)
+
+
+def test_the_command_language_loads_none_of_the_washers_problems_until_a_run_names_them():
+    """The AUTO file layer stays below the washer's problems: importing the command
+    language loads neither washer.problems nor the washer's model (a family named by e
+    is imported through washer.named_problems when a run asks for it)."""
+    import subprocess
+    code = ("import sys, washer.auto.clui, washer.named_problems\n"
+            "print(sorted(m for m in sys.modules if m.startswith(('washer.problems', "
+            "'washer.machine'))))\n"
+            "washer.named_problems.named_problem('washer')\n"
+            "print('washer.problems.resolve' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         env=dict(os.environ, OMP_NUM_THREADS="1"), check=True)
+    assert out.stdout.split("\n")[:2] == ["[]", "True"], out.stdout + out.stderr

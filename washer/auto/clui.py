@@ -33,6 +33,7 @@ from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstant
 from washer.auto.diagram import (Diagram, Solution, SolutionList, label_selector, read_solutions,
                                   type_name)
 from washer.atomic import save_figure
+from washer.named_problems import named_problem
 
 #: Constants a solution taken from a run does not carry to the next run (bifDiag.nonekeys).
 NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
@@ -69,17 +70,19 @@ class Runner:
         self._problems: dict = {}
         self.refused: list[str] = []        # runs the engine declined
 
-    def problem(self, e: str, ndim: int):
+    def problem(self, e: str, ndim: int, constants: Constants | None = None):
         """The equations named e in the current folder: NAME.py, else NAME.f90/.f/.c
-        (compiled once, cached), or washer's built-in problems (e = 'washer...')."""
+        (compiled once, cached), or a family the package ships (e = 'washer...',
+        washer.named_problems), built from the run's `constants` as `washer.run` builds
+        it (e='washer' starts from the equilibrium at the constants' PAR)."""
         from washer.cont.compiled import load_compiled_problem
         from washer.cont.user_files import find_problem_file, load_python_problem
         if not e:
             raise AutoError("The equation file argument is missing.")
         folder = Path(".").resolve()
-        if e.split(":")[0] == "washer":
-            from washer.problems.resolve import resolve_problem
-            return resolve_problem(Constants({"e": e}), folder)
+        resolve = named_problem(e)
+        if resolve is not None:
+            return resolve(Constants({"e": e}) if constants is None else constants, folder)
         path = find_problem_file(e, folder)
         if path is None:
             raise AutoError(f"No equations file found for: '{e}' (expected {e}.f90, {e}.f, "
@@ -218,7 +221,7 @@ def _execute(sol: Solution) -> Diagram:
         # sv stays: the b-file header names it as AUTO's does (e = 'NAME' sv = 'NAME.1');
         # the files are written here (FileSink), not by the engine from it.
         wc.set("s", "")
-        problem = _runner.problem(e, wc["NDIM"])
+        problem = _runner.problem(e, wc["NDIM"], wc)
         if hasattr(problem, "fresh"):
             problem.fresh()             # AUTO runs each run in a new process
         records = None
