@@ -38,8 +38,9 @@ EXPECTED_FAIL = {
     "kar": "AUTO's UZ at PAR(1) = 0 is written at -0.00845 (its location stalls); ours is "
            "at 2e-6 (tests/data/auto_demos/README.md)",
     "enz": "10 of 11: where the branch from the BP passes the other pitchfork (a fold and a "
-           "branch point at one point, by symmetry) AUTO's fold test, noise there, meets its "
-           "tolerance 14 tolerances early: AUTO labels LP and BP one step apart, we the BP",
+           "branch point at one point, by symmetry) AUTO's fold location stops 13 "
+           "tolerances short of it (tests/test_symmetric_pitchfork.py): AUTO labels LP and "
+           "BP one step apart, we the one point once, BP",
     "tor": "23 of 24: a symmetry-breaking BP of cycles at PAR(1) = -0.787593 (b.1; shooting "
            "confirms it, tests/test_cycle_branch_point.py) whose location fails in AUTO "
            "(it only notes it) is labelled by us and takes one step, so AUTO's last LP "

@@ -109,3 +109,40 @@ def test_the_bifurcating_branch_labels_the_first_pitchfork_once(enz):
     assert near[0].values[0] == pytest.approx(bp, abs=TOL)
     # U(1) - U(2) moves at most at rate sqrt(2) per unit of arclength
     assert abs(near[0].values[2] - near[0].values[3]) < 2 ** 0.5 * TOL
+
+
+def test_autos_fold_at_the_other_pitchfork_is_not_located_to_its_tolerance(enz, tmp_path):
+    """AUTO labels LP at PT 172 of branch 2 and BP one point on (PT 173) where branch 2
+    passes the pitchfork 22.18164: one point, fold and branch point together. The equations
+    with m = 0 are symmetric under s1 <-> s2 (sympy below), so branch 2, which crosses the
+    symmetric branch there, is mapped onto itself with its asymmetry a = s1 - s2 reversed:
+    PAR(1) is even in a along it and its fold is at a = 0, the pitchfork itself. AUTO's LP
+    row lies |a| = 2.2e-4 from it: at least |a| / sqrt(2) = 1.6e-4 away in arclength (the
+    chord in (U(1), U(2)) bounds it), 13 times the location tolerance, where the one
+    point's PAR(1) and the BP's row are within it. Its fold location stopped on a Muller
+    correction below the tolerance while its fold test wandered over its trials (its d-file:
+    1.9e-4, -2.0e-4, -1.2e-4, -5.3e-6); a label there is an error of that stop, not a
+    second special point: ours labels the one point once, BP (the first in AUTO's order),
+    at the pitchfork."""
+    import gzip
+
+    from washer.auto.files import read_b
+
+    s1, s2, s0, rho, kap = sp.symbols("s1 s2 s0 rho kappa", positive=True)
+    R = lambda s: s / (1 + s + kap * s**2)                        # noqa: E731
+    F = sp.Matrix([(s0 - s1) + (s2 - s1) - rho * R(s1), (s0 - s2) + (s1 - s2) - rho * R(s2)])
+    swapped = F.subs({s1: s2, s2: s1}, simultaneous=True)
+    assert sp.simplify(swapped - sp.Matrix([F[1], F[0]])) == sp.zeros(2, 1)
+
+    bp = _closed_form()["BP"][0]
+    path = tmp_path / "b.enz"
+    path.write_bytes(gzip.open(DEMO / "autoref" / "b.enz.gz").read())
+    rows = [r for branch in read_b(path) for r in branch
+            if r.br == 2 and r.lab and abs(r.values[0] - bp) < 1e-3]
+    assert [r.ty for r in rows] == [2, 1]                  # AUTO's LP, then its BP
+    lp, its_bp = rows
+    assert lp.values[0] == pytest.approx(bp, abs=TOL)     # PAR(1) is flat at a fold
+    assert abs(lp.values[2] - lp.values[3]) / 2 ** 0.5 > 10 * TOL
+    assert abs(its_bp.values[2] - its_bp.values[3]) / 2 ** 0.5 < TOL
+    ours = [r.ty for r in enz.rows if r.br == 2 and r.lab and abs(r.values[0] - bp) < 1e-3]
+    assert ours == ["BP"]
