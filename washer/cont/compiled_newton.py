@@ -297,18 +297,20 @@ class CompiledCorrector:
             return None
         m = len(ref)
         t = last[2]
-        if not np.array_equal(t[m:2 * m], ref):
+        # the secant C stored, compared as Python floats (np.array_equal's overhead is
+        # the larger part at these sizes; NaN equals nothing either way)
+        if t[m:2 * m].tolist() != ref.tolist():
             return None
-        return t[:m].copy(), _SolvedFactor(J, self.sys.border(ref), float(t[2 * m]),
+        return t[:m].copy(), _SolvedFactor(J, self.sys, ref.copy(), float(t[2 * m]),
                                            float(t[2 * m + 1]))
 
 
 class _SolvedFactor:
-    """The factor of [J; border] whose determinant the compiled corrector has computed:
-    sign_logdet from it, solves (none on the continuation's path) with LAPACK."""
+    """The factor of [J; border(ref)] whose determinant the compiled corrector has
+    computed: sign_logdet from it, solves (none on the continuation's path) with LAPACK."""
 
-    def __init__(self, J, border, sign, logdet):
-        self.J, self.border, self._sign_logdet = J, border, (sign, logdet)
+    def __init__(self, J, system, ref, sign, logdet):
+        self.J, self._sys, self._ref, self._sign_logdet = J, system, ref, (sign, logdet)
         self._factor = None
 
     def sign_logdet(self) -> tuple[float, float]:
@@ -317,7 +319,7 @@ class _SolvedFactor:
     def solve(self, rhs):
         if self._factor is None:
             from washer.cont.linalg import dense_factor
-            self._factor = dense_factor(self.J, self.border)
+            self._factor = dense_factor(self.J, self._sys.border(self._ref))
         return self._factor.solve(rhs)
 
 

@@ -309,7 +309,8 @@ class Continuation:
             e[-1] = 1.0
             with np.errstate(all="ignore"):
                 z = factor.solve(e)
-        nz = math.sqrt(abs(sysm.inner(z, z))) if np.isfinite(z).all() else math.inf
+        nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
+            else math.inf
         if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:
             z, nz = ref, math.sqrt(sysm.inner(ref, ref))
         return z / nz, factor

@@ -7,6 +7,8 @@ test on algebraic branches is the determinant of the bordered matrix).
 """
 from __future__ import annotations
 
+import cmath
+import math
 import warnings
 from typing import TYPE_CHECKING, Protocol
 
@@ -60,14 +62,25 @@ def slogdet(M: np.ndarray) -> tuple[float, float]:
     return float(sign), float(logdet)
 
 
+#: Up to this many entries the checks of `eigvals` run on Python floats (numpy's
+#: per-call overhead of isfinite and all exceeds the whole check at these sizes).
+SMALL = 64
+
+
 def eigvals(A: np.ndarray) -> np.ndarray:
     """np.linalg.eigvals of a real square A: real if every eigenvalue is, else complex.
     LinAlgError for non-finite entries or when the QR iteration does not converge."""
     if _lapack is None:                     # pragma: no cover
         return np.linalg.eigvals(A)
-    if not np.isfinite(A).all():
+    small = A.size <= SMALL
+    if not (all(map(math.isfinite, A.ravel().tolist())) if small else np.isfinite(A).all()):
         raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
     w = _EIGVALS(A, signature="d->D")
+    if small:
+        zs = w.tolist()
+        if not all(map(cmath.isfinite, zs)):
+            raise np.linalg.LinAlgError("Eigenvalues did not converge")
+        return w.real if all(z.imag == 0 for z in zs) else w
     if not np.isfinite(w).all():
         raise np.linalg.LinAlgError("Eigenvalues did not converge")
     return w.real if (w.imag == 0).all() else w

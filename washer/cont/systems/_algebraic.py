@@ -3,12 +3,18 @@ weighted norm, the sphere corrector, dense linear algebra, b-file columns,
 branch-point directions and the BP/LP test functions (AUTO's ae.f90)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont.linalg import dense_factor, null_vectors, orient
 from washer.cont.record import ColumnTitle
 from washer.cont.system import Solution, fold_test
+
+#: Sums of up to this many terms numpy adds left to right (its pairwise summation
+#: starts at 8): `inner` adds them in Python floats below it, the same result.
+SEQUENTIAL_SUM = 7
 
 
 class AlgebraicSystem:
@@ -55,6 +61,15 @@ class AlgebraicSystem:
 
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:
+        if type(a) is np.ndarray and type(b) is np.ndarray and len(a) <= SEQUENTIAL_SUM \
+                and len(a) == len(b) == len(self.theta):
+            # numpy's sum of up to 7 terms adds them left to right: the same float from
+            # Python floats, without numpy's per-call overhead at these sizes
+            terms = [t * u * v for t, u, v in zip(self.theta.tolist(), a.tolist(), b.tolist())]
+            total = terms[0]
+            for term in terms[1:]:
+                total += term
+            return total
         return float((self.theta * a * b).sum())
 
     def border(self, t) -> np.ndarray:
@@ -130,6 +145,13 @@ class AlgebraicSystem:
         if nd < iplt <= 3 * nd:
             return float(s[(iplt - 1) % nd])
         u = x[:self.ndim]
+        if len(u) <= SEQUENTIAL_SUM:
+            # the same float as numpy's below (squares, a left-to-right sum, and a
+            # correctly rounded square root)
+            total = 0.0
+            for k, v in enumerate(u.tolist()):
+                total = v * v if k == 0 else total + v * v
+            return math.sqrt(total)
         return float(np.sqrt((u ** 2).sum()))
 
     def solution(self, x, tangent) -> Solution:

@@ -25,8 +25,13 @@ IMAG_TOL = 1e-8
 
 
 def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
+    """The eigenvalues of A by decreasing real part (a stable sort: equal real parts
+    keep LAPACK's order)."""
     lam = eigvals(A)
-    return lam[np.argsort(-lam.real, kind="stable")]
+    re = lam.real.tolist()
+    # Python's sort is stable as argsort(kind="stable") is: the same order, without
+    # numpy's per-call overhead at the sizes of equilibria
+    return lam[sorted(range(len(re)), key=lambda i: -re[i])]
 
 
 def is_complex(lam: np.ndarray) -> np.ndarray:
@@ -35,11 +40,17 @@ def is_complex(lam: np.ndarray) -> np.ndarray:
 
 def hopf_pair(lam: np.ndarray) -> complex | None:
     """The complex eigenvalue closest to the imaginary axis (None if all are real):
-    the pair AUTO's HB test and PAR(11) follow; for multipliers: floquet.torus_pair."""
-    cplx = lam[is_complex(lam)]
-    if cplx.size == 0:
+    the pair AUTO's HB test and PAR(11) follow; for multipliers: floquet.torus_pair.
+    Complex means is_complex (|Im| above IMAG_TOL (1 + |lambda|)); of equally close
+    ones the first."""
+    if lam.dtype.kind != "c":
         return None
-    return complex(cplx[np.argmin(np.abs(cplx.real))])
+    best = None
+    for z in lam.tolist():                  # Python complex: abs is hypot, as numpy's
+        if abs(z.imag) > IMAG_TOL * (1 + abs(z)) and (best is None
+                                                       or abs(z.real) < abs(best.real)):
+            best = z
+    return best
 
 
 def hopf_test(lam: np.ndarray) -> float | None:
@@ -55,7 +66,7 @@ def hopf_period(lam: np.ndarray) -> float | None:
 
 
 def spectrum(lam: np.ndarray) -> Stability:
-    n_stable = int((lam.real <= 0.0).sum())
+    n_stable = sum(1 for v in lam.real.tolist() if v <= 0.0)
     return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam))
 
 
@@ -109,10 +120,10 @@ class EquilibriumSystem(AlgebraicSystem):
             # for the same x one after the other
             key = x.tobytes()
             memo = self._pvls_memo
-            if memo is not None and memo[0] == key and np.array_equal(memo[1], p):
+            if memo is not None and memo[0] == key and memo[1] == p.tolist():
                 return memo[2].copy()
             out = self.problem.pvls(x[:self.ndim], p.copy())
-            self._pvls_memo = (key, p, out.copy())
+            self._pvls_memo = (key, p.tolist(), out.copy())
             return out
         return p
 
@@ -152,7 +163,7 @@ class EquilibriumSystem(AlgebraicSystem):
         if self.settings.IPS != 1:
             return None
         lam = eigenvalues_sorted(np.asarray(J)[:, :self.ndim])
-        self._last_spectrum = (np.array(x), lam)      # reused by solution() for PAR(11)
+        self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
         return spectrum(lam)
 
     def active_tests(self) -> list:
@@ -176,7 +187,7 @@ class EquilibriumSystem(AlgebraicSystem):
         sol = super().solution(x, tangent)
         if self.settings.IPS == 1 and len(sol.par) >= 11:
             cached = getattr(self, "_last_spectrum", None)
-            if cached is not None and np.array_equal(cached[0], x):
+            if cached is not None and cached[0] == x.tolist():
                 lam = cached[1]
             else:
                 lam = eigenvalues_sorted(self.problem.dfdu(x[:-1], self._p(x)))
