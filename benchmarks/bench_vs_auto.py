@@ -15,6 +15,7 @@ Cases (demo constants unchanged; overrides as in the AUTO scripts of
 tests/data/auto_reference):
   ab_eq       ab equilibria in PAR(1) (ab2p's first run), 107 points
   ab_hopf     the Hopf curve from HB1 in (PAR(1), PAR(2)) (ab2p's hb_fwd)
+  ab_fold     the fold curve from LP1 in (PAR(1), PAR(2)) (ab2p's lp_fwd)
   lrz_eq      lrz equilibria in rho
   lrz_hopf    the Hopf curve of lrz in (rho, sigma) (lrz2p's hb_fwd)
   lrz_po35    lrz periodic orbits from HB1, NTST 35 (lrz.auto's first family)
@@ -24,6 +25,8 @@ tests/data/auto_reference):
   ab_eq_f90, lrz_eq_f90   ab_eq and lrz_eq with AUTO's Fortran user files on both sides
               (washer compiles ab.f90 / lrz.f90: the corrector of equilibria in one
               foreign call per point, washer.cont.compiled_newton)
+  ab_hopf_f90, ab_fold_f90, lrz_hopf_f90   the loci the same way (the compiled
+              corrector of the fold and Hopf systems calling FUNC directly)
   lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
               expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
 the washer's own model (skipped with --quick), AUTO-07p running the same compiled
@@ -77,6 +80,8 @@ CASES = [
     Case("ab_eq", [Step("eq", "ab", "ab")], AB_FILES),
     Case("ab_hopf", [Step("eq", "ab", "ab", timed=False),
                      Step("hb", "ab", "ab", start="eq", irs="HB1", ov=AB2)], AB_FILES),
+    Case("ab_fold", [Step("eq", "ab", "ab", timed=False),
+                     Step("lp", "ab", "ab", start="eq", irs="LP1", ov=AB2)], AB_FILES),
     Case("lrz_eq", [Step("eq", "lrz", "lrz")], LRZ_FILES),
     Case("lrz_hopf", [Step("eq", "lrz", "lrz", timed=False),
                       Step("hb", "lrz", "lrz", start="eq", irs="HB1", ov=LRZ2)], LRZ_FILES),
@@ -98,6 +103,12 @@ CASES += [
     # the same equilibria from the Fortran user files alone (no NAME.py beside them)
     Case("ab_eq_f90", [Step("eq", "ab", "ab")], AB_F90),
     Case("lrz_eq_f90", [Step("eq", "lrz", "lrz")], LRZ_F90),
+    Case("ab_hopf_f90", [Step("eq", "ab", "ab", timed=False),
+                         Step("hb", "ab", "ab", start="eq", irs="HB1", ov=AB2)], AB_F90),
+    Case("ab_fold_f90", [Step("eq", "ab", "ab", timed=False),
+                         Step("lp", "ab", "ab", start="eq", irs="LP1", ov=AB2)], AB_F90),
+    Case("lrz_hopf_f90", [Step("eq", "lrz", "lrz", timed=False),
+                          Step("hb", "lrz", "lrz", start="eq", irs="HB1", ov=LRZ2)], LRZ_F90),
 ]
 SYM = [(DATA / "lrz_sym" / "lrz.py", "lrz.py"), (DATA / "lrz_sym" / "c.lrz", "c.lrz")]
 CASES += [

@@ -266,8 +266,8 @@ def test_a_work_layout_out_of_step_with_c_fails_loudly(cache):
     x_pred = x0 + 0.01 * t / np.linalg.norm(t)
     assert corrector.correct(x_pred, x0, 0.01, Counters()) is not None   # in step: runs
     eq = corrector.user
-    us, ps, fs = eq._where
-    eq._where = (ps, us, fs)             # C's ps where the views read us
+    us, ps, fs = eq._where[0]
+    eq._where = [(ps, us, fs)]           # C's ps where the views read us
     with pytest.raises(compiled_newton.WorkLayoutError):
         corrector.correct(x_pred, x0, 0.01, Counters())
 
@@ -295,3 +295,79 @@ def test_an_error_of_the_call_back_itself_is_raised(cache):
     corrector.user._views = None          # a bug of the bridge: no views to read
     with pytest.raises(TypeError):
         corrector.correct(x0 + 0.01 * t / np.linalg.norm(t), x0, 0.01, Counters())
+
+
+# The loci (ISW = 2) of AUTO's ab2p and lrz2p: the runs of benchmarks/bench_vs_auto.py.
+AB2 = dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]})
+LRZ2 = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DS=0.1, DSMAX=2.0,
+            UZR={"sigma": [5.0, 10.0, 20.0]}, UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0})
+
+
+@pytest.mark.parametrize("kind", ["f90", "py"])
+@pytest.mark.parametrize("name, label, ov", [("ab", "HB1", AB2), ("ab", "LP1", AB2),
+                                             ("lrz", "HB1", LRZ2)])
+def test_compiled_corrector_follows_the_python_loop_on_loci(name, label, ov, kind, tmp_path,
+                                                            monkeypatch, cache):
+    """The fold and Hopf curves from ab's LP1 and HB1 and lrz's HB1 (the extended systems
+    of systems/fold.py and hopf.py in C): every step through C, the same points, special
+    points (ab's GH, the UZ values) and evaluations (to one location trial) as the Python
+    loop. The converged
+    points agree within EPSU = 1e-7 relative (the two eliminations round differently; a
+    located point iterates on them, and the curve continues from it): ab's to 2e-9,
+    lrz's to 4e-8."""
+    used = []
+    real = compiled_newton.CompiledCorrector.correct
+
+    def spy(self, *a, **k):
+        out = real(self, *a, **k)
+        if self.kind:
+            used.append(out is not None)
+        return out
+    out = {}
+    for sub, python in (("fast", False), ("slow", True)):
+        d = _folder(tmp_path, name, sub, kind)
+        with monkeypatch.context() as m:
+            m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
+            if python:
+                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
+            run(d / f"c.{name}", verbose=False, sv="eq")
+            out[sub] = run(d / f"c.{name}", verbose=False, sv="locus", s="eq", IRS=label,
+                           **ov)
+        if not python:
+            n_fast = len(used)
+    fast, slow = out["fast"], out["slow"]
+    assert len(used) == n_fast > 80 and all(used)
+    assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
+    assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+    if name == "ab" and label == "HB1":
+        assert [s.ty for s in fast.specials].count("GH") == 1          # ab's GH
+    a = np.array([r.values for r in fast.rows])
+    b = np.array([r.values for r in slow.rows])
+    np.testing.assert_allclose(a, b, rtol=1e-7, atol=1e-7)
+    # the same steps; where a location iterates on values that round otherwise (ab's GH
+    # on l1, a difference of O(1) terms near 0) it may take one trial more or fewer: up
+    # to ITNW = 5 corrections and the trial's own Jacobian
+    for what in ("residuals", "jacobians", "factorisations"):
+        assert abs(getattr(fast.counters, what) - getattr(slow.counters, what)) <= 6, what
+    assert fast.status == slow.status
+
+
+def test_work_size_is_the_c_one(cache):
+    """compiled_newton.work_size allocates what ae_correct.h's ae_work_size uses, for
+    every system (a smaller array would be written past its end)."""
+    _, lib = compiled_newton._library("ae_callback.c", compiled_newton._CALLBACK_CDEF)
+    for kind in (0, 1, 2):
+        for n in (1, 2, 3, 12):
+            for npar in (3, 36):
+                assert lib.washer_ae_work_size(kind, n, npar) == \
+                    compiled_newton.work_size(kind, n, npar)
+
+
+def test_map_loci_keep_the_python_loop():
+    """The loci of maps (f^k - u) inherit the fold system's equations but not its
+    compiled form; the flows' fold and Hopf loci declare theirs."""
+    from washer.cont.systems.fold import FoldSystem
+    from washer.cont.systems.hopf import HopfSystem
+    from washer.cont.systems.maps import MapFoldLocus, MapPDLocus
+    assert FoldSystem.compiled_system == "fold" and HopfSystem.compiled_system == "hopf"
+    assert MapFoldLocus.compiled_system is None and MapPDLocus.compiled_system is None

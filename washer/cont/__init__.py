@@ -18,7 +18,8 @@ linalg, reduction, collocation, floquet, normal_form
               of collocation matrices (compiled), collocation, Floquet multipliers and their
               tests, the first Lyapunov coefficient
 newton, compiled_newton, iterator, events
-              the one Newton loop and its compiled form for equilibria (C written once in
+              the one Newton loop and its compiled form for equilibria and the fold and
+              Hopf loci (C written once in
               include/ae_correct.h; compiled_corrector chooses where it applies), the
               pseudo-arclength iterator (predictor, corrector, step control), test
               functions' sign changes and their location

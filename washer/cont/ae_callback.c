@@ -5,26 +5,35 @@
  */
 #include <stddef.h>
 
-typedef int (*ae_callback)(int rows, int first, const double *us, const double *ps,
-                           double *fs);
+typedef int (*ae_callback)(int stage, int rows, int first, const double *us,
+                           const double *ps, double *fs);
 
-static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int first,
-                   const double *us, const double *ps, double *fs, double *scratch)
+static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int rows,
+                   int first, const double *us, const double *ps, double *fs,
+                   double *scratch)
 {
     (void)ndim; (void)npar; (void)icp; (void)scratch;
-    return (*(ae_callback *)ctx)(rows, first, us, ps, fs);
+    return (*(ae_callback *)ctx)(stage, rows, first, us, ps, fs);
 }
 
 #include "ae_correct.h"
 
 /* ae_correct with f from `callback` (nonzero return: the evaluation failed, the corrector
    returns 3 and the caller runs the Python loop). */
-int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const double *par,
-                         const double *x_pred, const double *x_ref, const double *theta,
-                         double ds, double epsl, double epsu, int itnw, double divergence,
-                         double hmach, double *x, int *iterations, double *jac,
-                         double *tangent, double *work)
+int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int ip, int ip2,
+                         const double *par, const double *v_old, const double *x_pred,
+                         const double *x_ref, const double *theta, double ds, double epsl,
+                         double epsu, int itnw, double divergence, double hmach, double h2,
+                         double *x, int *iterations, double *jac, double *tangent,
+                         double *work)
 {
-    return ae_correct(&callback, ndim, npar, ip, NULL, par, x_pred, x_ref, theta, ds, epsl,
-                      epsu, itnw, divergence, hmach, x, iterations, jac, tangent, work, NULL);
+    return ae_correct(&callback, kind, ndim, npar, ip, ip2, NULL, par, v_old, x_pred, x_ref,
+                      theta, ds, epsl, epsu, itnw, divergence, hmach, h2, x, iterations, jac,
+                      tangent, work, NULL);
+}
+
+/* ae_work_size, for compiled_newton.work_size's test. */
+size_t washer_ae_work_size(int kind, int ndim, int npar)
+{
+    return ae_work_size(kind, ndim, npar);
 }

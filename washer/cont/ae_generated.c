@@ -18,10 +18,11 @@ typedef struct {
     double *jwork;      /* NDIM (NDIM + max(npar_sym, 1)) doubles for jac's J and Jp */
 } ae_generated;
 
-static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int first,
-                   const double *us, const double *ps, double *fs, double *scratch)
+static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int rows,
+                   int first, const double *us, const double *ps, double *fs,
+                   double *scratch)
 {
-    (void)icp; (void)scratch;
+    (void)stage; (void)icp; (void)scratch;
     const ae_generated *g = (const ae_generated *)ctx;
     g->func(rows - first, us + (size_t)first * ndim, ps + (size_t)first * npar, npar,
             fs + (size_t)first * ndim);
@@ -55,6 +56,7 @@ int washer_ae_correct_gen(ae_generated *g, int ndim, int npar, int ip, const dou
                           double hmach, double *x, int *iterations, double *jac,
                           double *tangent, double *work)
 {
-    return ae_correct(g, ndim, npar, ip, NULL, par, x_pred, x_ref, theta, ds, epsl, epsu,
-                      itnw, divergence, hmach, x, iterations, jac, tangent, work, NULL);
+    return ae_correct(g, AE_EQUILIBRIUM, ndim, npar, ip, -1, NULL, par, NULL, x_pred, x_ref,
+                      theta, ds, epsl, epsu, itnw, divergence, hmach, 0.0, x, iterations, jac,
+                      tangent, work, NULL);
 }

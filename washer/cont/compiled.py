@@ -60,11 +60,12 @@ void washer_fopt(int ndim, const double *u, const int *icp, const double *par, i
                  double *fs, double *dfdu, double *dfdp);
 void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, int par_stride,
                        const int *icp, double *fs, double *scratch);
-int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *par,
-                      const double *x_pred, const double *x_ref, const double *theta,
-                      double ds, double epsl, double epsu, int itnw, double divergence,
-                      double hmach, double *x, int *iterations, double *jac,
-                      double *tangent, double *work, double *scratch);
+int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *icp,
+                      const double *par, const double *v_old, const double *x_pred,
+                      const double *x_ref, const double *theta, double ds, double epsl,
+                      double epsu, int itnw, double divergence, double hmach, double h2,
+                      double *x, int *iterations, double *jac, double *tangent,
+                      double *work, double *scratch);
 """
 
 _ffi = FFI()
@@ -215,17 +216,17 @@ class CompiledUser:
         """Whether FUNC may be called directly (the first PVLS call has been made)."""
         return self._pvls_seen
 
-    def ae_binder(self, ndim, npar, ip, arrays):
-        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton) bound to the
-        corrector's arrays (float64, C-contiguous; `iterations` int32): a function of
-        (ds, epsl, epsu, itnw, divergence, hmach) returning the status."""
+    def ae_binder(self, kind, ndim, npar, ip, ip2, arrays):
+        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton) of system `kind`
+        bound to the corrector's arrays (float64, C-contiguous; `iterations` int32): a
+        function of (ds, epsl, epsu, itnw, divergence, hmach, h2) returning the status."""
         p = {k: (_ffi.from_buffer(_INTS, a) if k == "iterations" else _dptr(a))
              for k, a in arrays.items()}
 
-        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+        def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             return self.lib.washer_ae_correct(
-                ndim, npar, ip, self._icp_ptr, p["par"], p["x_pred"], p["x_ref"],
-                p["theta"], ds, epsl, epsu, itnw, divergence, hmach, p["x"],
+                kind, ndim, npar, ip, ip2, self._icp_ptr, p["par"], p["v_old"], p["x_pred"],
+                p["x_ref"], p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
                 p["iterations"], p["jac"], p["tangent"], p["work"], self._scratch_for(npar))
         return call
 

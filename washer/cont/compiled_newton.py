@@ -5,31 +5,38 @@
 
 This is the compiled form of the package's one Newton loop (washer.cont.newton.newton as
 washer.cont.iterator.Continuation.correct runs it on the sphere arclength): the same
-iteration (the residual f(u, PAR), the central differences [f_u, f_PAR(ICP(1))] of
-Problem.jacobian with the same points and quotients, the bordered matrix [J; 2 theta
-(x - x_ref) / |ds|], x += dx) and the same stopping test (AUTO's EPSL on the parameter,
-EPSU on the state, the divergence test of Continuation.correct), written once in C
-(washer/cont/include/ae_correct.h). At the converged point the same call evaluates the
-Jacobian there and solves the tangent system [J; theta secant] z = e_last with its
-determinant (Continuation.tangent, the BP test). The linear solves are Gaussian
-elimination with partial pivoting (LAPACK's pivot order; the rounding may differ from
-LAPACK's in the last bit, far inside EPSU).
+iteration (the system's residual and Jacobian: on equilibria f(u, PAR) and the central
+differences [f_u, f_PAR(ICP(1))] of Problem.jacobian with the same points and quotients;
+on the fold and Hopf loci, ISW = 2, the extended systems of washer/cont/systems/fold.py
+and hopf.py, their f_u and f_PAR by the same differences, the derivatives of A = f_u by
+Problem.second_derivatives' mixed differences; the bordered matrix [J; 2 theta (x -
+x_ref) / |ds|], x += dx) and the same stopping test (AUTO's EPSL on the principal
+parameter, EPSU on the other unknowns, the divergence test of Continuation.correct),
+written once in C (washer/cont/include/ae_correct.h). At the converged point the same
+call evaluates the Jacobian there and solves the tangent system [J; theta secant] z =
+e_last with its determinant (Continuation.tangent, the BP test). The linear solves are
+Gaussian elimination with partial pivoting (LAPACK's pivot order; the rounding may
+differ from LAPACK's in the last bit, far inside EPSU), the small products of the loci
+plain sums (BLAS may round them otherwise).
 
 f is evaluated by
 * compiled AUTO user files (washer.cont.compiled): the C is part of the file's bridge
   (compiled_shim.c) and calls FUNC directly;
 * equations in Python (NAME.py with func): washer/cont/ae_callback.c, compiled on first
-  use, calls back into Python once per Newton iteration, where the user's func is called
+  use, calls back into Python once per Newton iteration (twice on the loci: f_u first,
+  then the second differences along vectors made of it), where the user's func is called
   point by point (or in one batch) exactly as the Python loop calls it: the same values;
 * equations as sympy expressions (washer.cont.symbolic): washer/cont/ae_generated.c,
   compiled on first use, calls the generated C's f (a stencil's points in one call, as
   the Python loop's func_many) and, with JAC = 1, its exact f_u and f_p (as the Python
   loop's Problem.jacobian) through C function pointers.
 
-It applies to systems that declare their residual the problem's f itself (IPS 0, 1:
-EquilibriumSystem.residual_is_func; FixedPoints, f^k - u, does not), with one free
-parameter and the sphere arclength, and difference Jacobians (JAC = 0, or no Jacobian
-given) or a sympy problem's exact ones (JAC = 1). Everything else, and
+It applies to systems that declare their equations the problem's f itself (IPS 0, 1:
+EquilibriumSystem.residual_is_func, one free parameter; FixedPoints, f^k - u, does not;
+the loci FoldSystem and HopfSystem by compiled_system, two free parameters; those of
+maps do not), with the sphere arclength, and difference Jacobians (JAC = 0, or no
+Jacobian given) or, on equilibria, a sympy problem's exact ones (JAC = 1). Everything
+else, and
 every case the compiled loop does not finish cleanly (a failing or non-finite f, a
 non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
 correction and reports or resolves it as before), is the Python loop.
@@ -43,6 +50,7 @@ import numpy as np
 
 from washer.cont.compile import CompileError
 from washer.cont.newton import ConvergenceError
+from washer.cont.problem import SECOND_STEP
 from washer.cont.settings import HMACH
 
 #: Sizes up to which the dense corrector is used (beyond it the work is the Jacobian's,
@@ -51,13 +59,15 @@ MAX_NDIM = 50
 
 HERE = Path(__file__).parent
 _CALLBACK_CDEF = """
-typedef int (*ae_callback)(int rows, int first, const double *us, const double *ps,
-                           double *fs);
-int washer_ae_correct_cb(ae_callback callback, int ndim, int npar, int ip, const double *par,
-                         const double *x_pred, const double *x_ref, const double *theta,
-                         double ds, double epsl, double epsu, int itnw, double divergence,
-                         double hmach, double *x, int *iterations, double *jac,
-                         double *tangent, double *work);
+typedef int (*ae_callback)(int stage, int rows, int first, const double *us,
+                           const double *ps, double *fs);
+int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int ip, int ip2,
+                         const double *par, const double *v_old, const double *x_pred,
+                         const double *x_ref, const double *theta, double ds, double epsl,
+                         double epsu, int itnw, double divergence, double hmach, double h2,
+                         double *x, int *iterations, double *jac, double *tangent,
+                         double *work);
+size_t washer_ae_work_size(int kind, int ndim, int npar);
 """
 _GENERATED_CDEF = """
 typedef void (*ae_sym_func)(int k, const double *U, const double *P, int pstride, double *F);
@@ -80,6 +90,32 @@ _libraries: dict = {}
 #: Why one of them could not be built or loaded in this process (CompileError, OSError),
 #: raised again instead of compiling again at every run's start.
 _failures: dict = {}
+#: ae_correct.h's systems (AE_EQUILIBRIUM, AE_FOLD, AE_HOPF) by the name a system declares
+#: (EquilibriumSystem.residual_is_func; FoldSystem, HopfSystem.compiled_system).
+KINDS = {"equilibrium": 0, "fold": 1, "hopf": 2}
+
+
+def sizes(kind: int, n: int) -> tuple[int, int, int]:
+    """ae_sizes: (unknowns nx, difference directions k1, second-difference vectors m2)."""
+    nx = 2 * n + 3 if kind == 2 else 2 * n + 2 if kind == 1 else n + 1
+    return nx, (n + 1 if kind == 0 else n + 2), (3 if kind == 2 else 1 if kind == 1 else 0)
+
+
+def stage_rows(kind: int, n: int) -> tuple[int, int]:
+    """The rows of ae_correct.h's two stages of f: (r1 = the point and the first
+    differences, r2 = the second differences of the loci)."""
+    _, k1, m2 = sizes(kind, n)
+    return 2 * k1 + 1, 4 * k1 * m2
+
+
+def work_size(kind: int, n: int, npar: int) -> int:
+    """ae_work_size: the doubles of the corrector's work array."""
+    nx, k1, m2 = sizes(kind, n)
+    r1, r2 = stage_rows(kind, n)
+    return ((r1 + r2) * (2 * n + npar) + nx * nx + 2 * nx + npar + 2 * k1 + m2 * (1 + n)
+            + k1 * m2 * n + n * k1 + n)
+
+
 class WorkLayoutError(RuntimeError):
     """The pointers ae_correct.h passes to the call back are not where PythonEquations
     reads the points (its views of the work array): the two layouts have drifted apart.
@@ -132,14 +168,17 @@ class GeneratedEquations:
         g.jwork = ffi.from_buffer("double[]", self._jwork)
         self._keep = compiled           # the library stays loaded while the pointers live
 
-    def ae_binder(self, ndim, npar, ip, arrays):
-        """washer_ae_correct_gen bound to the corrector's arrays (CompiledUser.ae_binder)."""
+    def ae_binder(self, kind, ndim, npar, ip, ip2, arrays):
+        """washer_ae_correct_gen bound to the corrector's arrays (CompiledUser.ae_binder);
+        equilibria only (kind 0)."""
+        if kind != 0:
+            raise ValueError("the generated equations' corrector is that of equilibria")
         ffi = self.ffi
         p = {k: (ffi.from_buffer("int[]", a) if k == "iterations"
                  else ffi.from_buffer("double[]", a)) for k, a in arrays.items()}
         lib, g = self.lib, self._g
 
-        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+        def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             return lib.washer_ae_correct_gen(
                 g, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
                 epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
@@ -149,15 +188,17 @@ class GeneratedEquations:
 
 class PythonEquations:
     """The user's Python func behind ae_callback.c: f at the rows of the corrector's
-    points, as the Python loop evaluates them (Problem.func at the point itself, then
-    Problem.jacobian's stencil: one call per point below VECTORISE_MIN points, else
-    Problem.func_many)."""
+    points, as the Python loop evaluates them (stage 0: Problem.func at the point itself,
+    then Problem.jacobian's stencil, one call per point below VECTORISE_MIN points, else
+    Problem.func_many; stage 1, the loci's second differences: Problem.func_many, as
+    Problem.second_derivatives)."""
 
     func_ready = True
 
-    def __init__(self, problem, ndim: int, npar: int):
-        self.problem, self.n, self.npar = problem, ndim, npar
-        self.by_calls = problem.stencil_by_calls(1)     # one free parameter
+    def __init__(self, problem, ndim: int, npar: int, kind: int = 0):
+        self.problem, self.n, self.npar, self.kind = problem, ndim, npar, kind
+        # the free parameters differenced with u: one for equilibria, two on the loci
+        self.by_calls = problem.stencil_by_calls(1 if kind == 0 else 2)
         self.ffi, self.lib = _library("ae_callback.c", _CALLBACK_CDEF)
         self.error = None
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
@@ -173,13 +214,16 @@ class PythonEquations:
         self.error = val
         return 1
 
-    def _evaluate(self, rows, first, us, ps, fs):
+    def _evaluate(self, stage, rows, first, us, ps, fs):
         # the points are in the corrector's work array, read through numpy views of it
-        # made once (ae_binder: ae_correct.h's layout, us, ps, fs at its start); a C
-        # that passes other pointers or another number of rows fails loudly (three
-        # pointer comparisons a call)
-        U, P, F = self._views
-        where, n = self._where, self.n
+        # made once (ae_binder: ae_correct.h's layout, each stage's us, ps, fs one after
+        # the other); a C that passes other pointers or another number of rows fails
+        # loudly (three pointer comparisons a call)
+        if stage not in (0, 1) or stage == 1 and self.kind == 0:
+            raise WorkLayoutError(f"ae_correct.h asked for stage {stage} of f, which "
+                                  "compiled_newton.PythonEquations does not know")
+        U, P, F = self._views[stage]
+        where, n = self._where[stage], self.n
         if us != where[0] or ps != where[1] or fs != where[2] or rows != U.shape[0]:
             raise WorkLayoutError(
                 "ae_correct.h passed points outside the views of its work array that "
@@ -187,6 +231,12 @@ class PythonEquations:
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
         U, P = U.copy(), P.copy()
         problem = self.problem
+        if stage == 1:
+            try:
+                F[:] = problem.func_many(U, P)      # Problem.second_derivatives' one call
+            except Exception:
+                return 1
+            return 0
         try:
             if first == 0:
                 F[0] = problem.func(U[0], P[0])
@@ -202,44 +252,50 @@ class PythonEquations:
             return 1            # f failed: the Python loop evaluates it again and reports
         return 0
 
-    def ae_binder(self, ndim, npar, ip, arrays):
+    def ae_binder(self, kind, ndim, npar, ip, ip2, arrays):
         """washer_ae_correct_cb bound to the corrector's arrays (CompiledUser.ae_binder)."""
         ffi, d = self.ffi, self._dptr_type
         p = {k: (ffi.from_buffer("int[]", a) if k == "iterations" else ffi.from_buffer(d, a))
              for k, a in arrays.items()}
         lib, cb = self.lib, self._cb
-        rows, w = 2 * ndim + 3, arrays["work"]
-        self._views = (w[:rows * ndim].reshape(rows, ndim),
-                       w[rows * ndim:rows * (ndim + npar)].reshape(rows, npar),
-                       w[rows * (ndim + npar):rows * (2 * ndim + npar)].reshape(rows, ndim))
-        work = p["work"]
-        self._where = (work + 0, work + rows * ndim, work + rows * (ndim + npar))
+        w, work = arrays["work"], p["work"]
+        views, where, start = [], [], 0
+        for rows in stage_rows(kind, ndim):
+            a, b, c = start + rows * ndim, start + rows * (ndim + npar), \
+                start + rows * (2 * ndim + npar)
+            views.append((w[start:a].reshape(rows, ndim), w[a:b].reshape(rows, npar),
+                          w[b:c].reshape(rows, ndim)))
+            where.append((work + start, work + a, work + b))
+            start = c
+        self._views, self._where = views, where
 
-        def call(ds, epsl, epsu, itnw, divergence, hmach) -> int:
+        def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             self.error = None
             return lib.washer_ae_correct_cb(
-                cb, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
-                epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
-                p["tangent"], p["work"])
+                cb, kind, ndim, npar, ip, ip2, p["par"], p["v_old"], p["x_pred"], p["x_ref"],
+                p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
+                p["iterations"], p["jac"], p["tangent"], p["work"])
         return call
 
 
 class CompiledCorrector:
     """washer_ae_correct of one run's compiled problem (see the module's docstring)."""
 
-    def __init__(self, system, settings, divergence: float, equations):
+    def __init__(self, system, settings, divergence: float, equations, kind: int = 0):
         self.sys, self.s, self.divergence = system, settings, divergence
         self.user = equations           # CompiledUser or PythonEquations
+        self.kind = kind
         n = system.ndim
         self.npar = len(system.par)
-        k = n + 1
+        nx = sizes(kind, n)[0]
         # the arrays the C reads and writes, bound once (their addresses stay)
-        self.a = dict(par=np.empty(self.npar), x_pred=np.empty(n + 1), x_ref=np.empty(n + 1),
-                      theta=np.ascontiguousarray(system.theta, dtype=float),
-                      x=np.empty(n + 1), iterations=np.zeros(1, dtype=np.int32),
-                      jac=np.empty((n, n + 1)), tangent=np.empty(3 * (n + 1) + 3),
-                      work=np.zeros((2 * k + 1) * (2 * n + self.npar) + (n + 1) * (n + 4)))
-        self._call = equations.ae_binder(n, self.npar, system.free[0] - 1, self.a)
+        self.a = dict(par=np.empty(self.npar), v_old=np.zeros(n), x_pred=np.empty(nx),
+                      x_ref=np.empty(nx), theta=np.ascontiguousarray(system.theta, dtype=float),
+                      x=np.empty(nx), iterations=np.zeros(1, dtype=np.int32),
+                      jac=np.empty((nx - 1, nx)), tangent=np.empty(3 * nx + 3),
+                      work=np.zeros(work_size(kind, n, self.npar)))
+        ip2 = system.free[1] - 1 if kind else -1
+        self._call = equations.ae_binder(kind, n, self.npar, system.free[0] - 1, ip2, self.a)
         self.last = None          # (x, [f_u, f_lambda] at x, tangent data) of the last point
 
     def correct(self, x_pred, x_ref, ds: float, counters):
@@ -252,9 +308,12 @@ class CompiledCorrector:
             return None
         a = self.a
         a["par"][:] = self.sys.par
+        if self.kind == 2:
+            a["v_old"][:] = self.sys.v_old          # HopfSystem's phase condition
         a["x_pred"][:] = x_pred
         a["x_ref"][:] = x_ref
-        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH)
+        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH,
+                            SECOND_STEP)
         err = getattr(user, "error", None)
         if err is not None:
             # what stopped the call back and is not a failure of f (PythonEquations._onerror)
@@ -279,9 +338,10 @@ class CompiledCorrector:
         return x, it
 
     def jacobian_at(self, x):
-        """[f_u, f_lambda] (NDIM, NDIM + 1) at x if x is the point the corrector has just
-        converged to (computed there by the same differences as Problem.jacobian: the
-        same values), else None."""
+        """The system's Jacobian at x ([f_u, f_lambda] (NDIM, NDIM + 1) on equilibria, the
+        loci's extended one) if x is the point the corrector has just converged to
+        (computed there by the same differences as the system's jacobian: the same values
+        to rounding), else None."""
         last = self.last
         if last is not None and (last[0] is x or np.array_equal(last[0], x)):
             return last[1]
@@ -329,7 +389,10 @@ def compiled_corrector(system, settings, divergence: float):
     from washer.cont.problem import Problem
     from washer.cont.symbolic import SymbolicProblem
     problem = getattr(system, "problem", None)
-    if not getattr(system, "residual_is_func", False) or len(system.free) != 1 \
+    name = "equilibrium" if getattr(system, "residual_is_func", False) else \
+        getattr(system, "compiled_system", None)
+    kind = KINDS.get(name)
+    if kind is None or len(system.free) != (1 if kind == 0 else 2) \
             or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM:
         return None
     if isinstance(problem, CompiledProblem):
@@ -340,24 +403,28 @@ def compiled_corrector(system, settings, divergence: float):
     elif type(problem) is SymbolicProblem:
         # the generated f with differences (JAC = 0) or with its exact f_u and f_p
         # (JAC = 1; JAC = -1, exact f_u with differenced f_p, is the Python loop)
+        # (equilibria: the loci of sympy problems are the Python loop)
         generated = problem.generated
-        if problem.jac not in (0, 1) or len(system.par) < generated.npar:
+        if kind or problem.jac not in (0, 1) or len(system.par) < generated.npar:
             return None
         try:
             equations = GeneratedEquations(generated, system.ndim, exact=problem.jac == 1)
         except (CompileError, OSError):
             return None
     elif type(problem) is Problem:
-        # difference Jacobians of a plain func (Problem.jacobian's stencil)
+        # difference Jacobians of a plain func (Problem.jacobian's stencil; on the loci
+        # Problem.second_derivatives' stencil of f, not the analytic Jacobians')
         if not problem.differenced_jacobian or problem.has_func_batch \
-                or problem.has_func_dfdu_batch:
+                or problem.has_func_dfdu_batch \
+                or kind and getattr(problem, "_dfdu_batch", None) is not None \
+                and problem.has_dfdp_batch:
             return None
         try:
-            equations = PythonEquations(problem, system.ndim, len(system.par))
+            equations = PythonEquations(problem, system.ndim, len(system.par), kind)
         except (CompileError, OSError):
             # no C compiler, or the compiled callback cannot be built or loaded here
             # (cffi's dlopen raises OSError): the Python loop. Anything else is a bug.
             return None
     else:
         return None
-    return CompiledCorrector(system, settings, divergence, equations)
+    return CompiledCorrector(system, settings, divergence, equations, kind)

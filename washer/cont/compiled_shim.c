@@ -367,10 +367,11 @@ void washer_fopt_batch(int k, int ndim, const double *us, const double *pars, in
 }
 
 /* ------------------------------------------------------- the algebraic corrector */
-static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int first,
-                   const double *us, const double *ps, double *fs, double *scratch)
+static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int rows,
+                   int first, const double *us, const double *ps, double *fs,
+                   double *scratch)
 {
-    (void)ctx;
+    (void)ctx; (void)stage;
     for (int r = first; r < rows; r++) {
         double *f = fs + (size_t)r * ndim;
         memset(f, 0, sizeof(double) * ndim);
@@ -383,12 +384,14 @@ static int ae_eval(void *ctx, int ndim, int npar, const int *icp, int rows, int 
 #include "ae_correct.h"
 
 /* washer.cont.compiled_newton's corrector with this file's FUNC (ae_correct.h). */
-int washer_ae_correct(int ndim, int npar, int ip, const int *icp, const double *par,
-                      const double *x_pred, const double *x_ref, const double *theta,
-                      double ds, double epsl, double epsu, int itnw, double divergence,
-                      double hmach, double *x, int *iterations, double *jac,
-                      double *tangent, double *work, double *scratch)
+int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *icp,
+                      const double *par, const double *v_old, const double *x_pred,
+                      const double *x_ref, const double *theta, double ds, double epsl,
+                      double epsu, int itnw, double divergence, double hmach, double h2,
+                      double *x, int *iterations, double *jac, double *tangent,
+                      double *work, double *scratch)
 {
-    return ae_correct(NULL, ndim, npar, ip, icp, par, x_pred, x_ref, theta, ds, epsl, epsu,
-                      itnw, divergence, hmach, x, iterations, jac, tangent, work, scratch);
+    return ae_correct(NULL, kind, ndim, npar, ip, ip2, icp, par, v_old, x_pred, x_ref, theta,
+                      ds, epsl, epsu, itnw, divergence, hmach, h2, x, iterations, jac,
+                      tangent, work, scratch);
 }

@@ -9,11 +9,12 @@ BVPs, AUTO's EPSL/EPSU test on the correction and its divergence check), the sta
 correction (EPSU), and the machine's equilibria (a residual test, with or without
 halving the step while |F| grows).
 
-The continuation's corrector of equilibria (IPS 0, 1 with difference Jacobians) also
-has a compiled form, this loop as Continuation.correct runs it written once in C:
+The continuation's corrector of equilibria and of the fold and Hopf loci (IPS 0, 1 with
+difference Jacobians) also has a compiled form, this loop as Continuation.correct runs it written once in C:
 washer/cont/include/ae_correct.h, chosen and driven by washer.cont.compiled_newton. A
 change to this loop, to Continuation.correct's stopping or divergence test or to
-Problem.jacobian's difference stencil must be made in ae_correct.h too (the two are
+Problem.jacobian's or Problem.second_derivatives' difference stencils or to the loci's
+equations (systems/fold.py, hopf.py) must be made in ae_correct.h too (the two are
 held to the same iterates by tests/test_compiled_newton.py).
 """
 from __future__ import annotations

@@ -29,6 +29,10 @@ from washer.cont.systems.equilibrium import eigenvalues_sorted, is_complex
 @register(0, 2, "LP-curve")
 class FoldSystem(LocusSystem):
     curve_type = 2
+    #: residual and jacobian are these equations of the problem's f and nothing more: the
+    #: compiled corrector (washer.cont.compiled_newton, AE_FOLD) may stand in for the
+    #: Python loop; a subclass with other equations sets it None.
+    compiled_system = "fold"
 
     def __init__(self, start: StartData):
         self._setup(start, start.problem.ndim)

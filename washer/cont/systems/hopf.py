@@ -29,6 +29,10 @@ from washer.cont.systems.equilibrium import eigenvalues_sorted
 @register(1, 2, "HB-curve")
 class HopfSystem(LocusSystem):
     curve_type = 3
+    #: residual and jacobian are these equations of the problem's f and nothing more, with
+    #: v_old: the compiled corrector (washer.cont.compiled_newton, AE_HOPF) may stand in
+    #: for the Python loop; a subclass with other equations sets it None.
+    compiled_system = "hopf"
 
     def __init__(self, start: StartData):
         self._setup(start, start.problem.ndim + 1)

@@ -289,6 +289,8 @@ class _MapLocus:
     double Neimark-Sacker TTR (TPSPAE by the curve and the multiplier's argument,
     accepted only where NINS changed)."""
 
+    #: The equations are f^k - u, not the user's f: the Python loop corrects them.
+    compiled_system = None
     #: Multipliers on the unit circle that define the curve (STABEQ's N - 1).
     n_curve = 1
     #: Code of the multiplier test's key (typed where located).
