@@ -27,6 +27,7 @@ import numpy as np
 from cffi import FFI
 
 from washer.cont.compile import (CompileError, build_library, source_file, source_text)
+from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
 HERE = Path(__file__).parent
@@ -417,7 +418,6 @@ class CompiledProblem(Problem):
         return par
 
     def _set_eigenvalues(self, u, par) -> None:
-        from washer.cont.systems.equilibrium import eigenvalues_sorted
         lam = eigenvalues_sorted(self.dfdu(np.asarray(u, float), par))
         self.user.set_multipliers(lam, stable=lambda m: m.real < 0)
 

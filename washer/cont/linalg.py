@@ -86,6 +86,17 @@ def eigvals(A: np.ndarray) -> np.ndarray:
     return w.real if (w.imag == 0).all() else w
 
 
+def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
+    """`eigvals` of A by decreasing real part (a stable sort: equal real parts keep
+    LAPACK's order): the order of an equilibrium's eigenvalues in the engine's stability
+    (systems.equilibrium) and in a compiled user file's PVLS."""
+    lam = eigvals(A)
+    re = lam.real.tolist()
+    # Python's sort is stable as argsort(kind="stable") is: the same order, without
+    # numpy's per-call overhead at the sizes of equilibria
+    return lam[sorted(range(len(re)), key=lambda i: -re[i])]
+
+
 def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """np.linalg.eig of a real square A: (eigenvalues, eigenvectors as columns), real if
     every eigenvalue is, else complex. LinAlgError as `eigvals`."""

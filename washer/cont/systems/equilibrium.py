@@ -15,23 +15,13 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.system import Stability, StartData, register
-from washer.cont.linalg import eigvals, null_vectors, nullvc
+from washer.cont.linalg import eigenvalues_sorted, null_vectors, nullvc
 from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
 #: test needs Im != 0, and finite-difference Jacobians leave rounding-level
 #: imaginary parts on real pairs.
 IMAG_TOL = 1e-8
-
-
-def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
-    """The eigenvalues of A by decreasing real part (a stable sort: equal real parts
-    keep LAPACK's order)."""
-    lam = eigvals(A)
-    re = lam.real.tolist()
-    # Python's sort is stable as argsort(kind="stable") is: the same order, without
-    # numpy's per-call overhead at the sizes of equilibria
-    return lam[sorted(range(len(re)), key=lambda i: -re[i])]
 
 
 def is_complex(lam: np.ndarray) -> np.ndarray:
