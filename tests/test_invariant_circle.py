@@ -21,6 +21,7 @@ import sympy as sp
 from washer.cont import invariant_circle as ic
 from washer.auto.sinks import FileSink
 from washer.auto.files import read_b, read_s
+from washer.cont import circle_runs as runs
 from washer.cont.systems import circles as cs
 
 RHO0, B, KAPPA, EPS, A, C = 0.3, 0.5, 0.5, 0.4, 0.6, 0.3
@@ -76,7 +77,7 @@ def birth(fmap, N, amplitude):
     _, DF, _ = fmap(np.zeros((1, 3)), 0.0)
     lam, V = np.linalg.eig(DF[0])
     i = int(np.argmax(lam.imag))
-    return cs.first_circle(fmap, np.zeros(3), V[:, i], np.angle(lam[i]) / (2 * np.pi), 0.0,
+    return runs.first_circle(fmap, np.zeros(3), V[:, i], np.angle(lam[i]) / (2 * np.pi), 0.0,
                            amplitude, N)
 
 
@@ -114,9 +115,9 @@ def test_continued_family_follows_the_closed_form(fmap):
     solve the linearised equation), so the collocation is singular there; on the way the
     family passes rationals harmlessly, e.g. 1/3 near mu = 0.067.)"""
     c0 = birth(fmap, 31, 0.05)
-    br = cs.continue_circles(fmap, c0, 0.18, ds=0.02, ds_max=0.05)
-    assert cs.reached(br)
-    circles = cs.circles(br)
+    br = runs.continue_circles(fmap, c0, 0.18, ds=0.02, ds_max=0.05)
+    assert runs.reached(br)
+    circles = runs.circles(br)
     p = np.array([c.p for c in circles])
     assert p[-1] == pytest.approx(0.18, abs=1e-12)
     assert len(circles) >= 4
@@ -133,9 +134,9 @@ def test_too_few_modes_are_visible_in_the_error_and_the_spectrum(fmap):
     c_fine = birth(fmap, 31, 0.3)
     X = ic.resample(c_fine.X, 7)
     assert ic.amplitudes(c_fine.X)[3] > 1e-6          # mode 3 is present, so K = 3 truncates
-    br = cs.continue_circles(fmap, ic.Circle(X, c_fine.rho, c_fine.p), c_fine.p + 1e-3,
+    br = runs.continue_circles(fmap, ic.Circle(X, c_fine.rho, c_fine.p), c_fine.p + 1e-3,
                              ds=0.01, max_points=3)
-    assert exact_error(cs.circles(br)[-1]) > 1e3 * exact_error(c_fine)
+    assert exact_error(runs.circles(br)[-1]) > 1e3 * exact_error(c_fine)
 
 
 def test_circle_run_writes_auto_files(fmap, tmp_path):
@@ -144,12 +145,12 @@ def test_circle_run_writes_auto_files(fmap, tmp_path):
     MU_MAX of each circle, and s-records holding the closed profile (N + 1 points, the last
     the first) that read back to the circle."""
     c0 = birth(fmap, 15, 0.1)
-    br = cs.continue_circles(fmap, c0, c0.p + 0.02, ds=0.01, ds_max=0.02,
+    br = runs.continue_circles(fmap, c0, c0.p + 0.02, ds=0.01, ds_max=0.02,
                              sinks=[FileSink(tmp_path, "circ")])
     rows = read_b(tmp_path / "b.circ")[0]
     assert [r.ty for r in rows if r.lab] == [99, -94]
     assert len(rows) == len(br.rows)
-    last = cs.circles(br)[-1]
+    last = runs.circles(br)[-1]
     assert rows[-1].values[0] == pytest.approx(c0.p + 0.02, abs=1e-9)
     assert rows[-1].values[2] == pytest.approx(last.rho, rel=1e-9)
     assert rows[-1].values[3] == pytest.approx(last.moduli.max(), rel=1e-9)
@@ -168,7 +169,7 @@ def test_circle_system_honours_the_engine_contract(fmap):
     from washer.cont.system import ContinuedSystem
     c0 = birth(fmap, 9, 0.1)
     sysm = cs.InvariantCircles(fmap, c0, Settings.from_constants(
-        cs.constants(1, 0.2, 3, ds=0.01, ds_max=0.1, ds_min=1e-6, max_points=5)))
+        runs.constants(1, 0.2, 3, ds=0.01, ds_max=0.1, ds_min=1e-6, max_points=5)))
     for m in ContinuedSystem.__dict__:
         if callable(getattr(ContinuedSystem, m)) and not m.startswith("_"):
             assert callable(getattr(sysm, m, None)), m

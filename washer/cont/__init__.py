@@ -26,6 +26,7 @@ newton, compiled_newton, iterator, events
 start, runner, branch
               a run: its start from constants and restart records, labels, stops and branch
               switching (AUTO's AUTOAE/AUTOBV), its result in memory (Branch)
-invariant_circle, pvls
-              invariant circles of maps; what a periodic run's pvls receives
+invariant_circle, circle_runs, pvls
+              invariant circles of maps (the circle's equations; the runs of a family of
+              them: its first circle, its continuation); what a periodic run's pvls receives
 """

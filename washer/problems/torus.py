@@ -44,7 +44,7 @@ from washer.machine.layout import PAR_INDEX
 from washer.problems import forced as shooting
 from washer.cont import invariant_circle as ic
 from washer.cont.branch import Branch
-from washer.cont.systems import circles as engine_circles
+from washer.cont import circle_runs
 from washer.machine.params import Params
 
 TWO_PI = 2.0 * np.pi
@@ -193,7 +193,7 @@ class ExactWhirl:
     @property
     def reached(self) -> bool:
         """Whether the family reached its end value (the run's last point is its UZ)."""
-        return engine_circles.reached(self.branch)
+        return circle_runs.reached(self.branch)
 
     @property
     def f_whirl(self) -> np.ndarray:
@@ -247,7 +247,7 @@ def params_at(params: Params, name: str, value: float) -> Params:
 def measure(params: Params, name: str, b: Birth, br: Branch) -> ExactWhirl:
     """The machine's quantities along the family (`ExactWhirl`) of the engine's run br."""
     rows = []
-    found = engine_circles.circles(br)
+    found = circle_runs.circles(br)
     for c in found:
         q = params_at(params, name, c.p)
         Y = torus_points(q, c, n_theta=48, n_t=6)
@@ -269,7 +269,7 @@ def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int 
 
     The first circle has radius FIRST_AMPLITUDE (m) along the critical eigenvector (its
     parameter found by Newton: near the birth the amplitude, not the parameter, is the
-    coordinate); then the engine's run (`washer.cont.systems.circles.continue_circles`:
+    coordinate); then the engine's run (`washer.cont.circle_runs.continue_circles`:
     pseudo-arclength in the inner product of `scale`, UZSTOP at `stop`, PAR as e='washer'
     numbers them) through `sinks` (b-/s-/d-files, the screen: washer.auto.sinks)."""
     b = birth(params, name)
@@ -277,11 +277,11 @@ def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int 
     # first_circle scales v to a unit largest component: ask for the amplitude that makes
     # the (eps1, eps2) offset FIRST_AMPLITUDE.
     a = FIRST_AMPLITUDE * np.abs(b.v).max() / np.abs(b.v[:2]).max()
-    first = engine_circles.first_circle(fmap, b.xi, b.v, b.rho, b.value, a, N)
+    first = circle_runs.first_circle(fmap, b.xi, b.v, b.rho, b.value, a, N)
     par = np.zeros(max(layout.PAR_NAMES) + 1)
     for i, n in layout.PAR_NAMES.items():
         par[i - 1] = params[n]
-    br = engine_circles.continue_circles(
+    br = circle_runs.continue_circles(
         fmap, first, stop, index=PAR_INDEX[name], par=par, ds=ds, ds_max=ds_max,
         max_points=max_points, scale=scale(params["Omega"]), sinks=sinks,
         name=f"washer circles in {name}")

@@ -23,7 +23,7 @@ shooting     periodic orbits of a problem that supplies its period map (IPS = 2)
 maps         fixed points of maps (IPS = -1; FNDS), PD switching, fold/PD/NS loci
 timeint      time integration by implicit Euler steps (IPS = -2; FNTI)
 circles      invariant circles of maps (Fourier collocation), born at a Neimark-Sacker point;
-             constructed by its run (continue_circles), not from AUTO constants
+             constructed by its runs (washer.cont.circle_runs), not from AUTO constants
 _algebraic, _loci  the bases of the algebraic systems
 """
 import importlib
