@@ -21,7 +21,8 @@ class AlgebraicSystem:
     """Base of systems G(x) = 0 whose unknowns are a plain vector.
 
     Subclasses set `n_eq`, `free`, `theta` ((N + 1,) THU/THL weights), `ndim`,
-    `par` (the fixed parameters) and implement residual, jacobian, params.
+    `par` (the fixed parameters) and implement residual and jacobian; `_p` (PAR at x)
+    and `params` (PAR written, after PVLS) are a one-parameter system's by default.
     """
     arclength = "sphere"
     curve_type = 0
@@ -49,6 +50,21 @@ class AlgebraicSystem:
                 rec.nfpr == 1 and list(rec.icp[:1]) == self.free and \
                 len(rec.udot) >= self.ndim:
             self._t0 = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+
+    def _p(self, x) -> np.ndarray:
+        """PAR at x of a one-parameter system: the fixed parameters with PAR(ICP(1)) =
+        x[-1] (systems with more free parameters place them themselves)."""
+        p = self.par.copy()
+        p[self.free[0] - 1] = x[-1]
+        return p
+
+    def params(self, x) -> np.ndarray:
+        """PAR written with the point x: `_p(x)` after the user's PVLS (AUTO calls it on
+        every written point), which may set parameters from the solution u = x[:NDIM]."""
+        p = self._p(x)
+        if self.problem.has_pvls:
+            p = self.problem.pvls(x[:self.ndim], p)
+        return p
 
     def restart_direction(self, t):
         """A stored direction the run restarts along (AUTO's CNRLAE: STPRAE with

@@ -69,12 +69,6 @@ class LocusSystem(AlgebraicSystem):
         p[self.free[1] - 1] = x[-2]
         return p
 
-    def params(self, x) -> np.ndarray:
-        p = self._p(x)
-        if self.problem.has_pvls:
-            p = self.problem.pvls(x[:self.ndim], p)
-        return p
-
     def derivatives(self, u, p) -> tuple[np.ndarray, np.ndarray]:
         """f_u (n, n) and [f_PAR(ICP(1)), f_PAR(ICP(2))] (n, 2) at (u, p), from one
         `Problem.jacobian` (one stencil where they are differences), remembered for the

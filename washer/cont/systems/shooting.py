@@ -44,11 +44,6 @@ class ForcedOrbits(AlgebraicSystem):
         self._one_parameter(start)
         self._last = None
 
-    def _p(self, x) -> np.ndarray:
-        p = self.par.copy()
-        p[self.free[0] - 1] = x[-1]
-        return p
-
     def _map(self, x):
         """(phi_T, Phi, d phi_T / d PAR(ICP(1))) at x, one flow per distinct x."""
         if self._last is None or not np.array_equal(self._last[0], x):
@@ -68,11 +63,6 @@ class ForcedOrbits(AlgebraicSystem):
         _, Phi, dp = self._map(x)
         return np.hstack([Phi - np.eye(self.ndim), np.asarray(dp, float)[:, None]])
 
-    def params(self, x) -> np.ndarray:
-        p = self._p(x)
-        if self.problem.has_pvls:
-            p = self.problem.pvls(x[:self.ndim], p)
-        return p
 
     def multipliers(self, x) -> np.ndarray:
         """The eigenvalues of the monodromy matrix at x, closest to the circle first."""

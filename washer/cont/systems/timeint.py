@@ -24,27 +24,8 @@ class TimeIntegration(AlgebraicSystem):
     accepted point (moved in `update`)."""
 
     def __init__(self, start: StartData):
-        s = start.settings
-        self.problem, self.settings = start.problem, s
-        self.ndim = self.n_eq = start.problem.ndim
-        self.par = np.array(start.par, dtype=float)
-        self.free = [s.ICP[0]]
-        self.unames = dict(start.unames)
-        self.theta = np.r_[s.theta_u(self.ndim), s.theta_par(s.ICP[0])]
-        u = np.asarray(start.u, dtype=float)[:self.ndim]
-        self._x0 = np.r_[u, self.par[s.ICP[0] - 1]]
+        self._one_parameter(start)
         self.x_old = self._x0.copy()
-
-    def _p(self, x) -> np.ndarray:
-        p = self.par.copy()
-        p[self.free[0] - 1] = x[-1]
-        return p
-
-    def params(self, x) -> np.ndarray:
-        p = self._p(x)
-        if self.problem.has_pvls:
-            p = self.problem.pvls(x[:self.ndim], p)
-        return p
 
     def residual(self, x) -> np.ndarray:
         dt = x[-1] - self.x_old[-1]
