@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from washer.cont.newton import ConvergenceError, newton
 from washer.machine import kernel
 from washer.machine.equilibria import EquilibriumError, follow
 from washer.machine.model import Model
@@ -37,6 +38,10 @@ STEP_AMPLIFICATION = 2.0
 #: Finite-difference step of the yaw-curve Jacobian (m, rad): sqrt(machine eps)
 #: relative to the O(1) coordinates.
 FD_STEP = 1e-7
+#: Newton's residual tolerance on the twist curve: max|acc| <= NEWTON_TOL (1 + max|x|),
+#: accelerations in m/s^2 and rad/s^2, x = (x, y, z, alpha, beta, Q) (m, rad, N m: |x|
+#: is |Q|, up to ~60 N m). Every point of the paper's curves meets it within 30 steps.
+NEWTON_TOL = 1e-10
 #: Applied yaw moment the continuation aims for (N m), beyond any fold met.
 Q_TARGET = 200.0
 
@@ -191,22 +196,28 @@ def twist_curve(params, gamma_end: float = -1.2, n: int = 49) -> TwistCurve:
         M, f = kernel.mass_forces(qq, z6, 0.0, 0.0, 0.0, P)
         return np.linalg.solve(M, f + e6 * Q)
 
+    def newton_step(x, r, g):
+        """-J^-1 r, J the forward-difference Jacobian of the accelerations in
+        (x, y, z, alpha, beta, Q) at twist g, from r = their values at x."""
+        J = np.empty((6, 6))
+        for k in range(6):
+            dx = np.zeros(6)
+            dx[k] = FD_STEP
+            J[:, k] = (acc(np.r_[(x + dx)[:5], g], (x + dx)[5]) - r) / FD_STEP
+        return -np.linalg.solve(J, r)
+
     G, Qs, Z, S = [], [], [], []
     Q = 0.0
     for g in np.linspace(0.0, gamma_end, n):
-        x = np.r_[q[:5], Q]
-        for _ in range(30):
-            qq = np.r_[x[:5], g]
-            r = acc(qq, x[5])
-            if np.abs(r).max() < 1e-10:
-                break
-            J = np.empty((6, 6))
-            for k in range(6):
-                dx = np.zeros(6)
-                dx[k] = FD_STEP
-                qd = np.r_[(x + dx)[:5], g]
-                J[:, k] = (acc(qd, (x + dx)[5]) - r) / FD_STEP
-            x = x - np.linalg.solve(J, r)
+        # The package's one Newton, undamped, from the last point: the accelerations
+        # (m/s^2, rad/s^2) to NEWTON_TOL (1 + max|x|); a point it does not reach is an
+        # error naming the twist, never a silently unconverged row.
+        try:
+            x, _ = newton(lambda x: acc(np.r_[x[:5], g], x[5]),
+                          lambda x, r, it: newton_step(x, r, g), np.r_[q[:5], Q],
+                          max_iter=30, residual_tol=NEWTON_TOL)
+        except ConvergenceError as exc:
+            raise EquilibriumError(f"twist_curve at gamma = {g:.4f} rad: {exc}") from None
         q, Q = np.r_[x[:5], g], x[5]
         A = np.column_stack([(acc(q + FD_STEP * e, Q) - acc(q, Q)) / FD_STEP for e in np.eye(6)])
         G.append(g)
