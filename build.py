@@ -54,7 +54,7 @@ contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text() + "\n" + _c
 contbuilder.set_source(
     "washer._cont",
     '#include "cont.h"\n' + _cont_stamp[1],
-    sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp"],
+    sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp", "csrc/cont/po_correct.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
     extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],

@@ -46,3 +46,36 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc);
  * Jacobians of f at the Gauss points. Returns 0, or 2 for bad sizes. */
 int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const double *WP,
                      const double *dtm, double T, const double *A, double *blocks);
+
+/* The corrector of periodic orbits (IPS 2: NBC = NDIM periodicity conditions, one integral
+ * phase condition, two free parameters) on the plane arclength, the whole Newton loop in
+ * one call (csrc/cont/po_correct.cpp; the compiled form of Continuation.correct with
+ * PeriodicOrbits' residual and difference Jacobian). f is evaluated by
+ *   feval(rows, us (rows, NDIM), parsT (NPAR, rows), fs (rows, NDIM)) -> 0, or nonzero
+ *   when f failed;
+ * ddot: the BLAS ddot for the phase condition's and the border row's inner products (the
+ *   one numpy's `@` calls: the same rounding), or NULL for sums in order.
+ * The unknowns x = (U (NTST*NCOL + 1, NDIM) node-major, PAR(ipa + 1), PAR(ipb + 1)),
+ * nx = (NTST*NCOL + 1)*NDIM + 2; the period is PAR(11) (index 10); par0 (NPAR) the other
+ * parameters. WT, WP (NCOL + 1, NCOL), dtm (NTST), w_node (nodes), U_old, up_old (nodes,
+ * NDIM) the phase reference, bc_offset (NDIM) or NULL, row (nx) the border row; the
+ * iteration stops as Continuation.correct (EPSU, EPSL, ITNW, the divergence factor),
+ * refactorising up to max(NWTN, 1) iterations. Out: x (nx) the last iterate, x_J (nx) the
+ * iterate of the last factorisation, vals its Jacobian's values in
+ * Collocation.jacobian_general's assembly order (NTST*NCOL*NDIM*((NCOL+1)*NDIM + 2) +
+ * 2 NDIM + nx), P0, P1 (NDIM x NDIM) its Floquet pair; fac holds that factorisation;
+ * info = (iterations, iteration of the last factorisation, residuals, Jacobians).
+ * Returns 0 converged, 1 diverged, 2 no convergence in ITNW iterations, 3 hand over to
+ * the Python loop (f failed, a non-finite residual, Jacobian or correction, a zero
+ * pivot), 4 bad sizes. */
+typedef int (*cont_po_feval)(int rows, const double *us, const double *parsT, double *fs);
+typedef double (*cont_ddot)(const int *n, const double *x, const int *incx, const double *y,
+                            const int *incy);
+int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst, int ncol,
+                    int ndim, int npar, int ipa, int ipb, const double *WT, const double *WP,
+                    const double *dtm, const double *w_node, const double *U_old,
+                    const double *up_old, const double *bc_offset, const double *par0,
+                    const double *x_pred, const double *x_ref, const double *row, double ds,
+                    double epsl, double epsu, int itnw, int nwtn, double divergence,
+                    double fd_step, double *x, double *x_J, double *vals, double *P0,
+                    double *P1, int *info);

@@ -17,10 +17,11 @@ linalg, reduction, collocation, floquet, normal_form
               the numerics the systems share: bordered factorisations, AUTO's condensation
               of collocation matrices (compiled), collocation, Floquet multipliers and their
               tests, the first Lyapunov coefficient
-newton, compiled_newton, iterator, events
-              the one Newton loop and its compiled form for equilibria and the fold and
-              Hopf loci (C written once in
-              include/ae_correct.h; compiled_corrector chooses where it applies), the
+newton, compiled_newton, compiled_po, iterator, events
+              the one Newton loop and its compiled forms for equilibria and the fold and
+              Hopf loci (C written once in include/ae_correct.h) and for periodic orbits
+              (C++ in csrc/cont/po_correct.cpp; compiled_newton.compiled_corrector
+              chooses where they apply), the
               pseudo-arclength iterator (predictor, corrector, step control), test
               functions' sign changes and their location
 start, runner, branch

@@ -320,6 +320,13 @@ class Collocation:
         else:
             bc_vals = self._bc_vals
         vals = np.concatenate([blocks.ravel(), dpar.ravel(), bc_vals, rows_int.ravel()])
+        return self.jacobian_from_values(vals)
+
+    def jacobian_from_values(self, vals: np.ndarray) -> sp.csc_matrix:
+        """The sparse (N, N + 1) Jacobian with the values `vals` (nnz,) in
+        `jacobian_general`'s assembly order (the collocation blocks, the parameter
+        columns, the boundary conditions' values, the integral rows); vals is kept."""
+        import scipy.sparse as sp
         # Every Jacobian on this mesh has the same pattern: the first is built (and
         # checked) by scipy, later ones are its shallow copies with their own values
         # (scipy's constructor re-validates the pattern each time, ~10-60 us; Newton asks

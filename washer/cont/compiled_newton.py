@@ -384,11 +384,17 @@ class _SolvedFactor:
 
 
 def compiled_corrector(system, settings, divergence: float):
-    """The compiled corrector of `system`, or None where the Python loop runs."""
+    """The compiled corrector of `system`, or None where the Python loop runs: this one
+    for equilibria and the fold and Hopf loci (the sphere arclength), compiled_po's for periodic
+    orbits (its `plane` attribute True: Continuation.correct hands it the plane
+    arclength's corrections)."""
     from washer.cont.compiled import CompiledProblem
     from washer.cont.problem import Problem
     from washer.cont.symbolic import SymbolicProblem
+    from washer.cont.compiled_po import periodic_corrector
     problem = getattr(system, "problem", None)
+    if getattr(system, "arclength", None) == "plane":
+        return periodic_corrector(system, settings, divergence)
     name = "equilibrium" if getattr(system, "residual_is_func", False) else \
         getattr(system, "compiled_system", None)
     kind = KINDS.get(name)

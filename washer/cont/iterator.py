@@ -179,9 +179,16 @@ class Continuation:
         s, sysm = self.s, self.sys
         plane = (sysm.arclength == "plane") if plane is None else plane
         self._newton = None
-        if self._compiled is not None and not plane:
+        compiled = self._compiled
+        if compiled is not None and getattr(compiled, "plane", False) == plane:
             # the same loop compiled (one foreign call); None: it hands over to this one
-            done = self._compiled.correct(x_pred, x_ref, ds, self.counters)
+            if plane:
+                done = compiled.correct_plane(x_pred, x_ref, t_ref, ds, self.counters)
+                if done is not None:
+                    # the matrix of the last iteration, as below
+                    self._newton = compiled.newton
+            else:
+                done = compiled.correct(x_pred, x_ref, ds, self.counters)
             if done is not None:
                 return done
         row_plane = sysm.border(t_ref) if plane else None

@@ -15,7 +15,14 @@ washer/cont/include/ae_correct.h, chosen and driven by washer.cont.compiled_newt
 change to this loop, to Continuation.correct's stopping or divergence test or to
 Problem.jacobian's or Problem.second_derivatives' difference stencils or to the loci's
 equations (systems/fold.py, hopf.py) must be made in ae_correct.h too (the two are
-held to the same iterates by tests/test_compiled_newton.py).
+held to the same iterates by tests/test_compiled_newton.py). The corrector of periodic
+orbits (IPS 2, PeriodicOrbits with difference Jacobians) has one too, this loop with
+PeriodicOrbits' residual, Jacobian and compiled factorisation in C++:
+csrc/cont/po_correct.cpp, driven by washer.cont.compiled_po and chosen in the same place
+(compiled_newton.compiled_corrector); a change to this loop, to Continuation.correct's
+plane-arclength step or test, to PeriodicOrbits.residual / jacobian or to
+VectorField.fu_fp's differences must be made there too (the two give the same b- and
+s-files byte for byte: tests/test_compiled_po.py).
 """
 from __future__ import annotations
 

@@ -141,6 +141,22 @@ class BorderedCollocation:
         self._dense = dense
 
     @classmethod
+    def adopt(cls, handle, shape, P0, P1, dense=None) -> "BorderedCollocation":
+        """A factorisation made elsewhere (washer.cont.compiled_po: the compiled corrector's
+        last one, non-singular): the cont_bvp `handle` (owned by the object from now on),
+        shape (NTST, NCOL, NDIM, NPAR) and its Floquet pair."""
+        self = object.__new__(cls)
+        N, m, n, npar = shape
+        self.shape = (N, m, n, npar)
+        self.nx = (N * m + 1) * n + npar
+        self._f = handle
+        self.P0, self.P1 = P0, P1
+        self._sl = None
+        self.singular = False
+        self._dense = dense
+        return self
+
+    @classmethod
     def from_jacobian(cls, coll, J, border) -> "BorderedCollocation":
         """From a Jacobian assembled by `coll.jacobian_general` (its CSC pattern) and
         the border row (nx,)."""

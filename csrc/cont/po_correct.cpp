@@ -1,0 +1,251 @@
+// The corrector of periodic orbits (IPS 2) in one foreign call per continuation step: the
+// compiled form of washer.cont.newton.newton as washer.cont.iterator.Continuation.correct
+// runs it on the plane arclength of a collocation BVP (layout and contract: cont_api.h).
+//
+// Each iteration is PeriodicOrbits.residual (collocation.Collocation.residual: the
+// collocation equations, u(0) - u(1) (+ 2 pi NRTN), the integral phase condition), then
+// up to max(NWTN, 1) iterations PeriodicOrbits.jacobian (central differences of f with
+// VectorField.fu_fp's points and quotients, Collocation.local_blocks,
+// Collocation.jacobian_general) factorised with the border row (cont_bvp_factor, as
+// CollocationBVP.factor), chord iterations after that, the solve of [J; row] dx =
+// -[G; row (x - x_ref) - ds] (cont_bvp_solve), x += dx and AUTO's NEWTONBV test
+// (Continuation.correct's `converged`: EPSU on the profile, EPSL on each parameter, its
+// divergence test). f is evaluated by the call back `feval` (the user's equations: one
+// call for the Gauss points, one for all difference points of a Jacobian).
+// A change to any of those Python functions must be made here too
+// (tests/test_compiled_po.py holds the two to the same points).
+#include "cont.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace {
+
+// numpy's pairwise summation (the inner loop of np.add.reduce over a contiguous axis):
+// sequential below 8 terms, 8 accumulators up to 128, halves beyond.
+double pairwise_sum(const double *a, long n) {
+    if (n < 8) {
+        double res = 0.;
+        for (long i = 0; i < n; ++i) res += a[i];
+        return res;
+    }
+    if (n <= 128) {
+        double r[8];
+        for (int j = 0; j < 8; ++j) r[j] = a[j];
+        long i = 8;
+        for (; i < n - (n % 8); i += 8)
+            for (int j = 0; j < 8; ++j) r[j] += a[i + j];
+        double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+        for (; i < n; ++i) res += a[i];
+        return res;
+    }
+    long n2 = n / 2;
+    n2 -= n2 % 8;
+    return pairwise_sum(a, n2) + pairwise_sum(a + n2, n - n2);
+}
+
+// a . b: the BLAS ddot numpy's `@` calls when given (the same rounding), else in order
+double dot(cont_ddot ddot, const double *a, const double *b, int len) {
+    if (ddot) {
+        const int one = 1;
+        return ddot(&len, a, &one, b, &one);
+    }
+    double s = 0.0;
+    for (int i = 0; i < len; ++i) s += a[i] * b[i];
+    return s;
+}
+
+}  // namespace
+
+int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst, int ncol,
+                    int ndim, int npar, int ipa, int ipb, const double *WT, const double *WP,
+                    const double *dtm, const double *w_node, const double *U_old,
+                    const double *up_old, const double *bc_offset, const double *par0,
+                    const double *x_pred, const double *x_ref, const double *row, double ds,
+                    double epsl, double epsu, int itnw, int nwtn, double divergence,
+                    double fd_step, double *x, double *x_J, double *vals, double *P0,
+                    double *P1, int *info) {
+    const int N = ntst, m = ncol, n = ndim;
+    if (N < 1 || m < 1 || n < 1 || ipa < 0 || ipb < 0 || ipa >= npar || ipb >= npar
+        || npar < 11 || itnw < 1)
+        return 4;
+    const int k = N * m;                                 // Gauss points
+    const int nodes = N * m + 1;
+    const int nu = nodes * n, nc = k * n, nx = nu + 2, ne = n + 2;
+    const int mn = m * n, bw = (m + 1) * n;
+    const long nb = (long)N * mn * bw;                    // block values
+    // the parameter stencils: the free parameters other than the period, in the order
+    // of PeriodicOrbits.jacobian's slots (x[-2] = PAR(ipa + 1), then x[-1] = PAR(ipb + 1))
+    int fp_index[2], nfp = 0;
+    const int slot_index[2] = {ipa, ipb};
+    for (int s = 0; s < 2; ++s)
+        if (slot_index[s] != 10) fp_index[nfp++] = slot_index[s];
+    const int kst = 2 * n * k + 2 * nfp * k;             // points of a Jacobian's call
+
+    std::vector<double> par(par0, par0 + npar), ug((size_t)k * n), fg((size_t)k * n),
+        parsT((size_t)npar * std::max(k, kst)), pts((size_t)kst * n), fst((size_t)kst * n),
+        h((size_t)k * n), A((size_t)k * n * n), parcols((size_t)N * mn * 2),
+        extra((size_t)ne * nx, 0.0), G(nc + n + 1), rhs(nx), dx(nx), xo(nx),
+        prod(n), vsum(nodes);
+    double hp[2] = {0.0, 0.0};
+    std::copy(x_pred, x_pred + nx, x);
+    // the dense rows' constant parts: periodicity (+1 on u(0), -1 on u(1)), the border
+    const int last = (nodes - 1) * n;
+    for (int i = 0; i < n; ++i) {
+        extra[(size_t)i * nx + i] = 1.0;
+        extra[(size_t)i * nx + last + i] = -1.0;
+    }
+    std::copy(row, row + nx, extra.begin() + (size_t)(n + 1) * nx);
+    // the phase row's values (Collocation.jacobian_general: w_node * up_old, then the
+    // parameters' zeros), the same in every Jacobian of the call
+    double *bc_vals = vals + nb + 2L * nc;
+    double *int_vals = bc_vals + 2 * n;
+    for (int i = 0; i < n; ++i) {
+        bc_vals[i] = 1.0;
+        bc_vals[n + i] = -1.0;
+    }
+    for (int q = 0; q < nodes; ++q)
+        for (int i = 0; i < n; ++i) int_vals[q * n + i] = w_node[q] * up_old[q * n + i];
+    int_vals[nu] = int_vals[nu + 1] = 0.0;
+    std::copy(int_vals, int_vals + nx, extra.begin() + (size_t)n * nx);
+
+    int it_J = 0, residuals = 0, jacobians = 0;
+    bool factored = false;
+    double delref = -1.0;
+    int status = 2;
+    int it = 1;
+    for (; it <= itnw; ++it) {
+        par[ipa] = x[nx - 2];
+        par[ipb] = x[nx - 1];
+        const double T = par[10];
+        const double *U = x;
+        // u at the Gauss points (Collocation.at_gauss)
+        for (int j = 0; j < N; ++j)
+            for (int c = 0; c < m; ++c) {
+                double *g = &ug[((size_t)j * m + c) * n];
+                for (int i = 0; i < n; ++i) {
+                    double s = 0.0;
+                    for (int q = 0; q <= m; ++q) s += WT[q * m + c] * U[(j * m + q) * n + i];
+                    g[i] = s;
+                }
+            }
+        for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * k], k, par[p]);
+        if (feval(k, ug.data(), parsT.data(), fg.data()) != 0) { status = 3; break; }
+        // the residual (Collocation.residual_general)
+        for (int j = 0; j < N; ++j)
+            for (int c = 0; c < m; ++c)
+                for (int i = 0; i < n; ++i) {
+                    double s = 0.0;
+                    for (int q = 0; q <= m; ++q) s += WP[q * m + c] * U[(j * m + q) * n + i];
+                    const size_t r = ((size_t)j * m + c) * n + i;
+                    G[r] = s - dtm[j] * (T * fg[r]);
+                }
+        for (int i = 0; i < n; ++i)
+            G[nc + i] = bc_offset ? (U[i] - U[last + i]) + bc_offset[i] : U[i] - U[last + i];
+        // w_node @ np.sum((U - U_old) * up_old, axis=1)
+        for (int q = 0; q < nodes; ++q) {
+            for (int i = 0; i < n; ++i)
+                prod[i] = (U[q * n + i] - U_old[q * n + i]) * up_old[q * n + i];
+            vsum[q] = pairwise_sum(prod.data(), n);
+        }
+        G[nc + n] = dot(ddot, w_node, vsum.data(), nodes);
+        ++residuals;
+        bool finite = true;
+        for (int r = 0; r < nc + n + 1; ++r) finite = finite && std::isfinite(G[r]);
+        if (!finite) { status = 3; break; }
+        if (!factored || it <= std::max(nwtn, 1)) {
+            // f_u and f_p by central differences (Problem.fd_u_stencil, VectorField.fu_fp)
+            for (int r = 0; r < k; ++r)
+                for (int i = 0; i < n; ++i) h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
+            for (int r = 0; r < k; ++r)
+                for (int s = 0; s < 2 * n; ++s) {
+                    double *pt = &pts[((size_t)r * 2 * n + s) * n];
+                    std::copy(&ug[(size_t)r * n], &ug[(size_t)r * n] + n, pt);
+                    if (s < n) pt[s] += h[(size_t)r * n + s];
+                    else pt[s - n] -= h[(size_t)r * n + s - n];
+                }
+            const int m0 = 2 * n * k;
+            for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * kst], m0, par[p]);
+            for (int j = 0; j < nfp; ++j) {
+                const int ip = fp_index[j];
+                hp[j] = fd_step * (1 + std::fabs(par[ip]));
+                const double pp = par[ip] + hp[j], pm = par[ip] - hp[j];
+                for (int sgn = 0; sgn < 2; ++sgn) {
+                    const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                    std::copy(ug.begin(), ug.end(), pts.begin() + off * n);
+                    for (int p = 0; p < npar; ++p)
+                        std::fill_n(&parsT[(size_t)p * kst + off], k,
+                                    p == ip ? (sgn ? pm : pp) : par[p]);
+                }
+            }
+            if (feval(kst, pts.data(), parsT.data(), fst.data()) != 0) { status = 3; break; }
+            // A[r, i, l] = (f_i(u + h_l e_l) - f_i(u - h_l e_l)) / (2 h_l)
+            for (int r = 0; r < k; ++r)
+                for (int l = 0; l < n; ++l) {
+                    const double *fpl = &fst[((size_t)r * 2 * n + l) * n];
+                    const double *fml = &fst[((size_t)r * 2 * n + n + l) * n];
+                    const double d = 2 * h[(size_t)r * n + l];
+                    for (int i = 0; i < n; ++i) A[((size_t)r * n + i) * n + l] = (fpl[i] - fml[i]) / d;
+                }
+            cont_coll_blocks(N, m, n, WT, WP, dtm, T, A.data(), vals);
+            // the parameter columns -dtm d(T f)/dp: f for the period, T f_p otherwise
+            int jf = 0;
+            for (int s = 0; s < 2; ++s) {
+                double *dp = vals + nb + (long)s * nc;
+                if (slot_index[s] == 10) {
+                    for (int j = 0; j < N; ++j)
+                        for (int r = 0; r < mn; ++r) dp[j * mn + r] = -dtm[j] * fg[(size_t)j * mn + r];
+                } else {
+                    const double *fpp = &fst[((size_t)m0 + (size_t)2 * jf * k) * n];
+                    const double *fpm = &fst[((size_t)m0 + (size_t)(2 * jf + 1) * k) * n];
+                    for (int j = 0; j < N; ++j)
+                        for (int r = 0; r < mn; ++r) {
+                            const size_t q = (size_t)j * mn + r;
+                            dp[q] = -dtm[j] * (T * ((fpp[q] - fpm[q]) / (2 * hp[jf])));
+                        }
+                    ++jf;
+                }
+                for (int q = 0; q < nc; ++q) parcols[(size_t)q * 2 + s] = dp[q];
+            }
+            bool ok = true;
+            for (long q = 0; q < nb + 2L * nc; ++q) ok = ok && std::isfinite(vals[q]);
+            if (!ok || cont_bvp_factor(fac, vals, parcols.data(), extra.data(), nullptr, P0, P1) != 0) {
+                status = 3;
+                break;
+            }
+            factored = true;
+            it_J = it;
+            ++jacobians;
+            std::copy(x, x + nx, x_J);
+        }
+        for (int q = 0; q < nx; ++q) xo[q] = x[q] - x_ref[q];
+        const double c = dot(ddot, row, xo.data(), nx) - ds;
+        for (int r = 0; r < nx - 1; ++r) rhs[r] = -G[r];
+        rhs[nx - 1] = -c;
+        cont_bvp_solve(fac, rhs.data(), dx.data());
+        bool dfin = true;
+        for (int q = 0; q < nx; ++q) dfin = dfin && std::isfinite(dx[q]);
+        if (!dfin) { status = 3; break; }
+        std::copy(x, x + nx, xo.begin());
+        for (int q = 0; q < nx; ++q) x[q] += dx[q];
+        // AUTO's NEWTONBV (Continuation.correct's `converged`, n_state = the profile)
+        double dmax = 0.0, xmax = 0.0;
+        for (int q = 0; q < nu; ++q) {
+            dmax = std::max(dmax, std::fabs(dx[q]));
+            xmax = std::max(xmax, std::fabs(xo[q]));
+        }
+        const double du = dmax / (1 + xmax);
+        double dl = 0.0;
+        for (int q = nu; q < nx; ++q) dl = std::max(dl, std::fabs(dx[q]) / (1 + std::fabs(x[q])));
+        if (dl <= epsl && du < epsu) { status = 0; break; }
+        const double size = std::max(du, dl);
+        if (delref < 0) delref = divergence * std::max(size, 1e-300);
+        else if (size > delref) { status = 1; break; }
+    }
+    info[0] = std::min(it, itnw);
+    info[1] = it_J;
+    info[2] = residuals;
+    info[3] = jacobians;
+    return status;
+}

@@ -1,0 +1,185 @@
+"""The compiled corrector of periodic orbits (washer.cont.compiled_po, C++ in
+csrc/cont/po_correct.cpp) against the Python Newton loop it is the compiled form of
+(washer.cont.newton through Continuation.correct with PeriodicOrbits' residual, difference
+Jacobian and compiled factorisation): the same b- and s-files byte for byte, the same
+evaluation counts, the same failures, on lrz and chu from their Hopf points (Python user
+files, f called back from C++) and lrz's Fortran user file (FUNC through the batch bridge).
+
+Exact equality is what the compiled loop promises: the same function values, the same
+difference quotients and Jacobian values, the same factorisation and solve (the same C++
+code), the residual's sums in numpy's order and the inner products by numpy's BLAS ddot
+(compiled_po.numpy_ddot; where it cannot be had, test_inner_products_round_as_numpy says
+so by failing).
+"""
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from washer.cont import compiled_newton, compiled_po, iterator
+from washer.cont.branch import Counters
+from washer.cont.newton import ConvergenceError
+from washer.run import run
+
+DATA = Path(__file__).parent / "data"
+DEMOS = DATA / "auto_demos"
+
+LRZ_PO = dict(IPS=2, ICP=["rho", "PERIOD"], NMX=25, NPR=2, DS=0.5)
+CHU_PO = dict(IPS=2, ICP=[1, 11], NMX=60)
+
+
+CONSTANTS = {"lrz": DATA / "lrz" / "c.lrz",
+             "chu": DATA / "auto_reference" / "periodic" / "chu" / "c.chu"}
+
+
+def _folder(tmp_path, name, sub, user):
+    d = tmp_path / sub
+    d.mkdir()
+    shutil.copy(CONSTANTS[name], d)
+    shutil.copy(user, d)
+    return d
+
+
+def _po_run(d, name, ov):
+    """The equilibria, then the periodic orbits from their first Hopf point."""
+    run(d / f"c.{name}", verbose=False, e=name, sv="eq")
+    return run(d / f"c.{name}", verbose=False, e=name, sv="po", s="eq", IRS="HB1", **ov)
+
+
+def _both(tmp_path, monkeypatch, name, user, ov):
+    """The run with the compiled corrector (and how its corrections ended), then the same
+    run with the Python loop only."""
+    used = []
+    real = compiled_po.PeriodicCorrector.correct_plane
+
+    def spy(self, *a, **k):
+        try:
+            out = real(self, *a, **k)
+        except ConvergenceError:
+            used.append(True)                      # decided in C++: no convergence
+            raise
+        used.append(out is not None)
+        return out
+    with monkeypatch.context() as m:
+        m.setattr(compiled_po.PeriodicCorrector, "correct_plane", spy)
+        fast_dir = _folder(tmp_path, name, "fast", user)
+        fast = _po_run(fast_dir, name, ov)
+    n_fast = len(used)
+    with monkeypatch.context() as m:
+        m.setattr(compiled_po.PeriodicCorrector, "correct_plane", spy)
+        # the choice Continuation makes: no compiled corrector, the Python loop
+        m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
+        slow_dir = _folder(tmp_path, name, "slow", user)
+        slow = _po_run(slow_dir, name, ov)
+    assert len(used) == n_fast                     # the reference never went through C++
+    return (fast, fast_dir), (slow, slow_dir), used
+
+
+@pytest.mark.parametrize("name, user, ov", [
+    ("lrz", DATA / "lrz" / "lrz.py", LRZ_PO),
+    ("lrz", DATA / "lrz" / "lrz.py", dict(LRZ_PO, NTST=60, NMX=12)),
+    ("chu", DATA / "chu" / "chu.py", CHU_PO),
+])
+def test_compiled_po_follows_the_python_loop(name, user, ov, tmp_path, monkeypatch):
+    (fast, fd), (slow, sd), used = _both(tmp_path, monkeypatch, name, user, ov)
+    assert len(used) >= ov["NMX"] - 1 and all(used), used      # every step (PT 1: the start)
+    for f in ("b.po", "s.po"):
+        assert (fd / f).read_bytes() == (sd / f).read_bytes(), f
+    assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
+        == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
+    assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is needed for lrz.f90")
+def test_compiled_po_with_a_fortran_user_file(tmp_path, monkeypatch):
+    """AUTO's lrz.f90 (FUNC compiled, JAC = 0): f through the batch bridge, called back
+    from the C++ loop; the same files as the Python loop on the same user file."""
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+    (_, fd), (_, sd), used = _both(tmp_path, monkeypatch, "lrz", DEMOS / "lrz" / "lrz.f90",
+                                   dict(LRZ_PO, NMX=15))
+    assert len(used) >= 14 and all(used), used
+    for f in ("b.po", "s.po"):
+        assert (fd / f).read_bytes() == (sd / f).read_bytes(), f
+
+
+def test_inner_products_round_as_numpy():
+    """The ddot handed to the C++ loop is numpy's (bit-identical phase condition and
+    arclength row); without it the loop still runs, equal to rounding."""
+    assert compiled_po.numpy_ddot() != compiled_po.ffi.NULL
+
+
+def _system(tmp_path, monkeypatch):
+    """A Continuation of lrz's periodic orbits from HB1 and its first step's predictor."""
+    d = _folder(tmp_path, "lrz", "one", DATA / "lrz" / "lrz.py")
+    run(d / "c.lrz", verbose=False, e="lrz", sv="eq")
+    grabbed = {}
+    real = iterator.Continuation.correct
+
+    def grab(self, x_pred, x_ref, t_ref, ds, plane=None):
+        if isinstance(self._compiled, compiled_po.PeriodicCorrector) and "c" not in grabbed:
+            grabbed["c"] = (self, np.array(x_pred), np.array(x_ref), np.array(t_ref), ds)
+        return real(self, x_pred, x_ref, t_ref, ds, plane)
+    with monkeypatch.context() as m:
+        m.setattr(iterator.Continuation, "correct", grab)
+        run(d / "c.lrz", verbose=False, e="lrz", sv="po", s="eq", IRS="HB1",
+            **dict(LRZ_PO, NMX=3))
+    return grabbed["c"]
+
+
+def test_failing_f_hands_over_to_the_python_loop(tmp_path, monkeypatch):
+    """f failing inside the C++ loop: the correction is the Python loop's (None), which
+    evaluates f again and reports; Ctrl-C in the user's func stops the run."""
+    cont, x_pred, x_ref, t_ref, ds = _system(tmp_path, monkeypatch)
+    comp = cont._compiled
+    problem = comp.problem
+    calls = []
+
+    def failing(us, pars):
+        calls.append(len(us))
+        raise ValueError("f fails here")
+    with monkeypatch.context() as m:
+        m.setattr(problem, "func_many", failing)
+        assert comp.correct_plane(x_pred, x_ref, t_ref, ds, Counters()) is None
+    assert calls == [cont.sys.mesh.ntst * cont.sys.mesh.ncol]
+
+    def interrupted(us, pars):
+        raise KeyboardInterrupt
+    with monkeypatch.context() as m:
+        m.setattr(problem, "func_many", interrupted)
+        with pytest.raises(KeyboardInterrupt):
+            comp.correct_plane(x_pred, x_ref, t_ref, ds, Counters())
+    # and it runs again after both
+    x, it = comp.correct_plane(x_pred, x_ref, t_ref, ds, Counters())
+    assert it >= 1 and np.isfinite(x).all()
+
+
+def test_no_convergence_as_the_python_loop(tmp_path, monkeypatch):
+    """ITNW = 1: the compiled loop gives up with the Python loop's message and counts."""
+    import dataclasses
+    cont, x_pred, x_ref, t_ref, ds = _system(tmp_path, monkeypatch)
+    cont.s = cont._compiled.s = dataclasses.replace(cont.s, ITNW=1)
+    out = []
+    for compiled in (True, False):
+        cont.counters = Counters()
+        if not compiled:
+            cont._compiled = None
+        with pytest.raises(ConvergenceError) as err:
+            cont.correct(x_pred, x_ref, t_ref, ds)
+        out.append((str(err.value), cont.counters.residuals, cont.counters.jacobians))
+    assert out[0] == out[1] and out[0][0] == "no convergence in ITNW = 1 iterations"
+
+
+def test_where_it_applies(tmp_path, monkeypatch):
+    """PeriodicOrbits with difference Jacobians only: not with the user's Jacobians, not
+    on other collocation systems, nor with the Python factorisation."""
+    cont, *_ = _system(tmp_path, monkeypatch)
+    sysm, s = cont.sys, cont.s
+    assert compiled_newton.compiled_corrector(sysm, s, 20.0) is not None
+    from washer.cont.systems import bvp
+    with monkeypatch.context() as m:
+        m.setattr(bvp, "COMPILED_FACTOR", False)
+        assert compiled_newton.compiled_corrector(sysm, s, 20.0) is None
+    with monkeypatch.context() as m:
+        m.setattr(type(sysm.problem), "differenced_jacobian", property(lambda self: False))
+        assert compiled_newton.compiled_corrector(sysm, s, 20.0) is None

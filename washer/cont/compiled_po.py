@@ -1,0 +1,198 @@
+"""The corrector of periodic orbits in one foreign call per continuation step.
+
+    corrector = periodic_corrector(system, settings, DIVERGENCE_FACTOR)    # or None
+    result = corrector.correct_plane(x_pred, x_ref, t_ref, ds, counters)   # (x, it) or None
+
+This is the compiled form of the package's one Newton loop (washer.cont.newton.newton
+as washer.cont.iterator.Continuation.correct runs it on the plane arclength of a
+collocation BVP) for PeriodicOrbits (IPS 2): the same iteration (PeriodicOrbits.residual,
+PeriodicOrbits.jacobian by central differences of f with VectorField.fu_fp's points and
+quotients, refactorised up to NWTN iterations, chord iterations after), the same
+factorisation and solve (the compiled condensation of CollocationBVP.factor) and the same
+stopping test (AUTO's NEWTONBV: EPSU on the profile, EPSL on each parameter, the
+divergence test of Continuation.correct), written once in C++ (csrc/cont/po_correct.cpp).
+The user's f is called back from the C++ loop through Problem.func_many (one call for the
+Gauss points of an iterate, one for all difference points of a Jacobian): compiled user
+files and sympy problems through their batch bridge, Python files as the Python loop
+calls them. What the Python loop leaves behind for the converged point (the last Newton
+Jacobian, its factorisation and Floquet pair) is left the same way.
+
+It applies to PeriodicOrbits with difference Jacobians (no user dfdu / dfdp in use, no
+f evaluated with its Jacobians). Everything else, and every case the compiled loop does
+not finish cleanly (a failing or non-finite f, a non-finite Jacobian or correction, a
+zero pivot: the Python loop then repeats the correction and reports or resolves it as
+before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
+choice, in one place.
+
+Results: the same iterates to rounding (the sums in the collocation residual and the
+phase integral are taken in C's order, numpy's einsum and dot may round differently in
+the last bit), far inside Newton's EPSU; tests/test_compiled_po.py compares the two loops.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from washer.cont.newton import ConvergenceError
+from washer.cont.differences import FD_STEP
+from washer.cont.problem import Problem
+from washer.cont import reduction
+from washer.cont.reduction import ffi, lib
+
+_ddot = None
+
+
+def numpy_ddot():
+    """The BLAS ddot numpy's `@` of two float vectors rounds as (scipy's, from
+    scipy.linalg.cython_blas), as a cont_ddot for cont_po_correct's inner products: the
+    phase condition and the border row then round as the Python loop's. Checked once
+    against `@` on vectors of the lengths where BLAS kernels change their order; ffi.NULL
+    (sums in order: equal to rounding) where scipy's does not agree or is missing."""
+    global _ddot
+    if _ddot is None:
+        _ddot = ffi.NULL
+        try:
+            import ctypes
+            from scipy.linalg import blas, cython_blas
+            capsule = cython_blas.__pyx_capi__["ddot"]
+            get_name = ctypes.pythonapi.PyCapsule_GetName
+            get_name.restype, get_name.argtypes = ctypes.c_char_p, [ctypes.py_object]
+            get_ptr = ctypes.pythonapi.PyCapsule_GetPointer
+            get_ptr.restype, get_ptr.argtypes = ctypes.c_void_p, [ctypes.py_object,
+                                                                  ctypes.c_char_p]
+            ptr = get_ptr(capsule, get_name(capsule))
+            rng = np.random.default_rng(0)
+            same = all(blas.ddot(a, b) == a @ b for k in (1, 7, 31, 33, 100, 427, 2403, 9603)
+                       for a, b in [rng.standard_normal((2, k))])
+            if ptr and same:
+                _ddot = ffi.cast("cont_ddot", ptr)
+        except Exception:            # no scipy BLAS here: sums in order
+            _ddot = ffi.NULL
+    return _ddot
+
+
+class PeriodicCorrector:
+    """cont_po_correct for one run's PeriodicOrbits (see the module's docstring)."""
+
+    #: Continuation.correct hands it the plane arclength's corrector
+    plane = True
+
+    def __init__(self, system, settings, divergence: float):
+        self.sys, self.s, self.divergence = system, settings, divergence
+        self.problem = system.problem
+        self.n = system.ndim
+        self.error = None
+        self._cb = ffi.callback("cont_po_feval", self._evaluate, onerror=self._onerror)
+        self._npar = 0
+        #: (x, J) of the last converged correction when its last iteration factorised
+        #: (Continuation.correct's `_newton`), else None
+        self.newton = None
+
+    def _onerror(self, exc, val, tb):
+        # what escapes _evaluate is not a failure of f (those return 1, for the Python
+        # loop to evaluate again and report): Ctrl-C in the user's func, an error of this
+        # code; the C++ loop stops (1) and correct_plane raises it
+        self.error = val
+        return 1
+
+    def _evaluate(self, rows, us, ps, fs):
+        n, npar = self.n, self._npar
+        # fresh arrays for the user's func, as the Python loop gives it
+        U = np.frombuffer(ffi.buffer(us, 8 * rows * n), dtype=float).reshape(rows, n).copy()
+        P = np.frombuffer(ffi.buffer(ps, 8 * rows * npar), dtype=float).reshape(npar, rows).copy()
+        try:
+            F = self.problem.func_many(U, P.T)
+        except Exception:
+            return 1            # f failed: the Python loop evaluates it again and reports
+        out = np.frombuffer(ffi.buffer(fs, 8 * rows * n), dtype=float).reshape(rows, n)
+        out[...] = F
+        return 0
+
+    def correct_plane(self, x_pred, x_ref, t_ref, ds: float, counters):
+        """(x, iterations) of the corrector from x_pred on the plane <x - x_ref,
+        border(t_ref)> = ds; None when the Python loop is to take over. ConvergenceError
+        as the Python loop raises it (divergence, ITNW exhausted). The evaluations are
+        added to `counters` as the Python loop counts them."""
+        sysm, s = self.sys, self.s
+        self.newton = None
+        coll, mesh = sysm.coll, sysm.mesh
+        N, m, n = mesh.ntst, mesh.ncol, self.n
+        par = np.ascontiguousarray(sysm.par, dtype=float)
+        self._npar = len(par)
+        nx = coll.n_x
+        row = np.ascontiguousarray(sysm.border(t_ref), dtype=float)
+        x_pred = np.ascontiguousarray(x_pred, dtype=float)
+        x_ref = np.ascontiguousarray(x_ref, dtype=float)
+        U_old = np.ascontiguousarray(sysm.U_old, dtype=float)
+        up_old = np.ascontiguousarray(sysm.up_old, dtype=float)
+        bc = sysm.bc_offset()
+        bc = ffi.NULL if bc is None else ffi.from_buffer("double[]", np.ascontiguousarray(bc, float))
+        WT = np.ascontiguousarray(coll.WT, dtype=float)
+        WP = np.ascontiguousarray(coll.WP, dtype=float)
+        dtm = np.ascontiguousarray(mesh.dtm, dtype=float)
+        w_node = np.ascontiguousarray(coll.w_node, dtype=float)
+        fac = ffi.gc(lib.cont_bvp_new(N, m, n, 2), lib.cont_bvp_free)
+        x, x_J = np.empty(nx), np.empty(nx)
+        vals = np.empty(coll.nnz)
+        P0, P1 = np.zeros((n, n)), np.zeros((n, n))
+        info = np.zeros(4, dtype=np.int32)
+        p = reduction._ptr
+        self.error = None
+        status = lib.cont_po_correct(
+            fac, self._cb, numpy_ddot(), N, m, n, len(par), sysm.free[1] - 1, sysm.free[0] - 1, p(WT), p(WP),
+            p(dtm), p(w_node), p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row),
+            float(ds), s.EPSL, s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, p(x), p(x_J),
+            p(vals), p(P0), p(P1), ffi.from_buffer("int[]", info))
+        if self.error is not None:
+            err, self.error = self.error, None
+            raise err
+        if status in (3, 4):
+            return None
+        it, it_J, residuals, jacobians = (int(v) for v in info)
+        counters.residuals += residuals
+        counters.jacobians += jacobians
+        counters.factorisations += jacobians
+        # what the Python loop leaves (also when it fails): the last Jacobian
+        # (PeriodicOrbits.jacobian's `_last_blocks`), its factorisation with the Floquet
+        # pair (CollocationBVP.factor's `_reduced`)
+        J = coll.jacobian_from_values(vals)
+        factor = reduction.BorderedCollocation.adopt(
+            fac, (N, m, n, 2), P0, P1, dense=lambda: coll.bordered(J, row))
+        sysm._reduced = (J, factor)
+        blocks = vals[:N * m * n * (m + 1) * n].reshape(N, m * n, (m + 1) * n)
+        sysm._last_blocks = (x_J, blocks, J)
+        if status == 1:
+            raise ConvergenceError("Newton iterates diverge")
+        if status == 2:
+            raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
+        if it_J == it:
+            self.newton = (x, J)
+        return x, it
+
+    def jacobian_at(self, x):
+        """None: the Jacobian at a point is the system's (the corrector's last one
+        reaches the converged point through `newton`)."""
+        return None
+
+    def tangent_system(self, J, ref):
+        """None: the tangent is solved with the system's factorisation."""
+        return None
+
+
+def periodic_corrector(system, settings, divergence: float):
+    """The compiled corrector of a PeriodicOrbits `system`, or None where the Python loop
+    runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), user
+    Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
+    from washer.cont.systems import bvp
+    from washer.cont.systems.periodic import PeriodicOrbits
+    problem = getattr(system, "problem", None)
+    if type(system) is not PeriodicOrbits or not bvp.COMPILED_FACTOR \
+            or not isinstance(problem, Problem) or system.arclength != "plane":
+        return None
+    if not problem.differenced_jacobian or problem.has_func_dfdu_batch \
+            or problem.has_dfdp_batch:
+        return None
+    coll = system.coll
+    if coll.general_bc or coll.nint != 1 or coll.npar != 2 or len(system.free) != 2 \
+            or len(system.par) < 11:
+        return None
+    return PeriodicCorrector(system, settings, divergence)
