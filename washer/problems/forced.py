@@ -25,7 +25,9 @@ from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory, solve
 from washer.machine import forced
 from washer.machine.forced import ForcedResponse, ShootingError
-from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, kernel_parameters
+from washer.machine.layout import PAR_INDEX
+from washer.problems.parameters import (NPAR, PAR_NAMES, _reference_params, kernel_parameters,
+                                        set_par)
 from washer.problems.rotating import hopf_or_nan
 
 #: Newton's tolerance (EPSU = EPSL): relative corrections below the flow's accuracy at
@@ -83,9 +85,7 @@ def shooting_problem(params=None, u0=None) -> Problem:
                          "use IPS = 2")
 
     def stpnt(u, par):
-        for i, name in PAR_NAMES.items():
-            if i <= len(par):
-                par[i - 1] = params[name]
+        set_par(par, params)
         if len(par) >= 11:
             par[10] = 1.0 / params["Omega"]
         u[:] = forced.averaged_start(params) if u0 is None else u0
@@ -101,10 +101,9 @@ def shooting_problem(params=None, u0=None) -> Problem:
 
 def constants(name: str, **kw) -> Constants:
     """The constants of a shooting run in parameter `name` (one of PAR_NAMES)."""
-    index = {n: i for i, n in PAR_NAMES.items()}
-    if name not in index:
-        raise ValueError(f"parameter: expected one of {', '.join(index)}, got {name!r}")
-    base = dict(e="washer:shooting", NDIM=12, IPS=2, IRS=0, ISW=1, ICP=[index[name]],
+    if name not in PAR_INDEX:
+        raise ValueError(f"parameter: expected one of {', '.join(PAR_INDEX)}, got {name!r}")
+    base = dict(e="washer:shooting", NDIM=12, IPS=2, IRS=0, ISW=1, ICP=[PAR_INDEX[name]],
                 ILP=1, ISP=2, NMX=400, NPR=0, MXBF=0, ITNW=ITNW, NWTN=ITNW, ITMX=ITMX,
                 EPSL=EPS_NEWTON, EPSU=EPS_NEWTON, EPSS=EPS_LOCATE, NPAR=NPAR,
                 THL={11: 0.0})
@@ -143,7 +142,7 @@ def continue_response(params, name: str, stop: float, *, start=None, ds: float =
     response are passed."""
     p0 = params[name]
     scale = max(abs(p0), 1e-3)
-    index = {n: i for i, n in PAR_NAMES.items()}[name]
+    index = PAR_INDEX[name]
     c = constants(name, DS=ds if stop >= p0 else -ds, DSMAX=ds_max, DSMIN=ds_min,
                   NMX=max_points, UZSTOP={index: stop}, THL={index: 1 / scale ** 2, 11: 0.0})
     # The branch starts on the orbit at p0 itself (the engine's start correction moves
@@ -162,7 +161,7 @@ def locate_tr(params, name: str, bracket: tuple[float, float], u0=None,
     first two. Returns (the ForcedResponse at the TR point, its Record). ValueError if
     there is none in the bracket."""
     a, b = bracket
-    index = {n: i for i, n in PAR_NAMES.items()}[name]
+    index = PAR_INDEX[name]
     ds = (b - a) * FIRST_STEP if first_step is None else float(np.copysign(first_step, b - a))
     c = constants(name, DS=ds, DSMAX=abs(b - a) / 4, DSMIN=abs(b - a) * 1e-9,
                   THU={i: 0.0 for i in range(1, 13)}, UZSTOP={index: b}, STOP=["TR1"],

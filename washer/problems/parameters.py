@@ -17,6 +17,15 @@ PAR_NAMES = layout.PAR_NAMES
 NPAR = 17
 
 
+def set_par(par: np.ndarray, params) -> None:
+    """AUTO's PAR vector (NPAR,) filled in place from a washer.Params (an stpnt's job):
+    PAR(i) = params[PAR_NAMES[i]] for every mapped i <= len(par); the others (PAR(11),
+    the period; PAR(12)) are left as they are."""
+    for i, name in PAR_NAMES.items():
+        if i <= len(par):
+            par[i - 1] = params[name]
+
+
 def kernel_parameters(params):
     """(kernel_params(par) -> P, kernel_params_many(pars) -> (k, N_PARAMS)): the kernel's
     parameter vector for AUTO's PAR vector(s), the other entries from `params`; the tied

@@ -13,7 +13,8 @@ from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory
 from washer.machine import kernel, layout
 from washer.machine.model import Model
-from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, kernel_parameters
+from washer.problems.parameters import (NPAR, PAR_NAMES, _reference_params, kernel_parameters,
+                                        set_par)
 
 #: Steps of the Hopf search: DSMAX = range / HOPF_STEPS keeps two Hopf points of one
 #: range apart; the first step is HOPF_FIRST of the range (the engine tests no sign
@@ -104,9 +105,7 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
         return out
 
     def stpnt(u, par):
-        for i, name in PAR_NAMES.items():
-            if i <= len(par):
-                par[i - 1] = params[name]
+        set_par(par, params)
         u[:] = np.r_[Model(params).rotating_equilibrium(frame=frame), np.zeros(6)]
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
@@ -127,7 +126,7 @@ def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,
     lam = m.eigenvalues(m.rotating_equilibrium(frame=frame), frame=frame)
     if lam.real.max() == 0.0:
         return float(lo), lam
-    index = {n: i for i, n in PAR_NAMES.items()}[name]
+    index = layout.PAR_INDEX[name]
     span = hi - lo
     c = Constants({"NDIM": 12, "IPS": 1, "IRS": 0, "ICP": [index], "ILP": 0, "ISP": 1,
                    "ISW": 1, "MXBF": 0, "NMX": 20 * HOPF_STEPS, "NPR": 0, "JAC": 1,

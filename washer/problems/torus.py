@@ -42,6 +42,7 @@ import numpy as np
 from washer.machine import forced, kernel, layout
 from washer.machine.layout import PAR_INDEX
 from washer.problems import forced as shooting
+from washer.problems.parameters import set_par
 from washer.cont import invariant_circle as ic
 from washer.cont.branch import Branch
 from washer.cont import circle_runs
@@ -279,8 +280,7 @@ def exact_whirl(params: Params, stop: float = 0.0, name: str = "C_p", *, N: int 
     a = FIRST_AMPLITUDE * np.abs(b.v).max() / np.abs(b.v[:2]).max()
     first = circle_runs.first_circle(fmap, b.xi, b.v, b.rho, b.value, a, N)
     par = np.zeros(max(layout.PAR_NAMES) + 1)
-    for i, n in layout.PAR_NAMES.items():
-        par[i - 1] = params[n]
+    set_par(par, params)
     br = circle_runs.continue_circles(
         fmap, first, stop, index=PAR_INDEX[name], par=par, ds=ds, ds_max=ds_max,
         max_points=max_points, scale=scale(params["Omega"]), sinks=sinks,

@@ -14,7 +14,7 @@ from washer.cont.problem import Problem
 from washer.machine import kernel, layout
 from washer.problems.forced import periodic_response, shooting_problem
 from washer.problems.rotating import rotating_problem
-from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params  # noqa: F401
+from washer.problems.parameters import NPAR, PAR_NAMES, _reference_params, set_par  # noqa: F401
 
 #: PAR(i) -> kernel parameter name (washer.machine.layout.PAR_NAMES); the washer's
 #: problems share the map and the reference set (washer.problems.parameters).
@@ -143,9 +143,7 @@ def forced_problem(params=None, source: str = "<washer>") -> Problem:
         return cache[t]
 
     def stpnt(u, par, t=0.0):
-        for i, name in PAR_NAMES.items():
-            if i <= len(par):
-                par[i - 1] = params[name]
+        set_par(par, params)
         if len(par) >= 11:
             par[10] = 1.0 / params["Omega"]
         u[:12] = washer_state(t)

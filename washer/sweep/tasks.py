@@ -194,9 +194,9 @@ def critical(params: Params, parameter: str = "C_p", lo: float = 0.0, hi: float 
         return _critical_floquet(params, parameter, lo, hi)
     if engine != "continuation":
         raise PointError(f"critical: unknown engine {engine!r}")
-    from washer.machine.layout import PAR_NAMES
+    from washer.machine.layout import PAR_INDEX
     from washer.run import run
-    idx = next(i for i, n in PAR_NAMES.items() if n == parameter)
+    idx = PAR_INDEX[parameter]
     res = run(critical_constants(parameter, lo, hi), verbose=False, params=params,
               files=False)
     hbs = [s for s in res.specials if s.ty == "HB"]
@@ -310,7 +310,7 @@ def whirl_growth(params: Params, parameter: str, value: float) -> tuple[float, f
     stable above the critical value, the whirl below it). a is nan where l1 >= 0 (a
     subcritical point: no small stable whirl)."""
     from washer.cont.normal_form import first_lyapunov
-    from washer.machine.layout import PAR_NAMES
+    from washer.problems.parameters import NPAR, set_par
     from washer.problems.washer import washer_problem
     q = params.replace(**{parameter: value})
     m = Model(q)
@@ -320,9 +320,8 @@ def whirl_growth(params: Params, parameter: str, value: float) -> tuple[float, f
     lam, V = np.linalg.eig(A)
     i = int(np.argmin(np.abs(lam.real) + 1e3 * (lam.imag <= 0)))
     w = float(lam[i].imag)
-    par = np.zeros(17)
-    for k, name in PAR_NAMES.items():
-        par[k - 1] = q[name]
+    par = np.zeros(NPAR)
+    set_par(par, q)
     l1 = first_lyapunov(washer_problem("washer", q), x, par, w, A)
     h = GROWTH_REL_STEP * max(abs(value), 1e-3)
 
