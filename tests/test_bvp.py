@@ -300,9 +300,12 @@ def test_int_demo_fold_locus(tmp_path):
     (p1, p2) as AUTO's script runs it: a generating run from the LP (five points, the
     null vector's norm free, ending at an EP of the locus, code 59, on a new branch),
     restarted to follow the locus: AUTO's UZ p1 = 3 (code -54) at p2 = 7.90922 is ours
-    within the tolerance. The null vector is scaled to int |v|^2 = 1 here (AUTO grows it
-    from 0, to 6.6e-3 in its generating run), so the arclength, and with it where
-    NMX = 40 ends the locus, differ: AUTO's EP is at p1 = 1.37, ours beyond UZ p1 = 1."""
+    within the tolerance. The generating run starts, as AUTO's STPNBL, from v = 0 and the
+    norm int |v|^2 = 0 and leaves the LP's branch along v (STDRBV at the crossing), so the
+    null vector's norm grows with the arclength as AUTO's (6.6e-3 after five points) and
+    weighs v in the locus's arclength as AUTO's does: every row of the locus is AUTO's,
+    the EP at NMX = 40 too (p1 = 1.36979; with v scaled to int |v|^2 = 1 it lay at
+    p1 = 2.09, a UZ later)."""
     d = demo(tmp_path, "int")
     c = read_constants(d / "c.int")
     tol = tolerance(c)
@@ -319,6 +322,18 @@ def test_int_demo_fold_locus(tmp_path):
     assert (got[0].code, got[0].br) == (ref[0].ty, ref[0].br) == (-54, 2)
     assert abs(got[0].par[1] - ref[0].values[-1]) <= tol       # p2 at the UZ p1 = 3
     assert (got[-1].code, got[-1].br) == (ref[-1].ty, ref[-1].br) == (59, 2)
+    # int |v|^2 of the generating run's end (AUTO's PAR(4) there: 6.55878e-3): the
+    # arclength of its four steps squared, to the corrector's tolerance on them
+    assert gen.specials[0].par[3] == pytest.approx(6.55878e-3, rel=1e-3)
+    # Row by row (PAR(1), PAR(2)): the same steps, each point corrected to EPSL = EPSU =
+    # 1e-6 relative (1.6e-5 absolute at |U| ~ 15), the along-branch error of each start
+    # carried into the next: within 1e-4, a few corrector tolerances (measured 2.3e-5 and
+    # 4.9e-5 over the 40 rows; 0.72 at the EP with v of unit norm).
+    rows = [r for r in lp.rows if r.br == 2]
+    auto = branch_rows(DATA / "int" / "autoref" / "b.lp")
+    assert len(rows) == len(auto) == 40
+    for r, a in zip(rows, auto):
+        assert abs(r.par[0] - a.values[0]) < 1e-4 and abs(r.par[1] - a.values[-1]) < 1e-4
 
 
 BRATU_A = '''

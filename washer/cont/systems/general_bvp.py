@@ -561,23 +561,45 @@ class BVPFoldLocus(BoundaryValueProblem):
         par[:min(len(p), norm)] = p[:norm]
         ext = fold_problem(data.problem, n, s.NBC, s.NINT, norm)
         rec = data.record
+        self._generating = generating
         if generating:
+            # STPNBL: the LP's solution with v = 0 and the norm PAR(NPAR) = 0 (a solution
+            # of the extended BVP: the LP's branch with v = 0 crosses there the family
+            # v = c phi, PAR(NPAR) = c^2 int |phi|^2, which the generating run follows), and
+            # the LP's own direction with v-dot = 0, from which `start` switches (STDRBV,
+            # IPERP = 1, as CNRLBV does for ISW < 0). The null vector's norm then grows
+            # with the arclength from 0, as AUTO's (int: PAR(NPAR) = 6.6e-3 after the
+            # generating run's five points); it is no scaling of the locus's equations,
+            # but it weighs v in the arclength of every later step of the locus.
             base = BoundaryValueProblem(StartData(data.problem, s.with_(ISW=1, ICP=s.ICP[:1]),
                                                   data.u, data.par, rec, "", data.unames))
             x0 = base._start[0]
-            z = base.null_vector(base.jacobian(x0), np.zeros(base.n_x))
             U = base.unpack(x0)[0]
-            V = z[:base.n_u].reshape(-1, n)
-            V = V / math.sqrt(base.w_node @ np.sum(V * V, axis=1))
-            par[norm - 1] = 1.0
-            rec = SimpleNamespace(U=np.hstack([U, V]), t=base.mesh.node_times(),
-                                  ntst=base.mesh.ntst, ncol=base.mesh.ncol, udot=None,
-                                  rldot=[], icp=[])
+            if base._stored is not None:
+                d_u, d_p = base._stored[:base.n_u].reshape(-1, n), float(base._stored[-1])
+            else:
+                z = base.null_vector(base.jacobian(x0), np.zeros(base.n_x))
+                d_u, d_p = z[:base.n_u].reshape(-1, n), 0.0
+            par[norm - 1] = 0.0
+            rec = SimpleNamespace(U=np.hstack([U, np.zeros_like(U)]), t=base.mesh.node_times(),
+                                  ntst=base.mesh.ntst, ncol=base.mesh.ncol,
+                                  udot=np.hstack([d_u, np.zeros_like(d_u)]),
+                                  rldot=[d_p, 0.0], icp=[s.ICP[0], norm])
         self.ndm = n
         # AUTO's NPARI: the norm's PAR(NPAR + 1) is internal (AUTO-07p restarts read the
         # user's NPAR as NPAR - NPARI).
         self.npari = 1
         super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
+
+    def start(self):
+        if not self._generating or self._stored is None:
+            return super().start()
+        # The generating run leaves the LP's branch (v = 0) along the family v = c phi:
+        # the null vector of the Jacobian bordered by the LP's direction (STDRBV with
+        # IPERP = 1), oriented by STDRBV's rule.
+        x0 = self._start[0]
+        z = self.null_vector(self.jacobian(x0), self.weights * self._stored)
+        return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
 
 
 __all__ = ["BoundaryValueProblem", "BVPFoldLocus", "fold_problem"]
