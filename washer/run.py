@@ -33,7 +33,7 @@ from pathlib import Path
 
 from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
                                    parse_override, read_constants)
-from washer.auto.files import AutoFileError, read_b, read_dat, read_s
+from washer.auto.files import AutoFileError, read_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError

@@ -26,7 +26,7 @@ import shutil
 import sys
 from pathlib import Path
 
-from washer.auto.constants import DEFAULTS, Constants, ConstantsError, read_constants
+from washer.auto.constants import Constants, ConstantsError, read_constants
 from washer.auto import diagram
 from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
                                         AutoError)
@@ -75,8 +75,7 @@ class Runner:
         (compiled once, cached), or a family the package ships (e = 'washer...',
         washer.named_problems), built from the run's `constants` as `washer.run` builds
         it (e='washer' starts from the equilibrium at the constants' PAR)."""
-        from washer.cont.compiled import load_compiled_problem
-        from washer.cont.user_files import find_problem_file, load_python_problem
+        from washer.cont.user_files import find_problem_file, load_user_problem
         if not e:
             raise AutoError("The equation file argument is missing.")
         folder = Path(".").resolve()
@@ -89,10 +88,7 @@ class Runner:
                             f"{e}.c or {e}.py in {folder})")
         key = (str(path), path.stat().st_mtime_ns, ndim)
         if key not in self._problems:
-            if path.suffix == ".py":
-                self._problems[key] = load_python_problem(e, folder, ndim)
-            else:
-                self._problems[key] = load_compiled_problem(path, ndim, name=e)
+            self._problems[key] = load_user_problem(e, folder, ndim)
         return self._problems[key]
 
 

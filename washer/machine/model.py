@@ -182,7 +182,7 @@ class Model:
             where = ", ".join(f"{k} = {Pl[layout.PARAM_NAMES.index(k)]:.6g}" for k in path)
             target = ", ".join(f"{k} = {b:.6g}" for k, (a, b) in path.items())
             sig, sig0 = sigma_min(jac(xl, Pl)), sigma_min(jac(x_ref, P_ref))
-            last = self._result(xl, kind, frame, Pl, f"end of the branch followed from the "
+            last = self._result(xl, kind, frame, Pl, "end of the branch followed from the "
                                 "reference set (fold)", path, 0, 0, hanging=True)
             raise EquilibriumError(
                 f"{what}: no hanging equilibrium at {target}: the branch followed from the "

@@ -28,7 +28,7 @@ from washer.machine import forced, kernel
 from washer.machine.layout import PAR_INDEX
 from washer.problems import forced as shooting
 from washer.problems.rotating import first_hopf, hopf_or_nan
-from washer.machine.params import load_params
+from washer.machine.params import Params, load_params
 from washer.atomic import write_text
 
 #: Points on the exact Fig 4 curve (lower end to 15 Hz); --quick uses N_CURVE_QUICK.
