@@ -96,7 +96,10 @@ def _plain(v: list) -> bool:
     """Whether every value prints with a 2-digit exponent in C's %E: finite, zero or of
     magnitude in [1e-99, 1e99) (the rest go value by value through fmt_e / fmt_es)."""
     if len(v) <= SHORT_ROW:
-        return all(1e-99 <= abs(x) < 1e99 or x == 0.0 for x in v)
+        for x in v:             # a plain loop: a third of all()'s generator's cost
+            if not (1e-99 <= abs(x) < 1e99 or x == 0.0):
+                return False
+        return True
     with np.errstate(invalid="ignore"):
         a = np.abs(np.asarray(v))
         return bool(np.all((a < 1e99) & ((a >= 1e-99) | (a == 0))))

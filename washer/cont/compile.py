@@ -77,11 +77,21 @@ def cache_dir() -> Path:
     return Path(base) / "washer" / "compiled"
 
 
+#: (compiler, PATH) -> its path, of the compilers found (a search of PATH costs more
+#: than a short run's set-up otherwise; a compiler not found is searched again).
+_FOUND: dict = {}
+
+
 def _compiler(kind: str) -> str:
     env, default, package = {"c": ("CC", "gcc", "gcc"),
                              "fortran": ("FC", "gfortran", "gfortran")}[kind]
     exe = os.environ.get(env) or default
-    if shutil.which(exe) is None:
+    where = (exe, os.environ.get("PATH"))
+    if where not in _FOUND:
+        found = shutil.which(exe)
+        if found is not None:
+            _FOUND[where] = found
+    if where not in _FOUND:
         raise CompileError(f"no {kind} compiler: '{exe}' is not on PATH (install the Debian "
                            f"package {package}: apt-get install {package}; or set ${env})")
     return exe

@@ -20,6 +20,7 @@ call, so the per-point cost is the user's code plus a few nanoseconds.
 """
 from __future__ import annotations
 
+import os
 import weakref
 from pathlib import Path
 
@@ -84,13 +85,35 @@ def find_user_file(name: str, folder: Path) -> Path | None:
     return None
 
 
+#: The libraries built or found in this process: (user file, its content, the bridge's,
+#: the compilers and cache asked for) -> library path. Hashing the sources with the
+#: compilers' versions again at every run's start cost a short run of a small problem a
+#: twentieth of its time; a user file or bridge whose content changed is built afresh.
+_BUILT: dict = {}
+
+
 def compile_user_file(path) -> Path:
     """The shared library of a user file and the bridge (compiled or from the cache)."""
     path = Path(path)
     fortran = path.suffix != ".c"
-    sources = [source_file(path), source_text("washer_shim.c", SHIM.read_bytes())]
-    return build_library(sources, path.stem, includes=[INCLUDE],
-                         defines={"WASHER_FORTRAN": int(fortran)})
+    shim = SHIM.read_bytes()
+    try:
+        key = (str(path.resolve()), path.read_bytes(), shim,
+               tuple((h.name, h.stat().st_mtime_ns, h.stat().st_size)
+                     for h in sorted(INCLUDE.glob("*.h"))),
+               *(os.environ.get(v) for v in ("CC", "FC", "PATH", "WASHER_CACHE",
+                                             "XDG_CACHE_HOME")))
+    except OSError:
+        key = None
+    lib = _BUILT.get(key)
+    if lib is not None and lib.exists():
+        return lib
+    sources = [source_file(path), source_text("washer_shim.c", shim)]
+    lib = build_library(sources, path.stem, includes=[INCLUDE],
+                        defines={"WASHER_FORTRAN": int(fortran)})
+    if key is not None:
+        _BUILT[key] = lib
+    return lib
 
 
 def _open(lib_path: Path):
