@@ -371,3 +371,44 @@ def test_map_loci_keep_the_python_loop():
     from washer.cont.systems.maps import MapFoldLocus, MapPDLocus
     assert FoldSystem.compiled_system == "fold" and HopfSystem.compiled_system == "hopf"
     assert MapFoldLocus.compiled_system is None and MapPDLocus.compiled_system is None
+
+
+@pytest.mark.parametrize("kind", ["f90", "py"])
+@pytest.mark.parametrize("name", ["ab", "lrz"])
+def test_compiled_first_lyapunov_is_normal_forms(name, kind, tmp_path, monkeypatch, cache):
+    """The GH test on the Hopf curves of ab and lrz computed in C (ae_lyapunov.h, where the
+    compiled corrector runs the locus) against normal_form.first_lyapunov at every point
+    it is asked for: equal to rounding where l1 is well above its noise (median 1e-15
+    relative);
+    1e-7 absolute in all, the size of l1's own difference noise (third differences with
+    h = 4e-3: eps |f| / h^3 ~ 2e-9 of f, which the rounding of q's components moves) and
+    well below ab's |l1| away from its GH."""
+    from washer.cont.normal_form import first_lyapunov
+    pairs = []
+    real = compiled_newton.CompiledCorrector.first_lyapunov
+
+    def spy(self, problem, x, p, omega, A=None):
+        value = real(self, problem, x, p, omega, A)
+        pairs.append((value, first_lyapunov(problem, x, p, omega, A)))
+        return value
+    monkeypatch.setattr(compiled_newton.CompiledCorrector, "first_lyapunov", spy)
+    d = _folder(tmp_path, name, "l1", kind)
+    run(d / f"c.{name}", verbose=False, sv="eq")
+    out = run(d / f"c.{name}", verbose=False, sv="hb", s="eq", IRS="HB1",
+              **(AB2 if name == "ab" else LRZ2))
+    c, py = np.array(pairs).T
+    assert len(pairs) > 90
+    np.testing.assert_allclose(c, py, rtol=0, atol=1e-7)
+    big = np.abs(py) > 1e-6                 # far above the noise (lrz's l1 is ~1e-4)
+    assert big.sum() > 80
+    assert np.median(np.abs(c - py)[big] / np.abs(py[big])) < 1e-13
+    if name == "ab":
+        assert [s.ty for s in out.specials].count("GH") == 1
+
+
+def test_l1_work_size_is_the_c_one(cache):
+    """compiled_newton.l1_work_size allocates what ae_lyapunov.h's ae_l1_work_size uses."""
+    _, lib = compiled_newton._library("ae_callback.c", compiled_newton._CALLBACK_CDEF)
+    for n in (1, 2, 3, 12):
+        for npar in (3, 36):
+            assert lib.washer_ae_l1_work_size(n, npar) == compiled_newton.l1_work_size(n, npar)

@@ -17,6 +17,7 @@ static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int
 }
 
 #include "ae_correct.h"
+#include "ae_lyapunov.h"
 
 /* ae_correct with f from `callback` (nonzero return: the evaluation failed, the corrector
    returns 3 and the caller runs the Python loop). */
@@ -36,4 +37,18 @@ int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int
 size_t washer_ae_work_size(int kind, int ndim, int npar)
 {
     return ae_work_size(kind, ndim, npar);
+}
+
+/* ae_first_lyapunov (ae_lyapunov.h) with f from `callback` (stage 2). */
+int washer_ae_l1_cb(ae_callback callback, int ndim, int npar, const double *x,
+                    const double *par, double omega, const double *A, double *l1,
+                    double *work)
+{
+    return ae_first_lyapunov(&callback, ndim, npar, NULL, x, par, omega, A, l1, work, NULL);
+}
+
+/* ae_l1_work_size, for compiled_newton.l1_work_size's test. */
+size_t washer_ae_l1_work_size(int ndim, int npar)
+{
+    return ae_l1_work_size(ndim, npar);
 }

@@ -68,6 +68,8 @@ int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *
                       double epsu, int itnw, double divergence, double hmach, double h2,
                       double *x, int *iterations, double *jac, double *tangent,
                       double *work, double *scratch);
+int washer_ae_l1(int ndim, int npar, const int *icp, const double *x, const double *par,
+                 double omega, const double *A, double *l1, double *work, double *scratch);
 """
 
 _ffi = FFI()
@@ -252,6 +254,16 @@ class CompiledUser:
                 kind, ndim, npar, ip, ip2, self._icp_ptr, p["par"], p["v_old"], p["x_pred"],
                 p["x_ref"], p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
                 p["iterations"], p["jac"], p["tangent"], p["work"], self._scratch_for(npar))
+        return call
+
+    def l1_binder(self, ndim, npar, arrays):
+        """washer_ae_l1 (compiled_shim.c, ae_lyapunov.h) bound to the arrays x, par, A, l1,
+        work: a function of omega returning the status."""
+        p = {k: _dptr(a) for k, a in arrays.items()}
+
+        def call(omega) -> int:
+            return self.lib.washer_ae_l1(ndim, npar, self._icp_ptr, p["x"], p["par"], omega,
+                                         p["A"], p["l1"], p["work"], self._scratch_for(npar))
         return call
 
     def dfdu(self, u, par) -> np.ndarray:

@@ -68,6 +68,10 @@ int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int
                          double *x, int *iterations, double *jac, double *tangent,
                          double *work);
 size_t washer_ae_work_size(int kind, int ndim, int npar);
+int washer_ae_l1_cb(ae_callback callback, int ndim, int npar, const double *x,
+                    const double *par, double omega, const double *A, double *l1,
+                    double *work);
+size_t washer_ae_l1_work_size(int ndim, int npar);
 """
 _GENERATED_CDEF = """
 typedef void (*ae_sym_func)(int k, const double *U, const double *P, int pstride, double *F);
@@ -114,6 +118,16 @@ def work_size(kind: int, n: int, npar: int) -> int:
     r1, r2 = stage_rows(kind, n)
     return ((r1 + r2) * (2 * n + npar) + nx * nx + 2 * nx + npar + 2 * k1 + m2 * (1 + n)
             + k1 * m2 * n + n * k1 + n)
+
+
+#: ae_lyapunov.h's AE_L1_ROWS: the rows of its larger batch of f (normal_form's second
+#: stage: f at x and 12 directions times 4 offsets).
+L1_ROWS = 49
+
+
+def l1_work_size(n: int, npar: int) -> int:
+    """ae_l1_work_size: the doubles of ae_first_lyapunov's work array."""
+    return L1_ROWS * (2 * n + npar) + 2 * (n * n + 6 * n) + n * n + 40 * n
 
 
 class WorkLayoutError(RuntimeError):
@@ -191,7 +205,8 @@ class PythonEquations:
     points, as the Python loop evaluates them (stage 0: Problem.func at the point itself,
     then Problem.jacobian's stencil, one call per point below VECTORISE_MIN points, else
     Problem.func_many; stage 1, the loci's second differences: Problem.func_many, as
-    Problem.second_derivatives)."""
+    Problem.second_derivatives; stage 2, the first Lyapunov coefficient's differences:
+    Problem.func_many, as normal_form._directional)."""
 
     func_ready = True
 
@@ -219,19 +234,23 @@ class PythonEquations:
         # made once (ae_binder: ae_correct.h's layout, each stage's us, ps, fs one after
         # the other); a C that passes other pointers or another number of rows fails
         # loudly (three pointer comparisons a call)
-        if stage not in (0, 1) or stage == 1 and self.kind == 0:
+        if stage not in (0, 1, 2) or stage == 1 and self.kind == 0 \
+                or stage == 2 and self.kind != 2:
             raise WorkLayoutError(f"ae_correct.h asked for stage {stage} of f, which "
                                   "compiled_newton.PythonEquations does not know")
         U, P, F = self._views[stage]
         where, n = self._where[stage], self.n
-        if us != where[0] or ps != where[1] or fs != where[2] or rows != U.shape[0]:
+        if us != where[0] or ps != where[1] or fs != where[2] or \
+                not (rows == U.shape[0] or stage == 2 and 0 < rows <= U.shape[0]):
             raise WorkLayoutError(
                 "ae_correct.h passed points outside the views of its work array that "
                 "compiled_newton.PythonEquations reads (the layouts differ)")
+        if stage == 2:                      # a batch of up to L1_ROWS rows
+            U, P, F = U[:rows], P[:rows], F[:rows]
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
         U, P = U.copy(), P.copy()
         problem = self.problem
-        if stage == 1:
+        if stage:
             try:
                 F[:] = problem.func_many(U, P)      # Problem.second_derivatives' one call
             except Exception:
@@ -267,7 +286,7 @@ class PythonEquations:
                           w[b:c].reshape(rows, ndim)))
             where.append((work + start, work + a, work + b))
             start = c
-        self._views, self._where = views, where
+        self._views, self._where = views + [None], where + [None]
 
         def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             self.error = None
@@ -275,6 +294,25 @@ class PythonEquations:
                 cb, kind, ndim, npar, ip, ip2, p["par"], p["v_old"], p["x_pred"], p["x_ref"],
                 p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
                 p["iterations"], p["jac"], p["tangent"], p["work"])
+        return call
+
+
+    def l1_binder(self, ndim, npar, arrays):
+        """washer_ae_l1_cb bound to the arrays x, par, A, l1, work (CompiledUser.l1_binder);
+        stage 2's views are those of `work`."""
+        ffi, d = self.ffi, self._dptr_type
+        p = {k: ffi.from_buffer(d, a) for k, a in arrays.items()}
+        lib, cb = self.lib, self._cb
+        w, work, rows = arrays["work"], p["work"], L1_ROWS
+        a, b, c = rows * ndim, rows * (ndim + npar), rows * (2 * ndim + npar)
+        self._views[2] = (w[:a].reshape(rows, ndim), w[a:b].reshape(rows, npar),
+                          w[b:c].reshape(rows, ndim))
+        self._where[2] = (work + 0, work + a, work + b)
+
+        def call(omega) -> int:
+            self.error = None
+            return lib.washer_ae_l1_cb(cb, ndim, npar, p["x"], p["par"], omega, p["A"],
+                                       p["l1"], p["work"])
         return call
 
 
@@ -297,6 +335,11 @@ class CompiledCorrector:
         ip2 = system.free[1] - 1 if kind else -1
         self._call = equations.ae_binder(kind, n, self.npar, system.free[0] - 1, ip2, self.a)
         self.last = None          # (x, [f_u, f_lambda] at x, tangent data) of the last point
+        if kind == 2:
+            # the first Lyapunov coefficient of the GH test in C (ae_lyapunov.h)
+            self.l1a = dict(x=np.empty(n), par=np.empty(self.npar), A=np.empty((n, n)),
+                            l1=np.zeros(1), work=np.zeros(l1_work_size(n, self.npar)))
+            self._l1_call = equations.l1_binder(n, self.npar, self.l1a)
 
     def correct(self, x_pred, x_ref, ds: float, counters):
         """(x, iterations) of the corrector from x_pred on the sphere of radius |ds|
@@ -336,6 +379,28 @@ class CompiledCorrector:
             t = a["tangent"]
             self.last = (x, a["jac"].copy(), t.copy() if t[-1] == 1.0 else None)
         return x, it
+
+    def first_lyapunov(self, problem, x, p, omega: float, A=None) -> float:
+        """normal_form.first_lyapunov(problem, x, p, omega, A) computed in C with the
+        corrector's f (ae_lyapunov.h: the same stencils and formula; the values agree to
+        rounding); where the C cannot finish (f failing, a singular solve) the Python
+        function computes it, and reports as it does."""
+        from washer.cont.normal_form import first_lyapunov
+        user = self.user
+        if A is None or problem is not self.sys.problem or not user.func_ready:
+            return first_lyapunov(problem, x, p, omega, A)
+        a = self.l1a
+        a["x"][:] = x
+        a["par"][:] = p
+        a["A"][:] = A
+        status = self._l1_call(float(omega))
+        err = getattr(user, "error", None)
+        if err is not None:
+            user.error = None
+            raise err
+        if status != 0:
+            return first_lyapunov(problem, x, p, omega, A)
+        return float(a["l1"][0])
 
     def jacobian_at(self, x):
         """The system's Jacobian at x ([f_u, f_lambda] (NDIM, NDIM + 1) on equilibria, the
@@ -433,4 +498,7 @@ def compiled_corrector(system, settings, divergence: float):
             return None
     else:
         return None
-    return CompiledCorrector(system, settings, divergence, equations, kind)
+    corrector = CompiledCorrector(system, settings, divergence, equations, kind)
+    if kind == 2:
+        system.lyapunov = corrector.first_lyapunov      # HopfSystem's GH test
+    return corrector

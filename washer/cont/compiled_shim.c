@@ -382,6 +382,7 @@ static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int
 }
 
 #include "ae_correct.h"
+#include "ae_lyapunov.h"
 
 /* washer.cont.compiled_newton's corrector with this file's FUNC (ae_correct.h). */
 int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *icp,
@@ -394,4 +395,11 @@ int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *
     return ae_correct(NULL, kind, ndim, npar, ip, ip2, icp, par, v_old, x_pred, x_ref, theta,
                       ds, epsl, epsu, itnw, divergence, hmach, h2, x, iterations, jac,
                       tangent, work, scratch);
+}
+
+/* The first Lyapunov coefficient with this file's FUNC (ae_lyapunov.h). */
+int washer_ae_l1(int ndim, int npar, const int *icp, const double *x, const double *par,
+                 double omega, const double *A, double *l1, double *work, double *scratch)
+{
+    return ae_first_lyapunov(NULL, ndim, npar, icp, x, par, omega, A, l1, work, scratch);
 }

@@ -33,6 +33,9 @@ class HopfSystem(LocusSystem):
     #: v_old: the compiled corrector (washer.cont.compiled_newton, AE_HOPF) may stand in
     #: for the Python loop; a subclass with other equations sets it None.
     compiled_system = "hopf"
+    #: first_lyapunov(problem, x, p, omega, A): normal_form's, or its compiled form where
+    #: the compiled corrector runs this locus (compiled_newton.compiled_corrector sets it).
+    lyapunov = staticmethod(first_lyapunov)
 
     def __init__(self, start: StartData):
         self._setup(start, start.problem.ndim + 1)
@@ -131,7 +134,7 @@ class HopfSystem(LocusSystem):
             out[Code.BT] = float(kappa)
         A = np.asarray(J)[:n, :n]
         if Code.CP in codes:           # GH: base code -2 on a Hopf curve
-            out[Code.CP] = first_lyapunov(self.problem, x[:n], self._p(x), np.sqrt(kappa), A) \
+            out[Code.CP] = self.lyapunov(self.problem, x[:n], self._p(x), np.sqrt(kappa), A) \
                 if kappa > 0 else None
         if Code.ZH in codes:
             # Product of the eigenvalues other than the Hopf pair: it changes sign
