@@ -155,6 +155,14 @@ def fold_test(tangent) -> float | None:
     return None if tangent is None else float(tangent[-1])
 
 
+def determinant_test(factor: Factor) -> float:
+    """The branch-point test of the algebraic systems (AUTO's FNBPAE): the determinant of
+    the Newton matrix [G_x; border] from its factorisation, sign * exp(log|det|) with
+    log|det| capped at 700 (exp(700) ~ 1e304: a large det stays finite)."""
+    sign, logdet = factor.sign_logdet()
+    return float(sign * np.exp(min(logdet, 700.0))) if sign != 0 else 0.0
+
+
 @dataclass
 class Stability:
     """Spectrum at a point: `values` are eigenvalues (IPS = 1, sorted by

@@ -10,7 +10,7 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.linalg import dense_factor, null_vectors, orient
 from washer.cont.record import ColumnTitle
-from washer.cont.system import Solution, fold_test
+from washer.cont.system import Solution, determinant_test, fold_test
 
 #: Sums of up to this many terms numpy adds left to right (its pairwise summation
 #: starts at 8): `inner` adds them in Python floats below it, the same result.
@@ -127,9 +127,7 @@ class AlgebraicSystem:
         if Code.LP in codes:
             out[Code.LP] = fold_test(tangent)
         if Code.BP in codes:
-            # AUTO's FNBPAE: the determinant of the Newton matrix [G_x; border].
-            sign, logdet = factor.sign_logdet()
-            out[Code.BP] = float(sign * np.exp(min(logdet, 700.0))) if sign != 0 else 0.0
+            out[Code.BP] = determinant_test(factor)
         return out
 
     def accept(self, code, prev, cur) -> bool:

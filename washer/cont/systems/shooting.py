@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from washer.cont import floquet
-from washer.cont.system import Stability, StartData, register
+from washer.cont.system import Stability, StartData, determinant_test, register
 from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: Stability tolerance on |mu| - 1: the monodromy matrix of a variational flow is as
@@ -78,12 +78,9 @@ class ForcedOrbits(AlgebraicSystem):
         return floquet.active_tests(self.settings, self.ndim, trivial=False)
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
-        def bp():
-            # AUTO's FNBPAE: the determinant of the Newton matrix [G_x; border].
-            sign, logdet = factor.sign_logdet()
-            return float(sign * np.exp(min(logdet, 700.0))) if sign != 0 else 0.0
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
-                                      self.ndim, bp, floquet.spb_kinds(self.settings),
+                                      self.ndim, lambda: determinant_test(factor),
+                                      floquet.spb_kinds(self.settings),
                                       trivial=False)
 
     def located_code(self, key, point) -> int:
