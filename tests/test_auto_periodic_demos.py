@@ -24,29 +24,17 @@ from pathlib import Path
 
 import pytest
 
+from auto_reference import DATA, REF, demo_dir
 from b_rows import branch_rows, segments
 from washer.auto.files import type_name
 from washer.run import run
 
-DATA = Path(__file__).parent / "data"
-REF = DATA / "auto_reference" / "periodic"
-EQUATIONS = {"ab": DATA / "ab_demo" / "ab.py", "lrz": DATA / "lrz" / "lrz.py",
-             "chu": DATA / "chu" / "chu.py", "plp": DATA / "plp" / "plp.py",
-             "frc": DATA / "frc" / "frc.py"}
 LOCATED = ("UZ", "LP", "PD", "BP", "TR")
 
 # The periodic-orbit engine's acceptance checks against AUTO-07p's own output. A test
 # skips (with the engine's message) only where the engine says it does not do a case.
 REFUSAL = re.compile(r"IPS\s*=\s*2.*(not (yet )?implemented|no continued system)|"
                      r"(not (yet )?implemented|no continued system).*IPS\s*=\s*2", re.I | re.S)
-
-
-def demo_dir(tmp_path_factory, demo: str) -> Path:
-    d = tmp_path_factory.mktemp(demo)
-    for f in REF.joinpath(demo).glob("c.*"):
-        shutil.copy(f, d)
-    shutil.copy(EQUATIONS[demo], d / f"{demo}.py")
-    return d
 
 
 def run_periodic(cfile: Path, sv: str, **overrides):

@@ -20,31 +20,19 @@ HB: EPSS = 1e-4 there, AUTO is 1.4e-5 relative off the exact value).
 """
 import functools
 import math
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import ab_exact
+from auto_reference import REF, demo_dir
 from b_rows import branch_rows, segments
 import closed_form_exact as exact
 from washer.auto.constants import read_constants
 from washer.auto.files import type_name
 from washer.run import run
 
-DATA = Path(__file__).parent / "data"
-REF = DATA / "auto_reference" / "periodic"
-EQUATIONS = {"ab": DATA / "ab_demo" / "ab.py", "lrz": DATA / "lrz" / "lrz.py",
-             "chu": DATA / "chu" / "chu.py", "plp": DATA / "plp" / "plp.py"}
-
-
-def demo_dir(tmp_path_factory, demo: str) -> Path:
-    d = tmp_path_factory.mktemp(demo)
-    for f in REF.joinpath(demo).glob("c.*"):
-        shutil.copy(f, d)
-    shutil.copy(EQUATIONS[demo], d / f"{demo}.py")
-    return d
 
 
 #: Rows of the equilibrium branches of a b-file (AUTO's BR > 0; periodic BR < 0).
