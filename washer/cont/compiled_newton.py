@@ -36,11 +36,11 @@ EquilibriumSystem.residual_is_func, one free parameter; FixedPoints, f^k - u, do
 the loci FoldSystem and HopfSystem by compiled_system, two free parameters; those of
 maps do not), with the sphere arclength, and difference Jacobians (JAC = 0, or no
 Jacobian given) or, on equilibria, a sympy problem's exact ones (JAC = 1). Everything
-else, and
-every case the compiled loop does not finish cleanly (a failing or non-finite f, a
-non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
+else, and every case the compiled loop does not finish cleanly (a failing or non-finite
+f, a non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
 correction and reports or resolves it as before), is the Python loop.
-Continuation.correct makes the choice, in one place.
+`compiled_corrector` makes the choice, in one place, once per run (Continuation's set-up
+calls it; Continuation.correct then uses the corrector it returned).
 """
 from __future__ import annotations
 

@@ -125,7 +125,8 @@ class PeriodicCorrector:
         U_old = np.ascontiguousarray(sysm.U_old, dtype=float)
         up_old = np.ascontiguousarray(sysm.up_old, dtype=float)
         bc = sysm.bc_offset()
-        bc = ffi.NULL if bc is None else ffi.from_buffer("double[]", np.ascontiguousarray(bc, float))
+        bc = (ffi.NULL if bc is None
+              else ffi.from_buffer("double[]", np.ascontiguousarray(bc, float)))
         WT = np.ascontiguousarray(coll.WT, dtype=float)
         WP = np.ascontiguousarray(coll.WP, dtype=float)
         dtm = np.ascontiguousarray(mesh.dtm, dtype=float)
@@ -138,10 +139,11 @@ class PeriodicCorrector:
         p = reduction._ptr
         self.error = None
         status = lib.cont_po_correct(
-            fac, self._cb, numpy_ddot(), N, m, n, len(par), sysm.free[1] - 1, sysm.free[0] - 1, p(WT), p(WP),
-            p(dtm), p(w_node), p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row),
-            float(ds), s.EPSL, s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, p(x), p(x_J),
-            p(vals), p(P0), p(P1), ffi.from_buffer("int[]", info))
+            fac, self._cb, numpy_ddot(), N, m, n, len(par), sysm.free[1] - 1,
+            sysm.free[0] - 1, p(WT), p(WP), p(dtm), p(w_node), p(U_old), p(up_old), bc,
+            p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL, s.EPSU, s.ITNW, s.NWTN,
+            self.divergence, FD_STEP, p(x), p(x_J), p(vals), p(P0), p(P1),
+            ffi.from_buffer("int[]", info))
         if self.error is not None:
             err, self.error = self.error, None
             raise err
