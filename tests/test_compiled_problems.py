@@ -123,6 +123,24 @@ def test_cache_reuses_and_rebuilds(cache, tmp_path):
     assert p.func(np.array([1.0, 0.0]), par)[0] == -2.0
 
 
+
+def test_a_user_file_edited_in_the_same_process_is_built_again(cache, tmp_path):
+    """compile_user_file remembers the library it found for a file in this process (no
+    hashing at every run's start), keyed by the file's content: the same file twice is
+    the same library, an edited one a new library with the edited equations, and the
+    library is checked to exist before it is reused."""
+    from washer.cont.compiled import compile_user_file
+    src = tmp_path / "ab.f90"
+    shutil.copy(AB_F90, src)
+    lib1 = compile_user_file(src)
+    assert compile_user_file(src) == lib1
+    src.write_text(src.read_text().replace("F(1)=-U1", "F(1)=-2*U1"))
+    lib2 = compile_user_file(src)
+    assert lib2 != lib1 and lib2.exists()
+    assert load_compiled_problem(src, 2).func(np.array([1.0, 0.0]), np.zeros(36))[0] == -2.0
+    lib2.unlink()                                 # the cache emptied under the process
+    assert compile_user_file(src).exists()
+
 def test_compile_error_names_file_and_line(cache, tmp_path):
     bad = tmp_path / "bad.f90"
     bad.write_text(AB_F90.read_text().replace("E=EXP(U2)", "E=EXP(U2"))
