@@ -9,6 +9,11 @@ h^2 |f'''| / 6 against rounding eps |f| / h, about 1e-9 relative at rel = HMACH 
 for f of order one (AUTO's choice). Systems that difference a first difference again
 pass a larger rel (bvp.H2, the loci's DIR_STEP); the mixed second differences of
 Problem.second_derivatives have their own stencil.
+
+The compiled correctors repeat these differences in C: washer/cont/include/ae_correct.h
+(equilibria, fold and Hopf loci) and csrc/cont/po_correct.cpp (periodic orbits). A change
+here is made there too; tests/test_compiled_newton.py and tests/test_compiled_po.py hold
+the two forms to the same iterates.
 """
 from __future__ import annotations
 

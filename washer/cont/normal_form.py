@@ -12,6 +12,11 @@ extrapolated from steps h and 2h to O(h^4): near a GH point l1 is a small
 difference of such terms. All stencil points of one stage go to the problem
 in one batched call (two calls, 41 + 49 points: the second stage needs h11
 and h20 from the first).
+
+washer/cont/include/ae_lyapunov.h is the compiled form of first_lyapunov (the GH test
+where the compiled corrector runs the Hopf locus): a change here is made there too
+(tests/test_compiled_newton.py compares the two at every point of ab's and lrz's Hopf
+curves).
 """
 from __future__ import annotations
 

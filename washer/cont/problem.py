@@ -536,7 +536,9 @@ class Problem:
         eps^(1/4) scaled (central O(h^2) truncation ~1e-8 against rounding
         eps / (h k) ~1e-8); a derivative of f costs one f per point here,
         where differencing Jacobians costs a Jacobian per point (but see
-        _second_from_jacobians: batched analytic Jacobians, differenced along each w_k)."""
+        _second_from_jacobians: batched analytic Jacobians, differenced along each w_k).
+        include/ae_correct.h repeats this stencil in C for the fold and Hopf loci: a
+        change here is made there too."""
         u = np.asarray(u, dtype=float)
         par = np.asarray(par, dtype=float)
         ws = np.atleast_2d(np.asarray(ws, dtype=float))

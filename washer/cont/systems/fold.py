@@ -31,7 +31,8 @@ class FoldSystem(LocusSystem):
     curve_type = 2
     #: residual and jacobian are these equations of the problem's f and nothing more: the
     #: compiled corrector (washer.cont.compiled_newton, AE_FOLD) may stand in for the
-    #: Python loop; a subclass with other equations sets it None.
+    #: Python loop; a subclass with other equations sets it None. Its C repeats these
+    #: equations (include/ae_correct.h): a change here is made there too.
     compiled_system = "fold"
 
     def __init__(self, start: StartData):
