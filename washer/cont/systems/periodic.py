@@ -275,6 +275,8 @@ class PeriodicOrbits(CollocationBVP):
         self._last_ug = (key, ug)
         return ug
 
+    # csrc/cont/po_correct.cpp repeats residual and jacobian in C++ (the compiled
+    # corrector, washer.cont.compiled_po): a change to either is made there too.
     def residual(self, x: np.ndarray) -> np.ndarray:
         U, par = self.unpack(x)
         ug = self._at_gauss(x, U)
