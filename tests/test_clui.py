@@ -368,11 +368,12 @@ def test_the_washers_equations_by_name_start_where_washer_run_starts(tmp_path, m
 
 
 def test_the_command_language_loads_none_of_the_washers_problems_until_a_run_names_them():
-    """The AUTO file layer stays below the washer's problems: importing the command
-    language loads neither washer.problems nor the washer's model (a family named by e
-    is imported through washer.named_problems when a run asks for it)."""
+    """The AUTO file layer and the run command stay below the washer's problems: importing
+    the command language or washer.run loads neither washer.problems nor the washer's
+    model (a family named by e is imported through washer.named_problems when a run asks
+    for it)."""
     import subprocess
-    code = ("import sys, washer.auto.clui, washer.named_problems\n"
+    code = ("import sys, washer.auto.clui, washer.named_problems, washer.run\n"
             "print(sorted(m for m in sys.modules if m.startswith(('washer.problems', "
             "'washer.machine'))))\n"
             "washer.named_problems.named_problem('washer')\n"

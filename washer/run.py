@@ -37,11 +37,11 @@ from washer.auto.files import AutoFileError, read_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError
-from washer.problems.resolve import resolve_problem
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.auto.sinks import FileSink, ScreenSink
 from washer import sizes
 from washer.locks import LockedError, output_lock
+from washer.named_problems import resolve_problem
 from washer.sizes import SizeError
 
 #: Exit status when another run is writing the same output names (EX_TEMPFAIL: try later).
