@@ -82,8 +82,6 @@ class EquilibriumSystem(AlgebraicSystem):
     residual_is_func = True
 
     def __init__(self, start: StartData):
-        # (x's bytes, PAR, PVLS's PAR) of the last point PVLS was called at (`params`)
-        self._pvls_memo = None
         self._one_parameter(start)
         self._switch = start.settings.ISW == -1 and start.kind == "BP"
         self._perp = start.settings.ISW == -1 and start.kind != "BP" and \
@@ -102,26 +100,6 @@ class EquilibriumSystem(AlgebraicSystem):
         return "switch" if self._perp else None
 
     # ------------------------------------------------------------ equations
-    def params(self, x) -> np.ndarray:
-        p = self.par.copy()
-        p[self.free[0] - 1] = x[-1]
-        if self.problem.has_pvls:
-            # PVLS once a point (as AUTO calls it): the UZ tests and the output row ask
-            # for the same x one after the other
-            key = x.tobytes()
-            memo = self._pvls_memo
-            if memo is not None and memo[0] == key and memo[1] == p.tolist():
-                return memo[2].copy()
-            out = self.problem.pvls(x[:self.ndim], p.copy())
-            self._pvls_memo = (key, p.tolist(), out.copy())
-            return out
-        return p
-
-    def _p(self, x) -> np.ndarray:
-        p = self.par.copy()
-        p[self.free[0] - 1] = x[-1]
-        return p
-
     def residual(self, x) -> np.ndarray:
         return self.problem.func(x[:-1], self._p(x))
 

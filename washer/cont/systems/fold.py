@@ -81,7 +81,17 @@ class FoldSystem(LocusSystem):
         w = null_vectors(A.T, 1)[:, 0]
         return w if w @ self.w_ref >= 0 else -w
 
+    #: (x's bytes, the w_ref it was oriented by, w) of the last test_functions call: the
+    #: left null vector at the point update moves to, as the tests computed it
+    _w_at = None
+
     def update(self, x, tangent):
+        # w_ref only orients the next point's w (its sign): the tests' w at this x, from
+        # the Jacobian's A, serves where they were evaluated here with the same w_ref
+        memo = self._w_at
+        if memo is not None and memo[1] is self.w_ref and memo[0] == x.tobytes():
+            self.w_ref = memo[2]
+            return
         n = self.ndim
         self.w_ref = self._w(self.problem.dfdu(x[:n], self._p(x)))
 
@@ -97,6 +107,7 @@ class FoldSystem(LocusSystem):
         A = np.asarray(J)[:n, :n]
         out = self._lp_bp(tangent, factor, codes)
         w = self._w(A)
+        self._w_at = (x.tobytes(), self.w_ref, w)
         if Code.CP in codes:
             h = FD2_STEP
             F = self.problem.func_many(np.array([u + h * phi, u, u - h * phi]), p)
