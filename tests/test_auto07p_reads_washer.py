@@ -173,6 +173,21 @@ def test_fold_of_cycles_records_are_autos(plp):
     _assert_records_like_autos(plp / "s.loci", DEMOS / "plp" / "autoref" / "s.loci", -54)
 
 
+def test_fold_of_cycles_beta_is_autos(plp):
+    """beta (PAR(12) of plp's fold-locus records) is AUTO-07p 0.9.2's: the factor of f in
+    v' = T f_u v + beta f. (v, beta) is the locus's null vector, fixed up to its scale
+    int |v|^2 + beta^2 = c (PAR(13)), so beta / sqrt(c) is one number for both engines
+    up to sign: AUTO's records (autoref s.loci) and ours agree on it to 1e-4 (measured
+    0.061212 both; with beta / T in place of beta ours was 0.6459, T = 10.54 times AUTO's,
+    and a record of either engine read by the other started off its locus)."""
+    mine = [r for r in read_s(plp / "s.loci") if abs(r.br) == 4]
+    ref = [r for r in read_s(DEMOS / "plp" / "autoref" / "s.loci") if abs(r.br) == 4]
+    assert len(mine) == len(ref) >= 2
+    for r, a in zip(mine, ref):
+        assert abs(r.par[-2]) / r.par[-1] ** 0.5 == \
+            pytest.approx(abs(a.par[-2]) / a.par[-1] ** 0.5, rel=1e-4), (r.lab, a.lab)
+
+
 @pytest.fixture(scope="module")
 def lcbp(tmp_path_factory):
     return _washer_demo(tmp_path_factory, "lcbp")

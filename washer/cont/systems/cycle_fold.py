@@ -4,13 +4,15 @@ of cycles): AUTO's FNPL / BCPL / ICPL (periodic.f90) on the collocation mesh.
 Extended BVP on [0, 1], unknown profile W = (u, v) of 2 NDIM components:
 
     u' = T f(u, p)
-    v' = T f_u(u, p) v + (beta / T) f(u, p)        (FFPL with ICP(2) = 11)
+    v' = T f_u(u, p) v + beta f(u, p)              (FFPL with ICP(2) = 11)
     W(0) = W(1)
     int <u - u_old, u'_old> dt = 0                   (phase, ICPS)
     int <v, u'_old> dt = 0                           (v is not the phase shift)
     int <v, v> dt + beta^2 - c = 0                   (normalisation, c fixed)
 
-with u'_old = T_old f(u_old) at the nodes. Four free parameters (NFPR = 4): PAR(ICP(1)),
+with u'_old = T_old f(u_old) at the nodes. beta is AUTO-07p 0.9.2's (its records of this
+locus satisfy these equations with their PAR(NPAR-1) as stored; beta / T there would put
+a record of either engine, read by the other, off the locus by the factor T). Four free parameters (NFPR = 4): PAR(ICP(1)),
 the period PAR(11), the second parameter (the first ICP entry after ICP(1) that is not
 11) and beta (AUTO's PAR(NPAR-1), internal). Unknowns x = (W flattened node-major,
 PAR(11), PAR(p2), beta, PAR(ICP(1))); b-file columns and the L2 norm are those of u.
@@ -19,7 +21,7 @@ Start at the LP record (AUTO's INITPS with ITP = 5: ISW = -2, ICP(3) = NPAR + 2)
 generating run of NMX = 5 steps with the second parameter fixed and the normalisation c
 free in its place (ILP = ISP = 0), from the LP record's stored direction (udot, T-dot,
 PAR(ICP(1))-dot ~ 0): at a fold of cycles (udot, T-dot) is the null vector of the
-periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T T-dot with s setting
+periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T-dot with s setting
 int <v, v> + beta^2 = c = 1, and Newton (the iterator's corrector) refines it; the
 steps only scale (v, beta) with c, so the orbit and the parameters stay at the fold.
 Its end point (EP, a record of this curve) is where the script restarts the locus in
@@ -105,7 +107,7 @@ class CycleFoldLocus(CycleLocus):
         self.set_mesh(mesh)
         T = self.par[10]
         rl = dict(zip(list(rec.icp)[:2], rec.rldot[:2], strict=False))
-        beta = T * rl.get(11, 0.0)
+        beta = rl.get(11, 0.0)
         scale = math.sqrt(NORM / (self.coll.integral(np.sum(V * V, axis=1)) + beta ** 2))
         V, beta = V * scale, beta * scale
         self.set_phase_reference(U, self.par)
@@ -171,7 +173,7 @@ class CycleFoldLocus(CycleLocus):
         u, v, par, beta, W, T, ug, vg, fg, A = self._at_gauss(x)
         n, N, m = self.n, self.mesh.ntst, self.mesh.ncol
         Fu = T * fg
-        Fv = T * np.einsum("kij,kj->ki", A, vg) + (beta / T) * fg
+        Fv = T * np.einsum("kij,kj->ki", A, vg) + beta * fg
         F = np.concatenate([Fu, Fv], axis=1).reshape(N, m, 2 * n)
         w = self.coll.w_node
         ints = [w @ np.sum((u - self.U_old) * self.up_old, axis=1),
@@ -187,18 +189,18 @@ class CycleFoldLocus(CycleLocus):
         k = len(ug)
         D = np.zeros((k, 2 * n, 2 * n))
         D[:, :n, :n] = T * A
-        D[:, n:, :n] = T * Buv + (beta / T) * A
+        D[:, n:, :n] = T * Buv + beta * A
         D[:, n:, n:] = T * A
         blocks = self.coll.local_blocks(1.0, D.reshape(N, m, 2 * n, 2 * n))
         Av = np.einsum("kij,kj->ki", A, vg)
         dF = np.zeros((4, k, 2 * n))
-        dF[0] = np.c_[fg, Av - (beta / T ** 2) * fg]                      # d/dT
+        dF[0] = np.c_[fg, Av]                                             # d/dT
         for slot, idx in ((1, self.p2), (3, self.p1)):
             if slot == 1 and self._generating:
                 continue                                                   # d/dc: integral only
             fp = self.field.fp(ug, par, idx)
-            dF[slot] = np.c_[T * fp, T * self.field.fup_v(ug, vg, par, idx) + (beta / T) * fp]
-        dF[2] = np.c_[np.zeros_like(fg), fg / T]                          # d/dbeta
+            dF[slot] = np.c_[T * fp, T * self.field.fup_v(ug, vg, par, idx) + beta * fp]
+        dF[2] = np.c_[np.zeros_like(fg), fg]                              # d/dbeta
         nn = len(u)
         int_u = np.zeros((3, nn, 2 * n))
         int_u[0, :, :n] = self.up_old
