@@ -17,6 +17,7 @@ from pathlib import Path
 # the constants a run receives are the engine's (read into here, re-exported)
 from washer.cont.constants import Constants, ConstantsError  # noqa: F401
 from washer.cont.settings import DEFAULTS, HUGE  # noqa: F401 (AUTO's table, re-exported)
+from washer.text_files import decode_text
 
 #: Constants accepted but without effect in this engine, with the reason.
 IGNORED = {
@@ -286,24 +287,6 @@ def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, i
                                                   "value", 1)) from None
         out.append((key, value, line))
 
-
-
-def decode_text(data: bytes, source: str, what: str, error=ValueError) -> str:
-    """UTF-8 text of a file's bytes, or `error` naming the file, line and the bad byte.
-
-    AUTO's files are plain ASCII; a NUL byte or an undecodable byte means a
-    binary or corrupt file, which must not be read as (partly) empty.
-    """
-    nul = data.find(b"\0")
-    if nul >= 0:
-        line = data.count(b"\n", 0, nul) + 1
-        raise error(f"{source}:{line}: a NUL byte: this is a binary file, not {what}")
-    try:
-        return data.decode("utf-8-sig")          # an editor's BOM is not content
-    except UnicodeDecodeError as exc:
-        line = data.count(b"\n", 0, exc.start) + 1
-        raise error(f"{source}:{line}: byte 0x{data[exc.start]:02x} is not UTF-8 text: "
-                    f"expected {what} (plain text)") from None
 
 
 def read_constants(path: str | Path) -> Constants:

@@ -28,6 +28,7 @@ import numpy as np
 
 from washer.cont.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
 from washer.cont.record import Record
+from washer.text_files import decode_text
 
 #: The d-file's separator between steps (ae.f90: WRBAR('=', 47)); parseD splits on it.
 D_BAR = "=" * 47
@@ -569,7 +570,6 @@ class OutputFiles:
 
 def _read_text(path: Path, what: str) -> str:
     """A file's text; AutoFileError for a missing, binary or non-UTF-8 file."""
-    from washer.auto.constants import decode_text
     try:
         data = Path(path).read_bytes()
     except OSError as exc:

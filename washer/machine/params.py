@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.machine import layout
+from washer.text_files import decode_text
 
 
 class ParameterError(ValueError):
@@ -303,7 +304,6 @@ def _tie(vals: dict) -> None:
 
 def load_params(path: str | Path | None = None) -> Params:
     """Read and validate a TOML parameter file (default: the shipped reference set)."""
-    from washer.auto.constants import decode_text
     path = Path(path) if path is not None else default_params_path()
     try:
         data = path.read_bytes()

@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from washer.machine.params import Params, ParameterError, load_params
+from washer.text_files import decode_text
 
 KINDS = ("stability", "critical", "response")
 SAMPLES = ("grid", "random", "lhs")
@@ -146,7 +147,6 @@ class _Where:
 
 def load_spec(path, overrides: dict | None = None) -> Spec:
     """Read and validate a spec file. `overrides` replace top-level keys (e.g. batch_size)."""
-    from washer.auto.constants import decode_text
     path = Path(path)
     try:
         data = path.read_bytes()
