@@ -49,9 +49,9 @@ from pathlib import Path
 import numpy as np
 
 from washer.cont.compile import CompileError
+from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
 from washer.cont.problem import SECOND_STEP
-from washer.cont.settings import HMACH
 
 #: Sizes up to which the dense corrector is used (beyond it the work is the Jacobian's,
 #: and numpy's LAPACK is the better solver).
@@ -355,7 +355,7 @@ class CompiledCorrector:
             a["v_old"][:] = self.sys.v_old          # HopfSystem's phase condition
         a["x_pred"][:] = x_pred
         a["x_ref"][:] = x_ref
-        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, HMACH,
+        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, FD_STEP,
                             SECOND_STEP)
         err = getattr(user, "error", None)
         if err is not None:
