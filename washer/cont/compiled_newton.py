@@ -51,6 +51,7 @@ import numpy as np
 from washer.cont.compile import CompileError
 from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
+from washer.cont.problem import all_finite
 from washer.cont.problem import SECOND_STEP
 
 #: Sizes up to which the dense corrector is used (beyond it the work is the Jacobian's,
@@ -262,7 +263,7 @@ class PythonEquations:
             if self.by_calls:
                 fn = problem.user_func
                 S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
-                if S.shape != (rows - 1, n) or not np.isfinite(S).all():
+                if S.shape != (rows - 1, n) or not all_finite(S):
                     return 1
             else:
                 S = problem.func_many(U[1:], P[1:])

@@ -51,6 +51,7 @@ from __future__ import annotations
 import copy
 import functools
 import inspect
+import math
 from pathlib import Path
 
 import numpy as np
@@ -61,6 +62,8 @@ from washer.cont.pvls import Orbit
 #: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
 #: overhead exceeds a small func's cost).
 VECTORISE_MIN = 12
+#: Up to this many values `all_finite` checks Python floats.
+SHORT_CHECK = 64
 #: How many points of the first vectorised call are checked against separate calls.
 VECTORISE_CHECK = 32
 #: Step of the second-derivative stencils, about eps^(1/4) (see second_derivatives).
@@ -96,6 +99,15 @@ def user_frame(exc: BaseException) -> str:
             continue
         where = f" ({name}:{fr.lineno})"
     return where
+
+
+def all_finite(a: np.ndarray) -> bool:
+    """np.isfinite(a).all() for a float array: on Python floats up to SHORT_CHECK
+    values (numpy's per-call overhead is most of the check at the sizes of a small
+    problem's f)."""
+    if a.size <= SHORT_CHECK:
+        return all(map(math.isfinite, a.ravel().tolist()))
+    return bool(np.isfinite(a).all())
 
 
 def broadcast_rows(par: np.ndarray, k: int) -> np.ndarray:
@@ -281,7 +293,7 @@ class Problem:
         f = self._call(self._func, "func", u, par)
         if f.shape != (self.ndim,):
             raise ProblemError(f"{self.name}: func returned shape {f.shape}, expected ({self.ndim},)")
-        if not np.isfinite(f).all():
+        if not all_finite(f):
             raise ProblemError(f"{self.name}: func(u, par) returned non-finite values at "
                                f"u = {np.array2string(np.asarray(u), precision=6)}")
         return f
