@@ -10,6 +10,7 @@ in ICP, THL, THU, UZR, UZSTOP, U and PAR may be names from parnames/unames, and
 """
 from __future__ import annotations
 
+import copy
 import re
 import shutil
 from pathlib import Path
@@ -260,10 +261,26 @@ def parse_old(lines: list[str], first: int, source: str,
     return out
 
 
+#: parse_text's statements of the texts parsed in this process (a chain of runs reads
+#: the same constants file again and again; its character scanner cost a short run of a
+#: small problem a twentieth of its time). Callers get deep copies.
+_PARSED: dict = {}
+_PARSED_MAX = 64
+
+
 def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, int]]:
     """Statements (key, value, line) of a constants file: KEY = value statements, and,
     from the first line that starts with a digit on, AUTO's old positional format
     (AUTO's parseC reads both so: new-style lines such as parnames may come first)."""
+    key = (text, source)
+    if key not in _PARSED:
+        if len(_PARSED) >= _PARSED_MAX:
+            _PARSED.clear()
+        _PARSED[key] = _parse_text(text, source)
+    return copy.deepcopy(_PARSED[key])
+
+
+def _parse_text(text: str, source: str) -> list[tuple[str, object, int]]:
     sc = _Scanner(text, source)
     out = []
     while True:
