@@ -22,8 +22,8 @@ PeriodicOrbits' residual, Jacobian and compiled factorisation in C++:
 csrc/cont/po_correct.cpp, driven by washer.cont.compiled_po and chosen in the same place
 (compiled_newton.compiled_corrector); a change to this loop, to Continuation.correct's
 plane-arclength step or test, to PeriodicOrbits.residual / jacobian or to
-VectorField.fu_fp's differences (washer.cont.differences) must be made there too (the two give the same b- and
-s-files byte for byte: tests/test_compiled_po.py).
+VectorField.fu_fp's differences (washer.cont.differences) must be made there too (the
+two give the same b- and s-files byte for byte: tests/test_compiled_po.py).
 """
 from __future__ import annotations
 

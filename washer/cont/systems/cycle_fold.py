@@ -11,11 +11,12 @@ Extended BVP on [0, 1], unknown profile W = (u, v) of 2 NDIM components:
     int <v, v> dt + beta^2 - c = 0                   (normalisation, c fixed)
 
 with u'_old = T_old f(u_old) at the nodes. beta is AUTO-07p 0.9.2's (its records of this
-locus satisfy these equations with their PAR(NPAR-1) as stored; beta / T there would put
-a record of either engine, read by the other, off the locus by the factor T). Four free parameters (NFPR = 4): PAR(ICP(1)),
-the period PAR(11), the second parameter (the first ICP entry after ICP(1) that is not
-11) and beta (AUTO's PAR(NPAR-1), internal). Unknowns x = (W flattened node-major,
-PAR(11), PAR(p2), beta, PAR(ICP(1))); b-file columns and the L2 norm are those of u.
+locus satisfy these equations with their PAR(NPAR-1) as stored; beta / T there would put a
+record of either engine, read by the other, off the locus by the factor T). Four free
+parameters (NFPR = 4): PAR(ICP(1)), the period PAR(11), the second parameter (the first
+ICP entry after ICP(1) that is not 11) and beta (AUTO's PAR(NPAR-1), internal). Unknowns
+x = (W flattened node-major, PAR(11), PAR(p2), beta, PAR(ICP(1))); b-file columns and the
+L2 norm are those of u.
 
 Start at the LP record (AUTO's INITPS with ITP = 5: ISW = -2, ICP(3) = NPAR + 2): a
 generating run of NMX = 5 steps with the second parameter fixed and the normalisation c
@@ -25,8 +26,9 @@ periodic orbit's Jacobian in (u, T), so v = s udot, beta = s T-dot with s settin
 int <v, v> + beta^2 = c = 1, and Newton (the iterator's corrector) refines it; the
 steps only scale (v, beta) with c, so the orbit and the parameters stay at the fold.
 Its end point (EP, a record of this curve) is where the script restarts the locus in
-both directions (AUTO's plp and abcb demos: run(lpstart) and DS='-'). The second derivatives (f_uu v, f_up v) are mixed central differences of
-f in one batched call (steps ~ eps^(1/4), error ~ 1e-8).
+both directions (AUTO's plp and abcb demos: run(lpstart) and DS='-'). The second
+derivatives (f_uu v, f_up v) are mixed central differences of f in one batched call
+(steps ~ eps^(1/4), error ~ 1e-8).
 """
 from __future__ import annotations
 
@@ -62,7 +64,8 @@ class CycleFoldLocus(CycleLocus):
         others = [i for i in icp[1:] if i != 11]
         if not others:
             raise SettingsError("ISW = 2 at an LP of cycles continues the fold in two parameters: "
-                             f"ICP = {icp} names only one (give e.g. ICP = [{icp[0]}, 2, 11])", keys=("ICP",))
+                                f"ICP = {icp} names only one (give e.g. ICP = [{icp[0]}, 2, 11])",
+                                keys=("ICP",))
         self.p1, self.p2 = icp[0], others[0]
         self.free = [self.p1, 11, self.p2]
         self.field = VectorField(self.problem, self.n)
