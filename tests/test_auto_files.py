@@ -28,6 +28,21 @@ def test_reads_auto_demo_constants_with_names_and_defaults(tmp_path):
     assert c["UZR"] == {1: [1, 2]} and c["DS"] == 0.01
 
 
+
+def test_a_constants_file_read_again_is_the_same_and_a_run_cannot_change_it(tmp_path):
+    """The statements of a text parsed before in the process are reused (parse_text's
+    memory): a second read of the file gives the same constants, an edited file its new
+    values, and a change to what one read returned (a run's override, a list changed in
+    place) does not reach the next read."""
+    path = _c(tmp_path, "NDIM = 2\nUZR = {1: [1.0, 2.0]}\nNMX = 5\n")
+    first = read_constants(path)
+    first["UZR"][1].append(99.0)                       # changed in place by a caller
+    first.set("NMX", 7, "<override>")
+    again = read_constants(path)
+    assert again["UZR"] == {1: [1.0, 2.0]} and again["NMX"] == 5
+    path.write_text("NDIM = 2\nUZR = {1: [3.0]}\nNMX = 5\n")
+    assert read_constants(path)["UZR"] == {1: [3.0]}
+
 def test_list_of_pairs_keeps_every_user_value_of_an_index(tmp_path):
     # AUTO's older form of UZR (nag demo): one pair per value, the index repeated; each
     # value is a UZ, none replaces another. THL pairs name each index once.
