@@ -29,20 +29,21 @@ LRZ_PO = dict(IPS=2, ICP=["rho", "PERIOD"], NMX=25, NPR=2, DS=0.5)
 CHU_PO = dict(IPS=2, ICP=[1, 11], NMX=60)
 
 
-CONSTANTS = {"lrz": DATA / "lrz" / "c.lrz",
+CONSTANTS = {"lrz": DATA / "lrz" / "c.lrz", "lrz_sym": DATA / "lrz_sym" / "c.lrz",
              "chu": DATA / "auto_reference" / "periodic" / "chu" / "c.chu"}
 
 
 def _folder(tmp_path, name, sub, user):
     d = tmp_path / sub
     d.mkdir()
-    shutil.copy(CONSTANTS[name], d)
+    shutil.copy(CONSTANTS[name], d / f"c.{name.split('_')[0]}")
     shutil.copy(user, d)
     return d
 
 
 def _po_run(d, name, ov):
     """The equilibria, then the periodic orbits from their first Hopf point."""
+    name = name.split("_")[0]
     run(d / f"c.{name}", verbose=False, e=name, sv="eq")
     return run(d / f"c.{name}", verbose=False, e=name, sv="po", s="eq", IRS="HB1", **ov)
 
@@ -89,6 +90,21 @@ def test_compiled_po_follows_the_python_loop(name, user, ov, tmp_path, monkeypat
     assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
         == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
     assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="gcc is needed for the generated C")
+@pytest.mark.parametrize("jac", [1, 0])
+def test_compiled_po_with_a_sympy_problem(jac, tmp_path, monkeypatch):
+    """lrz as sympy expressions (tests/data/lrz_sym): the generated f (and with JAC = 1
+    its exact f_u) called from C++ through their function pointers; the same files as
+    the Python loop, which calls them through Problem.func_many and dfdu_many."""
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+    (fast, fd), (slow, sd), used = _both(tmp_path, monkeypatch, "lrz_sym",
+                                         DATA / "lrz_sym" / "lrz.py", dict(LRZ_PO, JAC=jac))
+    assert len(used) >= LRZ_PO["NMX"] - 1 and all(used), used
+    for f in ("b.po", "s.po"):
+        assert (fd / f).read_bytes() == (sd / f).read_bytes(), f
+    assert fast.counters.jacobians == slow.counters.jacobians
 
 
 @pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is needed for lrz.f90")

@@ -52,7 +52,10 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
  * one call (csrc/cont/po_correct.cpp; the compiled form of Continuation.correct with
  * PeriodicOrbits' residual and difference Jacobian). f is evaluated by
  *   feval(rows, us (rows, NDIM), parsT (NPAR, rows), fs (rows, NDIM)) -> 0, or nonzero
- *   when f failed;
+ *   when f failed; or, instead of feval, the generated C of a sympy problem
+ *   (washer.cont.symbolic: washer_sym_func, washer_sym_jac, U (k, NDIM), P with
+ *   pstride 0, Jp (k, NDIM, npar_jp)) called directly: sfunc for f, sjac (or NULL: f_u by
+ *   differences) for the exact f_u;
  * ddot: the BLAS ddot for the phase condition's and the border row's inner products (the
  *   one numpy's `@` calls: the same rounding), or NULL for sums in order.
  * The unknowns x = (U (NTST*NCOL + 1, NDIM) node-major, PAR(ipa + 1), PAR(ipb + 1)),
@@ -71,7 +74,12 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
 typedef int (*cont_po_feval)(int rows, const double *us, const double *parsT, double *fs);
 typedef double (*cont_ddot)(const int *n, const double *x, const int *incx, const double *y,
                             const int *incy);
-int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst, int ncol,
+typedef void (*cont_po_sym_func)(int k, const double *U, const double *P, int pstride,
+                                 double *F);
+typedef void (*cont_po_sym_jac)(int k, const double *U, const double *P, int pstride,
+                                double *J, double *Jp);
+int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
+                    cont_po_sym_jac sjac, int npar_jp, cont_ddot ddot, int ntst, int ncol,
                     int ndim, int npar, int ipa, int ipb, const double *WT, const double *WP,
                     const double *dtm, const double *w_node, const double *U_old,
                     const double *up_old, const double *bc_offset, const double *par0,

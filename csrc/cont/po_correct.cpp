@@ -11,7 +11,9 @@
 // -[G; row (x - x_ref) - ds] (cont_bvp_solve), x += dx and AUTO's NEWTONBV test
 // (Continuation.correct's `converged`: EPSU on the profile, EPSL on each parameter, its
 // divergence test). f is evaluated by the call back `feval` (the user's equations: one
-// call for the Gauss points, one for all difference points of a Jacobian).
+// call for the Gauss points, one for all difference points of a Jacobian), or by the
+// generated C of a sympy problem through its function pointers `sfunc` (f) and `sjac`
+// (exact f_u with JAC != 0), called directly.
 // A change to any of those Python functions must be made here too
 // (tests/test_compiled_po.py holds the two to the same points).
 #include "cont.h"
@@ -58,7 +60,8 @@ double dot(cont_ddot ddot, const double *a, const double *b, int len) {
 
 }  // namespace
 
-int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst, int ncol,
+int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
+                    cont_po_sym_jac sjac, int npar_jp, cont_ddot ddot, int ntst, int ncol,
                     int ndim, int npar, int ipa, int ipb, const double *WT, const double *WP,
                     const double *dtm, const double *w_node, const double *U_old,
                     const double *up_old, const double *bc_offset, const double *par0,
@@ -68,7 +71,7 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst
                     double *P1, int *info) {
     const int N = ntst, m = ncol, n = ndim;
     if (N < 1 || m < 1 || n < 1 || ipa < 0 || ipb < 0 || ipa >= npar || ipb >= npar
-        || npar < 11 || itnw < 1)
+        || npar < 11 || itnw < 1 || (sjac && !sfunc) || (!sfunc && !feval))
         return 4;
     const int k = N * m;                                 // Gauss points
     const int nodes = N * m + 1;
@@ -87,7 +90,7 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst
         parsT((size_t)npar * std::max(k, kst)), pts((size_t)kst * n), fst((size_t)kst * n),
         h((size_t)k * n), A((size_t)k * n * n), parcols((size_t)N * mn * 2),
         extra((size_t)ne * nx, 0.0), G(nc + n + 1), rhs(nx), dx(nx), xo(nx),
-        prod(n), vsum(nodes);
+        prod(n), vsum(nodes), Jp(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
     double hp[2] = {0.0, 0.0};
     std::copy(x_pred, x_pred + nx, x);
     // the dense rows' constant parts: periodicity (+1 on u(0), -1 on u(1)), the border
@@ -130,8 +133,12 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst
                     g[i] = s;
                 }
             }
-        for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * k], k, par[p]);
-        if (feval(k, ug.data(), parsT.data(), fg.data()) != 0) { status = 3; break; }
+        if (sfunc) {
+            sfunc(k, ug.data(), par.data(), 0, fg.data());
+        } else {
+            for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * k], k, par[p]);
+            if (feval(k, ug.data(), parsT.data(), fg.data()) != 0) { status = 3; break; }
+        }
         // the residual (Collocation.residual_general)
         for (int j = 0; j < N; ++j)
             for (int c = 0; c < m; ++c)
@@ -155,7 +162,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst
         for (int r = 0; r < nc + n + 1; ++r) finite = finite && std::isfinite(G[r]);
         if (!finite) { status = 3; break; }
         if (!factored || it <= std::max(nwtn, 1)) {
-            // f_u and f_p by central differences (Problem.fd_u_stencil, VectorField.fu_fp)
+            // f_u and f_p by central differences (differences.u_points, par_points,
+            // VectorField.fu_fp), or f_u exact (sjac: the generated Jacobian, as
+            // Problem.dfdu_many gives it) and f_p by differences (VectorField.fp)
             for (int r = 0; r < k; ++r)
                 for (int i = 0; i < n; ++i) h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
             for (int r = 0; r < k; ++r)
@@ -179,15 +188,36 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_ddot ddot, int ntst
                                     p == ip ? (sgn ? pm : pp) : par[p]);
                 }
             }
-            if (feval(kst, pts.data(), parsT.data(), fst.data()) != 0) { status = 3; break; }
-            // A[r, i, l] = (f_i(u + h_l e_l) - f_i(u - h_l e_l)) / (2 h_l)
-            for (int r = 0; r < k; ++r)
-                for (int l = 0; l < n; ++l) {
-                    const double *fpl = &fst[((size_t)r * 2 * n + l) * n];
-                    const double *fml = &fst[((size_t)r * 2 * n + n + l) * n];
-                    const double d = 2 * h[(size_t)r * n + l];
-                    for (int i = 0; i < n; ++i) A[((size_t)r * n + i) * n + l] = (fpl[i] - fml[i]) / d;
+            if (sfunc) {
+                // one set of parameters a call (pstride 0)
+                if (!sjac) sfunc(m0, pts.data(), par.data(), 0, fst.data());
+                std::vector<double> pq(par);
+                for (int j = 0; j < nfp; ++j) {
+                    const int ip = fp_index[j];
+                    for (int sgn = 0; sgn < 2; ++sgn) {
+                        const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                        pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
+                        sfunc(k, ug.data(), pq.data(), 0, &fst[off * n]);
+                    }
+                    pq[ip] = par[ip];
                 }
+            } else if (feval(kst, pts.data(), parsT.data(), fst.data()) != 0) {
+                status = 3;
+                break;
+            }
+            if (sjac) {
+                sjac(k, ug.data(), par.data(), 0, A.data(), Jp.data());
+            } else {
+                // A[r, i, l] = (f_i(u + h_l e_l) - f_i(u - h_l e_l)) / (2 h_l)
+                for (int r = 0; r < k; ++r)
+                    for (int l = 0; l < n; ++l) {
+                        const double *fpl = &fst[((size_t)r * 2 * n + l) * n];
+                        const double *fml = &fst[((size_t)r * 2 * n + n + l) * n];
+                        const double d = 2 * h[(size_t)r * n + l];
+                        for (int i = 0; i < n; ++i)
+                            A[((size_t)r * n + i) * n + l] = (fpl[i] - fml[i]) / d;
+                    }
+            }
             cont_coll_blocks(N, m, n, WT, WP, dtm, T, A.data(), vals);
             // the parameter columns -dtm d(T f)/dp: f for the period, T f_p otherwise
             int jf = 0;

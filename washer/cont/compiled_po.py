@@ -17,8 +17,12 @@ files and sympy problems through their batch bridge, Python files as the Python 
 calls them. What the Python loop leaves behind for the converged point (the last Newton
 Jacobian, its factorisation and Floquet pair) is left the same way.
 
+f is evaluated by the generated C of sympy problems (washer.cont.symbolic) through its
+function pointers, called from C++ directly (and their exact f_u with JAC != 0, as the
+Python loop's Problem.dfdu_many), by every other problem through the call back.
+
 It applies to PeriodicOrbits with difference Jacobians (no user dfdu / dfdp in use, no
-f evaluated with its Jacobians). Everything else, and every case the compiled loop does
+f evaluated with its Jacobians) and to sympy problems. Everything else, and every case the compiled loop does
 not finish cleanly (a failing or non-finite f, a non-finite Jacobian or correction, a
 zero pivot: the Python loop then repeats the correction and reports or resolves it as
 before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
@@ -76,12 +80,26 @@ class PeriodicCorrector:
     #: Continuation.correct hands it the plane arclength's corrector
     plane = True
 
-    def __init__(self, system, settings, divergence: float):
+    def __init__(self, system, settings, divergence: float, generated=None):
         self.sys, self.s, self.divergence = system, settings, divergence
         self.problem = system.problem
         self.n = system.ndim
         self.error = None
         self._cb = ffi.callback("cont_po_feval", self._evaluate, onerror=self._onerror)
+        # a sympy problem's generated C (washer.cont.symbolic), called from C++ directly:
+        # f, and its exact f_u where the Python loop uses it (Problem.has_dfdu)
+        self._sfunc = self._sjac = ffi.NULL
+        self._npar_jp = 0
+        if generated is not None:
+            src = generated.ffi
+
+            def pointer(fn, kind):
+                return ffi.cast(kind, int(src.cast("uintptr_t", fn)))
+            self._sfunc = pointer(generated.lib.washer_sym_func, "cont_po_sym_func")
+            if self.problem.has_dfdu:
+                self._sjac = pointer(generated.lib.washer_sym_jac, "cont_po_sym_jac")
+            self._npar_jp = max(generated.npar, 1)
+            self._keep = generated      # the library stays loaded while the pointers live
         self._npar = 0
         #: (x, J) of the last converged correction when its last iteration factorised
         #: (Continuation.correct's `_newton`), else None
@@ -139,11 +157,11 @@ class PeriodicCorrector:
         p = reduction._ptr
         self.error = None
         status = lib.cont_po_correct(
-            fac, self._cb, numpy_ddot(), N, m, n, len(par), sysm.free[1] - 1,
-            sysm.free[0] - 1, p(WT), p(WP), p(dtm), p(w_node), p(U_old), p(up_old), bc,
-            p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL, s.EPSU, s.ITNW, s.NWTN,
-            self.divergence, FD_STEP, p(x), p(x_J), p(vals), p(P0), p(P1),
-            ffi.from_buffer("int[]", info))
+            fac, self._cb, self._sfunc, self._sjac, self._npar_jp, numpy_ddot(), N, m, n,
+            len(par), sysm.free[1] - 1, sysm.free[0] - 1, p(WT), p(WP), p(dtm), p(w_node),
+            p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL,
+            s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, p(x), p(x_J), p(vals), p(P0),
+            p(P1), ffi.from_buffer("int[]", info))
         if self.error is not None:
             err, self.error = self.error, None
             raise err
@@ -184,17 +202,23 @@ def periodic_corrector(system, settings, divergence: float):
     """The compiled corrector of a PeriodicOrbits `system`, or None where the Python loop
     runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), user
     Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
+    from washer.cont.symbolic import SymbolicProblem
     from washer.cont.systems import bvp
     from washer.cont.systems.periodic import PeriodicOrbits
     problem = getattr(system, "problem", None)
     if type(system) is not PeriodicOrbits or not bvp.COMPILED_FACTOR \
             or not isinstance(problem, Problem) or system.arclength != "plane":
         return None
-    if not problem.differenced_jacobian or problem.has_func_dfdu_batch \
-            or problem.has_dfdp_batch:
-        return None
     coll = system.coll
     if coll.general_bc or coll.nint != 1 or coll.npar != 2 or len(system.free) != 2 \
-            or len(system.par) < 11:
+            or len(system.par) < 11 or problem.has_func_dfdu_batch or problem.has_dfdp_batch:
+        return None
+    if type(problem) is SymbolicProblem:
+        # the generated f, with differences or (JAC != 0) the generated f_u
+        generated = problem.generated
+        if len(system.par) < generated.npar:
+            return None
+        return PeriodicCorrector(system, settings, divergence, generated)
+    if not problem.differenced_jacobian:
         return None
     return PeriodicCorrector(system, settings, divergence)
