@@ -252,3 +252,24 @@ def test_row_formatting_is_fmt_e_value_by_value():
         assert fmt_e_many(vals) == "".join(fmt_e(v) for v in vals)
         assert fmt_es_many(vals, 14, 5) == "".join(fmt_es(v, 14, 5) for v in vals)
         assert fmt_es_many(vals, 11, 4) == "".join(fmt_es(v, 11, 4) for v in vals)
+
+
+def test_block_formatting_is_rows_of_fmt_e():
+    """A BVP record's blocks in one format (files._block_lines) give the lines of
+    files._block_rows (fmt_e value by value, 7 a line after 4 blanks, each row of the
+    block on lines of its own), for rows of 1..15 values and with the values that go
+    back to fmt_e (3-digit exponents, NaN, infinities)."""
+    import numpy as np
+    from washer.auto.files import _block_lines, _block_rows, fmt_e
+    rng = np.random.default_rng(3)
+    for k, m in [(1, 1), (5, 4), (801, 4), (3, 7), (3, 8), (4, 15), (2, 14)]:
+        M = rng.standard_normal((k, m)) * 10.0 ** rng.integers(-98, 98, (k, m))
+        M.flat[::5] = 0.0
+        M.flat[1::7] = -0.0
+        lines = "\n".join(_block_lines(M)).split("\n")
+        assert lines == _block_rows(M)
+        assert len(lines) == k * ((m + 6) // 7)
+        assert lines[0] == "    " + "".join(fmt_e(v) for v in M[0, :7])
+    odd = np.array([[1e-100, 2.0, np.nan], [np.inf, -3.2e150, 0.5]])
+    assert "\n".join(_block_lines(odd)).split("\n") == _block_rows(odd)
+    assert _block_lines(np.zeros((0, 3))) == [] and _block_lines(np.zeros((2, 0))) == []

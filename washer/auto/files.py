@@ -270,12 +270,12 @@ def _record_text_bvp(rec: Record) -> str:
             f"{ntpl:8d}{n + 1:6d}{nrow:8d}{rec.ntst:5d}{rec.ncol:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]
-    lines += _block_rows(np.column_stack([t, U]))      # t-blocks: t, U(1..NDIM)
+    lines += _block_lines(np.column_stack([t, U]))     # t-blocks: t, U(1..NDIM)
     if has_dir:
         ud = np.asarray(rec.udot, float).reshape(ntpl, n)
         lines.append("".join(f"{i:5d}" for i in rec.icp[:rec.nfpr]))
         lines += _rows(rec.rldot)
-        lines += _block_rows(ud)
+        lines += _block_lines(ud)
     lines += _rows(list(rec.par))
     return "\n".join(lines) + "\n"
 
@@ -285,6 +285,26 @@ def _rows(vals) -> list[str]:
     text = fmt_e_many(vals)
     w = 7 * 19
     return ["    " + text[i:i + w] for i in range(0, len(text), w)]
+
+
+def _block_lines(M: np.ndarray) -> list[str]:
+    """The text of `_block_rows(M)` as one string (its lines joined by newlines) in a list,
+    or [] for an empty M: one %-format of the whole block with the line layout in the
+    format itself (a BVP record's profile and direction are thousands of values: cutting
+    a formatted row into lines value group by value group cost more than formatting it).
+    Values that are not plain (`_plain`: a 3-digit exponent, inf, nan) go through
+    `_block_rows`."""
+    M = np.asarray(M, dtype=float)
+    k, m = M.shape
+    if k == 0 or m == 0:
+        return []
+    flat = M.ravel().tolist()
+    if not _plain(flat):
+        return ["\n".join(_block_rows(M))]
+    row = "\n".join("    " + "%18.10E" * len(range(i, min(i + 7, m))) for i in range(0, m, 7))
+    text = ("\n".join([row] * k)) % tuple(flat)
+    # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3 (fmt_e_many)
+    return [text.replace("E+", "E+0").replace("E-", "E-0")]
 
 
 def _block_rows(M: np.ndarray) -> list[str]:
