@@ -51,8 +51,10 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
  * phase condition, two free parameters) on the plane arclength, the whole Newton loop in
  * one call (csrc/cont/po_correct.cpp; the compiled form of Continuation.correct with
  * PeriodicOrbits' residual and difference Jacobian). f is evaluated by
- *   feval(rows, us (rows, NDIM), parsT (NPAR, rows), fs (rows, NDIM)) -> 0, or nonzero
- *   when f failed; or, instead of feval, the generated C of a sympy problem
+ *   feval(rows, us (rows, NDIM), pars, prow, fs (rows, NDIM)) -> 0, or nonzero when f
+ *   failed; pars: one parameter vector (NPAR) for all points (prow 0), or the parameters
+ *   point by point, (NPAR, prow = rows) (a Jacobian's difference points in one call, up
+ *   to one_call_max Gauss points: VectorField.fu_fp's FU_FP_ONE_CALL_MAX); or, instead of feval, the generated C of a sympy problem
  *   (washer.cont.symbolic: washer_sym_func, washer_sym_jac, U (k, NDIM), P with
  *   pstride 0, Jp (k, NDIM, npar_jp)) called directly: sfunc for f, sjac (or NULL: f_u by
  *   differences) for the exact f_u;
@@ -71,7 +73,8 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
  * Returns 0 converged, 1 diverged, 2 no convergence in ITNW iterations, 3 hand over to
  * the Python loop (f failed, a non-finite residual, Jacobian or correction, a zero
  * pivot), 4 bad sizes. */
-typedef int (*cont_po_feval)(int rows, const double *us, const double *parsT, double *fs);
+typedef int (*cont_po_feval)(int rows, const double *us, const double *pars, int prow,
+                             double *fs);
 typedef double (*cont_ddot)(const int *n, const double *x, const int *incx, const double *y,
                             const int *incy);
 typedef void (*cont_po_sym_func)(int k, const double *U, const double *P, int pstride,
@@ -85,5 +88,5 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                     const double *up_old, const double *bc_offset, const double *par0,
                     const double *x_pred, const double *x_ref, const double *row, double ds,
                     double epsl, double epsu, int itnw, int nwtn, double divergence,
-                    double fd_step, double *x, double *x_J, double *vals, double *P0,
-                    double *P1, int *info);
+                    double fd_step, int one_call_max, double *x, double *x_J,
+                    double *vals, double *P0, double *P1, int *info);

@@ -11,7 +11,8 @@
 // -[G; row (x - x_ref) - ds] (cont_bvp_solve), x += dx and AUTO's NEWTONBV test
 // (Continuation.correct's `converged`: EPSU on the profile, EPSL on each parameter, its
 // divergence test). f is evaluated by the call back `feval` (the user's equations: one
-// call for the Gauss points, one for all difference points of a Jacobian), or by the
+// call for the Gauss points, one for all difference points of a Jacobian up to
+// one_call_max Gauss points, else one per set of parameters, as fu_fp), or by the
 // generated C of a sympy problem through its function pointers `sfunc` (f) and `sjac`
 // (exact f_u with JAC != 0), called directly.
 // A change to any of those Python functions must be made here too
@@ -67,8 +68,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                     const double *up_old, const double *bc_offset, const double *par0,
                     const double *x_pred, const double *x_ref, const double *row, double ds,
                     double epsl, double epsu, int itnw, int nwtn, double divergence,
-                    double fd_step, double *x, double *x_J, double *vals, double *P0,
-                    double *P1, int *info) {
+                    double fd_step, int one_call_max, double *x, double *x_J,
+                    double *vals, double *P0, double *P1, int *info) {
     const int N = ntst, m = ncol, n = ndim;
     if (N < 1 || m < 1 || n < 1 || ipa < 0 || ipb < 0 || ipa >= npar || ipb >= npar
         || npar < 11 || itnw < 1 || (sjac && !sfunc) || (!sfunc && !feval))
@@ -87,7 +88,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
     const int kst = 2 * n * k + 2 * nfp * k;             // points of a Jacobian's call
 
     std::vector<double> par(par0, par0 + npar), ug((size_t)k * n), fg((size_t)k * n),
-        parsT((size_t)npar * std::max(k, kst)), pts((size_t)kst * n), fst((size_t)kst * n),
+        parsT(!sfunc && k <= one_call_max ? (size_t)npar * kst : 0), pts((size_t)kst * n),
+        fst((size_t)kst * n),
         h((size_t)k * n), A((size_t)k * n * n), parcols((size_t)N * mn * 2),
         extra((size_t)ne * nx, 0.0), G(nc + n + 1), rhs(nx), dx(nx), xo(nx),
         prod(n), vsum(nodes), Jp(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
@@ -135,9 +137,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
             }
         if (sfunc) {
             sfunc(k, ug.data(), par.data(), 0, fg.data());
-        } else {
-            for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * k], k, par[p]);
-            if (feval(k, ug.data(), parsT.data(), fg.data()) != 0) { status = 3; break; }
+        } else if (feval(k, ug.data(), par.data(), 0, fg.data()) != 0) {
+            status = 3;
+            break;
         }
         // the residual (Collocation.residual_general)
         for (int j = 0; j < N; ++j)
@@ -166,7 +168,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
             // VectorField.fu_fp), or f_u exact (sjac: the generated Jacobian, as
             // Problem.dfdu_many gives it) and f_p by differences (VectorField.fp)
             for (int r = 0; r < k; ++r)
-                for (int i = 0; i < n; ++i) h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
+                for (int i = 0; i < n; ++i)
+                    h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
             for (int r = 0; r < k; ++r)
                 for (int s = 0; s < 2 * n; ++s) {
                     double *pt = &pts[((size_t)r * 2 * n + s) * n];
@@ -175,12 +178,14 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                     else pt[s - n] -= h[(size_t)r * n + s - n];
                 }
             const int m0 = 2 * n * k;
-            for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * kst], m0, par[p]);
+            const bool one_call = !sfunc && k <= one_call_max;
+            if (one_call)
+                for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * kst], m0, par[p]);
             for (int j = 0; j < nfp; ++j) {
                 const int ip = fp_index[j];
                 hp[j] = fd_step * (1 + std::fabs(par[ip]));
                 const double pp = par[ip] + hp[j], pm = par[ip] - hp[j];
-                for (int sgn = 0; sgn < 2; ++sgn) {
+                for (int sgn = 0; sgn < 2 && one_call; ++sgn) {
                     const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
                     std::copy(ug.begin(), ug.end(), pts.begin() + off * n);
                     for (int p = 0; p < npar; ++p)
@@ -201,9 +206,30 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                     }
                     pq[ip] = par[ip];
                 }
-            } else if (feval(kst, pts.data(), parsT.data(), fst.data()) != 0) {
-                status = 3;
-                break;
+            } else if (k <= one_call_max) {
+                // every point in one call, the parameters point by point
+                if (feval(kst, pts.data(), parsT.data(), kst, fst.data()) != 0) {
+                    status = 3;
+                    break;
+                }
+            } else {
+                // beyond one_call_max points a call per set of parameters (fu_fp's fu,
+                // then fp's two calls for each parameter)
+                bool failed = feval(m0, pts.data(), par.data(), 0, fst.data()) != 0;
+                std::vector<double> pq(par);
+                for (int j = 0; j < nfp && !failed; ++j) {
+                    const int ip = fp_index[j];
+                    for (int sgn = 0; sgn < 2 && !failed; ++sgn) {
+                        const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                        pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
+                        failed = feval(k, ug.data(), pq.data(), 0, &fst[off * n]) != 0;
+                    }
+                    pq[ip] = par[ip];
+                }
+                if (failed) {
+                    status = 3;
+                    break;
+                }
             }
             if (sjac) {
                 sjac(k, ug.data(), par.data(), 0, A.data(), Jp.data());
@@ -225,7 +251,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                 double *dp = vals + nb + (long)s * nc;
                 if (slot_index[s] == 10) {
                     for (int j = 0; j < N; ++j)
-                        for (int r = 0; r < mn; ++r) dp[j * mn + r] = -dtm[j] * fg[(size_t)j * mn + r];
+                        for (int r = 0; r < mn; ++r)
+                            dp[j * mn + r] = -dtm[j] * fg[(size_t)j * mn + r];
                 } else {
                     const double *fpp = &fst[((size_t)m0 + (size_t)2 * jf * k) * n];
                     const double *fpm = &fst[((size_t)m0 + (size_t)(2 * jf + 1) * k) * n];
@@ -240,7 +267,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
             }
             bool ok = true;
             for (long q = 0; q < nb + 2L * nc; ++q) ok = ok && std::isfinite(vals[q]);
-            if (!ok || cont_bvp_factor(fac, vals, parcols.data(), extra.data(), nullptr, P0, P1) != 0) {
+            if (!ok
+                || cont_bvp_factor(fac, vals, parcols.data(), extra.data(), nullptr, P0, P1)
+                       != 0) {
                 status = 3;
                 break;
             }

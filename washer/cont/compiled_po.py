@@ -22,15 +22,17 @@ function pointers, called from C++ directly (and their exact f_u with JAC != 0, 
 Python loop's Problem.dfdu_many), by every other problem through the call back.
 
 It applies to PeriodicOrbits with difference Jacobians (no user dfdu / dfdp in use, no
-f evaluated with its Jacobians) and to sympy problems. Everything else, and every case the compiled loop does
-not finish cleanly (a failing or non-finite f, a non-finite Jacobian or correction, a
+f evaluated with its Jacobians) and to sympy problems. Everything else, and every case
+the compiled loop does not finish cleanly (a failing or non-finite f, a non-finite Jacobian or correction, a
 zero pivot: the Python loop then repeats the correction and reports or resolves it as
 before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
 choice, in one place.
 
-Results: the same iterates to rounding (the sums in the collocation residual and the
-phase integral are taken in C's order, numpy's einsum and dot may round differently in
-the last bit), far inside Newton's EPSU; tests/test_compiled_po.py compares the two loops.
+Results: the same iterates bit for bit, so the same b- and s-files byte for byte
+(tests/test_compiled_po.py): the same function values, quotients and Jacobian values,
+the same factorisation and solve, the residual's sums in numpy's order (pairwise_sum in
+po_correct.cpp) and the phase condition's and arclength row's inner products by the BLAS
+ddot numpy's `@` uses (`numpy_ddot`; without it, sums in order: equal to rounding).
 """
 from __future__ import annotations
 
@@ -41,6 +43,7 @@ from washer.cont.differences import FD_STEP
 from washer.cont.problem import Problem
 from washer.cont import reduction
 from washer.cont.reduction import ffi, lib
+from washer.cont.systems import bvp
 
 _ddot = None
 
@@ -112,13 +115,19 @@ class PeriodicCorrector:
         self.error = val
         return 1
 
-    def _evaluate(self, rows, us, ps, fs):
+    def _evaluate(self, rows, us, ps, prow, fs):
         n, npar = self.n, self._npar
-        # fresh arrays for the user's func, as the Python loop gives it
+        # fresh arrays for the user's func, as the Python loop gives it: one parameter
+        # vector (broadcast by func_many) or the parameters point by point (columns of a
+        # (NPAR, rows) array, the rows of which the user's func reads)
         U = np.frombuffer(ffi.buffer(us, 8 * rows * n), dtype=float).reshape(rows, n).copy()
-        P = np.frombuffer(ffi.buffer(ps, 8 * rows * npar), dtype=float).reshape(npar, rows).copy()
+        if prow:
+            P = np.frombuffer(ffi.buffer(ps, 8 * rows * npar),
+                              dtype=float).reshape(npar, rows).copy().T
+        else:
+            P = np.frombuffer(ffi.buffer(ps, 8 * npar), dtype=float).copy()
         try:
-            F = self.problem.func_many(U, P.T)
+            F = self.problem.func_many(U, P)
         except Exception:
             return 1            # f failed: the Python loop evaluates it again and reports
         out = np.frombuffer(ffi.buffer(fs, 8 * rows * n), dtype=float).reshape(rows, n)
@@ -160,8 +169,8 @@ class PeriodicCorrector:
             fac, self._cb, self._sfunc, self._sjac, self._npar_jp, numpy_ddot(), N, m, n,
             len(par), sysm.free[1] - 1, sysm.free[0] - 1, p(WT), p(WP), p(dtm), p(w_node),
             p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL,
-            s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, p(x), p(x_J), p(vals), p(P0),
-            p(P1), ffi.from_buffer("int[]", info))
+            s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, bvp.FU_FP_ONE_CALL_MAX, p(x),
+            p(x_J), p(vals), p(P0), p(P1), ffi.from_buffer("int[]", info))
         if self.error is not None:
             err, self.error = self.error, None
             raise err
@@ -203,7 +212,6 @@ def periodic_corrector(system, settings, divergence: float):
     runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), user
     Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
     from washer.cont.symbolic import SymbolicProblem
-    from washer.cont.systems import bvp
     from washer.cont.systems.periodic import PeriodicOrbits
     problem = getattr(system, "problem", None)
     if type(system) is not PeriodicOrbits or not bvp.COMPILED_FACTOR \
