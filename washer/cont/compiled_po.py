@@ -11,21 +11,20 @@ quotients, refactorised up to NWTN iterations, chord iterations after), the same
 factorisation and solve (the compiled condensation of CollocationBVP.factor) and the same
 stopping test (AUTO's NEWTONBV: EPSU on the profile, EPSL on each parameter, the
 divergence test of Continuation.correct), written once in C++ (csrc/cont/po_correct.cpp).
-The user's f is called back from the C++ loop through Problem.func_many (one call for the
-Gauss points of an iterate, one for all difference points of a Jacobian): compiled user
-files and sympy problems through their batch bridge, Python files as the Python loop
-calls them. What the Python loop leaves behind for the converged point (the last Newton
-Jacobian, its factorisation and Floquet pair) is left the same way.
-
 f is evaluated by the generated C of sympy problems (washer.cont.symbolic) through its
 function pointers, called from C++ directly (and their exact f_u with JAC != 0, as the
-Python loop's Problem.dfdu_many), by every other problem through the call back.
+Python loop's Problem.dfdu_many); every other problem's f is called back from the C++
+loop through Problem.func_many (one call for the Gauss points of an iterate, one for all
+difference points of a Jacobian): compiled user files through their batch bridge,
+Python files as the Python loop calls them. What the Python loop leaves behind for the
+converged point (the last Newton Jacobian, its factorisation and Floquet pair) is left
+the same way.
 
 It applies to PeriodicOrbits with difference Jacobians (no user dfdu / dfdp in use, no
 f evaluated with its Jacobians) and to sympy problems. Everything else, and every case
-the compiled loop does not finish cleanly (a failing or non-finite f, a non-finite Jacobian or correction, a
-zero pivot: the Python loop then repeats the correction and reports or resolves it as
-before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
+the compiled loop does not finish cleanly (a failing or non-finite f, a non-finite
+Jacobian or correction, a zero pivot: the Python loop then repeats the correction and
+reports or resolves it as before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
 choice, in one place.
 
 Results: the same iterates bit for bit, so the same b- and s-files byte for byte
