@@ -214,7 +214,16 @@ def permutation_sign(p: np.ndarray) -> float:
 
 
 def null_vectors(A: np.ndarray, k: int) -> np.ndarray:
-    """k right singular vectors of the smallest singular values, shape (cols, k)."""
+    """k right singular vectors of the smallest singular values, shape (cols, k). A real
+    matrix goes to np.linalg.svd's own LAPACK call (the same vectors) without its
+    wrappers, which cost more than the call at the loci's sizes."""
+    if _lapack is not None and isinstance(A, np.ndarray) and A.dtype == np.float64 \
+            and A.ndim == 2 and A.size:
+        with np.errstate(invalid="ignore"):
+            _, s, Vt = _lapack.svd_f(A, signature="d->ddd")
+        if np.isnan(s).any():
+            raise np.linalg.LinAlgError("SVD did not converge")
+        return Vt[-k:].T
     _, _, Vt = np.linalg.svd(A)
     return Vt[-k:].T
 
