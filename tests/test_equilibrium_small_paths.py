@@ -65,3 +65,20 @@ def test_inner_and_norm_equal_numpy(m):
         w = _Weights(theta, m - 1)
         assert w.inner(a, b) == float((theta * a * b).sum())
         assert w.measure(a) == float(np.sqrt((a[:m - 1] ** 2).sum()))
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (2, 3), (3, 2), (4, 4), (5, 7), (12, 12)])
+def test_null_vectors_are_numpys_svd(shape):
+    """linalg.null_vectors (LAPACK's SVD called without numpy's wrappers) returns the
+    right singular vectors np.linalg.svd returns, bit for bit, for square and rectangular
+    matrices, rank-deficient ones among them."""
+    rng = np.random.default_rng(sum(shape))
+    for k in range(50):
+        A = rng.standard_normal(shape) * 10.0 ** rng.integers(-3, 4)
+        if k % 3 == 0 and min(shape) > 1:
+            A[-1] = A[0]                                   # rank-deficient
+        for j in (1, min(2, shape[1])):
+            ref = np.linalg.svd(A)[2][-j:].T
+            assert np.array_equal(linalg.null_vectors(A, j), ref)
+    with pytest.raises(np.linalg.LinAlgError):
+        linalg.null_vectors(np.full(shape, np.nan), 1)
