@@ -412,3 +412,29 @@ def test_l1_work_size_is_the_c_one(cache):
     for n in (1, 2, 3, 12):
         for npar in (3, 36):
             assert lib.washer_ae_l1_work_size(n, npar) == compiled_newton.l1_work_size(n, npar)
+
+
+def test_failing_func_on_a_locus_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache):
+    """ab.py failing beyond PAR(1) = 0.2 on the Hopf curve from HB1 (called back from C for
+    f_u's stencil, the second differences and l1's batches alike): the Python loop takes
+    the failing steps over and reports as it does alone; the two runs end the same."""
+    src = (DATA / "ab" / "ab.py").read_text() + (
+        "\n_func = func\n\n\ndef func(u, par):\n    if (par[0] > 0.2).any():\n"
+        "        raise ValueError('outside the model')\n    return _func(u, par)\n")
+    out = {}
+    for sub, patch in (("fast", False), ("slow", True)):
+        d = tmp_path / sub
+        d.mkdir()
+        shutil.copy(DATA / "ab" / "c.ab", d)
+        (d / "ab.py").write_text(src)
+        with monkeypatch.context() as m:
+            if patch:
+                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
+            run(d / "c.ab", verbose=False, sv="eq")
+            out[sub] = run(d / "c.ab", verbose=False, sv="hb", s="eq", IRS="HB1", **AB2)
+    fast, slow = out["fast"], out["slow"]
+    assert "outside the model" in fast.status
+    assert fast.status == slow.status.replace("/slow/", "/fast/")
+    assert len(fast.rows) == len(slow.rows) > 50
+    np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
+                               rtol=1e-7, atol=1e-7)

@@ -465,7 +465,8 @@ def compiled_corrector(system, settings, divergence: float):
         getattr(system, "compiled_system", None)
     kind = KINDS.get(name)
     if kind is None or len(system.free) != (1 if kind == 0 else 2) \
-            or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM:
+            or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM \
+            or not all(0 < i <= len(system.par) for i in system.free):
         return None
     if isinstance(problem, CompiledProblem):
         if problem.jac != 0 or problem.has_func_dfdu_batch \
