@@ -277,7 +277,21 @@ def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, i
         if len(_PARSED) >= _PARSED_MAX:
             _PARSED.clear()
         _PARSED[key] = _parse_text(text, source)
-    return copy.deepcopy(_PARSED[key])
+    return [(k, _copied(v), line) for k, v, line in _PARSED[key]]
+
+
+def _copied(value):
+    """A copy of a parsed value: its lists, tuples and dicts new, numbers and strings
+    shared (immutable); copy.deepcopy's generality costs it as much as the parse."""
+    if isinstance(value, list):
+        return [_copied(v) for v in value]
+    if isinstance(value, tuple):
+        return tuple(_copied(v) for v in value)
+    if isinstance(value, dict):
+        return {k: _copied(v) for k, v in value.items()}
+    if isinstance(value, (int, float, str, bool, type(None))):
+        return value
+    return copy.deepcopy(value)
 
 
 def _parse_text(text: str, source: str) -> list[tuple[str, object, int]]:
