@@ -100,7 +100,9 @@ def compile_user_file(path) -> Path:
     fortran = path.suffix != ".c"
     shim = SHIM.read_bytes()
     try:
-        key = (str(path.resolve()), path.read_bytes(), shim,
+        # named as build_library's key names it: the file's name and content (a copy in
+        # another folder is the same library)
+        key = (path.name, path.read_bytes(), shim,
                tuple((h.name, h.stat().st_mtime_ns, h.stat().st_size)
                      for h in sorted(INCLUDE.glob("*.h"))),
                *(os.environ.get(v) for v in ("CC", "FC", "PATH", "WASHER_CACHE",

@@ -648,7 +648,10 @@ class Continuation:
             # the fold's sign change showed and the branch point's did not.
             nxt = self.evaluate(nxt.x, (nxt.x - current.x) / nxt.ds, ds=nxt.ds,
                                 it=nxt.iterations)
-        hit = self._first_zero(current, nxt, st.ds)
+        # (no test changes sign over the step: nothing to locate, `first_zero` would
+        # find no key; most steps, and its set-up costs more than this check)
+        hit = self._first_zero(current, nxt, st.ds) \
+            if sign_changes(current.tests, nxt.tests) else None
         yield from self._flush()
         if hit is not None:
             # sp's located tests are stored as 0 (`events.clear_located`).

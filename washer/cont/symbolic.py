@@ -40,7 +40,8 @@ void washer_sym_hess(int k, const double *U, const double *P, int pstride, doubl
 #: H (k, NDIM, NDIM + NPAR_SYM, NDIM): H[q, i, s, j] = d^2 f_i / dz_s du_j, z = (u, PAR).
 
 
-#: Generated C of the files loaded in this process: (path, source bytes, NDIM) -> text.
+#: Generated C of the equations loaded in this process: (NDIM, the symbols and
+#: expressions' srepr) -> text.
 _GENERATED: dict = {}
 
 
@@ -233,10 +234,15 @@ def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
         if free:
             raise ProblemError(f"{path}: f[{i}] uses {sorted(map(str, free))}, which are "
                                "neither in u nor in par")
-    key = (str(path), Path(path).read_bytes(), ndim)
+    exprs = [sympy.sympify(e) for e in exprs]
+    # the key is the equations themselves (a copy of NAME.py in another folder, a chain of
+    # runs each in its own folder, reuses the C; a module whose expressions depend on
+    # anything else gets its own)
+    key = (ndim, sympy.srepr(u_syms), sympy.srepr(sorted(par_syms.items())),
+           tuple(sympy.srepr(e) for e in exprs))
     text = _GENERATED.get(key)
-    if text is None:             # sympy's differentiation and cse: once per process and file
-        text = _GENERATED[key] = generate_c(u_syms, par_syms, [sympy.sympify(e) for e in exprs])
+    if text is None:             # sympy's differentiation and cse: once per process
+        text = _GENERATED[key] = generate_c(u_syms, par_syms, exprs)
     tag = hashlib.sha256(text.encode()).hexdigest()[:12]
     lib = build_library([source_text(f"{name}_sym_{tag}.c", text)], f"{name}_sym")
     c = _Compiled(lib, ndim, max(par_syms, default=0))
