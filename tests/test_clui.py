@@ -381,3 +381,33 @@ def test_the_command_language_loads_none_of_the_washers_problems_until_a_run_nam
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env=dict(os.environ, OMP_NUM_THREADS="1"), check=True)
     assert out.stdout.split("\n")[:2] == ["[]", "True"], out.stdout + out.stderr
+
+
+def test_a_data_start_is_the_engines_as_for_washer_run(tmp_path, monkeypatch):
+    """run(e='pen', c='pen.1') with dat = 'pen' (pen.dat: t, U rows): the command language
+    hands the data to the engine's start as `washer.run` does (AUTO's STPNUB: PAR(11) the
+    data's time span, then STPNT, then the constants), so both write the same b-file, and
+    its first rows are AUTO's (autoref b.pen: PERIOD 1.5738797188 at PT 1, where a start
+    built apart from the engine's had PERIOD 1.0). AUTO's rows are compared to 1e-6
+    relative: the corrector's EPSL = EPSU = 1e-7 on both sides, a few steps on."""
+    import gzip
+
+    from washer.auto.files import read_b
+    from washer.run import run
+    for sub in ("clui", "run"):
+        d = tmp_path / sub
+        d.mkdir()
+        for f in ("pen.f90", "pen.dat", "c.pen.1"):
+            shutil.copy(DEMOS / "pen" / f, d)
+    monkeypatch.chdir(tmp_path / "clui")
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+    clui.COMMANDS["run"](e="pen", c="pen.1", NMX=4, sv="pen")
+    run(tmp_path / "run" / "c.pen.1", verbose=False, e="pen", NMX=4, sv="pen")
+    ours = [r for b in read_b(tmp_path / "clui" / "b.pen") for r in b]
+    assert [r.values for r in ours] == \
+        [r.values for b in read_b(tmp_path / "run" / "b.pen") for r in b]
+    (tmp_path / "b.auto").write_bytes(gzip.open(DEMOS / "pen" / "autoref" / "b.pen.gz").read())
+    auto = [r for b in read_b(tmp_path / "b.auto") for r in b][:len(ours)]
+    assert len(ours) == 4 and [r.pt for r in ours] == [r.pt for r in auto]
+    for o, a in zip(ours, auto):
+        np.testing.assert_allclose(o.values, a.values, rtol=1e-6)

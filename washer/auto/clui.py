@@ -185,18 +185,14 @@ def _check_equation(e) -> None:
                     f"{e}.py in {Path('.').resolve()})")
 
 
-def _data_start(name: str, problem, wc):
-    """The record of a start from NAME.dat (AUTO's dat=: rows 't U(1) ... U(NDIM)'):
-    PAR from STPNT, PAR(11) the data's time span, the rows as a mesh of NCOL = 1."""
-    from washer.auto.files import AutoFileError, Record, read_dat
+def _read_data(name: str, ndim: int):
+    """(t, U) of NAME.dat in the current folder (AUTO's dat=: rows 't U(1) ... U(NDIM)'),
+    the start the engine takes from it as `washer.run` hands it over."""
+    from washer.auto.files import AutoFileError, read_dat
     try:
-        t, U = read_dat(Path(f"{name}.dat"), problem.ndim)
+        return read_dat(Path(f"{name}.dat"), ndim)
     except AutoFileError as exc:
         raise AutoError(str(exc)) from None
-    _, par = problem.start(max(wc["NPAR"], 36))
-    par[10] = t[-1] - t[0]
-    return Record(1, 1, 9, 1, 1, 1, problem.ndim, wc["IPS"], U, par,
-                  t=(t - t[0]) / (t[-1] - t[0]), ntst=len(t) - 1, ncol=1)
 
 
 def _execute(sol: Solution) -> Diagram:
@@ -220,19 +216,16 @@ def _execute(sol: Solution) -> Diagram:
         problem = _runner.problem(e, wc["NDIM"], wc)
         if hasattr(problem, "fresh"):
             problem.fresh()             # AUTO runs each run in a new process
-        records = None
-        from_data = False
+        records = data = None
         if not sol.empty and c.get("IRS"):
             wc.set("IRS", sol.rec.lab)
             records = [sol.rec]
-        elif c.get("dat"):
-            # AUTO's dat='NAME': the start is the orbit in NAME.dat (columns t, U(1..NDIM)),
-            # PAR from STPNT, PAR(11) the orbit's time span.
-            records = [_data_start(c["dat"], problem, wc)]
-            wc.set("IRS", records[0].lab)
-            from_data = True
         else:
             wc.set("IRS", 0)
+            if c.get("dat"):
+                # AUTO's dat='NAME': the start is the orbit in NAME.dat (columns t,
+                # U(1..NDIM)), taken by the engine's start as for `washer.run`
+                data = _read_data(c["dat"], problem.ndim)
         if hasattr(problem, "set_icp"):
             try:
                 problem.set_icp(wc.icp())
@@ -241,13 +234,8 @@ def _execute(sol: Solution) -> Diagram:
         if hasattr(problem, "set_sizes"):
             problem.set_sizes(wc["NBC"], wc["NINT"])
         r, br, mode = build(wc, problem, records, name=e, records_source="the restart solution",
-                            mlab=sol._mlab if records and not from_data else None,
-                            mbr=sol._mbr if records and not from_data else None)
-        if from_data:
-            r.first_label, r.label0 = True, (c.get("LAB") or 1) - 1   # a start, as IRS = 0
-            r.irs_label = 0                 # and its header says IRS = 0, as AUTO's
-            r.constants.set("IRS", 0)
-            br = c.get("IBR") or 1
+                            mlab=sol._mlab if records else None,
+                            mbr=sol._mbr if records else None, data=data)
     except RunError as exc:
         if REFUSED.search(str(exc)):
             # A run the engine does not do: said clearly, the script goes on (later
