@@ -131,3 +131,23 @@ def test_a_reloaded_problem_shares_the_parsed_declarations_and_the_library(folde
     u, par = np.array([1.0, 2.0, 3.0]), np.array([28.0, 8 / 3, 10.0])
     np.testing.assert_array_equal(a.func(u, par), b.func(u, par))
     np.testing.assert_array_equal(b.func(u, par), [10.0 * (2 - 1), 28 - 2 - 3, 2 - 8.0])
+
+
+def test_the_generated_c_is_kept_by_the_equations_not_the_file(folder, tmp_path):
+    """The generated C is remembered by the equations themselves: a copy of lrz.py in
+    another folder gets lrz's functions, and a file of the same name there whose
+    expressions differ (sigma (y - x) replaced by 2 sigma (y - x)) gets its own, with its
+    own values, in the same process."""
+    u, par = np.array([1.0, 2.0, 3.0]), np.array([28.0, 8 / 3, 10.0])
+    first = load_python_problem("lrz", folder, 3).func(u, par)
+    copy, edited = tmp_path / "copy", tmp_path / "edited"
+    for d in (copy, edited):
+        d.mkdir()
+        shutil.copy(folder / "lrz.py", d)
+    text = (edited / "lrz.py").read_text()
+    assert "f = [sigma * (y - x)," in text
+    (edited / "lrz.py").write_text(text.replace("f = [sigma * (y - x),",
+                                                "f = [2 * sigma * (y - x),"))
+    np.testing.assert_array_equal(load_python_problem("lrz", copy, 3).func(u, par), first)
+    got = load_python_problem("lrz", edited, 3).func(u, par)
+    np.testing.assert_array_equal(got, [2 * first[0], first[1], first[2]])
