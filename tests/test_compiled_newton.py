@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from corrector_runs import fast_and_slow
 from washer.cont import compiled_newton, iterator
-from washer.cont.newton import ConvergenceError
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -46,30 +46,11 @@ def _folder(tmp_path, name, sub, kind):
 
 
 def _both(tmp_path, monkeypatch, name, kind="f90", **ov):
-    """The run with the compiled corrector (and how many steps it took), then the same
-    run with the Python loop only."""
-    used = []
-    real = compiled_newton.CompiledCorrector.correct
-
-    def spy(self, *a, **k):
-        try:
-            out = real(self, *a, **k)
-        except ConvergenceError:
-            used.append(True)                      # decided in C: no convergence
-            raise
-        used.append(out is not None)
-        return out
-    with monkeypatch.context() as m:
-        m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
-        fast = run(_folder(tmp_path, name, "fast", kind) / f"c.{name}", verbose=False, **ov)
-    n_fast = len(used)
-    with monkeypatch.context() as m:
-        # the choice Continuation makes: no compiled corrector, the Python loop
-        m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
-        m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
-        slow = run(_folder(tmp_path, name, "slow", kind) / f"c.{name}", verbose=False, **ov)
-    assert len(used) == n_fast                     # the reference never went through C
-    return fast, slow, used
+    """The run with the compiled corrector (and how its corrections ended), then the same
+    run with the Python loop only (corrector_runs.fast_and_slow)."""
+    return fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector, "correct",
+                         lambda sub: run(_folder(tmp_path, name, sub, kind) / f"c.{name}",
+                                         verbose=False, **ov))
 
 
 @pytest.mark.parametrize("kind", ["f90", "py"])
@@ -311,32 +292,17 @@ def test_compiled_corrector_follows_the_python_loop_on_loci(name, label, ov, kin
     """The fold and Hopf curves from ab's LP1 and HB1 and lrz's HB1 (the extended systems
     of systems/fold.py and hopf.py in C): every step through C, the same points, special
     points (ab's GH, the UZ values) and evaluations (to one location trial) as the Python
-    loop. The converged
-    points agree within EPSU = 1e-7 relative (the two eliminations round differently; a
-    located point iterates on them, and the curve continues from it): ab's to 2e-9,
-    lrz's to 4e-8."""
-    used = []
-    real = compiled_newton.CompiledCorrector.correct
-
-    def spy(self, *a, **k):
-        out = real(self, *a, **k)
-        if self.kind:
-            used.append(out is not None)
-        return out
-    out = {}
-    for sub, python in (("fast", False), ("slow", True)):
+    loop. The converged points agree within EPSU = 1e-7 relative (the two eliminations
+    round differently; a located point iterates on them, and the curve continues from
+    it): ab's to 2e-9, lrz's to 4e-8."""
+    def locus(sub):
         d = _folder(tmp_path, name, sub, kind)
-        with monkeypatch.context() as m:
-            m.setattr(compiled_newton.CompiledCorrector, "correct", spy)
-            if python:
-                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
-            run(d / f"c.{name}", verbose=False, sv="eq")
-            out[sub] = run(d / f"c.{name}", verbose=False, sv="locus", s="eq", IRS=label,
-                           **ov)
-        if not python:
-            n_fast = len(used)
-    fast, slow = out["fast"], out["slow"]
-    assert len(used) == n_fast > 80 and all(used)
+        run(d / f"c.{name}", verbose=False, sv="eq")
+        return run(d / f"c.{name}", verbose=False, sv="locus", s="eq", IRS=label, **ov)
+    # the locus's corrections only (kind 0 is the equilibria's run before it)
+    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+                                     "correct", locus, counts=lambda c: c.kind)
+    assert len(used) > 80 and all(used)
     assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
     assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
     if name == "ab" and label == "HB1":

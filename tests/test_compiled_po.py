@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from corrector_runs import fast_and_slow
 from washer.cont import compiled_newton, compiled_po, iterator
 from washer.cont.branch import Counters
 from washer.cont.newton import ConvergenceError
@@ -49,32 +50,12 @@ def _po_run(d, name, ov):
 
 
 def _both(tmp_path, monkeypatch, name, user, ov):
-    """The run with the compiled corrector (and how its corrections ended), then the same
-    run with the Python loop only."""
-    used = []
-    real = compiled_po.PeriodicCorrector.correct_plane
-
-    def spy(self, *a, **k):
-        try:
-            out = real(self, *a, **k)
-        except ConvergenceError:
-            used.append(True)                      # decided in C++: no convergence
-            raise
-        used.append(out is not None)
-        return out
-    with monkeypatch.context() as m:
-        m.setattr(compiled_po.PeriodicCorrector, "correct_plane", spy)
-        fast_dir = _folder(tmp_path, name, "fast", user)
-        fast = _po_run(fast_dir, name, ov)
-    n_fast = len(used)
-    with monkeypatch.context() as m:
-        m.setattr(compiled_po.PeriodicCorrector, "correct_plane", spy)
-        # the choice Continuation makes: no compiled corrector, the Python loop
-        m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
-        slow_dir = _folder(tmp_path, name, "slow", user)
-        slow = _po_run(slow_dir, name, ov)
-    assert len(used) == n_fast                     # the reference never went through C++
-    return (fast, fast_dir), (slow, slow_dir), used
+    """((run, folder) with the compiled corrector, (run, folder) with the Python loop only,
+    how the compiled corrections ended) (corrector_runs.fast_and_slow)."""
+    def po_run(sub):
+        d = _folder(tmp_path, name, sub, user)
+        return _po_run(d, name, ov), d
+    return fast_and_slow(monkeypatch, compiled_po.PeriodicCorrector, "correct_plane", po_run)
 
 
 @pytest.mark.parametrize("name, user, ov", [
