@@ -263,3 +263,22 @@ def test_the_command_line_exits_nonzero_after_a_failed_run(ab):
     assert "x.auto:2: AutoError: run(e='bad') failed at its start" in p.stderr
     assert "after" not in p.stdout
     assert Path("b.good").stat().st_size > 0
+
+
+def test_a_broken_constants_file_read_by_name_is_the_error(ab):
+    """run('NAME') reads c.NAME when it is there: a c.NAME with a fault stops the script
+    with its file and line (it was taken for a missing file and the run went on with the
+    default constants)."""
+    line = _c_ab_with("NMX", "NMX= many, NPR=  400", "ab")
+    msg = _error("run('ab')\n")
+    assert msg.startswith("x.auto:1: ")
+    assert f"c.ab:{line}: NMX: expected a value (number, 'string', [list] or {{dict}})" in msg
+
+
+def test_a_comma_after_a_dictionary_key_is_read_as_auto_reads_it(ab):
+    """AUTO's parseC scans {'p', [0, 1]} as {'p': [0, 1]} (':' and ',' both separate its
+    tokens): a constants file written so runs in AUTO-07p, and is read the same here."""
+    from washer.auto.constants import read_constants
+    Path("c.d").write_text("NDIM = 2\nUZSTOP = {1, [0, 1.0]}\nUZR = {2: 0.5, 3, -1}\n")
+    c = read_constants("c.d")
+    assert c["UZSTOP"] == {1: [0, 1.0]} and c["UZR"] == {2: 0.5, 3: -1}

@@ -86,3 +86,29 @@ def test_washer_starts_at_the_constants_par_values(tmp_path):
     # the start is not the reference set's equilibrium carried to C_p = 0
     eq_ref = washer.Model(params).rotating_equilibrium(frame="averaged")
     assert np.max(np.abs(eq_ref - eq0)) > 1e-7 * (1 + np.max(np.abs(eq0)))
+
+
+def test_isw2_without_a_restart_label_continues_the_branch_itself(tmp_path):
+    """ISW = 2 with IRS = 0: no label names a special point whose locus to continue (AUTO
+    sets ITPST from the restart label's type, FINDLB, which only a restart calls), so
+    AUTO-07p runs the ordinary branch from STPNT. The cubic p = u^3 - 3u from u = -2
+    (p = -2) has its folds at u = -1, p = 2 and u = 1, p = -2 (dp/du = 3u^2 - 3 = 0):
+    both are found, to the location tolerance EPSS (1 + sqrt(|DS DSMAX|)) in p, and the
+    run is the ISW = 1 run row for row (ISW has no part in it)."""
+    (tmp_path / "cub.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([par[0] - u[0]**3 + 3*u[0]])\n"
+        "def stpnt(u, par):\n    u[0] = -2.0\n    par[0] = -2.0\n")
+    (tmp_path / "c.cub").write_text(
+        "e = 'cub'\nNDIM = 1, IPS = 1, IRS = 0, ILP = 1, ISW = 2\nICP = [1]\nNMX = 200\n"
+        "DS = 0.05, DSMIN = 0.001, DSMAX = 0.1\nEPSS = 1e-6\nRL0 = -3, RL1 = 3\n")
+    res = run(tmp_path / "c.cub", verbose=False, files=False)
+    assert res.status == "ok"
+    lps = [r for r in res.rows if r.ty == "LP"]
+    tol = 1e-6 * (1 + np.sqrt(0.05 * 0.1))
+    assert [round(float(r.par[0])) for r in lps] == [2, -2]
+    assert all(abs(abs(float(r.par[0])) - 2.0) <= tol for r in lps)
+    plain = run(tmp_path / "c.cub", verbose=False, files=False, ISW=1)
+    assert [(r.ty, r.lab) for r in plain.rows] == [(r.ty, r.lab) for r in res.rows]
+    assert np.allclose([r.par[0] for r in plain.rows], [r.par[0] for r in res.rows],
+                       rtol=0, atol=0)

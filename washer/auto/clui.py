@@ -134,7 +134,9 @@ def _configure(data=None, **kw) -> Solution:
             try:
                 value = reader(value)
             except AutoError as exc:
-                if short == "c" and explicit:
+                # run('NAME') reads c.NAME where there is one: a c.NAME that is there but
+                # wrong is the user's error (its file and line), not a missing file
+                if short == "c" and (explicit or Path(f"c.{value}").exists()):
                     raise
                 if short == "s" and explicit:
                     missing_s = exc

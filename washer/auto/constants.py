@@ -110,7 +110,10 @@ class _Scanner:
                 else:
                     key = self.value()
                 self.skip(commas=False)
-                if self.advance() != ":":
+                # AUTO's parseC (scanvalue) reads a dictionary as a flat list of tokens
+                # in which ':' and ',' alike separate: {'theta', [0, 1]} is
+                # {'theta': [0, 1]} to AUTO-07p, so a ',' stands for the ':' here too.
+                if self.advance() not in (":", ","):
                     raise self.error("expected ':' after a dictionary key")
                 items[key] = self.value()
         if c in "'\"":

@@ -179,11 +179,16 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
         raise RunError(f"{c.source}: IPS=2 starts from an HB label or a stored periodic "
                          f"solution, got {kind or 'a regular point'} of an algebraic branch "
                          f"(IRS={irs!r})")
-    if s.ISW == 2 and kind in ("EP", "UZ", "", "RG"):
+    # A start without a restart label (IRS = 0) has no special point whose locus ISW = 2
+    # or 3 could continue: AUTO sets ITPST from the label's type in FINDLB, which only a
+    # restart calls, so with IRS = 0 ITPST = 0 and the run is an ordinary branch from
+    # STPNT (the header and the records keep the ISW given).
+    fresh_locus = rec is None and s.ISW in (2, 3)
+    if s.ISW == 2 and kind in ("EP", "UZ", "", "RG") and not fresh_locus:
         raise RunError(f"{c.source}: ISW=2 continues the locus of a special point: restart "
                          f"at an LP, HB, BP, PD or TR label, got {kind or 'a regular point'} "
                          f"(IRS={irs!r})")
-    if s.ISW == 3 and kind not in ("BP", "BP-curve", "BPC-curve"):
+    if s.ISW == 3 and kind not in ("BP", "BP-curve", "BPC-curve") and not fresh_locus:
         raise RunError(f"{c.source}: ISW=3 continues the branch points of a generic problem: "
                        f"restart at a BP label, got {kind or 'a regular point'} (IRS={irs!r})")
     # ISW = 1 at a label of a curve of equilibria: FINDLB's ITPST = 0 (|ISW| < 2), so
@@ -198,7 +203,8 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
         s = s.with_(ISW=abs(rec.isw))
     # ISW = 3 (the generic BP locus) is the same system as ISW = 2 (it reads ISW).
     isw_key = -1 if s.ISW == -1 and (kind == "BP" or algebraic) else \
-        (2 if s.ISW in (2, 3) or (kind.endswith("curve") and not equilibria) else 1)
+        (2 if (s.ISW in (2, 3) and not fresh_locus) or (kind.endswith("curve") and not equilibria)
+         else 1)
     if kind in CYCLE_CURVES and s.ISW not in (2, 3):
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:
