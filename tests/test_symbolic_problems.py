@@ -151,3 +151,20 @@ def test_the_generated_c_is_kept_by_the_equations_not_the_file(folder, tmp_path)
     np.testing.assert_array_equal(load_python_problem("lrz", copy, 3).func(u, par), first)
     got = load_python_problem("lrz", edited, 3).func(u, par)
     np.testing.assert_array_equal(got, [2 * first[0], first[1], first[2]])
+
+
+def test_a_copy_in_another_folder_does_not_generate_again(folder, tmp_path_factory,
+                                                         monkeypatch):
+    """sympy's differentiation and printing (most of a short run's set-up) run once for
+    the same equations in a process: a chain of runs, each in its own folder, reuses
+    the C."""
+    from washer.cont import symbolic
+    calls = []
+    real = symbolic.generate_c
+    monkeypatch.setattr(symbolic, "generate_c", lambda *a, **k: calls.append(1) or real(*a, **k))
+    monkeypatch.setattr(symbolic, "_GENERATED", {})
+    other = tmp_path_factory.mktemp("copy")
+    shutil.copy(folder / "lrz.py", other)
+    load_python_problem("lrz", folder, 3)
+    load_python_problem("lrz", other, 3)
+    assert len(calls) == 1
