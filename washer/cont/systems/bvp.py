@@ -195,10 +195,10 @@ class VectorField:
         return (out[0] - out[1]) / (4 * hp * hk)
 
 
-def stored_profile(rec, ndim: int, n_keep: int | None = None):
-    """(mesh, U, udot) of an s-record of a BVP: U (NTPL, n_keep) its first n_keep (default
-    NDIM) components, udot the direction's (or None when not stored)."""
-    n_keep = ndim if n_keep is None else n_keep
+def record_profile(rec, n_keep: int):
+    """(t (NTPL,), U (NTPL, n_keep), NTST, NCOL) of an s-record of a BVP: its mesh times
+    (evenly spaced where the record has none) and the first n_keep components of its
+    profile; ValueError where the header's NTST and NCOL do not fit its NTPL points."""
     U_r = np.asarray(rec.U, float)[:, :n_keep]
     ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
     if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
@@ -206,6 +206,14 @@ def stored_profile(rec, ndim: int, n_keep: int | None = None):
                          f"{ntst_r}, NCOL = {ncol_r} in its header")
     t_r = getattr(rec, "t", None)
     t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
+    return t_r, U_r, ntst_r, ncol_r
+
+
+def stored_profile(rec, ndim: int, n_keep: int | None = None):
+    """(mesh, U, udot) of an s-record of a BVP: U (NTPL, n_keep) its first n_keep (default
+    NDIM) components, udot the direction's (or None when not stored)."""
+    n_keep = ndim if n_keep is None else n_keep
+    t_r, U_r, _, ncol_r = record_profile(rec, n_keep)
     ud_r = None
     if rec.udot is not None:
         ud_r = np.asarray(rec.udot, float).reshape(len(U_r), -1)[:, :n_keep]

@@ -50,7 +50,7 @@ from washer.cont.differences import columns, quotient, step
 from washer.cont.problem import Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, StartData, register
-from washer.cont.systems.bvp import CollocationBVP, VectorField
+from washer.cont.systems.bvp import CollocationBVP, VectorField, record_profile
 
 def _widen(P: np.ndarray, n: int) -> np.ndarray:
     """A stored profile (NTPL, k) with k <= n components, the others 0 (READBV)."""
@@ -148,13 +148,7 @@ class BoundaryValueProblem(CollocationBVP):
     def _from_record(self, rec) -> None:
         """STPNBV1 + ADAPT2: the stored solution on the run's mesh."""
         s, n = self.settings, self.ndim
-        U_r = np.asarray(rec.U, float)[:, :n]
-        ntst_r, ncol_r = int(getattr(rec, "ntst", 0) or 0), int(getattr(rec, "ncol", 0) or 0)
-        if not ncol_r or not ntst_r or ntst_r * ncol_r + 1 != len(U_r):
-            raise ValueError(f"BVP restart: record with {len(U_r)} points but NTST = {ntst_r}, "
-                             f"NCOL = {ncol_r} in its header")
-        t_r = getattr(rec, "t", None)
-        t_r = np.asarray(t_r if t_r is not None else np.linspace(0, 1, len(U_r)), float)
+        t_r, U_r, ntst_r, ncol_r = record_profile(rec, n)
         if U_r.shape[1] < n and self.ndm == n:
             # READBV: an extended system's new components from stpnt (0 without one)
             U_r = self.problem.extend_profile(U_r, self.par, t_r)
