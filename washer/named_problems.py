@@ -6,10 +6,11 @@ file beside the constants file.
 
 e = 'NAME' or 'NAME:variant' names one of the families below when NAME is theirs, else
 the user's NAME.py or AUTO's NAME.f90, NAME.f, NAME.c (washer.cont.user_files). The table
-names each family's module by its import path, imported on first use: the engine and AUTO's
-command language (washer.auto.clui) look e up here and so stay below the problems they run
-(the AUTO file layer imports no problem of the washer's, and a run of a user's file does
-not load the washer's model).
+names each family's module by its import path, imported on first use: `washer.run` and
+AUTO's command language (washer.auto.clui) look e up here and so stay below the problems
+they run (the AUTO file layer imports no problem of the washer's, and a run of a user's
+file does not load the washer's model). A new family is a module with from_constants and
+a line in NAMED_PROBLEMS.
 """
 from __future__ import annotations
 
