@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from corrector_runs import fast_and_slow
-from washer.cont import compiled_newton, iterator
+from washer.cont import compiled_newton
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -108,24 +108,24 @@ def test_compiled_corrector_fails_as_the_python_loop(kind, tmp_path, monkeypatch
     np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
 
 
+
+def _failing_ab(d, condition: str):
+    """A folder d with c.ab and ab.py whose func raises ValueError('outside the model')
+    where `condition` (Python on par; par may be (NPAR, k) in a batch) holds."""
+    d.mkdir()
+    shutil.copy(DATA / "ab" / "c.ab", d)
+    (d / "ab.py").write_text((DATA / "ab" / "ab.py").read_text() + (
+        f"\n_func = func\n\n\ndef func(u, par):\n    if {condition}:\n"
+        "        raise ValueError('outside the model')\n    return _func(u, par)\n"))
+    return d
+
 def test_failing_func_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache):
     """A func that fails beyond PAR(1) = 0.1 (an exception from the user's code, called
     back from C): the Python loop takes the step over and reports the failure as it
     does without the compiled corrector; the runs end the same."""
-    src = (DATA / "ab" / "ab.py").read_text() + (
-        "\n_func = func\n\n\ndef func(u, par):\n    if par[0] > 0.1:\n"
-        "        raise ValueError('outside the model')\n    return _func(u, par)\n")
-    out = {}
-    for sub, patch in (("fast", False), ("slow", True)):
-        d = tmp_path / sub
-        d.mkdir()
-        shutil.copy(DATA / "ab" / "c.ab", d)
-        (d / "ab.py").write_text(src)
-        with monkeypatch.context() as m:
-            if patch:
-                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
-            out[sub] = run(d / "c.ab", verbose=False)
-    fast, slow = out["fast"], out["slow"]
+    fast, slow, _ = fast_and_slow(
+        monkeypatch, compiled_newton.CompiledCorrector, "correct",
+        lambda sub: run(_failing_ab(tmp_path / sub, "par[0] > 0.1") / "c.ab", verbose=False))
     assert "outside the model" in fast.status
     assert fast.status == slow.status.replace("/slow/", "/fast/")    # the file is named
     np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
@@ -384,21 +384,12 @@ def test_failing_func_on_a_locus_hands_over_to_the_python_loop(tmp_path, monkeyp
     """ab.py failing beyond PAR(1) = 0.2 on the Hopf curve from HB1 (called back from C for
     f_u's stencil, the second differences and l1's batches alike): the Python loop takes
     the failing steps over and reports as it does alone; the two runs end the same."""
-    src = (DATA / "ab" / "ab.py").read_text() + (
-        "\n_func = func\n\n\ndef func(u, par):\n    if (par[0] > 0.2).any():\n"
-        "        raise ValueError('outside the model')\n    return _func(u, par)\n")
-    out = {}
-    for sub, patch in (("fast", False), ("slow", True)):
-        d = tmp_path / sub
-        d.mkdir()
-        shutil.copy(DATA / "ab" / "c.ab", d)
-        (d / "ab.py").write_text(src)
-        with monkeypatch.context() as m:
-            if patch:
-                m.setattr(iterator, "compiled_corrector", lambda *a, **k: None)
-            run(d / "c.ab", verbose=False, sv="eq")
-            out[sub] = run(d / "c.ab", verbose=False, sv="hb", s="eq", IRS="HB1", **AB2)
-    fast, slow = out["fast"], out["slow"]
+    def hopf_curve(sub):
+        d = _failing_ab(tmp_path / sub, "(par[0] > 0.2).any()")
+        run(d / "c.ab", verbose=False, sv="eq")
+        return run(d / "c.ab", verbose=False, sv="hb", s="eq", IRS="HB1", **AB2)
+    fast, slow, _ = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector, "correct",
+                                  hopf_curve)
     assert "outside the model" in fast.status
     assert fast.status == slow.status.replace("/slow/", "/fast/")
     assert len(fast.rows) == len(slow.rows) > 50
