@@ -49,8 +49,14 @@ def solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
             return np.linalg.solve(M, b)
         except np.linalg.LinAlgError:
             return np.full(len(b), np.nan)
-    cplx = np.iscomplexobj(M) or np.iscomplexobj(b)
+    cplx = _complex(M) or _complex(b)
     return _GESV(M, b, signature="DD->D" if cplx else "dd->d")
+
+
+def _complex(a) -> bool:
+    """np.iscomplexobj(a), an array's dtype read directly (the function's dispatch costs
+    more than the check at these sizes)."""
+    return a.dtype.kind == "c" if type(a) is np.ndarray else np.iscomplexobj(a)
 
 
 def slogdet(M: np.ndarray) -> tuple[float, float]:
@@ -145,7 +151,8 @@ class DenseFactor:
                 x = solve(self.M, rhs)
         except np.linalg.LinAlgError:
             x = np.full(len(rhs), np.nan)
-        if not np.isfinite(x).all():
+        if not (all(map(cmath.isfinite, x.tolist())) if x.size <= SMALL
+                else np.isfinite(x).all()):
             # Exactly at a branch point the Newton matrix is singular but the
             # system is consistent: take the minimum-norm least-squares step.
             x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]
