@@ -237,6 +237,27 @@ def test_our_s_records_are_what_parseS_counts(tmp_path):
     assert back.icp == [1, 2] and back.code == -32 and back.ty == "GH" and back.lab == 7
 
 
+def test_a_step_number_past_9999_is_written_as_auto_writes_it(tmp_path):
+    """A record at step 100000 (a long time integration): AUTO's s-file header holds
+    MTOT = MOD(NTOT-1, 9999) + 1 = 10 (WRTSP8) in its I6 field; the raw number fills the
+    field and runs into the branch number before it ('     1100000'), which neither
+    AUTO's parseS nor our reader takes for two integers."""
+    import numpy as np
+    from washer.auto.files import read_s
+    from washer.cont.branch import Record
+    for pt, mtot in ((100000, 10), (9999, 9999), (10000, 1), (-20000, -2)):
+        rec = Record(1, pt, 9, 201, 1, 1, 1, 1, np.array([0.5, 0.25]), np.arange(4.0))
+        out = OutputFiles(tmp_path, f"p{abs(pt)}")
+        out.record(rec)
+        out.close()
+        path = tmp_path / f"s.p{abs(pt)}"
+        head = [int(x) for x in path.read_text().splitlines()[0].split()]
+        assert head[:4] == [1, mtot, 9, 201]
+        back = read_s(path)[0]
+        assert back.lab == 201 and back.pt == mtot
+        np.testing.assert_allclose(back.u, rec.u, rtol=1e-10)
+
+
 def test_row_formatting_is_fmt_e_value_by_value():
     """The one-call formatting of whole rows and blocks (fmt_e_many, fmt_es_many) gives
     the text of fmt_e / fmt_es value by value, including the values it hands back to

@@ -411,3 +411,24 @@ def test_a_data_start_is_the_engines_as_for_washer_run(tmp_path, monkeypatch):
     assert len(ours) == 4 and [r.pt for r in ours] == [r.pt for r in auto]
     for o, a in zip(ours, auto):
         np.testing.assert_allclose(o.values, a.values, rtol=1e-6)
+
+
+def test_numpy_values_in_a_script_are_the_numbers_they_hold(tmp_path, monkeypatch):
+    """AUTO's scripts are Python: UZR={1: linspace(...)} (an array) and NMX=np.int64(..)
+    are values AUTO takes. On the line u = p from p = 0 the UZ labels fall on the array's
+    values (the line is exact: to Newton's tolerance EPSL = 1e-7 relative)."""
+    monkeypatch.chdir(tmp_path)
+    clui._runner.refused.clear()
+    Path("line.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([u[0] - par[0]])\n"
+        "def stpnt(u, par):\n    u[0] = 0.0\n    par[0] = 0.0\n")
+    Path("c.line").write_text("NDIM = 1, IPS = 1, IRS = 0, ILP = 0\nICP = [1]\n"
+                              "DS = 0.01, DSMIN = 0.001, DSMAX = 0.05\n")
+    Path("s.auto").write_text(
+        "from numpy import linspace, int64\n"
+        "r = run('line', UZR={1: linspace(0.25, 1.0, 4)}, UZSTOP={1: 1.2}, NMX=int64(500))\n"
+        "save(r, 'out')\n")
+    run_script("s.auto")
+    uz = clui.loadbd("out")("UZ")
+    assert [round(float(r["PAR(1)"]), 6) for r in uz] == [0.25, 0.5, 0.75, 1.0, 1.2]

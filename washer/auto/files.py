@@ -224,6 +224,13 @@ class Row:
     values: list          # PAR(ICP(1)), norm, U(1..N2), PAR(ICP(2..))
 
 
+def _mtot(pt: int) -> int:
+    """The step number an s-file header holds: AUTO's MTOT = MOD(NTOT-1, 9999) + 1 (WRTSP8,
+    WRTBV8), so that it fits its I6 field: a raw 100000 would run into the branch number
+    before it and the header would read as one integer fewer."""
+    return (pt - 1) % 9999 + 1 if pt > 0 else -((-pt - 1) % 9999) - 1
+
+
 def record_text(rec: Record) -> str:
     """The s-file text of a record (algebraic: WRTSP8; BVP: `_record_text_bvp`)."""
     if np.ndim(rec.u) == 2:
@@ -240,7 +247,7 @@ def _record_text_algebraic(rec: Record) -> str:
     nrow = n // 7 + 1 + (npar + 6) // 7
     if has_dir:
         nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + (n + 6) // 7
-    head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
+    head = (f"{rec.br:6d}{_mtot(rec.pt):6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
             f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]
@@ -266,7 +273,7 @@ def _record_text_bvp(rec: Record) -> str:
     nrow = (n // 7 + 1) * ntpl + (npar + 6) // 7
     if has_dir:
         nrow += (rec.nfpr + 19) // 20 + (rec.nfpr + 6) // 7 + ((n + 6) // 7) * ntpl
-    head = (f"{rec.br:6d}{rec.pt:6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
+    head = (f"{rec.br:6d}{_mtot(rec.pt):6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
             f"{ntpl:8d}{n + 1:6d}{nrow:8d}{rec.ntst:5d}{rec.ncol:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]

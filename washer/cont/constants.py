@@ -40,8 +40,22 @@ class ConstantsError(ValueError):
     """A malformed constants file or value: the message gives file, line and expectation."""
 
 
+def _plain(value):
+    """numpy values as the Python numbers and lists they hold, inside dicts and lists too:
+    AUTO's scripts are Python, and UZR={10: linspace(11, 0, 100)} or NMX=np.int64(5) are
+    values there (AUTO iterates an array as a list)."""
+    if isinstance(value, dict):
+        return {_plain(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        return _plain(value.tolist())
+    return value
+
+
 def check_value(key: str, value, where: str):
     """Type-check one constant; returns the normalised value."""
+    value = _plain(value)
     # every message below names the key: a place that names it too ('run(e='ab'): NMX',
     # a command's keyword) would say it twice
     named = where.removesuffix(f": {key}")
