@@ -452,3 +452,23 @@ def test_every_failing_user_function_names_its_line():
             call()
         assert re.fullmatch(rf"bad: {re.escape(what)} failed: ValueError: not here "
                             rf"\(.*test_bad_input\.py:{line}\)", str(info.value)), str(info.value)
+
+
+def test_a_failing_stpnt_of_a_profile_names_its_time_and_the_users_line(tmp_path):
+    """stpnt(u, par, t) raising at one time of a BVP's start profile, or while a restart
+    is extended to a larger NDIM: a ProblemError naming the time, what was being done and
+    the user's file and line."""
+    from washer.cont.problem import Problem, ProblemError
+    from washer.cont.user_files import load_python_problem
+    (tmp_path / "bad.py").write_text(
+        "def func(u, par):\n    return -u\n\n\n"
+        "def stpnt(u, par, t):\n    if t > 0.5:\n        raise ValueError('no start here')\n"
+        "    u[:] = t\n")
+    prob = load_python_problem("bad", tmp_path, 2)
+    assert isinstance(prob, Problem)
+    with pytest.raises(ProblemError, match=r"failed at t = 0\.75: ValueError: no start here "
+                                           r"\(.*bad\.py:7\)"):
+        prob.start_profile(np.zeros(3), [0.0, 0.25, 0.75])
+    with pytest.raises(ProblemError, match=r"failed extending the restart to NDIM = 2 at "
+                                           r"t = 1\.0: ValueError"):
+        prob.extend_profile(np.zeros((2, 1)), np.zeros(3), [0.0, 1.0])

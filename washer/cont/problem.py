@@ -715,19 +715,25 @@ class Problem:
         rows = []
         for t in times:
             u = np.zeros(self.ndim)
-            try:
-                if self.stpnt_has_time:
-                    self._stpnt(u, par, float(t))
-                else:
-                    self._stpnt(u, par)
-            except Exception as exc:
-                raise ProblemError(f"{self.name}: stpnt(u, par, t) failed at t = {t}: "
-                                   f"{type(exc).__name__}: {exc}{user_frame(exc)}") from exc
+            self._stpnt_at(u, par, t, "")
             rows.append(u)
         U = np.array(rows)
         if not np.all(np.isfinite(U)):
             raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values in u")
         return U
+
+    def _stpnt_at(self, u, par, t, doing: str) -> None:
+        """The user's stpnt on u and par in place, at time t where it takes one (AUTO's
+        STPNT(NDIM, U, PAR, T)); a ProblemError naming what it was `doing` ('' or a
+        phrase ending in a space), t and the user's file and line if it raises."""
+        try:
+            if self.stpnt_has_time:
+                self._stpnt(u, par, float(t))
+            else:
+                self._stpnt(u, par)
+        except Exception as exc:
+            raise ProblemError(f"{self.name}: stpnt(u, par, t) failed {doing}at t = {t}: "
+                               f"{type(exc).__name__}: {exc}{user_frame(exc)}") from exc
 
     def extend_profile(self, U, par, times) -> np.ndarray:
         """AUTO's READBV/READLB for a system extended at a restart (NDIM larger than the
@@ -745,15 +751,7 @@ class Problem:
         p = np.array(par, dtype=float)
         for j, t in enumerate(times):
             u = out[j].copy()
-            try:
-                if self.stpnt_has_time:
-                    self._stpnt(u, p, float(t))
-                else:
-                    self._stpnt(u, p)
-            except Exception as exc:
-                raise ProblemError(f"{self.name}: stpnt(u, par, t) failed extending the "
-                                   f"restart to NDIM = {self.ndim} at t = {t}: "
-                                   f"{type(exc).__name__}: {exc}{user_frame(exc)}") from exc
+            self._stpnt_at(u, p, t, f"extending the restart to NDIM = {self.ndim} ")
             out[j, k:] = u[k:]
         if not np.all(np.isfinite(out)):
             raise ProblemError(f"{self.name}: stpnt(u, par, t) left non-finite values "
