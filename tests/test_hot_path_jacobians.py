@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.cont.problem import SHORT_CHECK, Problem, all_finite
+from washer.cont.linalg import SMALL, all_finite
+from washer.cont.problem import Problem
 from washer.cont.systems.bvp import VectorField
 
 from test_periodic import lw       # the closed-form Hopf normal form the periodic tests continue
@@ -251,15 +252,15 @@ def test_a_func_that_is_not_pointwise_on_arrays_is_called_point_by_point(kind):
                                       np.array([fn(u, par) for u in us]))
 
 
-@pytest.mark.parametrize("size", [1, 7, SHORT_CHECK, SHORT_CHECK + 1, 300])
+@pytest.mark.parametrize("size", [1, 7, SMALL, SMALL + 1, 300])
 def test_all_finite_is_numpys_check_on_both_sides_of_its_python_path(size):
-    """problem.all_finite (f's finite check; Python floats up to SHORT_CHECK values) says
-    what np.isfinite(a).all() says, for arrays with a NaN, +inf or -inf anywhere and none,
-    in 1-D and 2-D shapes, below and above SHORT_CHECK."""
+    """linalg.all_finite (the finite check of f and of small solves; Python numbers up to
+    SMALL entries) says what np.isfinite(a).all() says, for real and complex arrays with a
+    NaN, +inf or -inf anywhere and none, in 1-D and 2-D shapes, below and above SMALL."""
     rng = np.random.default_rng(size)
     for trial in range(60):
         a = rng.standard_normal(size) * 10.0 ** rng.integers(-100, 100)
         if trial % 4:
             a[rng.integers(size)] = (np.nan, np.inf, -np.inf)[trial % 3]
-        for shaped in (a, a.reshape(1, -1)):
+        for shaped in (a, a.reshape(1, -1), a * (1 - 2j)):
             assert all_finite(shaped) == bool(np.isfinite(shaped).all())

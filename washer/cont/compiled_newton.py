@@ -51,7 +51,7 @@ import numpy as np
 from washer.cont.compile import CompileError
 from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
-from washer.cont.problem import all_finite
+from washer.cont.linalg import all_finite
 from washer.cont.problem import SECOND_STEP
 
 #: Sizes up to which the dense corrector is used (beyond it the work is the Jacobian's,

@@ -68,9 +68,19 @@ def slogdet(M: np.ndarray) -> tuple[float, float]:
     return float(sign), float(logdet)
 
 
-#: Up to this many entries the checks of `eigvals` run on Python floats (numpy's
-#: per-call overhead of isfinite and all exceeds the whole check at these sizes).
+#: Up to this many entries the finite checks run on Python floats (numpy's per-call
+#: overhead of isfinite and all exceeds the whole check at these sizes).
 SMALL = 64
+
+
+def all_finite(a: np.ndarray) -> bool:
+    """np.isfinite(a).all() for a real or complex array: on Python numbers up to SMALL
+    entries (a small problem's f, a bordered solve's solution), by numpy above."""
+    if a.size <= SMALL:
+        # math's test where it can (cmath's costs half as much again per value)
+        return all(map(cmath.isfinite if a.dtype.kind == "c" else math.isfinite,
+                       a.ravel().tolist()))
+    return bool(np.isfinite(a).all())
 
 
 def eigvals(A: np.ndarray) -> np.ndarray:
@@ -78,12 +88,11 @@ def eigvals(A: np.ndarray) -> np.ndarray:
     LinAlgError for non-finite entries or when the QR iteration does not converge."""
     if _lapack is None:                     # pragma: no cover
         return np.linalg.eigvals(A)
-    small = A.size <= SMALL
-    if not (all(map(math.isfinite, A.ravel().tolist())) if small else np.isfinite(A).all()):
+    if not all_finite(A):
         raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
     w = _EIGVALS(A, signature="d->D")
-    if small:
-        zs = w.tolist()
+    if A.size <= SMALL:
+        zs = w.tolist()                     # all_finite's check, and the real check below
         if not all(map(cmath.isfinite, zs)):
             raise np.linalg.LinAlgError("Eigenvalues did not converge")
         return w.real if all(z.imag == 0 for z in zs) else w
@@ -151,8 +160,7 @@ class DenseFactor:
                 x = solve(self.M, rhs)
         except np.linalg.LinAlgError:
             x = np.full(len(rhs), np.nan)
-        if not (all(map(cmath.isfinite, x.tolist())) if x.size <= SMALL
-                else np.isfinite(x).all()):
+        if not all_finite(x):
             # Exactly at a branch point the Newton matrix is singular but the
             # system is consistent: take the minimum-norm least-squares step.
             x = np.linalg.lstsq(self.M, rhs, rcond=None)[0]

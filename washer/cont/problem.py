@@ -51,19 +51,17 @@ from __future__ import annotations
 import copy
 import functools
 import inspect
-import math
 from pathlib import Path
 
 import numpy as np
 
 from washer.cont.differences import par_points, quotient, step, u_points, u_quotient
+from washer.cont.linalg import all_finite
 from washer.cont.pvls import Orbit
 #: Stencils of at least this many points call a plain user func once with
 #: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
 #: overhead exceeds a small func's cost).
 VECTORISE_MIN = 12
-#: Up to this many values `all_finite` checks Python floats.
-SHORT_CHECK = 64
 #: How many points of the first vectorised call are checked against separate calls.
 VECTORISE_CHECK = 32
 #: Step of the second-derivative stencils, about eps^(1/4) (see second_derivatives).
@@ -99,15 +97,6 @@ def user_frame(exc: BaseException) -> str:
             continue
         where = f" ({name}:{fr.lineno})"
     return where
-
-
-def all_finite(a: np.ndarray) -> bool:
-    """np.isfinite(a).all() for a float array: on Python floats up to SHORT_CHECK
-    values (numpy's per-call overhead is most of the check at the sizes of a small
-    problem's f)."""
-    if a.size <= SHORT_CHECK:
-        return all(map(math.isfinite, a.ravel().tolist()))
-    return bool(np.isfinite(a).all())
 
 
 def broadcast_rows(par: np.ndarray, k: int) -> np.ndarray:
