@@ -112,3 +112,28 @@ def test_isw2_without_a_restart_label_continues_the_branch_itself(tmp_path):
     assert [(r.ty, r.lab) for r in plain.rows] == [(r.ty, r.lab) for r in res.rows]
     assert np.allclose([r.par[0] for r in plain.rows], [r.par[0] for r in res.rows],
                        rtol=0, atol=0)
+
+
+def test_time_integration_integrates_in_par14_whatever_icp_names(tmp_path):
+    """IPS = -2 with ICP = [1, 2] (a script's run(..., IPS=-2) after equilibrium runs in
+    PAR(1)): AUTO's AUTOTI sets ICP(1) = 14, so time is PAR(14) and PAR(1) keeps its
+    value. u' = -a u, a = PAR(1) = 2: every step is a backward Euler step,
+    u_k = u_{k-1} / (1 + a (t_k - t_{k-1})), to Newton's tolerance EPSU (relative), with
+    a = 2 at every point and t = PAR(14) increasing from 0."""
+    (tmp_path / "dec.py").write_text(
+        "import numpy as np\n"
+        "def func(u, par):\n    return np.array([-par[0] * u[0]])\n"
+        "def stpnt(u, par):\n    u[0] = 1.0\n    par[0] = 2.0\n    par[1] = 5.0\n")
+    (tmp_path / "c.dec").write_text(
+        "e = 'dec'\nNDIM = 1, IPS = -2, IRS = 0\nICP = [1, 2]\nNMX = 30, NPR = 1\n"
+        "DS = 0.01, DSMIN = 0.001, DSMAX = 0.1\nEPSU = 1e-8, EPSL = 1e-8\n")
+    res = run(tmp_path / "c.dec", verbose=False, files=False)
+    assert res.status == "ok" and len(res.rows) >= 20
+    a = np.array([float(r.par[0]) for r in res.rows])
+    t = np.array([float(r.par[13]) for r in res.rows])
+    u = np.array([float(r.U[0]) for r in res.rows])
+    assert np.all(a == 2.0) and t[0] == 0.0 and np.all(np.diff(t) > 0)
+    # (from the second row: between the first two lies the start's unwritten step)
+    pred = u[1:-1] / (1 + 2.0 * np.diff(t[1:]))
+    assert np.max(np.abs(u[2:] - pred) / np.abs(pred)) < 1e-7
+    assert u[1] < 1 / (1 + 2.0 * t[1]) < 1.0    # two Euler steps lose more than one

@@ -47,6 +47,11 @@ def settings_for(c, problem) -> tuple[Settings, object]:
     problem = problem.with_jac(s.JAC)
     if problem.npar > s.NPAR:
         s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
+    if s.IPS == -2 and s.ICP[0] != 14:
+        # Time integration integrates in the time PAR(14) whatever ICP(1) names (AUTO's
+        # AUTOTI: ICP(1) = 14, NFPR = 1): run('x', IPS=-2, ICP=[1, ..]) leaves PAR(1) as
+        # it is, where taking ICP(1) for the time would integrate with PAR(1) moving.
+        s = s.with_(ICP=[14] + [i for i in s.ICP[1:] if i != 14], NPAR=max(s.NPAR, 14))
     return s, problem
 
 
