@@ -25,12 +25,11 @@ int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int
                          const double *par, const double *v_old, const double *x_pred,
                          const double *x_ref, const double *theta, double ds, double epsl,
                          double epsu, int itnw, double divergence, double hmach, double h2,
-                         double *x, int *iterations, double *jac, double *tangent,
-                         double *work)
+                         double *x, int *iterations, double *jac, double *work)
 {
     return ae_correct(&callback, kind, ndim, npar, ip, ip2, NULL, par, v_old, x_pred, x_ref,
                       theta, ds, epsl, epsu, itnw, divergence, hmach, h2, x, iterations, jac,
-                      tangent, work, NULL);
+                      work, NULL);
 }
 
 /* ae_work_size, for compiled_newton.work_size's test. */

@@ -54,9 +54,9 @@ int washer_ae_correct_gen(ae_generated *g, int ndim, int npar, int ip, const dou
                           const double *x_pred, const double *x_ref, const double *theta,
                           double ds, double epsl, double epsu, int itnw, double divergence,
                           double hmach, double *x, int *iterations, double *jac,
-                          double *tangent, double *work)
+                          double *work)
 {
     return ae_correct(g, AE_EQUILIBRIUM, ndim, npar, ip, -1, NULL, par, NULL, x_pred, x_ref,
                       theta, ds, epsl, epsu, itnw, divergence, hmach, 0.0, x, iterations, jac,
-                      tangent, work, NULL);
+                      work, NULL);
 }

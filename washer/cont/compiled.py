@@ -66,8 +66,8 @@ int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *
                       const double *par, const double *v_old, const double *x_pred,
                       const double *x_ref, const double *theta, double ds, double epsl,
                       double epsu, int itnw, double divergence, double hmach, double h2,
-                      double *x, int *iterations, double *jac, double *tangent,
-                      double *work, double *scratch);
+                      double *x, int *iterations, double *jac, double *work,
+                      double *scratch);
 int washer_ae_l1(int ndim, int npar, const int *icp, const double *x, const double *par,
                  double omega, const double *A, double *l1, double *work, double *scratch);
 """
@@ -255,7 +255,7 @@ class CompiledUser:
             return self.lib.washer_ae_correct(
                 kind, ndim, npar, ip, ip2, self._icp_ptr, p["par"], p["v_old"], p["x_pred"],
                 p["x_ref"], p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
-                p["iterations"], p["jac"], p["tangent"], p["work"], self._scratch_for(npar))
+                p["iterations"], p["jac"], p["work"], self._scratch_for(npar))
         return call
 
     def l1_binder(self, ndim, npar, arrays):

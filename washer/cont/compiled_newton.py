@@ -13,9 +13,10 @@ Problem.second_derivatives' mixed differences; the bordered matrix [J; 2 theta (
 x_ref) / |ds|], x += dx) and the same stopping test (AUTO's EPSL on the principal
 parameter, EPSU on the other unknowns, the divergence test of Continuation.correct),
 written once in C (washer/cont/include/ae_correct.h). At the converged point the same
-call evaluates the Jacobian there and solves the tangent system [J; theta secant] z =
-e_last with its determinant (Continuation.tangent, the BP test). The linear solves are
-Gaussian elimination with partial pivoting (LAPACK's pivot order; the rounding may
+call evaluates the Jacobian there, which the continuation reads next (jacobian_at: the
+tangent's system and the test functions); the tangent itself is solved in Python with
+LAPACK (Continuation.tangent), as on every other system. The corrections' linear solves
+are Gaussian elimination with partial pivoting (LAPACK's pivot order; the rounding may
 differ from LAPACK's in the last bit, far inside EPSU), the small products of the loci
 plain sums (BLAS may round them otherwise).
 
@@ -66,8 +67,7 @@ int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int
                          const double *par, const double *v_old, const double *x_pred,
                          const double *x_ref, const double *theta, double ds, double epsl,
                          double epsu, int itnw, double divergence, double hmach, double h2,
-                         double *x, int *iterations, double *jac, double *tangent,
-                         double *work);
+                         double *x, int *iterations, double *jac, double *work);
 size_t washer_ae_work_size(int kind, int ndim, int npar);
 int washer_ae_l1_cb(ae_callback callback, int ndim, int npar, const double *x,
                     const double *par, double omega, const double *A, double *l1,
@@ -88,7 +88,7 @@ int washer_ae_correct_gen(ae_generated *g, int ndim, int npar, int ip, const dou
                           const double *x_pred, const double *x_ref, const double *theta,
                           double ds, double epsl, double epsu, int itnw, double divergence,
                           double hmach, double *x, int *iterations, double *jac,
-                          double *tangent, double *work);
+                          double *work);
 """
 #: (ffi, lib) of ae_callback.c and ae_generated.c once built and loaded in this process
 _libraries: dict = {}
@@ -196,8 +196,7 @@ class GeneratedEquations:
         def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             return lib.washer_ae_correct_gen(
                 g, ndim, npar, ip, p["par"], p["x_pred"], p["x_ref"], p["theta"], ds, epsl,
-                epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"],
-                p["tangent"], p["work"])
+                epsu, itnw, divergence, hmach, p["x"], p["iterations"], p["jac"], p["work"])
         return call
 
 
@@ -294,7 +293,7 @@ class PythonEquations:
             return lib.washer_ae_correct_cb(
                 cb, kind, ndim, npar, ip, ip2, p["par"], p["v_old"], p["x_pred"], p["x_ref"],
                 p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
-                p["iterations"], p["jac"], p["tangent"], p["work"])
+                p["iterations"], p["jac"], p["work"])
         return call
 
 
@@ -331,11 +330,10 @@ class CompiledCorrector:
         self.a = dict(par=np.empty(self.npar), v_old=np.zeros(n), x_pred=np.empty(nx),
                       x_ref=np.empty(nx), theta=np.ascontiguousarray(system.theta, dtype=float),
                       x=np.empty(nx), iterations=np.zeros(1, dtype=np.int32),
-                      jac=np.empty((nx - 1, nx)), tangent=np.empty(3 * nx + 3),
-                      work=np.zeros(work_size(kind, n, self.npar)))
+                      jac=np.empty((nx - 1, nx)), work=np.zeros(work_size(kind, n, self.npar)))
         ip2 = system.free[1] - 1 if kind else -1
         self._call = equations.ae_binder(kind, n, self.npar, system.free[0] - 1, ip2, self.a)
-        self.last = None          # (x, [f_u, f_lambda] at x, tangent data) of the last point
+        self.last = None          # (x, the system's Jacobian at x) of the last point
         if kind == 2:
             # the first Lyapunov coefficient of the GH test in C (ae_lyapunov.h)
             self.l1a = dict(x=np.empty(n), par=np.empty(self.npar), A=np.empty((n, n)),
@@ -377,8 +375,7 @@ class CompiledCorrector:
             raise ConvergenceError(f"no convergence in ITNW = {s.ITNW} iterations")
         x = a["x"].copy()
         if status == 0:
-            t = a["tangent"]
-            self.last = (x, a["jac"].copy(), t.copy() if t[-1] == 1.0 else None)
+            self.last = (x, a["jac"].copy())
         return x, it
 
     def first_lyapunov(self, problem, x, p, omega: float, A=None) -> float:
@@ -412,41 +409,6 @@ class CompiledCorrector:
         if last is not None and (last[0] is x or np.array_equal(last[0], x)):
             return last[1]
         return None
-
-    def tangent_system(self, J, ref):
-        """(z, factor) of Continuation.tangent's system [J; theta ref] z = e_last if J is
-        the Jacobian of the point just converged to and ref its secant (x - x_ref) / ds:
-        solved in the same foreign call, the factor giving its determinant (the BP test)
-        and solves with LAPACK if anything asks for more; else None."""
-        last = self.last
-        if last is None or last[2] is None or J is not last[1]:
-            return None
-        m = len(ref)
-        t = last[2]
-        # the secant C stored, compared as Python floats (np.array_equal's overhead is
-        # the larger part at these sizes; NaN equals nothing either way)
-        if t[m:2 * m].tolist() != ref.tolist():
-            return None
-        return t[:m].copy(), _SolvedFactor(J, self.sys, ref.copy(), float(t[2 * m]),
-                                           float(t[2 * m + 1]))
-
-
-class _SolvedFactor:
-    """The factor of [J; border(ref)] whose determinant the compiled corrector has
-    computed: sign_logdet from it, solves (none on the continuation's path) with LAPACK."""
-
-    def __init__(self, J, system, ref, sign, logdet):
-        self.J, self._sys, self._ref, self._sign_logdet = J, system, ref, (sign, logdet)
-        self._factor = None
-
-    def sign_logdet(self) -> tuple[float, float]:
-        return self._sign_logdet
-
-    def solve(self, rhs):
-        if self._factor is None:
-            from washer.cont.linalg import dense_factor
-            self._factor = dense_factor(self.J, self._sys.border(self._ref))
-        return self._factor.solve(rhs)
 
 
 def compiled_corrector(system, settings, divergence: float):

@@ -201,10 +201,6 @@ class PeriodicCorrector:
         reaches the converged point through `newton`)."""
         return None
 
-    def tangent_system(self, J, ref):
-        """None: the tangent is solved with the system's factorisation."""
-        return None
-
 
 def periodic_corrector(system, settings, divergence: float):
     """The compiled corrector of a PeriodicOrbits `system`, or None where the Python loop

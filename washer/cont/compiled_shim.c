@@ -389,12 +389,12 @@ int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *
                       const double *par, const double *v_old, const double *x_pred,
                       const double *x_ref, const double *theta, double ds, double epsl,
                       double epsu, int itnw, double divergence, double hmach, double h2,
-                      double *x, int *iterations, double *jac, double *tangent,
-                      double *work, double *scratch)
+                      double *x, int *iterations, double *jac, double *work,
+                      double *scratch)
 {
     return ae_correct(NULL, kind, ndim, npar, ip, ip2, icp, par, v_old, x_pred, x_ref, theta,
                       ds, epsl, epsu, itnw, divergence, hmach, h2, x, iterations, jac,
-                      tangent, work, scratch);
+                      work, scratch);
 }
 
 /* The first Lyapunov coefficient with this file's FUNC (ae_lyapunov.h). */

@@ -306,16 +306,11 @@ class Continuation:
         secant just taken); also the factorisation of [J; border(ref)], whose
         determinant is AUTO's BP test."""
         sysm = self.sys
-        solved = self._compiled.tangent_system(J, ref) if self._compiled is not None else None
-        if solved is not None:                      # solved with the corrector's last call
-            self.counters.factorisations += 1
-            z, factor = solved
-        else:
-            factor = self._factor(J, sysm.border(ref))
-            e = np.zeros(len(ref))
-            e[-1] = 1.0
-            with np.errstate(all="ignore"):
-                z = factor.solve(e)
+        factor = self._factor(J, sysm.border(ref))
+        e = np.zeros(len(ref))
+        e[-1] = 1.0
+        with np.errstate(all="ignore"):
+            z = factor.solve(e)
         nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
             else math.inf
         if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:

@@ -66,12 +66,10 @@ static size_t ae_work_size(int kind, int n, int npar)
 }
 
 /* Gaussian elimination with partial pivoting (LAPACK's GETRF order: the largest |entry|
-   of the column, the first one of equal size) of M (m, m) row-major, applied to b (m,);
-   the determinant as sign and log|det| into det (if not NULL). Returns 0, or 3 for a
-   zero or non-finite pivot. */
-static int ae_eliminate(int m, double *M, double *b, double *det)
+   of the column, the first one of equal size) of M (m, m) row-major, applied to b (m,).
+   Returns 0, or 3 for a zero or non-finite pivot. */
+static int ae_eliminate(int m, double *M, double *b)
 {
-    double sign = 1.0, logdet = 0.0;
     for (int col = 0; col < m; col++) {
         int p = col;
         double best = fabs(M[(size_t)col * m + col]);
@@ -87,13 +85,8 @@ static int ae_eliminate(int m, double *M, double *b, double *det)
                 M[(size_t)p * m + j] = t;
             }
             double t = b[col]; b[col] = b[p]; b[p] = t;
-            sign = -sign;
         }
         double piv = M[(size_t)col * m + col];
-        if (det) {
-            if (piv < 0) sign = -sign;
-            logdet += log(fabs(piv));
-        }
         for (int r = col + 1; r < m; r++) {
             double f = M[(size_t)r * m + col] / piv;
             if (f == 0.0) continue;
@@ -102,7 +95,6 @@ static int ae_eliminate(int m, double *M, double *b, double *det)
             b[r] -= f * b[col];
         }
     }
-    if (det) { det[0] = sign; det[1] = logdet; }
     return 0;
 }
 
@@ -415,23 +407,21 @@ static int ae_system(ae_sys *S, const double *x, double *G, double *J, int strid
      <= epsu; diverging when max of the two grows beyond `divergence` times its first
      value.
    jac: NULL, or (nx - 1, nx) row-major: J at the converged x (the Jacobian the
-   continuation evaluates there next, the same values). tangent: NULL, or 3 nx + 3
-   doubles (with jac): z of [J; theta ref] z = e_last, the secant ref = (x - x_ref) / ds,
-   the determinant of [J; theta ref] as sign and log|det|, and 1 when they were computed
-   (0: a zero pivot; the caller computes them).
+   continuation evaluates there next, the same values: its tangent and test functions
+   read it; the tangent itself is solved in Python, Continuation.tangent).
 
    work: ae_work_size(kind, NDIM, npar) doubles; scratch: NDIM (NDIM + npar) for FUNC's
    DFDU/DFDP. Returns 0 converged (x, *iterations set), 1 diverging, 2 no convergence in
    itnw iterations (*iterations = itnw), 3 a non-finite residual, Jacobian or correction,
    a zero pivot or a failed f: the caller runs the Python loop; 4 converged (x,
    *iterations set) but f failed, or gave a non-finite Jacobian, at the converged point:
-   jac and tangent not set (the caller evaluates the Jacobian there). */
+   jac not set (the caller evaluates the Jacobian there). */
 static int ae_correct(void *ctx, int kind, int ndim, int npar, int ip, int ip2,
                       const int *icp, const double *par, const double *v_old,
                       const double *x_pred, const double *x_ref, const double *theta,
                       double ds, double epsl, double epsu, int itnw, double divergence,
                       double hmach, double h2, double *x, int *iterations, double *jac,
-                      double *tangent, double *work, double *scratch)
+                      double *work, double *scratch)
 {
     ae_sys sys, *S = &sys;
     ae_setup(S, ctx, kind, ndim, npar, ip, ip2, icp, par, v_old, hmach, h2, work, scratch);
@@ -454,7 +444,7 @@ static int ae_correct(void *ctx, int kind, int ndim, int npar, int ip, int ip2,
         }
         for (int j = 0; j < np1; j++) c += M[(size_t)m * np1 + j] * d[j];
         b[m] = -(c / 2 - ads);
-        if (ae_eliminate(np1, M, b, NULL)) return 3;
+        if (ae_eliminate(np1, M, b)) return 3;
         if (ae_back(np1, M, b, d)) return 3;          /* d becomes the correction dx */
         for (int j = 0; j < np1; j++) x[j] += d[j];
         double mdx = 0.0, mx = 0.0;
@@ -465,23 +455,7 @@ static int ae_correct(void *ctx, int kind, int ndim, int npar, int ip, int ip2,
         double du = mdx / (1 + mx), dl = fabs(d[m]) / (1 + fabs(x[m]));
         *iterations = it;
         if (dl <= epsl && du <= epsu) {
-            if (jac) {
-                if (ae_system(S, x, NULL, jac, np1)) return 4;
-                if (tangent) {
-                    /* the secant ref = (x - x_ref) / ds, z of [J; theta ref] z = e_last
-                       and the determinant of that matrix (Continuation.tangent) */
-                    tangent[2 * np1 + 2] = 0.0;
-                    for (int j = 0; j < np1; j++) tangent[np1 + j] = (x[j] - x_ref[j]) / ds;
-                    memcpy(M, jac, sizeof(double) * (size_t)m * np1);
-                    for (int j = 0; j < np1; j++) {
-                        M[(size_t)m * np1 + j] = theta[j] * tangent[np1 + j];
-                        b[j] = j == m ? 1.0 : 0.0;
-                    }
-                    if (ae_eliminate(np1, M, b, tangent + 2 * np1) == 0
-                            && ae_back(np1, M, b, tangent) == 0)
-                        tangent[2 * np1 + 2] = 1.0;
-                }
-            }
+            if (jac && ae_system(S, x, NULL, jac, np1)) return 4;
             return 0;
         }
         double size = du > dl ? du : dl;
