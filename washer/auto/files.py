@@ -308,7 +308,7 @@ def _block_lines(M: np.ndarray) -> list[str]:
     flat = M.ravel().tolist()
     if not _plain(flat):
         return ["\n".join(_block_rows(M))]
-    row = "\n".join("    " + "%18.10E" * len(range(i, min(i + 7, m))) for i in range(0, m, 7))
+    row = "\n".join("    " + "%18.10E" * min(7, m - i) for i in range(0, m, 7))
     text = ("\n".join([row] * k)) % tuple(flat)
     # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3 (fmt_e_many)
     return [text.replace("E+", "E+0").replace("E-", "E-0")]
