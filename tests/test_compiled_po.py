@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from corrector_runs import fast_and_slow
-from washer.cont import compiled_newton, compiled_po, iterator
+from washer.cont import compiled_newton, compiled_po, iterator, reduction
 from washer.cont.branch import Counters
 from washer.cont.newton import ConvergenceError
 from washer.run import run
@@ -65,8 +65,20 @@ def _both(tmp_path, monkeypatch, name, user, ov):
     ("chu", DATA / "chu" / "chu.py", CHU_PO),
 ])
 def test_compiled_po_follows_the_python_loop(name, user, ov, tmp_path, monkeypatch):
+    # the tangents at the converged points: the corrector's last factorisation re-bordered
+    # (the Python loop's run factorises [J; border] afresh)
+    reborders = []
+    real = reduction.BorderedCollocation.reborder
+
+    def spy(self, *a, **k):
+        out = real(self, *a, **k)
+        reborders.append(out)
+        return out
+    monkeypatch.setattr(reduction.BorderedCollocation, "reborder", spy)
     (fast, fd), (slow, sd), used = _both(tmp_path, monkeypatch, name, user, ov)
     assert len(used) >= ov["NMX"] - 1 and all(used), used      # every step (PT 1: the start)
+    # (points after chord iterations evaluate the Jacobian at x afresh: no re-bordering)
+    assert sum(reborders) >= 2 and all(reborders), reborders
     for f in ("b.po", "s.po"):
         assert (fd / f).read_bytes() == (sd / f).read_bytes(), f
     assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \

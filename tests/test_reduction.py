@@ -196,3 +196,54 @@ def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, n
     Sc_ref, _ = reduction.onto_start(coll, J2, border2)
     Sc = f.reduced(reduction.pieces(coll, J2, border2)[2])
     np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-10 * np.abs(Sc_ref).max())
+
+
+@pytest.mark.parametrize("N, m, n, npar", [(1, 3, 2, 2), (7, 4, 3, 2), (12, 3, 2, 4),
+                                           (30, 4, 3, 2)])
+def test_a_new_border_row_gives_the_bits_of_a_new_factorisation(N, m, n, npar):
+    """reborder keeps the collocation rows' eliminations and factorises the dense system
+    again: the same operations on the same numbers as a factorisation of the matrix with
+    that row, so the solves, determinant and Floquet pair are equal to the bit (and
+    re-bordering twice is the same as once)."""
+    rng = np.random.default_rng(N * 100 + m * 10 + n + 7)
+    blocks, parcols, extra, M = random_system(rng, N, m, n, npar)
+    rows = rng.standard_normal((2, M.shape[0]))
+    f = reduction.BorderedCollocation(blocks, parcols, extra)
+    rhs = rng.standard_normal(len(M))
+    for row in rows:
+        extra2 = extra.copy()
+        extra2[-1] = row
+        fresh = reduction.BorderedCollocation(blocks, parcols, extra2)
+        assert f.reborder(row)
+        assert not f.singular
+        assert f.solve(rhs).tobytes() == fresh.solve(rhs).tobytes()
+        assert f.sign_logdet() == fresh.sign_logdet()
+        for a, b in zip(f.floquet_pair(), fresh.floquet_pair()):
+            assert a.tobytes() == b.tobytes()
+        other = extra2.copy()
+        other[0] = rng.standard_normal(len(M))
+        a, b = f.reduced(other), fresh.reduced(other)     # None both where P1 is singular
+        assert (a is None) == (b is None)
+        if a is not None:
+            assert a.tobytes() == b.tobytes()
+        # and the solve is that of the matrix with the new row
+        M2 = M.copy()
+        M2[-1] = row
+        x = f.solve(rhs)
+        assert np.linalg.norm(M2 @ x - rhs) <= 1e-10 * np.linalg.norm(M2, 1) * np.linalg.norm(x)
+
+
+def test_a_border_row_that_makes_the_matrix_singular():
+    """A border row in the span of the other dense rows' reduction: the remaining dense
+    system has a zero pivot, as in a new factorisation (singular, determinant 0)."""
+    rng = np.random.default_rng(5)
+    N, m, n, npar = 4, 2, 2, 1
+    blocks, parcols, extra, M = random_system(rng, N, m, n, npar)
+    f = reduction.BorderedCollocation(blocks, parcols, extra)
+    row = extra[0].copy()
+    extra2 = extra.copy()
+    extra2[-1] = row
+    fresh = reduction.BorderedCollocation(blocks, parcols, extra2)
+    assert f.reborder(row)
+    assert f.singular == fresh.singular
+    assert f.sign_logdet() == fresh.sign_logdet()

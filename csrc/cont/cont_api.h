@@ -37,6 +37,14 @@ int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);
  * I the unknowns after U(0) (the eliminations of the factorisation replayed on the new
  * rows, then U(NTST) eliminated with the reduced collocation rows). Returns 0, 1 when
  * M_II is singular, 2 when called before a factorisation. */
+/* After cont_bvp_factor: the same matrix with a new border row (the last dense row, nx)
+ * factorised, in place: the eliminations of the collocation rows are kept, the new row is
+ * taken through them and the remaining dense system factorised again. The solves, the
+ * determinant and the Floquet pair are then those cont_bvp_factor gives for the matrix
+ * with that row, to the bit. Returns 0, 1 when the remaining system has a zero pivot (as
+ * cont_bvp_factor), 2 when called before a factorisation, 3 when the factorisation had a
+ * zero pivot before the remaining system (nothing is changed: factorise afresh). */
+int cont_bvp_reborder(cont_bvp *f, const double *row);
 int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc);
 
 /* The collocation blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM), row-major, of the equations

@@ -43,6 +43,39 @@ inline void sub_scaled(double *__restrict y, const double *__restrict x, double 
     for (int k = 0; k < len; ++k) y[k] -= l * x[k];
 }
 
+
+// One dense row `ex` (nx) through interior pivot t of interval j (pivot row wt of W(j),
+// pivot d, `tail` columns of nodes right of the pivot column): its multiplier, stored in
+// E1. cont_bvp_factor and cont_bvp_reborder take every dense row through the same calls
+// (a row's eliminations involve only itself and the final pivot rows), so a row
+// replaced later comes out as it would in a new factorisation.
+inline double dense_step_interior(double *ex, const double *wt, double d, int j, int t,
+                                  int n, int mn, int cw, int np, int nx, int tail) {
+    const int c = n + t, gc = j * mn + c;
+    const double l = ex[gc] / d;
+    ex[gc] = 0.0;
+    if (l == 0.0) return l;
+    sub_scaled(ex + j * mn, wt, l, n);
+    sub_scaled(ex + gc + 1, wt + c + 1, l, tail);
+    sub_scaled(ex + nx - np, wt + cw - np, l, np);
+    return l;
+}
+
+// The same through pivot t of the reduction at end node j (pivot row tt of T(j)): its
+// multiplier, stored in E2.
+inline double dense_step_end(double *ex, const double *tt, double d, int j, int t, int n,
+                             int mn, int np, int nx) {
+    const int gc = j * mn + t;
+    const double l = ex[gc] / d;
+    ex[gc] = 0.0;
+    if (l == 0.0) return l;
+    sub_scaled(ex + gc + 1, tt + t + 1, l, n - t - 1);
+    sub_scaled(ex, tt + n, l, n);
+    sub_scaled(ex + (j + 1) * mn, tt + 2 * n, l, n);
+    sub_scaled(ex + nx - np, tt + 3 * n, l, np);
+    return l;
+}
+
 }  // namespace
 
 struct cont_bvp {
@@ -91,7 +124,51 @@ struct cont_bvp {
     std::vector<double> pivots;
     double sign = 1.0;
     bool singular = false;
+    // The remaining system before its LU, and what the eliminations before it leave for
+    // the determinant (the sign of their pivots and of the row and column orders, the
+    // number of their pivots, whether one was zero): a new border row (cont_bvp_reborder)
+    // redoes only that LU.
+    Mat D;
+    double sign_chain = 1.0;
+    size_t n_chain = 0;
+    bool singular_chain = false;
 };
+
+namespace {
+
+// Dense row e, eliminated through the chain (ex, nx), into the remaining system D.
+void final_row(cont_bvp *f, const double *ex, int e) {
+    const int n = f->n, np = f->np, nx = f->nx, gN = f->nc;
+    for (int i = 0; i < n; ++i) {
+        f->D(n + e, i) = ex[i];
+        f->D(n + e, n + i) = ex[gN + i];
+    }
+    for (int i = 0; i < np; ++i) f->D(n + e, 2 * n + i) = ex[nx - np + i];
+}
+
+// The LU of the remaining system D, its pivots after the chain's, the determinant's sign.
+void factor_final(cont_bvp *f) {
+    const int nd = 2 * f->n + f->np;
+    f->pivots.resize(f->n_chain);
+    double sign = f->sign_chain;
+    bool singular = f->singular_chain;
+    f->lu.compute(f->D);
+    const Mat &U = f->lu.matrixLU();
+    for (int i = 0; i < nd; ++i) {
+        const double p = U(i, i);
+        if (p == 0.0) {
+            singular = true;
+            continue;
+        }
+        if (p < 0) sign = -sign;
+        f->pivots.push_back(p);
+    }
+    f->sign = sign * f->lu.permutationP().determinant();
+    f->singular = singular;
+    f->factored = true;
+}
+
+}  // namespace
 
 cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
     if (ntst < 1 || ncol < 1 || ndim < 1 || npar < 0) return nullptr;
@@ -185,17 +262,8 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                 sub_scaled(wr, wt, l, n);
                 sub_scaled(wr + c + 1, wt + c + 1, l, cw - c - 1);
             }
-            const int gc = j * mn + c;
-            for (int e = 0; e < ne; ++e) {
-                double *ex = &Ex(e, 0);
-                const double l = ex[gc] / d;
-                E(e, t) = l;
-                ex[gc] = 0.0;
-                if (l == 0.0) continue;
-                sub_scaled(ex + j * mn, wt, l, n);
-                sub_scaled(ex + gc + 1, wt + c + 1, l, tail);
-                sub_scaled(ex + nx - np, wt + cw - np, l, np);
-            }
+            for (int e = 0; e < ne; ++e)
+                E(e, t) = dense_step_interior(&Ex(e, 0), wt, d, j, t, n, mn, cw, np, nx, tail);
         }
         // the n condensed rows of interval j: (U_j, U_j+1, par)
         if (j == 0) {
@@ -245,18 +313,8 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                 if (l == 0.0) continue;
                 sub_scaled(tr + t + 1, tt + t + 1, l, tw);
             }
-            const int gc = j * mn + t;
-            for (int e = 0; e < ne; ++e) {
-                double *ex = &Ex(e, 0);
-                const double l = ex[gc] / d;
-                E2(e, t) = l;
-                ex[gc] = 0.0;
-                if (l == 0.0) continue;
-                sub_scaled(ex + gc + 1, tt + t + 1, l, n - t - 1);
-                sub_scaled(ex, tt + n, l, n);
-                sub_scaled(ex + (j + 1) * mn, tt + 2 * n, l, n);
-                sub_scaled(ex + nx - np, tt + 3 * n, l, np);
-            }
+            for (int e = 0; e < ne; ++e)
+                E2(e, t) = dense_step_end(&Ex(e, 0), tt, d, j, t, n, mn, np, nx);
         }
         R.leftCols(n) = T.block(n, n, n, n);
         R.middleCols(n, n) = T.block(n, 2 * n, n, n);
@@ -268,31 +326,50 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     Eigen::Map<Mat>(P0, n, n) = R.leftCols(n);
     Eigen::Map<Mat>(P1, n, n) = R.middleCols(n, n);
     // ---- the remaining system in (U_0, U_N, par)
-    const int nd = 2 * n + np, gN = N * mn;
-    Mat D(nd, nd);
-    D.topRows(n) = R;
-    for (int e = 0; e < ne; ++e) {
-        for (int i = 0; i < n; ++i) {
-            D(n + e, i) = Ex(e, i);
-            D(n + e, n + i) = Ex(e, gN + i);
-        }
-        for (int i = 0; i < np; ++i) D(n + e, 2 * n + i) = Ex(e, nx - np + i);
-    }
+    const int nd = 2 * n + np;
+    f->D.resize(nd, nd);
+    f->D.topRows(n) = R;
+    for (int e = 0; e < ne; ++e) final_row(f, &Ex(e, 0), e);
     for (int r = 0; r < n; ++r) rows.push_back(R_ids[r]);
     for (int e = 0; e < ne; ++e) rows.push_back(f->nc + e);
     for (int i = 0; i < n; ++i) cols.push_back(i);
-    for (int i = 0; i < n; ++i) cols.push_back(gN + i);
+    for (int i = 0; i < n; ++i) cols.push_back(N * mn + i);
     for (int i = 0; i < np; ++i) cols.push_back(nx - np + i);
-    f->lu.compute(D);
-    const Mat &U = f->lu.matrixLU();
-    for (int i = 0; i < nd; ++i) pivot_step(U(i, i));
-    sign *= f->lu.permutationP().determinant();
-    sign *= perm_sign(rows) * perm_sign(cols);
-    f->sign = sign;
-    f->singular = singular;
-    f->factored = true;
+    f->sign_chain = sign * (perm_sign(rows) * perm_sign(cols));
+    f->singular_chain = singular;
+    f->n_chain = pivots.size();
+    factor_final(f);
     if (sign_logdet) cont_bvp_sign_logdet(f, sign_logdet);
-    return singular ? 1 : 0;
+    return f->singular ? 1 : 0;
+}
+
+int cont_bvp_reborder(cont_bvp *f, const double *row) {
+    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+    const int mn = m * n, cw = (m + 1) * n + np, e = ne - 1;
+    if (!f->factored) return 2;
+    if (f->singular_chain) return 3;
+    std::copy(row, row + nx, f->extra0.begin() + (size_t)e * nx);
+    std::vector<double> ex(row, row + nx);
+    const cont_bvp *cf = f;
+    // the row through the factorisation's eliminations, by the calls that took the
+    // other dense rows through them (dense_step_interior, dense_step_end)
+    for (int j = 0; j < N; ++j) {
+        const Eigen::Map<const Mat> W = cf->W(j);
+        Eigen::Map<Mat> E = f->E1(j);
+        for (int t = 0; t < K; ++t) {
+            const int c = n + t;
+            E(e, t) = dense_step_interior(ex.data(), W.data() + (size_t)t * cw, W(t, c), j, t, n, mn, cw, np,
+                                          nx, (m + 1) * n - c - 1);
+        }
+        if (j == 0) continue;
+        const Eigen::Map<const Mat> T = cf->T(j);
+        Eigen::Map<Mat> E2 = f->E2(j);
+        for (int t = 0; t < n; ++t)
+            E2(e, t) = dense_step_end(ex.data(), T.data() + (size_t)t * (3 * n + np), T(t, t), j, t, n, mn, np, nx);
+    }
+    final_row(f, ex.data(), e);
+    factor_final(f);
+    return f->singular ? 1 : 0;
 }
 
 int cont_bvp_sign_logdet(const cont_bvp *f, double *sign_logdet) {

@@ -185,6 +185,10 @@ class PeriodicCorrector:
         J = coll.jacobian_from_values(vals)
         factor = reduction.BorderedCollocation.adopt(
             fac, (N, m, n, 2), P0, P1, dense=lambda: coll.bordered(J, row))
+        # held by nobody else: the system's next factorisation of this J with another
+        # border (the tangent at the converged point) re-borders it in place
+        # (CollocationBVP.factor)
+        factor.reborderable = True
         sysm._reduced = (J, factor)
         blocks = vals[:N * m * n * (m + 1) * n].reshape(N, m * n, (m + 1) * n)
         sysm._last_blocks = (x_J, blocks, J)

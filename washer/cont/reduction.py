@@ -115,6 +115,10 @@ class BorderedCollocation:
     exactly zero (the solves are then least squares on the assembled matrix, which
     `dense` must give)."""
 
+    #: whether the owner lets a factorisation of the same J with another border replace
+    #: this one in place (`reborder`; CollocationBVP.factor)
+    reborderable = False
+
     def __init__(self, blocks, parcols, extra, dense=None):
         blocks = np.ascontiguousarray(blocks, dtype=float)
         parcols = np.ascontiguousarray(parcols, dtype=float)
@@ -162,6 +166,25 @@ class BorderedCollocation:
         the border row (nx,)."""
         blocks, parcols, extra = pieces(coll, J, border)
         return cls(blocks, parcols, extra, dense=lambda: coll.bordered(J, border))
+
+    def reborder(self, border: np.ndarray, dense=None) -> bool:
+        """The factorisation of the same matrix with the border row (the last dense row)
+        `border` (nx,) instead, in place: the collocation rows' eliminations kept, only the
+        new row taken through them and the remaining dense system factorised again (csrc/
+        cont/reduce.cpp cont_bvp_reborder), so the solves, determinant and Floquet pair
+        are to the bit those of a new factorisation with that row. dense: the assembled
+        matrix with it, on request (the solves of a singular one). False (nothing
+        changed) where the eliminations before the dense system met a zero pivot."""
+        border = np.ascontiguousarray(border, dtype=float)
+        if border.shape != (self.nx,):
+            raise ValueError(f"border row of shape {border.shape}, expected {(self.nx,)}")
+        rc = lib.cont_bvp_reborder(self._f, _ptr(border))
+        if rc not in (0, 1):
+            return False
+        self.singular = rc == 1
+        self._sl = None
+        self._dense = dense
+        return True
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         rhs = np.ascontiguousarray(rhs, dtype=float)

@@ -327,6 +327,17 @@ class CollocationBVP:
         `self._reduced = (J, factor)` for `multipliers`); else by SuperLU."""
         border = np.asarray(border, float)
         if COMPILED_FACTOR and self.coll.has_pattern(J):
+            # The compiled corrector's last factorisation of this J (AUTO's NEWTONBV
+            # factorises J once per point): the collocation rows' condensation and
+            # reduction do not involve the border, so the new border row is taken through
+            # them and only the remaining dense system is factorised again, the bits of a
+            # new factorisation (reduction.BorderedCollocation.reborder).
+            reduced = getattr(self, "_reduced", None)
+            if reduced is not None and reduced[0] is J and reduced[1].reborderable:
+                f = reduced[1]
+                f.reborderable = False        # once: the caller holds it from now on
+                if f.reborder(border, dense=lambda: self.coll.bordered(J, border)):
+                    return f
             f = reduction.BorderedCollocation.from_jacobian(self.coll, J, border)
             self._reduced = (J, f)
             return f
