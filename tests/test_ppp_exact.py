@@ -271,7 +271,8 @@ def test_washers_gh_on_the_interior_locus_are_zeros_of_the_exact_l1(runs):
 
 # ------------------------------------------------ the switched loci's first steps
 def _halves(rows, br):
-    return [seg for seg in _segments([r for r in rows if r.br == br])]
+    """The rows of branch br by continuation direction (`_segments`)."""
+    return list(_segments([r for r in rows if r.br == br]))
 
 
 @pytest.mark.slow
