@@ -457,7 +457,7 @@ class CollocationBVP:
         return self.bp_value(self.reduce(J, self.weights * tangent)[0])
 
     @staticmethod
-    def bp_value(Sc: np.ndarray) -> float:
+    def bp_value(Sc: np.ndarray) -> float | None:
         """det(S / |S|_F) of a reduced bordered Jacobian S: bounded by 1, independent of
         the overall scale, and zero exactly where the bordered Jacobian is singular, like
         AUTO's FNBPBV (the reduced determinant over det P1). (Normalising each row instead
@@ -466,6 +466,16 @@ class CollocationBVP:
         scale = np.linalg.norm(Sc)
         if not np.isfinite(scale) or scale == 0:
             return 0.0
+        if len(Sc) > 1:
+            # A determinant whose two smallest singular values are both below rounding
+            # (n eps of the largest) has no sign: it is a product of noise, and flips
+            # from step to step without a branch point (a cycle family nearing an
+            # infinite-period limit: S's largest singular value grows like exp(lambda T)
+            # while the others stay O(1)). Like FNBPBV, which does not test (ITP=0)
+            # where its quotient DET/det(P1) is not representable, there is no test.
+            sv = np.linalg.svd(Sc, compute_uv=False)
+            if sv[-2] <= len(Sc) * np.finfo(float).eps * sv[0]:
+                return None
         sign, logdet = np.linalg.slogdet(Sc / scale)
         return float(sign * math.exp(logdet))
 
