@@ -361,6 +361,17 @@ def _open_output(path: Path, append: bool):
     return os.fdopen(os.open(path, flags, 0o666), "a" if append else "w", encoding="utf-8")
 
 
+def _eigen_format(n: int) -> str:
+    """The %-format of PRINTEIG's block of n eigenvalues (`OutputFiles.eigenvalues`):
+    arguments BR, PT, the stable count, then BR, PT, k, Re, Im of each."""
+    head = "%4d%6d         Eigenvalue"
+    return f"\n{head}s  :   Stable:%4d" + f"\n{head}%3d:%14.5E%14.5E" * n
+
+
+#: `_eigen_format` by the number of eigenvalues
+_EIGEN_FORMATS: dict = {}
+
+
 class OutputFiles:
     """b./s./d. files of one run (sv name), written point by point; flushed after every
     write, or at most `flush_seconds` apart and at `close`.
@@ -567,13 +578,32 @@ class OutputFiles:
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
         'Eigenvalue  k:' with real and imaginary parts (ES14.5). pt: unsigned point number."""
-        eig = np.asarray(eig, dtype=complex).tolist()
-        stable = sum(1 for z in eig if z.real < 0)
+        if type(eig) is np.ndarray and eig.dtype.kind == "f":
+            # real eigenvalues (an equilibrium's spectrum mostly): imaginary parts 0.0,
+            # as their complex conversion gives, without it
+            re = eig.tolist()
+            parts = [v for x in re for v in (x, 0.0)]
+        else:
+            eig = np.asarray(eig, dtype=complex).tolist()
+            re = [z.real for z in eig]
+            parts = [v for z in eig for v in (z.real, z.imag)]
+        stable = sum(1 for x in re if x < 0)
+        if len(re) <= SHORT_ROW and _plain(parts):
+            # every exponent 2-digit (C's %E is ES14.5 then): the block in one %-format
+            # (the same text as the lines below, which the tests check)
+            fmt = _EIGEN_FORMATS.get(len(re))
+            if fmt is None:
+                fmt = _EIGEN_FORMATS[len(re)] = _eigen_format(len(re))
+            args = [br, pt, stable]
+            for k, x in enumerate(re):
+                args += (br, pt, k + 1, parts[2 * k], parts[2 * k + 1])
+            self.diag(fmt % tuple(args))
+            return
         head = f"{br:4d}{pt:6d}         Eigenvalue"
         lines = [f"\n{head}s  :   Stable:{stable:4d}"]
         # real and imaginary parts of every eigenvalue formatted in one call (28 characters each)
-        text = fmt_es_many([v for z in eig for v in (z.real, z.imag)], 14, 5)
-        lines += [f"{head}{k + 1:3d}:{text[28 * k:28 * k + 28]}" for k in range(len(eig))]
+        text = fmt_es_many(parts, 14, 5)
+        lines += [f"{head}{k + 1:3d}:{text[28 * k:28 * k + 28]}" for k in range(len(re))]
         self.diag("\n".join(lines))
 
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:

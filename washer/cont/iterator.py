@@ -313,7 +313,7 @@ class Continuation:
             z = factor.solve(e)
         nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
             else math.inf
-        if not np.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:
+        if not math.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:     # nz: a float
             z, nz = ref, math.sqrt(sysm.inner(ref, ref))
         return z / nz, factor
 
@@ -360,7 +360,8 @@ class Continuation:
         if newton is not None and newton[0] is x and tangent is None:
             J = newton[1]
             stab = self.sys.stability(x, J)
-            if getattr(self.sys, "newton_jacobian_serves", lambda st: True)(stab):
+            serves = getattr(self.sys, "newton_jacobian_serves", None)
+            if serves is None or serves(stab):
                 # The tangent is bordered by the secant, as below (the arclength row's
                 # direction, the previous step's, gives another vector where the null
                 # space is nearly two-dimensional: abcb's fold test then jumped next to
