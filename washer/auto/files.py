@@ -566,14 +566,23 @@ class OutputFiles:
     def row(self, r: Row) -> None:
         """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
         the same point in screen format (unit 9), opening the point's block."""
-        vals = fmt_e_many(r.values)
+        v = _floats(r.values)
+        if _plain(v):
+            # fmt_e_many's and screen_line's formats at once (one conversion and check
+            # of the values for both; the same text)
+            vals = ("%18.10E" * len(v) % tuple(v)).replace("E+", "E+0").replace("E-", "E-0")
+            m = min(len(v), 8)
+            screen = ("%14.5E" * m) % tuple(v[:m])
+        else:
+            vals, screen = fmt_e_many(v), fmt_es_many(v[:8], 14, 5)
         self._append(self.b_path, self._pending_b + f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
         self._pending_b = ""
         bar = f"{D_BAR}\n" if self._d_points else ""
         self._d_points += 1
         if self._heading[0] != self.column_titles:
             self._heading = (list(self.column_titles), screen_heading(self.column_titles))
-        self._append(self.d_path, f"{bar}\n{self._heading[1]}\n{screen_line(r)}\n")
+        line = f"{r.br:4d}{r.pt:6d} {type_name(r.ty):>3}{r.lab:5d}{screen}"     # screen_line
+        self._append(self.d_path, f"{bar}\n{self._heading[1]}\n{line}\n")
 
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
