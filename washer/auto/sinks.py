@@ -27,7 +27,8 @@ def _row(lab) -> Row:
     solutions (IPS = 2), as AUTO writes them (the s-file keeps BR > 0)."""
     sign = -1 if lab.stable else 1
     br = -lab.br if lab.ips in (2, 12) else lab.br
-    return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, list(lab.values))
+    # the record's values themselves: the Row is formatted, never changed
+    return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, lab.values)
 
 
 #: AUTO's LBTYPE of a curve type (ITPST), the header's 'Branch type' name.

@@ -445,9 +445,10 @@ class CompiledProblem(Problem):
             self._set_eigenvalues(u, par)
         else:
             self.user.set_multipliers(None)
-        first = np.array(par)
+        learnt = self.user.pvls_wants_eigenvalues
+        first = None if learnt else np.array(par)
         self.user.pvls(u, par)
-        if self.user.eig_wanted() and not self.user.pvls_wants_eigenvalues:
+        if not learnt and self.user.eig_wanted():
             self.user.pvls_wants_eigenvalues = True
             par[:] = first
             self._set_eigenvalues(u, par)
