@@ -242,6 +242,7 @@ class Collocation:
     def _pattern(self) -> None:
         pat = _sparsity(self.mesh.ntst, self.mesh.ncol, self.ndim, self.npar, self.nint,
                         self.nbc, self.general_bc)
+        self._pat = pat
         self.nnz = pat.nnz
         self._tail_rows, self._tail_cols = pat.tail_rows, pat.tail_cols
         self._order = pat.order
@@ -327,14 +328,17 @@ class Collocation:
         `jacobian_general`'s assembly order (the collocation blocks, the parameter
         columns, the boundary conditions' values, the integral rows); vals is kept."""
         import scipy.sparse as sp
-        # Every Jacobian on this mesh has the same pattern: the first is built (and
+        # Every Jacobian of these sizes has the same pattern: the first is built (and
         # checked) by scipy, later ones are its shallow copies with their own values
         # (scipy's constructor re-validates the pattern each time, ~10-60 us; Newton asks
         # for a Jacobian per iteration). The index arrays are shared, as they already
-        # are with the pattern (`_sparsity`): nothing changes a Jacobian's pattern.
-        template = self.__dict__.get("_csc_template")
+        # are with the pattern (`_sparsity`): nothing changes a Jacobian's pattern. The
+        # template is kept with that pattern, so the meshes of one run (ADAPT makes a
+        # Collocation every IAD points) share it too.
+        pat = self._pat
+        template = pat.__dict__.get("csc_template")
         if template is None:
-            template = self._csc_template = sp.csc_matrix(
+            template = pat.csc_template = sp.csc_matrix(
                 (vals[self._order], self._indices, self._indptr), shape=(self.n_eq, self.n_x))
             if (template.indptr.dtype == self._indptr.dtype
                     and template.indices.dtype == self._indices.dtype):

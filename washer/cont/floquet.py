@@ -112,6 +112,9 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     if info != 0:
         return scipy.linalg.eigvals(A, B)
     alpha = alphar + _I * alphai
+    if beta.all():
+        # no infinite eigenvalue (the common case): the quotients below, in one division
+        return alpha / beta
     w = np.empty_like(alpha)
     alpha_zero = alpha == 0
     beta_zero = beta == 0

@@ -263,7 +263,10 @@ class CollocationBVP:
         self.n_eq = self.coll.n_eq
         thu = self.settings.theta_u(self.ndim)
         th = np.r_[thu, np.ones(self.n_comp - self.ndim)]
-        self.weights = np.concatenate((np.kron(self.coll.w_node, th), self.tail_weights()))
+        # np.kron(w_node, th) of these 1-D arrays, without kron's generic set-up (ADAPT
+        # makes a mesh every IAD points)
+        self.weights = np.concatenate(((self.coll.w_node[:, None] * th[None, :]).ravel(),
+                                       self.tail_weights()))
 
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
