@@ -171,14 +171,11 @@ class GeneratedEquations:
 
     def __init__(self, compiled, ndim: int, exact: bool):
         self.ffi, self.lib = _library("ae_generated.c", _GENERATED_CDEF)
-        ffi, src = self.ffi, compiled.ffi
-
-        def pointer(fn, kind):
-            return ffi.cast(kind, int(src.cast("uintptr_t", fn)))
+        ffi = self.ffi
         self._jwork = np.empty(ndim * (ndim + max(compiled.npar, 1)))
         g = self._g = ffi.new("ae_generated *")
-        g.func = pointer(compiled.lib.washer_sym_func, "ae_sym_func")
-        g.jac = pointer(compiled.lib.washer_sym_jac, "ae_sym_jac") if exact else ffi.NULL
+        g.func = compiled.pointer("washer_sym_func", ffi, "ae_sym_func")
+        g.jac = compiled.pointer("washer_sym_jac", ffi, "ae_sym_jac") if exact else ffi.NULL
         g.npar_sym = compiled.npar
         g.jwork = ffi.from_buffer("double[]", self._jwork)
         self._keep = compiled           # the library stays loaded while the pointers live

@@ -93,13 +93,9 @@ class PeriodicCorrector:
         self._sfunc = self._sjac = ffi.NULL
         self._npar_jp = 0
         if generated is not None:
-            src = generated.ffi
-
-            def pointer(fn, kind):
-                return ffi.cast(kind, int(src.cast("uintptr_t", fn)))
-            self._sfunc = pointer(generated.lib.washer_sym_func, "cont_po_sym_func")
+            self._sfunc = generated.pointer("washer_sym_func", ffi, "cont_po_sym_func")
             if self.problem.has_dfdu:
-                self._sjac = pointer(generated.lib.washer_sym_jac, "cont_po_sym_jac")
+                self._sjac = generated.pointer("washer_sym_jac", ffi, "cont_po_sym_jac")
             self._npar_jp = max(generated.npar, 1)
             self._keep = generated      # the library stays loaded while the pointers live
         self._npar = 0

@@ -151,6 +151,13 @@ class _Compiled:
         self.lib = lib
         self.n, self.npar = ndim, npar_sym
 
+    def pointer(self, name: str, ffi, kind: str):
+        """The generated function `name` (washer_sym_func, washer_sym_jac) as a C
+        function pointer of type `kind` declared by another cffi module `ffi`, for a
+        compiled corrector to call directly; the caller keeps this object alive while the
+        pointer is in use (the library stays loaded)."""
+        return ffi.cast(kind, int(self.ffi.cast("uintptr_t", getattr(self.lib, name))))
+
     def _ptr(self, a):
         return self.ffi.from_buffer("double[]", a)
 
