@@ -29,7 +29,6 @@ PERTURB = 1 + HMACH
 #: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
 UNSUPPORTED_IPS = {
     7: "boundary value problems with Floquet multipliers",
-    9: "homoclinic and heteroclinic orbits (HomCont)",
     11: "spatially uniform solutions of a parabolic PDE",
     12: "travelling waves of a parabolic PDE",
     14: "time evolution of a parabolic PDE with periodic boundary conditions",
@@ -130,6 +129,17 @@ class Settings:
     STOP: dict = field(default_factory=dict)     # {'HB': 3}: stop at the 3rd HB
     SP_OFF: frozenset = frozenset()              # types switched off by SP ('LP0')
     SP_ON: frozenset = frozenset()               # types switched on by SP ('HB')
+    #: HomCont's constants (IPS = 9; AUTO's h-file keys): NUNSTAB, NSTAB (-1: counted
+    #: at the start's equilibrium), IEQUIB, ITWIST, ISTART, and the lists IREV, IFIXED,
+    #: IPSI as tuples.
+    NUNSTAB: int = _D["NUNSTAB"]
+    NSTAB: int = _D["NSTAB"]
+    IEQUIB: int = _D["IEQUIB"]
+    ITWIST: int = _D["ITWIST"]
+    ISTART: int = _D["ISTART"]
+    IREV: tuple = ()
+    IFIXED: tuple = ()
+    IPSI: tuple = ()
 
     def theta_par(self, index: int) -> float:
         """THL weight of PAR(index) (1 unless set)."""
@@ -279,4 +289,9 @@ class Settings:
                    RL1=c["RL1"], A0=c["A0"], A1=c["A1"], NTST=c["NTST"], NCOL=c["NCOL"],
                    NBC=c["NBC"], NINT=c["NINT"],
                    IAD=c["IAD"], IPLT=c["IPLT"], IID=c["IID"], IIS=c["IIS"], THL=thl, THU=thu,
-                   UZR=tuple(uz), STOP=stop, SP_OFF=frozenset(off), SP_ON=frozenset(on))
+                   UZR=tuple(uz), STOP=stop, SP_OFF=frozenset(off), SP_ON=frozenset(on),
+                   NUNSTAB=int(c["NUNSTAB"]), NSTAB=int(c["NSTAB"]), IEQUIB=int(c["IEQUIB"]),
+                   ITWIST=int(c["ITWIST"]), ISTART=int(c["ISTART"]),
+                   IREV=tuple(int(v) for v in c["IREV"]),
+                   IFIXED=tuple(int(v) for v in c["IFIXED"]),
+                   IPSI=tuple(int(v) for v in c["IPSI"]))

@@ -1,0 +1,378 @@
+"""Homoclinic orbits (IPS = 9): AUTO's HomCont (homcont.f90: INHO, FNHO, BCHO, ICHO,
+STPNHO, PREHO, FNCSHO, PSIHO) on the general BVP of washer.cont.systems.general_bvp.
+
+An orbit u(t) of u' = f(u, p) leaving the equilibrium x0 and returning to it is
+truncated to a time interval of length T = PAR(11) and rescaled to [0, 1]:
+
+    u'(t) = T f(u(t), p),                                   t in [0, 1]
+    L_s (u(0) - x0) = 0      (NSTAB rows: u(0) in the unstable eigenspace of x0)
+    L_u (u(1) - x0) = 0      (NUNSTAB rows: u(1) in the stable eigenspace of x0)
+    f(x0, p) = 0             (IEQUIB = 1: x0 = PAR(12 .. 11 + NDIM) is solved for)
+    int_0^1 upold(t) . (u(t) - uold(t)) dt = 0              (the phase condition)
+
+The projection boundary conditions (Beyn's): the rows of L_s span the stable
+eigenspace of A^T, A = f_u(x0, p) (the orthogonal complement of A's unstable one), the
+rows of L_u its unstable eigenspace; both from an ordered real Schur form (PRJCTN's
+DGEES/DTRSEN), the NSTAB eigenvalues of smallest and the NUNSTAB of largest real part.
+A basis of an invariant subspace is defined up to a change of basis only; the rows are
+made a smooth function of the parameters (Newton's Jacobian differences them) as the
+orthogonal projector onto the subspace applied to a reference basis, the subspace's
+basis at the last accepted point (PRJCTN uses Beyn's normalisation against the previous
+call for the same reason). With PAR(11) < 0 time runs backwards and A is -f_u.
+
+IEQUIB = 0: the equilibrium is the user's, set into PAR(12 .. 11 + NDIM) by PVLS at
+u(0) (FBHO calls PVLS(NDM, U0, PAR) at each evaluation), and only the NSTAB + NUNSTAB
+projection conditions are imposed.
+
+Free parameters: NFPR = NSTAB + NUNSTAB - NDIM + 2 + IEQUIB NDIM; the first
+NFPR - IEQUIB NDIM of ICP, then PAR(12 .. 11 + NDIM) (INHO appends them to ICP). Further
+ICP entries are written only (the test functions PAR(20 + k) among them).
+
+Starts (ISTART, INHO/STPNHO): ISTART = 5 (the default) is 1 from STPNT or a stored
+homoclinic orbit, 4 from a stored orbit of another problem type (a periodic orbit of
+long period); 1 and 2 start from the profile as it is; 4 first shifts the stored
+periodic orbit in time so that it starts at its mesh point nearest the equilibrium
+(PREHO), taking for the equilibrium (IEQUIB = 1) the node where |f| is least.
+
+Test functions IPSI (PSIHO): PAR(20 + k) is set after every point to psi_k, for the k
+of IPSI (a user's UZR on PAR(20 + k) locates its zeros, as in AUTO's demos). The
+eigenvalues are ordered by real part, smallest first; s = NSTAB (leading stable), s + 1
+the leading unstable one:
+  1  resonant eigenvalues (neutral saddle): Re + Im of l_s + l_{s+1}
+  2  double real leading stable eigenvalues (saddle to saddle-focus)
+  3  double real leading unstable eigenvalues
+  4  neutral saddle, saddle-focus or bi-focus: Re l_s + Re l_{s+1}
+  5  neutrally divergent saddle-focus (stable complex): Re (l_{s-1} + l_s + l_{s+1})
+  6  neutrally divergent saddle-focus (unstable complex): Re (l_s + l_{s+1} + l_{s+2})
+  7  three leading stable eigenvalues;  8  three leading unstable eigenvalues
+  9  local bifurcation, NSTAB decreases: Re l_s;  10  NSTAB increases: Re l_{s+1}
+  11 orbit flip w.r.t. the leading stable direction: f(u(1)) . w_s e^(-T Re l_s / 2)
+  12 orbit flip w.r.t. the leading unstable direction: f(u(0)) . w_{s+1} e^(T Re l_{s+1} / 2)
+(w the left eigenvectors, v the right ones, real parts, unit length, signs continued
+from the previous evaluation as EIGHO's). Not yet: 13, 14 (inclination flips: they
+need the adjoint of ITWIST = 1), 15, 16 (non-central saddle-node homoclinics: IEQUIB = 2).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.linalg as sla
+
+from washer.cont import collocation as col
+from washer.cont.problem import Problem
+from washer.cont.settings import SettingsError
+from washer.cont.system import StartData, register
+from washer.cont.systems.general_bvp import BoundaryValueProblem
+
+#: The IPSI codes computed here (PSIHO's): see the module docstring.
+PSI_CODES = frozenset(range(1, 13))
+
+#: PSIHO's COMPZERO (INHO's HMACHHO): an imaginary part below it is zero.
+COMPZERO = 1e-13
+
+
+def unsupported(s) -> list[str]:
+    """What of HomCont's constants this module does not compute yet (empty: all of it)."""
+    out = []
+    if s.ITWIST != 0:
+        out.append(f"ITWIST = {s.ITWIST} (the adjoint for orientation and inclination "
+                   "flips; ITWIST = 0 is)")
+    if s.IEQUIB not in (0, 1):
+        out.append(f"IEQUIB = {s.IEQUIB} (saddle-node or heteroclinic orbits; IEQUIB = 0 "
+                   "and 1 are)")
+    if s.ISTART not in (1, 2, 4, 5):
+        out.append(f"ISTART = {s.ISTART} (" + ("the homotopy start" if s.ISTART == 3 else
+                                                "n-homoclinic branch switching")
+                   + "; ISTART = 1, 2, 4, 5 are)")
+    if s.IREV:
+        out.append("IREV (reversible systems)")
+    if s.IFIXED:
+        out.append(f"IFIXED = {list(s.IFIXED)} (test functions held fixed)")
+    missing = [k for k in s.IPSI if k not in PSI_CODES]
+    if missing:
+        out.append(f"IPSI codes {missing} (13, 14 need ITWIST = 1, 15, 16 IEQUIB = 2; "
+                   "codes 1-12 are computed)")
+    if s.NBC or s.NINT:
+        out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
+                   "integral conditions)")
+    if abs(s.ISW) == 2:
+        out.append("ISW = 2 (the fold locus of homoclinic orbits)")
+    return out
+
+
+def spectrum(A: np.ndarray):
+    """(eigenvalues sorted by real part, smallest first (EIGHO's order), the real parts
+    of the unit right eigenvectors as rows, the same of the left ones)."""
+    lam, W, V = sla.eig(A, left=True, right=True)
+    order = np.argsort(lam.real, kind="stable")
+    lam, V, W = lam[order], V[:, order], W[:, order]
+    # LAPACK's vectors have unit length and a real largest component; EIGHO keeps the
+    # real parts (both of a complex pair).
+    return lam, np.real(V).T.copy(), np.real(W).T.copy()
+
+
+def invariant_basis(A: np.ndarray, m: int, stable: bool) -> np.ndarray:
+    """An orthonormal basis (n, m) of A's invariant subspace of its m eigenvalues of
+    smallest (stable) or largest real part: the leading Schur vectors of a real Schur
+    form ordered by a threshold between the m-th and (m+1)-th real part."""
+    n = len(A)
+    if m <= 0:
+        return np.zeros((n, 0))
+    re = np.sort(np.linalg.eigvals(A).real)
+    if not stable:
+        re = -re[::-1]
+    cut = 0.5 * (re[m - 1] + re[m]) if m < n else math.inf
+    if stable:
+        _, Z, k = sla.schur(A, output="real", sort=lambda x, y: x < cut)
+    else:
+        _, Z, k = sla.schur(A, output="real", sort=lambda x, y: -x < cut)
+    if k != m:
+        raise np.linalg.LinAlgError(f"the {m} {'stable' if stable else 'unstable'} "
+                                    "eigenvalues are not separated from the others "
+                                    "(a complex pair split)")
+    return Z[:, :m]
+
+
+class _Projection:
+    """The rows L of one projection boundary condition, L v = 0 iff v is orthogonal to
+    the invariant subspace S (of A^T) of the m eigenvalues: L = R^T P with P the
+    orthogonal projector onto S and R a reference basis of S (see the module
+    docstring); `accept` makes the subspace at the accepted point the reference."""
+
+    def __init__(self, m: int, stable: bool):
+        self.m, self.stable, self.ref = m, stable, None
+
+    def rows(self, At: np.ndarray) -> np.ndarray:
+        Q = invariant_basis(At, self.m, self.stable)
+        if self.ref is None:
+            self.ref = Q
+        return (Q @ (Q.T @ self.ref)).T
+
+    def accept(self, At: np.ndarray) -> None:
+        self.ref = invariant_basis(At, self.m, self.stable)
+
+
+class _SignedVectors:
+    """EIGHO's sign rule for eigenvector rows: on the first call each row's largest
+    component (the first of equal moduli) is made positive, afterwards each row keeps
+    the sign of the previous call's row (positive dot product)."""
+
+    def __init__(self):
+        self.prev = None
+
+    def __call__(self, V: np.ndarray) -> np.ndarray:
+        V = V.copy()
+        if self.prev is None or self.prev.shape != V.shape:
+            for r in V:
+                if r[np.argmax(np.abs(r))] < 0:
+                    r *= -1
+        else:
+            for r, p in zip(V, self.prev):
+                if r @ p < 0:
+                    r *= -1
+        self.prev = V.copy()
+        return V
+
+
+@register(9, 1, "*")
+class HomoclinicOrbits(BoundaryValueProblem):
+    """The continued system of homoclinic orbits (IPS = 9, ISW = 1): see the module
+    docstring. `ndim` = `ndm` = the user's NDIM; PAR(12 .. 11 + NDIM) hold x0."""
+
+    def __init__(self, data):
+        s = data.settings
+        missing = unsupported(s)
+        if missing:
+            raise SettingsError("IPS = 9 (homoclinic orbits): not supported yet: "
+                                + "; ".join(missing),
+                                keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
+        user, ndm = data.problem, s.NDIM
+        self.user, self.ndm, self.iequib = user, ndm, s.IEQUIB
+        npar = max(s.NPAR, 11 + ndm, 20 + max(s.IPSI, default=0))
+        par = np.zeros(npar)
+        p = np.asarray(data.par, float)
+        par[:min(len(p), npar)] = p[:npar]
+        rec = data.record
+        istart = s.ISTART
+        if istart == 5:
+            istart = 4 if rec is not None and getattr(rec, "ips", 9) not in (9, 0) else 1
+        if istart == 4 and rec is not None:
+            rec = self._shifted(rec, par)
+        # NSTAB, NUNSTAB at the start's equilibrium (STPNHO: PVLS, then GETSTAB where -1).
+        if self.iequib == 0:
+            par = user.pvls(self._start_u0(rec, par, data), par)
+        re = np.linalg.eigvals(self._A(par[11:11 + ndm], par)).real
+        nstab, nunstab = s.NSTAB, s.NUNSTAB
+        nproj = ndm if -1 in (nstab, nunstab) else nstab + nunstab
+        if nstab == -1 and nunstab != -1:
+            nstab = nproj - nunstab
+        elif nunstab == -1 and nstab != -1:
+            nunstab = nproj - nstab
+        if nstab == -1:
+            nstab = int(np.sum(re < 0))
+        if nunstab == -1:
+            nunstab = int(np.sum(re > 0))
+        self.nstab, self.nunstab = nstab, nunstab
+        nbc = nstab + nunstab + self.iequib * ndm
+        nfpr = nbc + 1 - ndm + 1
+        n_user = nfpr - self.iequib * ndm
+        if n_user < 1 or len(s.ICP) < n_user:
+            raise SettingsError(f"IPS = 9 with NSTAB = {nstab}, NUNSTAB = {nunstab}: "
+                                f"{n_user} free parameters of ICP, but ICP = {list(s.ICP)}",
+                                keys=("ICP",))
+        self._free = list(s.ICP[:n_user]) + \
+            ([11 + i for i in range(1, ndm + 1)] if self.iequib else [])
+        self._left = _Projection(nstab, stable=True)       # at t = 0
+        self._right = _Projection(nunstab, stable=False)   # at t = 1
+        self._right_vectors, self._left_vectors = _SignedVectors(), _SignedVectors()
+        s2 = s.with_(NBC=nbc, NINT=1, NPAR=npar)
+        self.run_settings = s2
+        super().__init__(StartData(self._extended(user, ndm, nbc), s2, data.u, par, rec,
+                                   data.kind, data.unames))
+        self.ndm = ndm
+
+    # ------------------------------------------------------------------ the equations
+    def _A(self, x0, par) -> np.ndarray:
+        """f_u at the equilibrium, time reversed where PAR(11) < 0 (PRJCTN, EIGHO)."""
+        A = self.user.dfdu(np.asarray(x0, float), par)
+        return -A if par[10] < 0 else A
+
+    def _equilibrium(self, u0, par) -> np.ndarray:
+        """x0: PAR(12 .. 11 + NDIM), after the user's PVLS at u(0) for IEQUIB = 0."""
+        if self.iequib == 0:
+            par = self.user.pvls(np.asarray(u0, float), par)
+        return np.asarray(par[11:11 + self.ndm], float)
+
+    def _extended(self, user, ndm: int, nbc: int) -> Problem:
+        def func_batch(U, pars):
+            return pars[:, 10:11] * user.func_many(U, pars)
+
+        def func(u, par):
+            return par[10] * user.func(u, par)
+
+        dfdu_batch = None
+        if user.has_dfdu:
+            def dfdu_batch(U, pars):
+                return pars[:, 10, None, None] * user.dfdu_many(U, pars)
+
+        def bcnd(u0, u1, par):
+            x0 = self._equilibrium(u0, par)
+            At = self._A(x0, par).T
+            parts = [self._left.rows(At) @ (np.asarray(u0) - x0),
+                     self._right.rows(At) @ (np.asarray(u1) - x0)]
+            if self.iequib == 1:
+                parts.append(user.func(x0, par))
+            return np.concatenate(parts)
+
+        def icnd(u, uold, udot, upold, par):
+            # one point (NDIM,) -> (1,); a batch (NDIM, k) -> (1, k)
+            return np.sum(upold * (u - uold), axis=0)[None]
+
+        return Problem(ndm, func, func_batch=func_batch, dfdu_batch=dfdu_batch,
+                       name=user.name, npar=user.npar, pvls=user._pvls,
+                       parnames=user.parnames, unames=user.unames, jac=user.jac,
+                       bcnd=bcnd, icnd=icnd)
+
+    def _start_u0(self, rec, par, data) -> np.ndarray:
+        """u(0) of the start (for PVLS's equilibrium with IEQUIB = 0)."""
+        if rec is not None and np.ndim(rec.U) == 2:
+            return np.asarray(rec.U, float)[0, :self.ndm]
+        return np.asarray(data.u, float)[:self.ndm]
+
+    # ------------------------------------------------------------------ starts
+    def _from_stpnt(self) -> None:
+        """STPNBV: the user's stpnt(u, par, t) at every node of the uniform mesh."""
+        s = self.settings
+        self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
+        self._begin(self.user.start_profile(self.par.copy(), self.mesh.node_times()), None)
+
+    def _shifted(self, rec, par):
+        """PREHO with ISTART = 4: a stored periodic orbit moved in time so that it starts
+        at its mesh point nearest the equilibrium; for IEQUIB = 1 the equilibrium
+        PAR(12 ..) is first the node where |f| is least (Newton does the rest)."""
+        from types import SimpleNamespace
+        from washer.cont.systems.bvp import record_profile
+        ndm = self.ndm
+        t, U, ntst, ncol = record_profile(rec, ndm)
+        if self.iequib > 0:
+            F = self.user.func_many(U, par)
+            par[11:11 + ndm] = U[int(np.argmin(np.sum(F * F, axis=1)))]
+        x0 = par[11:11 + ndm]
+        mesh_U = U[::ncol]
+        j = int(np.argmin(np.sum((mesh_U - x0) ** 2, axis=1)))
+        if j in (0, ntst):
+            return rec
+        tm = t[::ncol]
+        k = j * ncol
+        # nodes from mesh point j to the end, then (periodicity: U[-1] = U[0]) from the
+        # first interval to mesh point j
+        U2 = np.vstack([U[k:], U[1:k + 1]])
+        t2 = np.r_[t[k:] - tm[j], t[1:k + 1] + 1.0 - tm[j]]
+        t2[-1] = 1.0
+        return SimpleNamespace(U=U2, t=t2, ntst=ntst, ncol=ncol, udot=None, rldot=[],
+                               icp=[], lab=getattr(rec, "lab", 0))
+
+    # ------------------------------------------------------------------ per point
+    def update(self, x, tangent) -> None:
+        """The accepted point: the integral condition's reference (the base's) and the
+        projections' reference bases."""
+        super().update(x, tangent)
+        U, par = self.unpack(x)
+        At = self._A(self._equilibrium(U[0], par), par).T
+        self._left.accept(At)
+        self._right.accept(At)
+
+    def params(self, x):
+        """PAR after the user's PVLS, with PAR(20 + k) = psi_k for k in IPSI (FNCSHO)."""
+        par = super().params(x)
+        ipsi = self.settings.IPSI
+        if ipsi:
+            U, _ = self.unpack(x)
+            for k in ipsi:
+                par[19 + k] = self.psi(k, U, par)
+        return par
+
+    def psi(self, k: int, U: np.ndarray, par: np.ndarray) -> float:
+        """PSIHO's test function k (module docstring) of the orbit U (n_nodes, NDIM)."""
+        ndm, s = self.ndm, self.nstab - 1              # s: 0-based index of l_NSTAB
+        x0 = np.asarray(par[11:11 + ndm], float)
+        lam, V, W = spectrum(self._A(x0, par))
+        V, W = self._right_vectors(V), self._left_vectors(W)
+        rr, ri = lam.real, lam.imag
+        if k == 1:
+            return float(rr[s] + rr[s + 1] + ri[s] + ri[s + 1])
+        if k == 2:
+            return float(-(ri[s] - ri[s - 1]) ** 2 if abs(ri[s]) > COMPZERO
+                         else (rr[s] - rr[s - 1]) ** 2)
+        if k == 3:
+            return float(-(ri[s + 1] - ri[s + 2]) ** 2 if abs(ri[s + 1]) > COMPZERO
+                         else (rr[s + 1] - rr[s + 2]) ** 2)
+        if k == 4:
+            return float(rr[s] + rr[s + 1])
+        if k == 5:
+            return float(rr[s] + rr[s + 1] + rr[s - 1])
+        if k == 6:
+            return float(rr[s] + rr[s + 1] + rr[s + 2])
+        if k == 7:
+            a, b = s, s - 2
+            d = rr[a] - rr[b]
+            return float(d if np.abs(V[a]).sum() > np.abs(V[b]).sum() else -d)
+        if k == 8:
+            a, b = s + 1, s + 3
+            d = rr[a] - rr[b]
+            return float(d if np.abs(V[a]).sum() > np.abs(V[b]).sum() else -d)
+        if k == 9:
+            return float(rr[s])
+        if k == 10:
+            return float(rr[s + 1])
+        if k == 11:
+            f1 = self.user.func(U[-1], par)
+            return float(f1 @ W[s] * math.exp(-par[10] * rr[s] / 2))
+        if k == 12:
+            f0 = self.user.func(U[0], par)
+            return float(f0 @ W[s + 1] * math.exp(par[10] * rr[s + 1] / 2))
+        raise ValueError(f"IPSI code {k}: not computed (see washer.cont.systems.homoclinic)")
+
+
+__all__ = ["HomoclinicOrbits", "PSI_CODES", "invariant_basis", "spectrum", "unsupported"]
