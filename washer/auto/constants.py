@@ -24,8 +24,6 @@ from washer.text_files import decode_text
 IGNORED = {
     "IID": "the d-file is always written at AUTO's level 2",
     "IIS": "the direction is always stored in the s-file (AUTO's IIS = 3)",
-    "NUNSTAB": "HomCont", "NSTAB": "HomCont", "IEQUIB": "HomCont", "ITWIST": "HomCont",
-    "ISTART": "HomCont", "IREV": "HomCont", "IFIXED": "HomCont", "IPSI": "HomCont",
 }
 
 

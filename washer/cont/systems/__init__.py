@@ -15,6 +15,7 @@ cycle_branch_point
 bvp          the collocation base of periodic orbits and their loci (registers nothing)
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching, and
              their fold locus (ISW = 2 from LP; FNBL)
+homoclinic   homoclinic orbits on the general BVP (IPS = 9, HomCont; FNHO, BCHO, ICHO)
 bvp_branch_point
              the branch-point locus of general BVPs (IPS = 4, ISW = 2 or 3; FNBBP)
 periodic_optimisation

@@ -1,0 +1,150 @@
+"""Homoclinic orbits (IPS = 9, washer.cont.systems.homoclinic) against a closed form and
+against AUTO-07p's own output.
+
+Closed form: x'' = a (x - c) - (x - c)^2 + mu x' has, at mu = 0 and every a > 0, the
+homoclinic orbit x - c = (3a/2) sech^2(sqrt(a) t / 2) to the saddle (c, 0); along it
+H = y^2/2 - a (x - c)^2/2 + (x - c)^3/3 = 0 (sympy checks both below). Continued in (a, mu)
+with the equilibrium solved for (IEQUIB = 1), the family must keep mu = 0, x0 = (c, 0) and
+H = 0 on the profile to the discretisation's accuracy.
+
+AUTO: its demo san (tests/data/homcont/README.md), runs 1 and 6-11 (IEQUIB = 0, the test
+function IPSI = 11 in run 11), run by `run_script` as AUTO ran them.
+"""
+import gzip
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from auto_demo_compare import compare_files
+from washer.auto.files import read_s
+from washer.auto.script import run_script
+from washer.cont import runner
+from washer.cont.constants import Constants
+from washer.cont.problem import Problem
+from washer.cont.start import RunError
+from washer.cont.user_files import load_user_problem
+
+DATA = Path(__file__).parent / "data" / "homcont"
+T = 40.0               # PAR(11): the truncation interval
+C = 0.5                # the saddle's x
+
+
+def _exact_orbit():
+    """sympy: x(t) - c = (3a/2) sech^2(sqrt(a) t/2) solves x'' = a (x-c) - (x-c)^2 and
+    H vanishes on it; returns (x(t) - c, H) as functions."""
+    t, a, X, Y = sp.symbols("t a X Y", positive=True)
+    xi = sp.Rational(3, 2) * a * sp.sech(sp.sqrt(a) * t / 2) ** 2
+    assert sp.simplify((sp.diff(xi, t, 2) - (a * xi - xi ** 2)).rewrite(sp.exp)) == 0
+    H = Y ** 2 / 2 - a * X ** 2 / 2 + X ** 3 / 3
+    assert sp.simplify(H.subs({X: xi, Y: sp.diff(xi, t)}).rewrite(sp.exp)) == 0
+    return sp.lambdify((t, a), xi), sp.lambdify((X, Y, a), H)
+
+
+def _problem(xi):
+    def func(u, par):
+        a, mu = par[0], par[1]
+        x = u[0] - par[2]
+        return np.array([u[1], a * x - x * x + mu * u[1]])
+
+    def dfdu(u, par):
+        return np.array([[0.0, 1.0], [par[0] - 2 * (u[0] - par[2]), par[1]]])
+
+    def stpnt(u, par, t):
+        par[0], par[1], par[2], par[10] = 1.0, 0.0, C, T
+        par[11], par[12] = C + 1e-3, 1e-3          # a guess: IEQUIB = 1 solves for x0
+        s = (t - 0.5) * T
+        h = 1e-6
+        u[0] = C + xi(s, 1.0)
+        u[1] = (xi(s + h, 1.0) - xi(s - h, 1.0)) / (2 * h)
+    return Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="exact", jac=-1)
+
+
+def _family(ntst):
+    xi, H = _exact_orbit()
+    c = Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2, 21, 29, 30], IPSI=[1, 9, 10],
+                       NTST=ntst, NCOL=4, JAC=-1, ISP=0, ILP=0, DS=0.05, DSMAX=0.2, NMX=30,
+                       NPR=5))
+    br = runner.run(c, _problem(xi))
+    assert br.status == "ok"
+    # the first point is the start as given (AUTO writes it uncorrected)
+    return br.specials[1:], H
+
+
+def test_exact_homoclinic_family_with_the_equilibrium_solved_for():
+    pts, H = _family(40)
+    assert len(pts) >= 5 and pts[-1].par[0] > 2.5          # a from 1 to past 2.5
+    h_max = 0.0
+    for r in pts:
+        par, U = np.asarray(r.par), np.asarray(r.U)
+        a, mu = par[0], par[1]
+        x0 = par[11:13]
+        # mu, x0: the discretisation's error (H's below, ~1e-6 at NTST = 40) bounds them;
+        # measured ~1e-10
+        assert abs(mu) < 1e-6 and np.max(np.abs(x0 - [C, 0.0])) < 1e-6
+        # IPSI 1, 9, 10 (PAR(21), PAR(29), PAR(30)): the eigenvalues of f_u at the computed
+        # x0, (mu +- sqrt(mu^2 + 4 (a - 2 (x0 - c)))) / 2 in closed form: rounding only
+        d = a - 2 * (x0[0] - C)
+        lam = np.array([mu - np.sqrt(mu * mu + 4 * d), mu + np.sqrt(mu * mu + 4 * d)]) / 2
+        assert par[28] == pytest.approx(lam[0], rel=1e-12)
+        assert par[29] == pytest.approx(lam[1], rel=1e-12)
+        assert par[20] == pytest.approx(lam.sum(), abs=1e-12)
+        h_max = max(h_max, float(np.max(np.abs(H(U[:, 0] - x0[0], U[:, 1] - x0[1], a)))))
+    assert h_max < 1e-4
+    # Collocation with NCOL = 4 converges at least as h^4 at every node (h^5 between mesh
+    # points, h^8 at them): twice the intervals divide H's error on the profile by >= 16.
+    pts2, _ = _family(80)
+    h_max2 = max(float(np.max(np.abs(H(np.asarray(r.U)[:, 0] - r.par[11],
+                                          np.asarray(r.U)[:, 1] - r.par[12], r.par[0]))))
+                 for r in pts2)
+    assert h_max / h_max2 > 16, (h_max, h_max2)
+
+
+def test_unsupported_homcont_features_are_refused_by_name(tmp_path):
+    xi, _ = _exact_orbit()
+    base = dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=20, JAC=-1, NMX=2)
+    for extra, words in ((dict(ITWIST=1), "ITWIST = 1"), (dict(IEQUIB=2), "IEQUIB = 2"),
+                         (dict(ISTART=3), "homotopy"), (dict(IPSI=[1, 13]), "[13]"),
+                         (dict(IFIXED=[11]), "IFIXED")):
+        with pytest.raises(RunError, match="not supported yet") as err:
+            runner.run(Constants({**base, **extra}), _problem(xi))
+        assert words in str(err.value)
+
+
+def test_san_runs_match_auto(tmp_path, monkeypatch):
+    work = tmp_path / "san"
+    shutil.copytree(DATA / "san", work, ignore=shutil.ignore_patterns("autoref"))
+    monkeypatch.chdir(work)
+    run_script("san9.auto")
+    why = []
+    for ref in sorted((DATA / "san" / "autoref").glob("b.*")):
+        a, matched, diff = compare_files(work / ref.name, ref)
+        assert a, ref
+        if len(matched) != len(a):
+            why += diff
+    assert not why, why
+
+
+def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
+    # PSIHO's 11 on AUTO's own orbits: the start of san's run 11 (the end of run 10) and
+    # its end, in the order the run meets them (the eigenvectors' signs follow the run):
+    # AUTO's PAR(31) to its 11 written digits.
+    recs = []
+    for n in (10, 11):
+        p = tmp_path / f"s.{n}"
+        p.write_bytes(gzip.decompress((DATA / "san" / "autoref" / f"s.{n}.gz").read_bytes()))
+        recs.append(read_s(p)[-1])
+    prob = load_user_problem("san", DATA / "san", 3)
+    c = Constants(dict(NDIM=3, IPS=9, IRS=recs[0].lab, ICP=[7, 8, 31], IPSI=[11], IEQUIB=0,
+                       NTST=35, JAC=-1, ISP=0, ILP=0))
+    run, _, _ = runner.build(c, prob, [recs[0]])
+    hom = run.system
+    # AUTO's PAR(31) at run 11's start: its b-file's first row (the s-record of run 10
+    # was written before run 11 computed it), at its end: its s-record
+    rows = [ln.split() for ln in (DATA / "san" / "autoref" / "b.11").read_text().splitlines()
+            if ln.split() and ln.split()[0] != "0"]
+    for rec, expected in zip(recs, (float(rows[0][-1].replace("E", "e")), recs[1].par[30])):
+        U, par = np.asarray(rec.U, float)[:, :3], np.asarray(rec.par, float)
+        assert hom.psi(11, U, par) == pytest.approx(expected, rel=1e-10)
