@@ -20,6 +20,7 @@ from b_rows import branch_rows
 from washer.auto.constants import read_constants
 from washer.auto.files import type_name
 from washer.cont.runner import RunError
+from washer.cont.settings import UNSUPPORTED_IPS
 from washer.run import run
 
 DATA = Path(__file__).parent / "data" / "maps"
@@ -281,7 +282,7 @@ def test_henon_codim2_points_closed_form(tmp_path):
             seen[ty][1] == pytest.approx(b, abs=tol), (ty, seen)
 
 
-@pytest.mark.parametrize("ips", [7, 11, 12, 14, 16, 17])
+@pytest.mark.parametrize("ips", sorted(UNSUPPORTED_IPS))
 def test_unsupported_problem_types_are_refused(tmp_path, ips):
     (tmp_path / "fold.py").write_text(FOLD_MAP)
     (tmp_path / "c.x").write_text(f"NDIM=1, IPS={ips}, ICP=[1]\n")

@@ -59,7 +59,7 @@ class FileSink:
         self.run = run
         s, c, sysm = run.settings, run.constants, run.system
         curve = sysm.curve_type
-        ndim = sysm.n_eq if s.IPS in (0, 1, -1) else s.NDIM
+        ndim = sysm.n_eq if s.IPS in (0, 1, -1, 11) else s.NDIM
         internal = {k: getattr(s, k) for k in ("ILP", "ISP", "ISW", "NMX")}
         if getattr(sysm, "n_comp", None) and getattr(sysm, "coll", None) is not None:
             # A collocation system: AUTO's header states its own NDIM, NBC (NDIM periodicity

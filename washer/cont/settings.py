@@ -29,11 +29,6 @@ PERTURB = 1 + HMACH
 #: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
 UNSUPPORTED_IPS = {
     7: "boundary value problems with Floquet multipliers",
-    11: "spatially uniform solutions of a parabolic PDE",
-    12: "travelling waves of a parabolic PDE",
-    14: "time evolution of a parabolic PDE with periodic boundary conditions",
-    16: "time evolution of a parabolic PDE with user boundary conditions",
-    17: "stationary states of a parabolic PDE",
 }
 
 HUGE = 1.7976e308

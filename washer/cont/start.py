@@ -13,6 +13,7 @@ import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.cont.codes import split_code, type_name
+from washer.cont.parabolic import PARABOLIC_KINDS, ParabolicProblem
 from washer.cont.record import find_record
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError
@@ -45,6 +46,15 @@ def settings_for(c, problem) -> tuple[Settings, object]:
             raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 "
                              "(0 = automatic)")
     problem = problem.with_jac(s.JAC)
+    if s.IPS in PARABOLIC_KINDS:
+        # AUTOPE: the PDE's first-order system of 2 NDIM components (u, u_x) is what
+        # every problem type of a parabolic PDE continues; the user's STPNT fills them.
+        problem = ParabolicProblem(problem, PARABOLIC_KINDS[s.IPS])
+    if s.IPS in (14, 16):
+        # Time evolution: the time PAR(14) is the continuation parameter whatever ICP(1)
+        # names, without fold or bifurcation tests (AUTOPE: ICP(1) = 14, ILP = ISP = 0).
+        s = s.with_(ICP=[14] + [i for i in s.ICP[1:] if i != 14], ILP=0, ISP=0,
+                    NPAR=max(s.NPAR, 14))
     if problem.npar > s.NPAR:
         s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
     if s.IPS == -2 and s.ICP[0] != 14:
@@ -68,10 +78,11 @@ def restart_record(c, problem, records, records_source: str = "the restart file"
         raise RunError(f"{records_source}: {exc}") from None
     # A general BVP may restart from a solution of fewer components (AUTO's READBV
     # fills the others with 0: pcl's connecting orbits start from a periodic orbit).
-    widen = c["IPS"] == 4 and np.ndim(rec.u) == 2 and rec.ndim_user < problem.ndim
-    if rec.ndim_user != problem.ndim and not widen:
+    ndim = getattr(problem, "n_user", problem.ndim)      # a parabolic PDE's user NDIM
+    widen = c["IPS"] == 4 and np.ndim(rec.u) == 2 and rec.ndim_user < ndim
+    if rec.ndim_user != ndim and not widen:
         raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
-                         f"{rec.ndim_user}, but these equations have NDIM={problem.ndim}")
+                         f"{rec.ndim_user}, but these equations have NDIM={ndim}")
     return rec
 
 
@@ -250,7 +261,7 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         # A locus of cycles started at its special point: AUTO's INITPS makes that run
         # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1
-    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS == 2 and kind == "HB") or \
+    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS in (2, 12) and kind == "HB") or \
             (s.IPS == 5 and kind == "LP"):
         # (IPS = 5: the extremum continued in one parameter more from its LP)
         return rec.lab

@@ -128,7 +128,7 @@ class EquilibriumSystem(AlgebraicSystem):
 
     # ------------------------------------------------------------ stability
     def stability(self, x, J) -> Stability | None:
-        if self.settings.IPS != 1:
+        if self.settings.IPS not in (1, 11):
             return None
         lam = eigenvalues_sorted(np.asarray(J)[:, :self.ndim])
         self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
@@ -153,7 +153,7 @@ class EquilibriumSystem(AlgebraicSystem):
 
     def solution(self, x, tangent):
         sol = super().solution(x, tangent)
-        if self.settings.IPS == 1 and len(sol.par) >= 11:
+        if self.settings.IPS in (1, 11) and len(sol.par) >= 11:
             cached = getattr(self, "_last_spectrum", None)
             if cached is not None and cached[0] == x.tolist():
                 lam = cached[1]
@@ -166,7 +166,7 @@ class EquilibriumSystem(AlgebraicSystem):
 
     def info(self, x, code) -> dict:
         """At an HB: the frequency and the first Lyapunov coefficient (d-file, API)."""
-        if code != Code.HB or self.settings.IPS != 1:
+        if code != Code.HB or self.settings.IPS not in (1, 11):
             return {}
         p = self._p(x)
         A = self.problem.dfdu(x[:-1], p)

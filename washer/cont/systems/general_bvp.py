@@ -209,11 +209,22 @@ class BoundaryValueProblem(CollocationBVP):
         return self.problem.icnd_many(U, self.U_old, self.udot_old, self.up_old, par,
                                       self.nint)
 
+    def gauss_f(self, ug, par) -> np.ndarray:
+        """The right-hand side at the collocation points ug (NTST NCOL, NDIM), row-major
+        by interval: the problem's f (a system with more terms, the implicit Euler step
+        of a parabolic PDE's evolution, adds them)."""
+        return self.field.f(ug, par)
+
+    def gauss_fu_fp(self, ug, par):
+        """(f_u (NTST NCOL, NDIM, NDIM), [f_PAR(i) (NTST NCOL, NDIM) for i in x's
+        parameter order]) at the collocation points: `gauss_f`'s derivatives."""
+        return self.field.fu(ug, par), [self.field.fp(ug, par, i) for i in self._order]
+
     # ------------------------------------------------------------------ contract
     def residual(self, x):
         U, par = self.unpack(x)
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
-        fg = self.field.f(self.at_gauss(U).reshape(-1, n), par).reshape(N, m, n)
+        fg = self.gauss_f(self.at_gauss(U).reshape(-1, n), par).reshape(N, m, n)
         ints = self.w_node @ self._ic_nodes(U, par) if self.nint else np.zeros(0)
         return self.coll.residual_general(U, fg, ints, bc=self._bc(U, par))
 
@@ -221,8 +232,9 @@ class BoundaryValueProblem(CollocationBVP):
         U, par = self.unpack(x)
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         ug = self.at_gauss(U).reshape(-1, n)
-        blocks = self.coll.local_blocks(1.0, self.field.fu(ug, par).reshape(N, m, n, n))
-        dF = np.array([self.field.fp(ug, par, i).reshape(N, m, n) for i in self._order])
+        fu, fp = self.gauss_fu_fp(ug, par)
+        blocks = self.coll.local_blocks(1.0, fu.reshape(N, m, n, n))
+        dF = np.array([d.reshape(N, m, n) for d in fp])
         if self.nbc:
             Jb = self._bc_jacobian(U, par)                  # (nbc, 2n + nfpr)
             bc_jac = (Jb[:, :n], Jb[:, n:2 * n], Jb[:, 2 * n:])

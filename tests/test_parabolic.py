@@ -1,0 +1,199 @@
+"""Parabolic PDEs u_t = D u_xx + f(u, p) (AUTO's IPS = 11, 12, 14, 16, 17) against closed
+forms worked out with sympy: the Hopf point of the uniform states in the wave speed, the
+wave trains of a conservative travelling-wave equation, the branch points of stationary
+states on an interval, and implicit Euler steps of a linear heat equation. AUTO-07p's own
+demos (wav, pd1, pd2, bru) are compared with AUTO's b-files in test_auto_demo_folders."""
+import math
+
+import pytest
+import sympy as sp
+
+from washer.run import run
+
+LOGISTIC = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[0] * u[0] * (1.0 - u[0])])
+def stpnt(u, par, t=0.0):
+    par[0] = 2.0          # p
+    par[9] = 1.0          # the wave speed c = PAR(10)
+    par[14] = 0.5         # D = PAR(15)
+    u[0] = 0.0
+'''
+
+
+def _fnws_jacobian():
+    """FNWS's Jacobian at a uniform state (u*, 0) of u' = v, v' = -(c v + f(u)) / D,
+    with a = f'(u*)."""
+    a, c, D = sp.symbols("a c D", real=True)
+    return sp.Matrix([[0, 1], [-a / D, -c / D]]), (a, c, D)
+
+
+def test_uniform_states_hopf_in_the_wave_speed(tmp_path):
+    """IPS = 11, continued in the speed c = PAR(10) at the uniform state u = 0 of
+    f = p u (1 - u): the eigenvalues of FNWS's Jacobian are a complex pair with real part
+    -c / 2D for c^2 < 4 D p (sympy), so the HB is at c = 0 with PAR(11) = 2 pi sqrt(D / p);
+    PT's sign and the b-file's NDIM are those of the 2-component system."""
+    J, (a, c, D) = _fnws_jacobian()
+    lam = sp.symbols("lam")
+    pair = sp.solve((J - lam * sp.eye(2)).det(), lam)
+    re_part = sp.simplify((pair[0] + pair[1]) / 2)       # the pair's real part
+    assert sp.simplify(re_part + c / (2 * D)) == 0
+    assert sp.solve(re_part, c) == [0]
+    values = {a: 2, D: sp.Rational(1, 2)}
+    omega = sp.sqrt(a / D).subs(values)
+    assert sp.simplify(pair[0].subs(values).subs(c, 0) ** 2 + omega ** 2) == 0
+    period = float(2 * sp.pi / omega)
+
+    (tmp_path / "lg.py").write_text(LOGISTIC)
+    (tmp_path / "c.lg").write_text("NDIM=1, IPS=11, ICP=[10], ILP=0, ISP=1, NMX=60, DS=-0.05, "
+                                   "DSMAX=0.05, UZSTOP={10: -1.0}\n")
+    r = run(tmp_path / "c.lg", e="lg", sv="lg", verbose=False)
+    assert r.status == "ok"
+    hb = [s for s in r.specials if s.ty == "HB"]
+    assert len(hb) == 1
+    # located within AUTO's location tolerance EPSS (1 + sqrt(DS DSMAX)) in arclength,
+    # in which PAR(10) has weight 1
+    assert hb[0].par[9] == pytest.approx(0.0, abs=2e-5)
+    # the period of the pair at the located point: 2 pi / Im lam, Im lam = omega to O(c^2)
+    assert hb[0].par[10] == pytest.approx(period, rel=1e-8)
+    header = (tmp_path / "b.lg").read_text().splitlines()
+    assert any("NDIM=   2   IPS =  11" in ln for ln in header)
+    assert any(ln.strip() == "0   NDIM=   1" for ln in header)
+
+
+def test_wave_trains_of_a_conservative_equation(tmp_path):
+    """IPS = 12 from that HB, ICP = [10, 11] (speed and wave length free): with c = 0 the
+    travelling-wave equation D u'' + f(u) = 0 conserves E = D u'^2 / 2 + F(u); for any c
+    dE/dz = -c u'^2, so a periodic wave has c int u'^2 = 0: every wave train has c = 0
+    (to the collocation's accuracy), and near the HB its period tends to 2 pi sqrt(D/p)."""
+    z, c, D = sp.symbols("z c D", real=True)
+    u = sp.Function("u")
+    F = sp.integrate(2 * sp.Symbol("s") * (1 - sp.Symbol("s")), (sp.Symbol("s"), 0, u(z)))
+    E = D * u(z).diff(z) ** 2 / 2 + F
+    # along solutions of D u'' = -c u' - f(u): dE/dz = -c u'^2
+    dE = E.diff(z).subs(u(z).diff(z, 2), (-c * u(z).diff(z) - 2 * u(z) * (1 - u(z))) / D)
+    assert sp.simplify(dE + c * u(z).diff(z) ** 2) == 0
+
+    (tmp_path / "lg.py").write_text(LOGISTIC)
+    (tmp_path / "c.lg").write_text("NDIM=1, IPS=11, ICP=[10], ILP=0, ISP=1, NMX=60, DS=-0.05, "
+                                   "DSMAX=0.05, UZSTOP={10: -1.0}\n")
+    assert run(tmp_path / "c.lg", e="lg", sv="lg", verbose=False).status == "ok"
+    (tmp_path / "c.wt").write_text("NDIM=1, IPS=12, IRS='HB1', ICP=[10, 11], ILP=0, ISP=0, "
+                                   "NMX=25, DS=0.02, DSMAX=0.05, NTST=30, NCOL=4\n")
+    r = run(tmp_path / "c.wt", e="lg", s="lg", sv="wt", verbose=False)
+    assert r.status == "ok"
+    rows = r.rows
+    assert len(rows) == 25
+    # c = 0 on every wave train: collocation at NTST = 30, NCOL = 4 solves the energy
+    # identity to ~1e-10 of the orbit's size; Newton stops at EPSU = 1e-7 relative.
+    assert max(abs(row.par[9]) for row in rows) < 1e-6
+    amp = [row.values[1] for row in rows]               # MAX U(1) grows from 0
+    assert amp[-1] > amp[1] > 0
+    assert rows[0].par[10] == pytest.approx(2 * math.pi * math.sqrt(0.5 / 2.0), rel=1e-6)
+    # the period grows with the amplitude (softening: F has a cubic term), never below
+    # the linear period
+    assert all(row.par[10] >= rows[0].par[10] * (1 - 1e-9) for row in rows)
+
+
+CHAFEE = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[0] * u[0] - u[0] ** 3])
+def stpnt(u, par, t=0.0):
+    par[0] = 0.0
+    par[10] = np.pi       # L = PAR(11)
+    par[14] = 1.0         # D = PAR(15)
+    u[:] = 0.0
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[0]])
+'''
+
+
+def test_stationary_states_branch_points(tmp_path):
+    """IPS = 17: u_t = D u_xx + p u - u^3 on [0, L] with u(0) = u(L) = 0. Along u = 0 the
+    linearisation D X'' + p X = 0 has a solution with X(0) = X(L) = 0 where
+    sin(sqrt(p / D) L) = 0 (sympy): p = D (k pi / L)^2, 1 and 4 with D = 1, L = pi, where
+    the stationary states branch (BP)."""
+    p, D, L, x = sp.symbols("p D L x", positive=True)
+    w = sp.sqrt(p / D)
+    basis = [sp.sin(w * x), sp.cos(w * x)]
+    assert all(sp.simplify(D * b.diff(x, 2) + p * b) == 0 for b in basis)
+    # X = A sin + B cos with X(0) = X(L) = 0 has A, B != 0 where the matrix is singular
+    M = sp.Matrix([[b.subs(x, 0) for b in basis], [b.subs(x, L) for b in basis]])
+    assert sp.simplify(M.det() + sp.sin(w * L)) == 0
+    k = sp.symbols("k", positive=True, integer=True)
+    p_k = sp.solve(sp.Eq(w * L, k * sp.pi), p)[0]          # sin(w L) = 0: w L = k pi
+    exact = [float(p_k.subs({D: 1, L: sp.pi, k: kk})) for kk in (1, 2)]
+    assert exact == [1.0, 4.0]
+
+    (tmp_path / "ci.py").write_text(CHAFEE)
+    (tmp_path / "c.ci").write_text("NDIM=1, IPS=17, ICP=[1], ILP=1, ISP=2, NTST=20, NCOL=4, "
+                                   "NMX=200, DS=0.05, DSMAX=0.1, UZSTOP={1: 5.0}\n")
+    r = run(tmp_path / "c.ci", e="ci", sv="ci", verbose=False)
+    assert r.status == "ok"
+    bps = [s.par[0] for s in r.specials if s.ty == "BP"]
+    # within the location tolerance EPSS (1 + sqrt(DS DSMAX)) = 1.07e-5 in arclength
+    # (PAR(1) has weight 1; the trivial branch moves in PAR(1) alone); the collocation's
+    # eigenvalue error at NTST = 20, NCOL = 4 is far below it
+    assert bps == pytest.approx(exact, abs=2.2e-5)
+    header = (tmp_path / "b.ci").read_text()
+    assert "NDIM=   2   IPS =  17" in header and "NBC =   2" in header
+
+
+HEAT = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[0] * u[0]])
+def stpnt(u, par, t=0.0):
+    par[0] = 0.5          # a
+    par[10] = np.pi       # L
+    par[14] = 1.0         # D
+    u[0] = np.sin(np.pi * t)
+    u[1] = np.pi * np.cos(np.pi * t) / par[10]     # u_x = u_z / L
+def bcnd(u0, u1, par):
+    return np.array([u0[0], u1[0]])
+'''
+
+
+@pytest.mark.parametrize("ips", [16, 14])
+def test_time_evolution_is_implicit_euler(tmp_path, ips):
+    """IPS = 16 (Dirichlet, the user's BCND) on u_t = D u_xx + a u, L = pi, from
+    u = sin(x): the mode sin(x) is an eigenfunction with lambda = a - D (pi / L)^2 =
+    -1/2 (sympy), so each implicit Euler step of dt multiplies it by 1 / (1 - lambda dt):
+    checked on every written step (the L2 norm of u is its amplitude / sqrt 2). IPS = 14
+    (periodic boundary conditions) from sin(x) on [0, 2 pi] (L = 2 pi): the same mode
+    with lambda = a - D = -1/2."""
+    a, D, x = sp.symbols("a D x")
+    mode = sp.sin(x)
+    lam = sp.simplify((D * mode.diff(x, 2) + a * mode) / mode)
+    lam = float(lam.subs({a: sp.Rational(1, 2), D: 1}))
+    assert lam == -0.5
+
+    src = HEAT if ips == 16 else HEAT.replace("par[10] = np.pi", "par[10] = 2 * np.pi") \
+        .replace("np.sin(np.pi * t)", "np.sin(2 * np.pi * t)") \
+        .replace("np.pi * np.cos(np.pi * t) / par[10]", "2 * np.pi * np.cos(2 * np.pi * t) / par[10]")
+    (tmp_path / "heat.py").write_text(src)
+    (tmp_path / "c.heat").write_text(f"NDIM=1, IPS={ips}, ICP=[14], NTST=20, NCOL=4, IAD=0, NMX=200, "
+                                     "DS=0.01, DSMIN=1e-3, DSMAX=0.1, UZSTOP={14: 2.0}, "
+                                     "EPSL=1e-8, EPSU=1e-8\n")
+    r = run(tmp_path / "c.heat", e="heat", sv="heat", verbose=False)
+    assert r.status == "ok"
+    rows = r.rows
+    assert rows[-1].par[13] == pytest.approx(2.0, abs=1e-9)
+    # the L2 norm by the collocation's node quadrature (AUTO's weights): 2e-16 here
+    assert rows[0].values[1] == pytest.approx(1 / math.sqrt(2), rel=1e-12)
+    for prev, cur in zip(rows, rows[1:]):
+        dt = cur.par[13] - prev.par[13]
+        assert 0 < dt <= 0.1 * (1 + 1e-6)
+        # On a fixed mesh (IAD = 0) the step is the collocation's implicit Euler step of
+        # the same discretised operator: exact but for Newton's last correction (EPSU =
+        # 1e-8 on a linear problem whose difference Jacobian is exact to ~1e-8: 1e-16
+        # left) and rounding. (With mesh adaptation the previous profile is interpolated
+        # onto the new mesh, AUTO's ADAPT: an error of order h^5 ~ 1e-8 on such a step.)
+        # The first step starts from sin itself at the nodes, not the discrete operator's
+        # eigenvector: sin's collocation error (3e-12 relative on 20 intervals) enters
+        # there once; 1e-10 bounds both.
+        assert cur.values[1] * (1 - lam * dt) == pytest.approx(prev.values[1], rel=1e-10)
+    header = (tmp_path / "b.heat").read_text()
+    assert "TIME" in header and "IPS =  %2d" % ips in header
