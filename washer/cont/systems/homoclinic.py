@@ -229,7 +229,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
         s2 = s.with_(NBC=nbc, NINT=1, NPAR=npar)
         self.run_settings = s2
         super().__init__(StartData(self._extended(user, ndm, nbc), s2, data.u, par, rec,
-                                   data.kind, data.unames))
+                                   data.kind, data.unames, data.data))
         self.ndm = ndm
 
     # ------------------------------------------------------------------ the equations
@@ -278,6 +278,8 @@ class HomoclinicOrbits(BoundaryValueProblem):
         """u(0) of the start (for PVLS's equilibrium with IEQUIB = 0)."""
         if rec is not None and np.ndim(rec.U) == 2:
             return np.asarray(rec.U, float)[0, :self.ndm]
+        if rec is None and getattr(data, "data", None) is not None:
+            return np.asarray(data.data[1], float)[0, :self.ndm]
         return np.asarray(data.u, float)[:self.ndm]
 
     # ------------------------------------------------------------------ starts
