@@ -154,7 +154,8 @@ def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
 #: PAR(2) = 0 the equilibrium's stable pair crosses the imaginary axis (a Hopf point: the
 #: truncated problem is ill-conditioned there), and UZ6-UZ8 differ from AUTO's by 5e-5 in
 #: PAR(1), the size of the discretisation error there (NTST = 70 instead of 35 moves ours by
-#: 4e-5); after UZ8 our branch turns back where AUTO's goes on to its EP.
+#: 4e-5); after UZ8 our branch turns back where AUTO's goes on to its EP (the location's
+#: first trial, 2e-4 past the last point, oriented by a secant that Newton's error outweighs).
 CIR_DIFFER = {("b.2", "UZ", 6), ("b.2", "UZ", 7), ("b.2", "UZ", 8)}
 
 
