@@ -171,3 +171,34 @@ def test_cir_runs_match_auto_away_from_the_hopf_point(tmp_path, monkeypatch):
         assert a, ref
         unmatched |= {(ref.name, p.ty, p.lab) for i, p in enumerate(a) if i not in matched}
     assert unmatched == CIR_DIFFER
+
+
+def test_start_from_a_periodic_orbit_shifted_to_the_equilibrium():
+    # ISTART = 5 from a record of another problem type is ISTART = 4 (PREHO): a long
+    # periodic orbit, here the exact homoclinic orbit stored as one that starts at its
+    # peak (the equilibrium in the middle of [0, 1]), is moved in time to start at its
+    # mesh point nearest the equilibrium, taken (IEQUIB = 1) as its node of least |f|.
+    from washer.cont import collocation as col
+    from washer.cont.record import Record
+    xi, H = _exact_orbit()
+    mesh = col.Mesh.uniform(40, 4)
+    t = mesh.node_times()
+    s = np.mod(t * T + T / 2, T) - T / 2               # the peak at t = 0 and t = 1
+    h = 1e-6
+    U = np.c_[C + xi(s, 1.0), (xi(s + h, 1.0) - xi(s - h, 1.0)) / (2 * h)]
+    par = np.zeros(36)
+    par[[0, 2, 10]] = 1.0, C, T
+    rec = Record(br=1, pt=10, code=-4, lab=1, nfpr=2, isw=1, ndim_user=2, ips=2, u=U,
+                 par=par, icp=[11, 1], t=t, ntst=40, ncol=4)
+    c = Constants(dict(NDIM=2, IPS=9, IRS=1, IEQUIB=1, ICP=[1, 2], NTST=40, NCOL=4, JAC=-1,
+                       ISP=0, ILP=0, DS=0.05, DSMAX=0.2, NMX=4, NPR=1))
+    br = runner.run(c, _problem(xi), restart=[rec])
+    assert br.status == "ok" and len(br.specials) >= 4
+    for r in br.specials[1:]:
+        par, U = np.asarray(r.par), np.asarray(r.U)
+        x0 = par[11:13]
+        # as in the family above: the discretisation's error bounds mu, x0 and H
+        assert abs(par[1]) < 1e-6 and np.max(np.abs(x0 - [C, 0.0])) < 1e-6
+        assert np.max(np.abs(H(U[:, 0] - x0[0], U[:, 1] - x0[1], par[0]))) < 1e-4
+        # both ends at the equilibrium (the orbit's tails, e^(-T/2) of its size)
+        assert np.max(np.abs(U[[0, -1]] - x0)) < 1e-6
