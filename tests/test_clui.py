@@ -151,14 +151,20 @@ def test_a_run_not_done_says_why_in_its_d_file_and_the_script_goes_on(tmp_path, 
     monkeypatch.chdir(tmp_path)
     for f in ("ab.f90", "c.ab.1"):
         shutil.copy(DEMOS / "ab" / f, tmp_path)
-    Path("z.auto").write_text("r = run(e='ab', c='ab.1', IPS=7, sv='hom')\n"
+    Path("z.auto").write_text("r = run(e='ab', c='ab.1', NMX=5)\n"
+                              "r = run(e='ab', c='ab.1', IPS=7, sv='hom')\n"
                               "r = run(e='ab', c='ab.1', IPS=7)\n"
+                              "save(r, 'kept')\n"
                               "print 'after'\n")
     clui._runner.refused.clear()
     run_script("z.auto")
     for d in ("d.hom", "fort.9"):
         assert "run not done" in Path(d).read_text() and "IPS = 7" in Path(d).read_text()
     assert not Path("b.hom").exists() and len(clui._runner.refused) == 2
+    # fort.7/fort.8 are the refused run's (none), not the first run's beside its fort.9;
+    # saving the refused run's result writes no file
+    assert not Path("fort.7").exists() and not Path("fort.8").exists()
+    assert not list(tmp_path.glob("*.kept")) and not list(tmp_path.glob("*kept*"))
 
 
 def test_cn_reads_a_constants_file(tmp_path, monkeypatch):

@@ -244,9 +244,14 @@ def _execute(sol: Solution) -> Diagram:
             # commands that need its results fail with their own message).
             print(f"error: {exc}", file=sys.stderr, flush=True)
             _runner.refused.append(str(exc))
-            # The run's d-file (AUTO's diagnostics) says why there is no output.
+            # The run's d-file (AUTO's diagnostics) says why there is no output; an
+            # earlier run's fort.7/fort.8 are not left beside it as this run's (AUTO's
+            # every run starts them afresh).
             Path(f"d.{sv}" if sv else FORT[2]).write_text(
                 f"   0     0 NOTE:run not done: {exc}\n")
+            if not sv:
+                for f in FORT[:2]:
+                    Path(f).unlink(missing_ok=True)
             bd = Diagram()
             bd.status = f"refused: {exc}"
             return bd
@@ -350,6 +355,10 @@ def save(name1, name2=None):
     if name2 is not None:
         parsed, name1 = name1, name2
     paths = _names(name1)
+    if isinstance(parsed, Diagram) and str(getattr(parsed, "status", "")).startswith("refused"):
+        # the result of a run the engine declined holds nothing: no files, as run(sv=)
+        print(f"Nothing to save to {paths[0]}, {paths[1]}: {parsed.status}")
+        return
     for p in paths:
         if os.path.exists(p):
             shutil.copy(p, p + "~")
