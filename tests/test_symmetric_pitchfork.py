@@ -91,8 +91,10 @@ def test_the_bifurcating_branch_turns_at_the_other_pitchfork(enz):
 @pytest.mark.xfail(strict=True, reason="with AUTO's step sequence (the secant predictor) "
                    "branch 2 ends at NMX = 250 where AUTO's does, before the first pitchfork; "
                    "run on (NMX = 400) a step lands 2.4e-5 from the crossing and fold and "
-                   "branch point are labelled on consecutive points (BP 370, LP 371; AUTO's "
-                   "LP, BP), as in tests/test_pitchfork_at_fold.py's NOT_YET (1.0, 0.13)")
+                   "branch point are labelled on consecutive points (BP 370, LP 371), as "
+                   "AUTO-07p's own run of enz with NMX = 400 labels them (LP at PT 386, BP at "
+                   "PT 387, PAR(1) 34.2228865 and 34.2228865) and as in "
+                   "tests/test_pitchfork_at_fold.py's NOT_YET (1.0, 0.13)")
 def test_the_bifurcating_branch_labels_the_first_pitchfork_once(enz):
     """Branch 2 runs on back to the pitchfork 34.22289, where its fold test and its
     branch-point test vanish at one point (its parameter is even in the asymmetry). The
