@@ -27,9 +27,7 @@ PERTURB = 1 + HMACH
 
 
 #: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
-UNSUPPORTED_IPS = {
-    7: "boundary value problems with Floquet multipliers",
-}
+UNSUPPORTED_IPS: dict[int, str] = {}
 
 HUGE = 1.7976e308
 

@@ -79,7 +79,7 @@ def restart_record(c, problem, records, records_source: str = "the restart file"
     # A general BVP may restart from a solution of fewer components (AUTO's READBV
     # fills the others with 0: pcl's connecting orbits start from a periodic orbit).
     ndim = getattr(problem, "n_user", problem.ndim)      # a parabolic PDE's user NDIM
-    widen = c["IPS"] == 4 and np.ndim(rec.u) == 2 and rec.ndim_user < ndim
+    widen = c["IPS"] in (4, 7) and np.ndim(rec.u) == 2 and rec.ndim_user < ndim
     if rec.ndim_user != ndim and not widen:
         raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="
                          f"{rec.ndim_user}, but these equations have NDIM={ndim}")
@@ -133,9 +133,9 @@ def start_kind(rec) -> str:
     base, curve = split_code(rec.code)
     if curve in (1, 2, 3) and np.ndim(rec.u) == 1:
         return {1: "BP-curve", 2: "LP-curve", 3: "HB-curve"}[curve]
-    if curve == 5 and rec.ips == 4:
+    if curve == 5 and rec.ips in (4, 7):
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
-    if curve == 6 and rec.ips == 4:
+    if curve == 6 and rec.ips in (4, 7):
         return "BP-curve"            # a point of the branch-point locus of a BVP
     if curve in (5, 6, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
         # a point of a locus of folds, branch points, period doublings or tori of cycles
@@ -178,7 +178,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # its Jacobian (STDRBV's orientation): where the null space is one-dimensional that is
     # the branch itself.
     # Periodic orbits restarted from a stored orbit run by CNRLBV as well.
-    stored_orbit = rec is not None and (s.IPS == 4 or (s.IPS == 2 and np.ndim(rec.u) == 2))
+    stored_orbit = rec is not None and (s.IPS in (4, 7) or (s.IPS == 2 and np.ndim(rec.u) == 2))
     # Algebraic problems restarted at any other label: CNRLAE's STPRAE with IPERP = 1
     # (washer.cont.systems.equilibrium). A label of a fold, Hopf or branch-point curve
     # too: with |ISW| < 2 FINDLB sets ITPST = 0, so AUTO continues the equilibria in
