@@ -26,8 +26,8 @@ HMACH = 1e-7
 PERTURB = 1 + HMACH
 
 
-#: Problem types AUTO-07p has and this engine does not do yet, with AUTO's name for them.
-UNSUPPORTED_IPS: dict[int, str] = {}
+#: AUTO-07p's problem types (main.f90: AUTOI), every one of which runs here.
+PROBLEM_TYPES = (-2, -1, 0, 1, 2, 4, 5, 7, 9, 11, 12, 14, 15, 16, 17)
 
 HUGE = 1.7976e308
 
@@ -221,9 +221,10 @@ class Settings:
                 f"{c.given.get('ICP', src)}: ICP = {c['ICP']}: IPS = 15 needs one negative "
                 f"entry -(20 + k) (the optimality condition of PAR(k)) fewer than positive "
                 f"entries: {len(icp)} positive, so {len(icp) - 1} negative, got {len(opt_icp)}")
-        if ips in UNSUPPORTED_IPS:
-            raise SettingsError(f"{src}: IPS = {ips} ({UNSUPPORTED_IPS[ips]}) is not supported "
-                                "yet")
+        if ips not in PROBLEM_TYPES:
+            raise SettingsError(f"{getattr(c, 'given', {}).get('IPS', src)}: IPS = {ips} is not a problem type "
+                                f"of AUTO-07p: expected one of {', '.join(map(str, PROBLEM_TYPES))}",
+                                keys=("IPS",))
         npar = c["NPAR"]
         if ips in (1, -1, 2) or ips >= 7:
             npar = max(npar, 11)             # PAR(11) holds the period (INIT2)

@@ -11,6 +11,8 @@ the trivial one; 'Multiplier inaccurate' when it is not within 5e-2 of 1) and gi
 b-file's PT the sign of stability (negative when all NDIM count as stable), with the
 tests of cycles where ISP asks for them (PD and TR: washer.cont.floquet).
 
+AUTO-07p runs it as its periodic orbits (AUTOPS: FUNI, BCNI, ICNI with STPNPS and
+FNCSPS, the tests of cycles; a restart moved onto another NTST by the periodic ADAPT2).
 Its fold and branch-point loci (ISW = 2, 3) are IPS = 4's (AUTO's AUTOBVP continues
 both problem types by FNBL and FNBBP), registered here for IPS = 7.
 """
@@ -37,6 +39,7 @@ class BoundaryValueFloquet(BoundaryValueProblem):
     cycles)."""
 
     _suspended = False
+    restart_periodic = True          # STPNPS's ADAPT2
 
     def multipliers(self, x) -> np.ndarray:
         """The multipliers at x in AUTO's order (floquet.pencil_multipliers), from the

@@ -65,6 +65,9 @@ class BoundaryValueProblem(CollocationBVP):
     `ndm` the user's (the b-file's columns)."""
     general_bc = True
     periodic_mesh = False
+    #: ADAPT2's periodic extension when a restart's profile moves onto a mesh of another
+    #: NTST (STPNPS, IPS = 7: True; STPNBV, IPS = 4: False)
+    restart_periodic = False
 
     def __init__(self, data):
         s = data.settings
@@ -160,7 +163,8 @@ class BoundaryValueProblem(CollocationBVP):
         if ntst_r == s.NTST and ncol_r == s.NCOL:
             mesh, U, ud = mesh_r, U_r.copy(), ud_r
         else:
-            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST, periodic=False), s.NCOL)
+            mesh = col.Mesh(col.new_mesh(mesh_r, U_r, s.NTST, periodic=self.restart_periodic),
+                            s.NCOL)
             U = col.interpolate(mesh_r, U_r, mesh.tm, s.NCOL)
             ud = None if ud_r is None else col.interpolate(mesh_r, ud_r, mesh.tm, s.NCOL)
         self._set_mesh(mesh)
