@@ -202,3 +202,56 @@ def test_start_from_a_periodic_orbit_shifted_to_the_equilibrium():
         assert np.max(np.abs(H(U[:, 0] - x0[0], U[:, 1] - x0[1], par[0]))) < 1e-4
         # both ends at the equilibrium (the orbit's tails, e^(-T/2) of its size)
         assert np.max(np.abs(U[[0, -1]] - x0)) < 1e-6
+
+
+EXACT_F90 = """
+      SUBROUTINE FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)
+      IMPLICIT DOUBLE PRECISION (A-H,O-Z)
+      DIMENSION U(NDIM),PAR(*),F(NDIM),DFDU(NDIM,*),DFDP(NDIM,*)
+      X = U(1) - PAR(3)
+      F(1) = U(2)
+      F(2) = PAR(1)*X - X*X + PAR(2)*U(2)
+      END
+      SUBROUTINE STPNT(NDIM,U,PAR,T)
+      IMPLICIT DOUBLE PRECISION (A-H,O-Z)
+      DIMENSION U(NDIM),PAR(*)
+      COMMON /BLHOM/ ITWIST,ISTART,IEQUIB,NFIXED,NPSI,NUNSTAB,NSTAB,NREV
+      PAR(1) = 1.0D0
+      PAR(2) = 0.0D0
+      PAR(3) = 0.5D0
+      PAR(11) = 40.0D0
+      IF (IEQUIB.NE.0) THEN
+        PAR(12) = 0.5D0
+        PAR(13) = 0.0D0
+      ELSE
+        PAR(12) = 9.0D0
+      ENDIF
+      S = (T - 0.5D0) * PAR(11)
+      U(1) = PAR(3) + 1.5D0 / COSH(S / 2) ** 2
+      U(2) = -1.5D0 * TANH(S / 2) / COSH(S / 2) ** 2
+      END
+      SUBROUTINE PVLS
+      END
+      SUBROUTINE BCND
+      END
+      SUBROUTINE ICND
+      END
+      SUBROUTINE FOPT
+      END
+"""
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None or shutil.which("gcc") is None,
+                    reason="gcc and gfortran are needed (Debian: gcc gfortran)")
+def test_a_fortran_stpnt_reads_homconts_common_block(tmp_path):
+    # AUTO's user files read HomCont's constants from COMMON /BLHOM/ (kpr's STPNT sets the
+    # equilibrium only for IEQUIB /= 0): this one writes PAR(12) = 0.5 there, else 9.
+    (tmp_path / "hx.f90").write_text(EXACT_F90)
+    prob = load_user_problem("hx", tmp_path, 2)
+    c = Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=40, NCOL=4, JAC=0, ISP=0,
+                       ILP=0, DS=0.05, DSMAX=0.2, NMX=3, NPR=1))
+    br = runner.run(c, prob)
+    assert br.status == "ok"
+    # the first row is the start as STPNT left it; the later ones the corrected family
+    assert br.rows[0].par[11] == 0.5
+    assert all(abs(r.par[1]) < 1e-6 and abs(r.par[11] - C) < 1e-6 for r in br.rows[1:])

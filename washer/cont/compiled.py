@@ -53,6 +53,7 @@ void washer_jac_batch(int k, int ndim, int npar, const double *us, const double 
                       double *dfdps, double *scratch);
 void washer_stpnt(int ndim, double t, double *u, double *par);
 void washer_pvls(int ndim, const double *u, double *par);
+void washer_set_homcont(const int *values);
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
                  const double *u1, int ijac, double *fb, double *dbc);
 void washer_icnd_batch(int k, int ndim, const double *par, const int *icp, int nint,
@@ -381,6 +382,12 @@ class CompiledProblem(Problem):
     def fresh(self) -> None:
         """A new run: the user file's saved state starts afresh (`CompiledUser.reload`)."""
         self.user.reload()
+
+    def set_homcont(self, values) -> None:
+        """HomCont's constants into AUTO's COMMON /BLHOM/ of the user file: (ITWIST,
+        ISTART, IEQUIB, NFIXED, NPSI, NUNSTAB, NSTAB, NREV)."""
+        v = np.ascontiguousarray(values, dtype=np.int32)
+        self.user.lib.washer_set_homcont(_ffi.from_buffer("int[]", v))
 
     # BCND and ICND need NBC / NINT, which the Problem passes to its methods: the
     # methods below call the compiled routines; the callables above only mark them present.

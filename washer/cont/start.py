@@ -46,6 +46,11 @@ def settings_for(c, problem) -> tuple[Settings, object]:
             raise RunError(f"{c.source}: {key}={c[key]}: expected a number >= 0 "
                              "(0 = automatic)")
     problem = problem.with_jac(s.JAC)
+    if s.IPS == 9 and hasattr(problem, "set_homcont"):
+        # AUTO's INHO fills COMMON /BLHOM/ before STPNT (ISTART = 5 is 1 from STPNT)
+        problem.set_homcont([s.ITWIST, 1 if s.ISTART == 5 and c["IRS"] in (0, "0") else
+                             s.ISTART, s.IEQUIB, len(s.IFIXED), len(s.IPSI), s.NUNSTAB,
+                             s.NSTAB, 1 if s.IREV else 0])
     if s.IPS in PARABOLIC_KINDS:
         # AUTOPE: the PDE's first-order system of 2 NDIM components (u, u_x) is what
         # every problem type of a parabolic PDE continues; the user's STPNT fills them.
