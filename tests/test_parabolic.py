@@ -197,3 +197,65 @@ def test_time_evolution_is_implicit_euler(tmp_path, ips):
         assert cur.values[1] * (1 - lam * dt) == pytest.approx(prev.values[1], rel=1e-10)
     header = (tmp_path / "b.heat").read_text()
     assert "TIME" in header and "IPS =  %2d" % ips in header
+
+
+CUSP = '''
+import numpy as np
+def func(u, par):
+    return np.array([par[0] + par[1] * u[0] - u[0] ** 3])
+def stpnt(u, par, t=0.0):
+    par[0] = -2.0         # p
+    par[1] = 1.0          # q
+    par[9] = 0.3          # c
+    par[14] = 2.0         # D
+    u[0] = -1.5213797068045676     # the one real root of -2 + u - u^3
+'''
+
+
+def test_uniform_states_fold_locus(tmp_path):
+    """IPS = 11, ISW = 2 from an LP: FNWS's Jacobian at (u, 0) is singular where f_u is
+    (its determinant is f_u / D), so the folds of the uniform states of f = p + q u - u^3
+    are the cusp's: q = 3 u^2, p = -2 u^3, i.e. 27 p^2 = 4 q^3 (sympy), whatever c and D."""
+    u, p, q, c, D, lam = sp.symbols("u p q c D lam")
+    f = p + q * u - u ** 3
+    J = sp.Matrix([[0, 1], [-sp.diff(f, u) / D, -c / D]])
+    assert sp.simplify(J.det() - sp.diff(f, u) / D) == 0
+    fold = sp.solve([f, sp.diff(f, u)], [p, q], dict=True)[0]
+    assert sp.simplify(27 * fold[p] ** 2 - 4 * fold[q] ** 3) == 0
+
+    (tmp_path / "cusp.py").write_text(CUSP)
+    (tmp_path / "c.cusp").write_text("NDIM=1, IPS=11, ICP=[1], ILP=1, ISP=1, NMX=200, DS=0.02, "
+                                     "DSMAX=0.05, UZSTOP={1: 2.5}\n")
+    r = run(tmp_path / "c.cusp", e="cusp", sv="eq", verbose=False)
+    assert r.status == "ok"
+    lps = [s for s in r.specials if s.ty == "LP"]
+    assert len(lps) == 2
+    (tmp_path / "c.lp").write_text("NDIM=1, IPS=11, ICP=[1, 2], ISW=2, ILP=0, ISP=0, NMX=30, "
+                                   "DS=0.02, DSMAX=0.05, IRS='LP1'\n")
+    locus = run(tmp_path / "c.lp", e="cusp", s="eq", sv="lp", verbose=False)
+    assert locus.status == "ok" and len(locus.rows) == 30
+    for row in locus.rows:
+        pp, qq = row.par[0], row.par[1]
+        # each point solved to EPSL = EPSU = 1e-7 relative
+        assert 27 * pp ** 2 == pytest.approx(4 * qq ** 3, abs=1e-6 * (1 + 4 * abs(qq) ** 3))
+    assert "NDIM=   5   IPS =  11" in (tmp_path / "b.lp").read_text()
+
+
+def test_uniform_states_hopf_locus(tmp_path):
+    """IPS = 11, ISW = 2 from the HB in the wave speed (first test): for every p > 0 the
+    pair of FNWS at u = 0 crosses at c = 0 with frequency sqrt(p / D), so the Hopf locus
+    in (p, c) is c = 0 with PAR(11) = 2 pi sqrt(D / p)."""
+    (tmp_path / "lg.py").write_text(LOGISTIC)
+    (tmp_path / "c.lg").write_text("NDIM=1, IPS=11, ICP=[10], ILP=0, ISP=1, NMX=60, DS=-0.05, "
+                                   "DSMAX=0.05, UZSTOP={10: -1.0}\n")
+    assert run(tmp_path / "c.lg", e="lg", sv="lg", verbose=False).status == "ok"
+    (tmp_path / "c.hb").write_text("NDIM=1, IPS=11, ICP=[1, 10], ISW=2, ILP=0, ISP=0, NMX=20, "
+                                   "DS=0.05, DSMAX=0.1, IRS='HB1'\n")
+    r = run(tmp_path / "c.hb", e="lg", s="lg", sv="hb", verbose=False)
+    assert r.status == "ok" and len(r.rows) == 20
+    assert r.rows[-1].par[0] > 2.5                     # the locus moved in p
+    for row in r.rows:
+        p = row.par[0]
+        # c = 0 exactly on the locus (the Newton tolerance EPSL = 1e-7 bounds it)
+        assert abs(row.par[9]) < 1e-7
+        assert row.par[10] == pytest.approx(2 * math.pi * math.sqrt(0.5 / p), rel=1e-7)
