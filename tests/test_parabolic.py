@@ -4,6 +4,8 @@ wave trains of a conservative travelling-wave equation, the branch points of sta
 states on an interval, and implicit Euler steps of a linear heat equation. AUTO-07p's own
 demos (wav, pd1, pd2, bru) are compared with AUTO's b-files in test_auto_demo_folders."""
 import math
+import shutil
+from pathlib import Path
 
 import pytest
 import sympy as sp
@@ -259,3 +261,53 @@ def test_uniform_states_hopf_locus(tmp_path):
         # c = 0 exactly on the locus (the Newton tolerance EPSL = 1e-7 bounds it)
         assert abs(row.par[9]) < 1e-7
         assert row.par[10] == pytest.approx(2 * math.pi * math.sqrt(0.5 / p), rel=1e-7)
+
+
+WAV = Path(__file__).parent / "data" / "auto_demos" / "wav"
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
+def test_wave_train_fold_locus(tmp_path):
+    """IPS = 12, ISW = 2: the fold locus of wav's wave trains in (PAR(3), PAR(10)). Its
+    generating run ends at AUTO-07p's EP (PT 5: PAR(3) = 641.610, L2 52.4129, period
+    15.0946, to the 6 digits AUTO prints); continued to the speed c = -0.1 it passes
+    through the fold of the wave trains computed at that speed (IPS = 11 and 12 with
+    PAR(10) = -0.1, ILP = 1), an independent computation. (AUTO-07p's own restart of the
+    locus ends MX at its first points.)"""
+    for f in ("wav.f90", "c.wav"):
+        shutil.copy(WAV / f, tmp_path)
+    c = tmp_path / "c.wav"
+    trains = dict(IPS=12, IRS="HB1", ICP=[3, 11], ILP=1, ISP=0, RL1=700, DS=0.1, DSMAX=1.0,
+                  NMX=120, UZR={}, verbose=False)
+
+    def first_lp(speed, sv):
+        assert run(c, e="wav", IPS=11, PAR={10: speed}, sv=sv + "0", verbose=False).status == "ok"
+        r = run(c, e="wav", s=sv + "0", sv=sv, **trains)
+        assert r.status == "ok"
+        return next(s for s in r.specials if s.ty == "LP")
+
+    lp = first_lp(0.05, "w")
+    gen = run(c, e="wav", s="w", IRS=lp.lab, IPS=12, ISW=2, ICP=[3, 10, 11], ILP=0, NMX=20,
+              DS=0.1, DSMAX=0.5, UZR={}, sv="gen", verbose=False)
+    assert gen.status == "ok" and [s.ty for s in gen.specials] == ["EP"]
+    ep = gen.specials[0]
+    assert ep.pt == 5
+    assert ep.par[2] == pytest.approx(641.610, abs=5e-4)
+    assert ep.par[10] == pytest.approx(15.0946, abs=5e-5)
+    assert ep.values[1] == pytest.approx(52.4129, abs=5e-5)
+    assert "NDIM=   8   IPS =  12" in (tmp_path / "b.gen").read_text()
+
+    locus = run(c, e="wav", s="gen", IRS=ep.lab, IPS=12, ISW=2, ICP=[3, 10, 11], ILP=0,
+                NMX=60, DS=0.1, DSMAX=0.5, UZR={10: -0.1}, UZSTOP={10: -0.2}, sv="lp",
+                verbose=False)
+    assert locus.status == "ok"
+    at = next(s for s in locus.specials if s.ty == "UZ")
+    # located within EPSS (1 + sqrt(DS DSMAX)) = 1.7e-4 in the arclength (PAR(10) weight 1)
+    assert at.par[9] == pytest.approx(-0.1, abs=1.7e-4)
+    fold = first_lp(-0.1, "v")
+    # both located to EPSS (1 + sqrt(DS DSMAX)) = 1.2e-4 (1.7e-4 for the locus) in the
+    # arclength, where PAR(3) has weight 1: 3e-4 bounds their difference; the period
+    # has weight 0 (THL) and is compared through its change along the family
+    # (|dT/dPAR(3)| ~ 10 near the fold: 3e-3)
+    assert at.par[2] == pytest.approx(fold.par[2], abs=3e-4)
+    assert at.par[10] == pytest.approx(fold.par[10], abs=3e-3)

@@ -142,7 +142,7 @@ def start_kind(rec) -> str:
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
     if curve == 6 and rec.ips in (4, 7):
         return "BP-curve"            # a point of the branch-point locus of a BVP
-    if curve in (5, 6, 7, 8) and rec.ips == 2 and np.ndim(rec.u) == 2:
+    if curve in (5, 6, 7, 8) and rec.ips in (2, 12) and np.ndim(rec.u) == 2:
         # a point of a locus of folds, branch points, period doublings or tori of cycles
         return {5: "LPC-curve", 6: "BPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
     return type_name(base)
@@ -262,7 +262,7 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         return c["IBR"]
     if rec is None or s.ISW < 0:
         return mbr + 1
-    if s.IPS == 2 and s.ISW in (2, 3) and kind in ("LP", "PD", "TR", "BP"):
+    if s.IPS in (2, 12) and s.ISW in (2, 3) and kind in ("LP", "PD", "TR", "BP"):
         # A locus of cycles started at its special point: AUTO's INITPS makes that run
         # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1

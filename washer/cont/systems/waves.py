@@ -12,7 +12,8 @@ A wave u(x - c t) of speed c = PAR(10) solves the 2n-component system of FNWS
   (fold.FoldSystem, hopf.HopfSystem). A Hopf point is where wave trains are born.
 * IPS = 12: wave trains, the periodic orbits of that system (periodic.PeriodicOrbits:
   started at an HB of IPS = 11 or from a stored wave train); PAR(11) is the wave length
-  (free with ICP(2) = 11, else fixed and ICP(2), e.g. the speed PAR(10), is free).
+  (free with ICP(2) = 11, else fixed and ICP(2), e.g. the speed PAR(10), is free), and
+  with ISW = 2 their fold locus (cycle_fold.CycleFoldLocus).
 
 Each system runs under AUTO's redefinition NDIM = 2n (AUTOPE): the b-file header states
 it, with the user's NDIM below it, and the s-records the user's NDIM with 2n stored
@@ -25,6 +26,7 @@ from dataclasses import replace
 import numpy as np
 
 from washer.cont.system import StartData, register
+from washer.cont.systems.cycle_fold import CycleFoldLocus
 from washer.cont.systems.equilibrium import EquilibriumSystem
 from washer.cont.systems.fold import FoldSystem
 from washer.cont.systems.hopf import HopfSystem
@@ -97,4 +99,15 @@ class WaveTrains(_UserNdim, PeriodicOrbits):
         self._doubled_init(PeriodicOrbits, start)
 
 
-__all__ = ["UniformSolutions", "UniformFolds", "UniformHopf", "WaveTrains", "doubled"]
+@register(12, 2, "LP")
+@register(12, 2, "LPC-curve")
+class WaveTrainFolds(_UserNdim, CycleFoldLocus):
+    """The fold locus of wave trains (IPS = 12, ISW = 2; FNWPL: the fold of cycles of
+    FNWP), with its generating run from the LP."""
+
+    def __init__(self, start: StartData):
+        self._doubled_init(CycleFoldLocus, start)
+
+
+__all__ = ["UniformSolutions", "UniformFolds", "UniformHopf", "WaveTrains", "WaveTrainFolds",
+           "doubled"]
