@@ -27,6 +27,8 @@ tests/data/auto_reference):
               foreign call per point, washer.cont.compiled_newton)
   ab_hopf_f90, ab_fold_f90, lrz_hopf_f90   the loci the same way (the compiled
               corrector of the fold and Hopf systems calling FUNC directly)
+  lrz_po35_f90, chu_po_f90   lrz_po35 and chu_po the same way (the corrector of
+              periodic orbits calling FUNC directly, washer.cont.compiled_po)
   lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
               expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
 the washer's own model (skipped with --quick), AUTO-07p running the same compiled
@@ -99,6 +101,7 @@ CASES = [
 ]
 AB_F90 = [(DATA / "ab" / "c.ab", "c.ab"), (DEMOS / "ab" / "ab.f90", "ab.f90")]
 LRZ_F90 = [(DATA / "lrz" / "c.lrz", "c.lrz"), (DEMOS / "lrz" / "lrz.f90", "lrz.f90")]
+CHU_F90 = [(REF / "periodic" / "chu" / "c.chu", "c.chu"), (DEMOS / "chu" / "chu.f90", "chu.f90")]
 CASES += [
     # the same equilibria from the Fortran user files alone (no NAME.py beside them)
     Case("ab_eq_f90", [Step("eq", "ab", "ab")], AB_F90),
@@ -109,6 +112,11 @@ CASES += [
                          Step("lp", "ab", "ab", start="eq", irs="LP1", ov=AB2)], AB_F90),
     Case("lrz_hopf_f90", [Step("eq", "lrz", "lrz", timed=False),
                           Step("hb", "lrz", "lrz", start="eq", irs="HB1", ov=LRZ2)], LRZ_F90),
+    Case("lrz_po35_f90", [Step("eq", "lrz", "lrz", timed=False),
+                          Step("po", "lrz", "lrz", start="eq", irs="HB1", ov=LRZ_PO)], LRZ_F90),
+    Case("chu_po_f90", [Step("eq", "chu", "chu", timed=False),
+                        Step("po", "chu", "chu", start="eq", irs="HB1",
+                             ov=dict(IPS=2, ICP=[1, 11]))], CHU_F90),
 ]
 SYM = [(DATA / "lrz_sym" / "lrz.py", "lrz.py"), (DATA / "lrz_sym" / "c.lrz", "c.lrz")]
 CASES += [

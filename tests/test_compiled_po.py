@@ -31,7 +31,8 @@ CHU_PO = dict(IPS=2, ICP=[1, 11], NMX=60)
 
 
 CONSTANTS = {"lrz": DATA / "lrz" / "c.lrz", "lrz_sym": DATA / "lrz_sym" / "c.lrz",
-             "chu": DATA / "auto_reference" / "periodic" / "chu" / "c.chu"}
+             "chu": DATA / "auto_reference" / "periodic" / "chu" / "c.chu",
+             "tor": DEMOS / "tor" / "c.tor"}
 
 
 def _folder(tmp_path, name, sub, user):
@@ -101,16 +102,36 @@ def test_compiled_po_with_a_sympy_problem(jac, tmp_path, monkeypatch):
     assert fast.counters.jacobians == slow.counters.jacobians
 
 
-@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is needed for lrz.f90")
-def test_compiled_po_with_a_fortran_user_file(tmp_path, monkeypatch):
-    """AUTO's lrz.f90 (FUNC compiled, JAC = 0): f through the batch bridge, called back
-    from the C++ loop; the same files as the Python loop on the same user file."""
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is needed for AUTO's "
+                    "Fortran user files")
+@pytest.mark.parametrize("name, ov, min_used", [
+    # JAC = 0: FUNC, f_u and f_p by differences
+    ("lrz", dict(LRZ_PO, NMX=15), 14),
+    # JAC = 1 (c.tor): the user's DFDU (FUNC with IJAC = 1), f_p by differences; the run
+    # passes tor's fold and BP of cycles (PT 21 and 27) with their locations
+    ("tor", dict(IPS=2, ICP=[1, 11], NMX=40), 39),
+])
+def test_compiled_po_with_a_fortran_user_file(name, ov, min_used, tmp_path, monkeypatch):
+    """AUTO's lrz.f90 and tor.f90: FUNC (and with JAC = 1 DFDU) of the compiled user file
+    called by the C++ loop through the bridge's function pointers (washer_po_func,
+    washer_po_jac), never back through Python; the same files as the Python loop on the
+    same user file, which calls them through CompiledUser.func_batch and jac_batch."""
     monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
-    (_, fd), (_, sd), used = _both(tmp_path, monkeypatch, "lrz", DEMOS / "lrz" / "lrz.f90",
-                                   dict(LRZ_PO, NMX=15))
-    assert len(used) >= 14 and all(used), used
+    called_back = []
+    real = compiled_po.PeriodicCorrector._evaluate
+
+    def spy(self, *a):
+        called_back.append(a[0])
+        return real(self, *a)
+    monkeypatch.setattr(compiled_po.PeriodicCorrector, "_evaluate", spy)
+    (fast, fd), (slow, sd), used = _both(tmp_path, monkeypatch, name,
+                                         DEMOS / name / f"{name}.f90", ov)
+    assert len(used) >= min_used and all(used), used
+    assert called_back == []
     for f in ("b.po", "s.po"):
         assert (fd / f).read_bytes() == (sd / f).read_bytes(), f
+    assert (fast.counters.residuals, fast.counters.jacobians) == \
+        (slow.counters.residuals, slow.counters.jacobians)
 
 
 def test_inner_products_round_as_numpy():

@@ -13,8 +13,8 @@
 // divergence test). f is evaluated by the call back `feval` (the user's equations: one
 // call for the Gauss points, one for all difference points of a Jacobian up to
 // one_call_max Gauss points, else one per set of parameters, as fu_fp), or by the
-// generated C of a sympy problem through its function pointers `sfunc` (f) and `sjac`
-// (exact f_u with JAC != 0), called directly.
+// generated C of a sympy problem or a compiled user file's FUNC (and DFDU) through
+// function pointers `sfunc` (f) and `sjac` (exact f_u with JAC != 0), called directly.
 // A change to any of those Python functions must be made here too
 // (tests/test_compiled_po.py holds the two to the same points).
 #include "cont.h"

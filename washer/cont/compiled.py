@@ -52,6 +52,10 @@ void washer_jac_batch(int k, int ndim, int npar, const double *us, const double 
                       int par_stride, const int *icp, int ijac, double *fs, double *dfdus,
                       double *dfdps, double *scratch);
 void washer_stpnt(int ndim, double t, double *u, double *par);
+void washer_po_bind(int ndim, int npar, const int *icp, double *scratch);
+void washer_po_func(int k, const double *us, const double *pars, int pstride, double *fs);
+void washer_po_jac(int k, const double *us, const double *pars, int pstride, double *J,
+                   double *Jp);
 void washer_pvls(int ndim, const double *u, double *par);
 void washer_set_homcont(const int *values);
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
@@ -258,6 +262,23 @@ class CompiledUser:
                 p["x_ref"], p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
                 p["iterations"], p["jac"], p["work"], self._scratch_for(npar))
         return call
+
+    def po_pointers(self, npar: int, ffi, func_kind: str, jac_kind: str):
+        """(f, f_u) for the corrector of periodic orbits (csrc/cont/po_correct.cpp):
+        washer_po_func and (JAC != 0) washer_po_jac of this file's bridge as C function
+        pointers of the types `func_kind`, `jac_kind` declared by `ffi`, bound to this
+        run's ICP and NPAR (washer_po_bind: call it again before every correction, as
+        another run of the same library may have bound its own). None where the library
+        has no such entries (a bridge built before them). f_u is NULL with JAC = 0."""
+        lib = self.lib
+        if not hasattr(lib, "washer_po_func"):
+            return None
+        lib.washer_po_bind(self.ndim, npar, self._icp_ptr,
+                           self._scratch_for(npar, extra=self.ndim))
+
+        def pointer(name, kind):
+            return ffi.cast(kind, int(_ffi.cast("uintptr_t", _ffi.addressof(lib, name))))
+        return pointer("washer_po_func", func_kind), pointer("washer_po_jac", jac_kind)
 
     def l1_binder(self, ndim, npar, arrays):
         """washer_ae_l1 (compiled_shim.c, ae_lyapunov.h) bound to the arrays x, par, A, l1,

@@ -11,17 +11,19 @@ quotients, refactorised up to NWTN iterations, chord iterations after), the same
 factorisation and solve (the compiled condensation of CollocationBVP.factor) and the same
 stopping test (AUTO's NEWTONBV: EPSU on the profile, EPSL on each parameter, the
 divergence test of Continuation.correct), written once in C++ (csrc/cont/po_correct.cpp).
-f is evaluated by the generated C of sympy problems (washer.cont.symbolic) through its
+f is evaluated by the generated C of sympy problems (washer.cont.symbolic) and by FUNC of
+compiled AUTO user files (the bridge's washer_po_func, washer.cont.compiled) through
 function pointers, called from C++ directly (and their exact f_u with JAC != 0, as the
-Python loop's Problem.dfdu_many); every other problem's f is called back from the C++
-loop through Problem.func_many (one call for the Gauss points of an iterate, one for all
-difference points of a Jacobian): compiled user files through their batch bridge,
-Python files as the Python loop calls them. What the Python loop leaves behind for the
+Python loop's Problem.dfdu_many: the generated Jacobian, the user's DFDU by the bridge's
+washer_po_jac); a Python file's f is called back from the C++ loop through
+Problem.func_many (one call for the Gauss points of an iterate, one for all difference
+points of a Jacobian) as the Python loop calls it. What the Python loop leaves behind for the
 converged point (the last Newton Jacobian, its factorisation and Floquet pair) is left
 the same way.
 
 It applies to PeriodicOrbits with difference Jacobians (no user dfdu / dfdp in use, no
-f evaluated with its Jacobians) and to sympy problems. Everything else, and every case
+f evaluated with its Jacobians), to sympy problems and to compiled user files (JAC = 0,
+1 or -1; f_p by differences, as the Python loop takes it for them). Everything else, and every case
 the compiled loop does not finish cleanly (a failing or non-finite f, a non-finite
 Jacobian or correction, a zero pivot: the Python loop then repeats the correction and
 reports or resolves it as before), is the Python loop. washer.cont.compiled_newton.compiled_corrector makes the
@@ -82,7 +84,7 @@ class PeriodicCorrector:
     #: Continuation.correct hands it the plane arclength's corrector
     plane = True
 
-    def __init__(self, system, settings, divergence: float, generated=None):
+    def __init__(self, system, settings, divergence: float, generated=None, user=None):
         self.sys, self.s, self.divergence = system, settings, divergence
         self.problem = system.problem
         self.n = system.ndim
@@ -98,6 +100,9 @@ class PeriodicCorrector:
                 self._sjac = generated.pointer("washer_sym_jac", ffi, "cont_po_sym_jac")
             self._npar_jp = max(generated.npar, 1)
             self._keep = generated      # the library stays loaded while the pointers live
+        # a compiled user file's FUNC (washer.cont.compiled.CompiledUser), its pointers
+        # bound afresh for each correction (CompiledUser.po_pointers)
+        self._user = user
         self._npar = 0
         #: (x, J) of the last converged correction when its last iteration factorised
         #: (Continuation.correct's `_newton`), else None
@@ -139,6 +144,14 @@ class PeriodicCorrector:
         coll, mesh = sysm.coll, sysm.mesh
         N, m, n = mesh.ntst, mesh.ncol, self.n
         par = np.ascontiguousarray(sysm.par, dtype=float)
+        if self._user is not None:
+            # FUNC (and DFDU) of the user file called from C++; before the file's first
+            # PVLS (CompiledUser.func_ready) the Python loop calls it
+            if not self._user.func_ready:
+                return None
+            self._sfunc, jac = self._user.po_pointers(len(par), ffi, "cont_po_sym_func",
+                                                     "cont_po_sym_jac")
+            self._sjac = jac if self.problem.has_dfdu else ffi.NULL
         self._npar = len(par)
         nx = coll.n_x
         row = np.ascontiguousarray(sysm.border(t_ref), dtype=float)
@@ -204,8 +217,9 @@ class PeriodicCorrector:
 
 def periodic_corrector(system, settings, divergence: float):
     """The compiled corrector of a PeriodicOrbits `system`, or None where the Python loop
-    runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), user
-    Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
+    runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), a Python
+    file's Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
+    from washer.cont.compiled import CompiledProblem
     from washer.cont.symbolic import SymbolicProblem
     from washer.cont.systems.periodic import PeriodicOrbits
     problem = getattr(system, "problem", None)
@@ -222,6 +236,14 @@ def periodic_corrector(system, settings, divergence: float):
         if len(system.par) < generated.npar:
             return None
         return PeriodicCorrector(system, settings, divergence, generated)
+    if type(problem) is CompiledProblem:
+        # FUNC by pointer; f_u by differences (JAC = 0) or the user's DFDU (JAC != 0),
+        # f_p by differences either way, as the Python loop (VectorField.fu_fp: the
+        # bridge gives no batched DFDP)
+        if problem.user.po_pointers(len(system.par), ffi, "cont_po_sym_func",
+                                    "cont_po_sym_jac") is None:
+            return None
+        return PeriodicCorrector(system, settings, divergence, user=problem.user)
     if not problem.differenced_jacobian:
         return None
     return PeriodicCorrector(system, settings, divergence)

@@ -298,6 +298,41 @@ void washer_jac_batch(int k, int ndim, int npar, const double *us, const double 
     }
 }
 
+/* ------------------------------------------- the periodic corrector's f and f_u */
+/* The corrector of periodic orbits (csrc/cont/po_correct.cpp) calls f and f_u through
+   function pointers of the generated C's signature (k points, one PAR for all when
+   pstride is 0), which carry no context: washer_po_bind stores the run's sizes, ICP and
+   FUNC's scratch for them before each correction. */
+static struct {
+    int ndim, npar;
+    const int *icp;
+    double *scratch;            /* ndim * (ndim + npar) + ndim doubles */
+} po = {0, 0, NULL, NULL};
+
+void washer_po_bind(int ndim, int npar, const int *icp, double *scratch)
+{
+    po.ndim = ndim; po.npar = npar; po.icp = icp; po.scratch = scratch;
+}
+
+/* f at k points (washer_func_batch with the bound context). */
+void washer_po_func(int k, const double *us, const double *pars, int pstride, double *fs)
+{
+    washer_func_batch(k, po.ndim, po.npar, us, pars, pstride, po.icp, fs, po.scratch);
+}
+
+/* The user's DFDU (IJAC = 1) at k points, row-major (k, ndim, ndim), as washer_jac_batch
+   gives it (f goes to the scratch's tail); Jp is not written (f_p is differenced). */
+void washer_po_jac(int k, const double *us, const double *pars, int pstride, double *J,
+                   double *Jp)
+{
+    const int n = po.ndim;
+    double *f = po.scratch + (size_t)n * (n + po.npar);
+    (void)Jp;
+    for (int i = 0; i < k; i++)
+        washer_jac_batch(1, n, po.npar, us + (size_t)i * n, pars + (size_t)i * pstride,
+                         0, po.icp, 1, f, J + (size_t)i * n * n, NULL, po.scratch);
+}
+
 void washer_stpnt(int ndim, double t, double *u, double *par)
 {
 #if WASHER_FORTRAN
