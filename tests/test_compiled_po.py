@@ -214,3 +214,19 @@ def test_where_it_applies(tmp_path, monkeypatch):
     with monkeypatch.context() as m:
         m.setattr(type(sysm.problem), "differenced_jacobian", property(lambda self: False))
         assert compiled_newton.compiled_corrector(sysm, s, 20.0) is None
+
+
+def test_jacobian_at_a_point_is_the_systems(tmp_path, monkeypatch):
+    """cont_po_jacobian (the Jacobian at a point after chord iterations, and at a
+    location's trials) against PeriodicOrbits.jacobian at the same x: the same values
+    bit for bit, and the same `_last_blocks` left for the Floquet multipliers."""
+    cont, x_pred, *_ = _system(tmp_path, monkeypatch)
+    comp, sysm = cont._compiled, cont.sys
+    J = comp.jacobian_at(x_pred)
+    x_c, blocks_c, J_c = sysm._last_blocks
+    assert J is J_c and np.array_equal(x_c, x_pred)
+    ref = sysm.jacobian(x_pred)
+    x_r, blocks_r, _ = sysm._last_blocks
+    assert np.array_equal(J.indptr, ref.indptr) and np.array_equal(J.indices, ref.indices)
+    assert J.data.tobytes() == ref.data.tobytes()
+    assert blocks_c.tobytes() == np.ascontiguousarray(blocks_r).tobytes()

@@ -15,7 +15,7 @@ iterator:
 """
 import numpy as np
 
-from washer.cont import floquet
+from washer.cont import compiled_po, floquet
 from washer.cont.codes import Code
 from washer.cont.iterator import Continuation
 
@@ -63,8 +63,9 @@ def _run(it, n):
     raise AssertionError("the branch ended early")
 
 
-def _spy(sysm):
-    """Record the unknowns at which sysm.jacobian is called (bytes of x)."""
+def _spy(sysm, monkeypatch):
+    """Record the unknowns at which the Jacobian is evaluated (bytes of x): sysm.jacobian,
+    or the compiled corrector's form of it (compiled_po.PeriodicCorrector.jacobian_at)."""
     seen = []
     jac = sysm.jacobian
 
@@ -72,12 +73,20 @@ def _spy(sysm):
         seen.append(np.asarray(x, float).tobytes())
         return jac(x, *a, **kw)
     sysm.jacobian = spy
+    compiled_jac = compiled_po.PeriodicCorrector.jacobian_at
+
+    def compiled_spy(self, x):
+        J = compiled_jac(self, x)
+        if J is not None:
+            seen.append(np.asarray(x, float).tobytes())
+        return J
+    monkeypatch.setattr(compiled_po.PeriodicCorrector, "jacobian_at", compiled_spy)
     return seen
 
 
-def test_regular_points_evaluate_no_jacobian_of_their_own():
+def test_regular_points_evaluate_no_jacobian_of_their_own(monkeypatch):
     sysm = _chu()
-    seen = _spy(sysm)
+    seen = _spy(sysm, monkeypatch)
     s = sysm.settings.with_(DS=0.02, DSMAX=0.1, NWTN=3, ITNW=7)
     pts = _run(Continuation(sysm, s), 12)
     regular = [xb for p, xb in pts[1:] if 1 <= p.iterations <= s.NWTN
@@ -87,11 +96,11 @@ def test_regular_points_evaluate_no_jacobian_of_their_own():
         assert xb not in seen
 
 
-def test_after_chord_iterations_the_point_evaluates_its_jacobian():
+def test_after_chord_iterations_the_point_evaluates_its_jacobian(monkeypatch):
     """NWTN = 1: a point converged in two or more iterations has its matrix from the
     first iterate (chord iterations since), and evaluates the Jacobian at itself."""
     sysm = _chu()
-    seen = _spy(sysm)
+    seen = _spy(sysm, monkeypatch)
     s = sysm.settings.with_(DS=0.02, DSMAX=0.1, NWTN=1, ITNW=7)
     pts = _run(Continuation(sysm, s), 6)
     chord = [xb for p, xb in pts[1:] if p.iterations >= 2]

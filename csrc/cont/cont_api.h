@@ -99,3 +99,13 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                     double epsl, double epsu, int itnw, int nwtn, double divergence,
                     double fd_step, int one_call_max, double *x, double *x_J,
                     double *vals, double *P0, double *P1, int *info);
+/* The Jacobian of cont_po_correct's iterations at one point x (nx), the same values as
+ * an iteration there gives (the phase row from w_node and up_old): vals in
+ * Collocation.jacobian_general's assembly order, f evaluated as in cont_po_correct (the
+ * Gauss points, then the difference points). Returns 0, 3 when f failed or a value is
+ * not finite, 4 bad sizes. */
+int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_jac sjac,
+                     int npar_jp, int ntst, int ncol, int ndim, int npar, int ipa, int ipb,
+                     const double *WT, const double *WP, const double *dtm,
+                     const double *w_node, const double *up_old, const double *par0,
+                     const double *x, double fd_step, int one_call_max, double *vals);

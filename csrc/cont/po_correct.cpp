@@ -59,6 +59,193 @@ double dot(cont_ddot ddot, const double *a, const double *b, int len) {
     return s;
 }
 
+// The equations' evaluation and the difference Jacobian of one call (cont_po_correct's
+// iterations, cont_po_jacobian's point), with their work arrays.
+struct PoJacobian {
+    cont_po_feval feval;
+    cont_po_sym_func sfunc;
+    cont_po_sym_jac sjac;
+    int N, m, n, npar, k, nc, mn, kst, m0, nfp, one_call_max;
+    long nb;
+    int fp_index[2], slot_index[2];
+    const double *WT, *WP, *dtm;
+    double fd_step, hp[2] = {0.0, 0.0};
+    std::vector<double> ug, fg, parsT, pts, fst, h, A, parcols, Jp;
+
+    PoJacobian(cont_po_feval feval_, cont_po_sym_func sfunc_, cont_po_sym_jac sjac_,
+               int npar_jp, int ntst, int ncol, int ndim, int npar_, int ipa, int ipb,
+               const double *WT_, const double *WP_, const double *dtm_, double fd_step_,
+               int one_call_max_)
+        : feval(feval_), sfunc(sfunc_), sjac(sjac_), N(ntst), m(ncol), n(ndim),
+          npar(npar_), one_call_max(one_call_max_), WT(WT_), WP(WP_), dtm(dtm_),
+          fd_step(fd_step_) {
+        k = N * m;                                       // Gauss points
+        nc = k * n;
+        mn = m * n;
+        nb = (long)N * mn * (m + 1) * n;                 // block values
+        // the parameter stencils: the free parameters other than the period, in the order
+        // of PeriodicOrbits.jacobian's slots (x[-2] = PAR(ipa + 1), then x[-1] = PAR(ipb + 1))
+        nfp = 0;
+        slot_index[0] = ipa;
+        slot_index[1] = ipb;
+        for (int s = 0; s < 2; ++s)
+            if (slot_index[s] != 10) fp_index[nfp++] = slot_index[s];
+        kst = 2 * n * k + 2 * nfp * k;                  // points of a Jacobian's call
+        m0 = 2 * n * k;
+        ug.resize((size_t)k * n);
+        fg.resize((size_t)k * n);
+        parsT.resize(!sfunc && k <= one_call_max ? (size_t)npar * kst : 0);
+        pts.resize((size_t)kst * n);
+        fst.resize((size_t)kst * n);
+        h.resize((size_t)k * n);
+        A.resize((size_t)k * n * n);
+        parcols.resize((size_t)N * mn * 2);
+        Jp.resize(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
+    }
+
+    // u at the Gauss points (Collocation.at_gauss)
+    void at_gauss(const double *U) {
+        for (int j = 0; j < N; ++j)
+            for (int c = 0; c < m; ++c) {
+                double *g = &ug[((size_t)j * m + c) * n];
+                for (int i = 0; i < n; ++i) {
+                    double s = 0.0;
+                    for (int q = 0; q <= m; ++q) s += WT[q * m + c] * U[(j * m + q) * n + i];
+                    g[i] = s;
+                }
+            }
+    }
+
+    // f at the Gauss points into fg: 0, or 3 when f failed
+    int f_gauss(const double *par) {
+        if (sfunc) {
+            sfunc(k, ug.data(), par, 0, fg.data());
+            return 0;
+        }
+        return feval(k, ug.data(), par, 0, fg.data()) != 0 ? 3 : 0;
+    }
+
+    // The collocation blocks and parameter columns at ug (f there in fg) into vals
+    // (Collocation.jacobian_general's order) and parcols: 0, or 3 when f failed or a
+    // value is not finite
+    int jacobian(const double *par, double T, double *vals) {
+        // f_u and f_p by central differences (differences.u_points, par_points,
+        // VectorField.fu_fp), or f_u exact (sjac: the generated Jacobian or the user's
+        // DFDU, as Problem.dfdu_many gives it) and f_p by differences (VectorField.fp)
+        for (int r = 0; r < k; ++r)
+            for (int i = 0; i < n; ++i)
+                h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
+        for (int r = 0; r < k; ++r)
+            for (int s = 0; s < 2 * n; ++s) {
+                double *pt = &pts[((size_t)r * 2 * n + s) * n];
+                std::copy(&ug[(size_t)r * n], &ug[(size_t)r * n] + n, pt);
+                if (s < n) pt[s] += h[(size_t)r * n + s];
+                else pt[s - n] -= h[(size_t)r * n + s - n];
+            }
+        const bool one_call = !sfunc && k <= one_call_max;
+        if (one_call)
+            for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * kst], m0, par[p]);
+        for (int j = 0; j < nfp; ++j) {
+            const int ip = fp_index[j];
+            hp[j] = fd_step * (1 + std::fabs(par[ip]));
+            const double pp = par[ip] + hp[j], pm = par[ip] - hp[j];
+            for (int sgn = 0; sgn < 2 && one_call; ++sgn) {
+                const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                std::copy(ug.begin(), ug.end(), pts.begin() + off * n);
+                for (int p = 0; p < npar; ++p)
+                    std::fill_n(&parsT[(size_t)p * kst + off], k,
+                                p == ip ? (sgn ? pm : pp) : par[p]);
+            }
+        }
+        if (sfunc) {
+            // one set of parameters a call (pstride 0)
+            if (!sjac) sfunc(m0, pts.data(), par, 0, fst.data());
+            std::vector<double> pq(par, par + npar);
+            for (int j = 0; j < nfp; ++j) {
+                const int ip = fp_index[j];
+                for (int sgn = 0; sgn < 2; ++sgn) {
+                    const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                    pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
+                    sfunc(k, ug.data(), pq.data(), 0, &fst[off * n]);
+                }
+                pq[ip] = par[ip];
+            }
+        } else if (one_call) {
+            // every point in one call, the parameters point by point
+            if (feval(kst, pts.data(), parsT.data(), kst, fst.data()) != 0) return 3;
+        } else {
+            // beyond one_call_max points a call per set of parameters (fu_fp's fu,
+            // then fp's two calls for each parameter)
+            bool failed = feval(m0, pts.data(), par, 0, fst.data()) != 0;
+            std::vector<double> pq(par, par + npar);
+            for (int j = 0; j < nfp && !failed; ++j) {
+                const int ip = fp_index[j];
+                for (int sgn = 0; sgn < 2 && !failed; ++sgn) {
+                    const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
+                    pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
+                    failed = feval(k, ug.data(), pq.data(), 0, &fst[off * n]) != 0;
+                }
+                pq[ip] = par[ip];
+            }
+            if (failed) return 3;
+        }
+        if (sjac) {
+            sjac(k, ug.data(), par, 0, A.data(), Jp.data());
+        } else {
+            // A[r, i, l] = (f_i(u + h_l e_l) - f_i(u - h_l e_l)) / (2 h_l)
+            for (int r = 0; r < k; ++r)
+                for (int l = 0; l < n; ++l) {
+                    const double *fpl = &fst[((size_t)r * 2 * n + l) * n];
+                    const double *fml = &fst[((size_t)r * 2 * n + n + l) * n];
+                    const double d = 2 * h[(size_t)r * n + l];
+                    for (int i = 0; i < n; ++i)
+                        A[((size_t)r * n + i) * n + l] = (fpl[i] - fml[i]) / d;
+                }
+        }
+        cont_coll_blocks(N, m, n, WT, WP, dtm, T, A.data(), vals);
+        // the parameter columns -dtm d(T f)/dp: f for the period, T f_p otherwise
+        int jf = 0;
+        for (int s = 0; s < 2; ++s) {
+            double *dp = vals + nb + (long)s * nc;
+            if (slot_index[s] == 10) {
+                for (int j = 0; j < N; ++j)
+                    for (int r = 0; r < mn; ++r)
+                        dp[j * mn + r] = -dtm[j] * fg[(size_t)j * mn + r];
+            } else {
+                const double *fpp = &fst[((size_t)m0 + (size_t)2 * jf * k) * n];
+                const double *fpm = &fst[((size_t)m0 + (size_t)(2 * jf + 1) * k) * n];
+                for (int j = 0; j < N; ++j)
+                    for (int r = 0; r < mn; ++r) {
+                        const size_t q = (size_t)j * mn + r;
+                        dp[q] = -dtm[j] * (T * ((fpp[q] - fpm[q]) / (2 * hp[jf])));
+                    }
+                ++jf;
+            }
+            for (int q = 0; q < nc; ++q) parcols[(size_t)q * 2 + s] = dp[q];
+        }
+        for (long q = 0; q < nb + 2L * nc; ++q)
+            if (!std::isfinite(vals[q])) return 3;
+        return 0;
+    }
+};
+
+// The phase row's values of the Jacobian (Collocation.jacobian_general: w_node *
+// up_old, then the parameters' zeros) and the periodicity rows' (+1, -1) into vals.
+double *po_dense_values(const PoJacobian &pj, int nodes, const double *w_node,
+                        const double *up_old, double *vals) {
+    const int n = pj.n, nu = nodes * n;
+    double *bc_vals = vals + pj.nb + 2L * pj.nc;
+    double *int_vals = bc_vals + 2 * n;
+    for (int i = 0; i < n; ++i) {
+        bc_vals[i] = 1.0;
+        bc_vals[n + i] = -1.0;
+    }
+    for (int q = 0; q < nodes; ++q)
+        for (int i = 0; i < n; ++i) int_vals[q * n + i] = w_node[q] * up_old[q * n + i];
+    int_vals[nu] = int_vals[nu + 1] = 0.0;
+    return int_vals;
+}
+
 }  // namespace
 
 int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
@@ -74,26 +261,13 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
     if (N < 1 || m < 1 || n < 1 || ipa < 0 || ipb < 0 || ipa >= npar || ipb >= npar
         || npar < 11 || itnw < 1 || (sjac && !sfunc) || (!sfunc && !feval))
         return 4;
-    const int k = N * m;                                 // Gauss points
+    PoJacobian pj(feval, sfunc, sjac, npar_jp, N, m, n, npar, ipa, ipb, WT, WP, dtm,
+                  fd_step, one_call_max);
     const int nodes = N * m + 1;
-    const int nu = nodes * n, nc = k * n, nx = nu + 2, ne = n + 2;
-    const int mn = m * n, bw = (m + 1) * n;
-    const long nb = (long)N * mn * bw;                    // block values
-    // the parameter stencils: the free parameters other than the period, in the order
-    // of PeriodicOrbits.jacobian's slots (x[-2] = PAR(ipa + 1), then x[-1] = PAR(ipb + 1))
-    int fp_index[2], nfp = 0;
-    const int slot_index[2] = {ipa, ipb};
-    for (int s = 0; s < 2; ++s)
-        if (slot_index[s] != 10) fp_index[nfp++] = slot_index[s];
-    const int kst = 2 * n * k + 2 * nfp * k;             // points of a Jacobian's call
-
-    std::vector<double> par(par0, par0 + npar), ug((size_t)k * n), fg((size_t)k * n),
-        parsT(!sfunc && k <= one_call_max ? (size_t)npar * kst : 0), pts((size_t)kst * n),
-        fst((size_t)kst * n),
-        h((size_t)k * n), A((size_t)k * n * n), parcols((size_t)N * mn * 2),
-        extra((size_t)ne * nx, 0.0), G(nc + n + 1), rhs(nx), dx(nx), xo(nx),
-        prod(n), vsum(nodes), Jp(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
-    double hp[2] = {0.0, 0.0};
+    const int nu = nodes * n, nc = pj.nc, nx = nu + 2, ne = n + 2;
+    std::vector<double> par(par0, par0 + npar), extra((size_t)ne * nx, 0.0), G(nc + n + 1),
+        rhs(nx), dx(nx), xo(nx), prod(n), vsum(nodes);
+    const std::vector<double> &fg = pj.fg;
     std::copy(x_pred, x_pred + nx, x);
     // the dense rows' constant parts: periodicity (+1 on u(0), -1 on u(1)), the border
     const int last = (nodes - 1) * n;
@@ -102,17 +276,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
         extra[(size_t)i * nx + last + i] = -1.0;
     }
     std::copy(row, row + nx, extra.begin() + (size_t)(n + 1) * nx);
-    // the phase row's values (Collocation.jacobian_general: w_node * up_old, then the
-    // parameters' zeros), the same in every Jacobian of the call
-    double *bc_vals = vals + nb + 2L * nc;
-    double *int_vals = bc_vals + 2 * n;
-    for (int i = 0; i < n; ++i) {
-        bc_vals[i] = 1.0;
-        bc_vals[n + i] = -1.0;
-    }
-    for (int q = 0; q < nodes; ++q)
-        for (int i = 0; i < n; ++i) int_vals[q * n + i] = w_node[q] * up_old[q * n + i];
-    int_vals[nu] = int_vals[nu + 1] = 0.0;
+    // the phase row, the same in every Jacobian of the call
+    const double *int_vals = po_dense_values(pj, nodes, w_node, up_old, vals);
     std::copy(int_vals, int_vals + nx, extra.begin() + (size_t)n * nx);
 
     int it_J = 0, residuals = 0, jacobians = 0;
@@ -125,19 +290,8 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
         par[ipb] = x[nx - 1];
         const double T = par[10];
         const double *U = x;
-        // u at the Gauss points (Collocation.at_gauss)
-        for (int j = 0; j < N; ++j)
-            for (int c = 0; c < m; ++c) {
-                double *g = &ug[((size_t)j * m + c) * n];
-                for (int i = 0; i < n; ++i) {
-                    double s = 0.0;
-                    for (int q = 0; q <= m; ++q) s += WT[q * m + c] * U[(j * m + q) * n + i];
-                    g[i] = s;
-                }
-            }
-        if (sfunc) {
-            sfunc(k, ug.data(), par.data(), 0, fg.data());
-        } else if (feval(k, ug.data(), par.data(), 0, fg.data()) != 0) {
+        pj.at_gauss(U);
+        if (pj.f_gauss(par.data()) != 0) {
             status = 3;
             break;
         }
@@ -164,112 +318,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
         for (int r = 0; r < nc + n + 1; ++r) finite = finite && std::isfinite(G[r]);
         if (!finite) { status = 3; break; }
         if (!factored || it <= std::max(nwtn, 1)) {
-            // f_u and f_p by central differences (differences.u_points, par_points,
-            // VectorField.fu_fp), or f_u exact (sjac: the generated Jacobian, as
-            // Problem.dfdu_many gives it) and f_p by differences (VectorField.fp)
-            for (int r = 0; r < k; ++r)
-                for (int i = 0; i < n; ++i)
-                    h[(size_t)r * n + i] = fd_step * (1 + std::fabs(ug[(size_t)r * n + i]));
-            for (int r = 0; r < k; ++r)
-                for (int s = 0; s < 2 * n; ++s) {
-                    double *pt = &pts[((size_t)r * 2 * n + s) * n];
-                    std::copy(&ug[(size_t)r * n], &ug[(size_t)r * n] + n, pt);
-                    if (s < n) pt[s] += h[(size_t)r * n + s];
-                    else pt[s - n] -= h[(size_t)r * n + s - n];
-                }
-            const int m0 = 2 * n * k;
-            const bool one_call = !sfunc && k <= one_call_max;
-            if (one_call)
-                for (int p = 0; p < npar; ++p) std::fill_n(&parsT[(size_t)p * kst], m0, par[p]);
-            for (int j = 0; j < nfp; ++j) {
-                const int ip = fp_index[j];
-                hp[j] = fd_step * (1 + std::fabs(par[ip]));
-                const double pp = par[ip] + hp[j], pm = par[ip] - hp[j];
-                for (int sgn = 0; sgn < 2 && one_call; ++sgn) {
-                    const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
-                    std::copy(ug.begin(), ug.end(), pts.begin() + off * n);
-                    for (int p = 0; p < npar; ++p)
-                        std::fill_n(&parsT[(size_t)p * kst + off], k,
-                                    p == ip ? (sgn ? pm : pp) : par[p]);
-                }
-            }
-            if (sfunc) {
-                // one set of parameters a call (pstride 0)
-                if (!sjac) sfunc(m0, pts.data(), par.data(), 0, fst.data());
-                std::vector<double> pq(par);
-                for (int j = 0; j < nfp; ++j) {
-                    const int ip = fp_index[j];
-                    for (int sgn = 0; sgn < 2; ++sgn) {
-                        const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
-                        pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
-                        sfunc(k, ug.data(), pq.data(), 0, &fst[off * n]);
-                    }
-                    pq[ip] = par[ip];
-                }
-            } else if (k <= one_call_max) {
-                // every point in one call, the parameters point by point
-                if (feval(kst, pts.data(), parsT.data(), kst, fst.data()) != 0) {
-                    status = 3;
-                    break;
-                }
-            } else {
-                // beyond one_call_max points a call per set of parameters (fu_fp's fu,
-                // then fp's two calls for each parameter)
-                bool failed = feval(m0, pts.data(), par.data(), 0, fst.data()) != 0;
-                std::vector<double> pq(par);
-                for (int j = 0; j < nfp && !failed; ++j) {
-                    const int ip = fp_index[j];
-                    for (int sgn = 0; sgn < 2 && !failed; ++sgn) {
-                        const size_t off = (size_t)m0 + (size_t)(2 * j + sgn) * k;
-                        pq[ip] = sgn ? par[ip] - hp[j] : par[ip] + hp[j];
-                        failed = feval(k, ug.data(), pq.data(), 0, &fst[off * n]) != 0;
-                    }
-                    pq[ip] = par[ip];
-                }
-                if (failed) {
-                    status = 3;
-                    break;
-                }
-            }
-            if (sjac) {
-                sjac(k, ug.data(), par.data(), 0, A.data(), Jp.data());
-            } else {
-                // A[r, i, l] = (f_i(u + h_l e_l) - f_i(u - h_l e_l)) / (2 h_l)
-                for (int r = 0; r < k; ++r)
-                    for (int l = 0; l < n; ++l) {
-                        const double *fpl = &fst[((size_t)r * 2 * n + l) * n];
-                        const double *fml = &fst[((size_t)r * 2 * n + n + l) * n];
-                        const double d = 2 * h[(size_t)r * n + l];
-                        for (int i = 0; i < n; ++i)
-                            A[((size_t)r * n + i) * n + l] = (fpl[i] - fml[i]) / d;
-                    }
-            }
-            cont_coll_blocks(N, m, n, WT, WP, dtm, T, A.data(), vals);
-            // the parameter columns -dtm d(T f)/dp: f for the period, T f_p otherwise
-            int jf = 0;
-            for (int s = 0; s < 2; ++s) {
-                double *dp = vals + nb + (long)s * nc;
-                if (slot_index[s] == 10) {
-                    for (int j = 0; j < N; ++j)
-                        for (int r = 0; r < mn; ++r)
-                            dp[j * mn + r] = -dtm[j] * fg[(size_t)j * mn + r];
-                } else {
-                    const double *fpp = &fst[((size_t)m0 + (size_t)2 * jf * k) * n];
-                    const double *fpm = &fst[((size_t)m0 + (size_t)(2 * jf + 1) * k) * n];
-                    for (int j = 0; j < N; ++j)
-                        for (int r = 0; r < mn; ++r) {
-                            const size_t q = (size_t)j * mn + r;
-                            dp[q] = -dtm[j] * (T * ((fpp[q] - fpm[q]) / (2 * hp[jf])));
-                        }
-                    ++jf;
-                }
-                for (int q = 0; q < nc; ++q) parcols[(size_t)q * 2 + s] = dp[q];
-            }
-            bool ok = true;
-            for (long q = 0; q < nb + 2L * nc; ++q) ok = ok && std::isfinite(vals[q]);
-            if (!ok
-                || cont_bvp_factor(fac, vals, parcols.data(), extra.data(), nullptr, P0, P1)
-                       != 0) {
+            if (pj.jacobian(par.data(), T, vals) != 0
+                || cont_bvp_factor(fac, vals, pj.parcols.data(), extra.data(), nullptr, P0,
+                                   P1) != 0) {
                 status = 3;
                 break;
             }
@@ -307,4 +358,25 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
     info[2] = residuals;
     info[3] = jacobians;
     return status;
+}
+
+int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_jac sjac,
+                     int npar_jp, int ntst, int ncol, int ndim, int npar, int ipa, int ipb,
+                     const double *WT, const double *WP, const double *dtm,
+                     const double *w_node, const double *up_old, const double *par0,
+                     const double *x, double fd_step, int one_call_max, double *vals) {
+    const int N = ntst, m = ncol, n = ndim;
+    if (N < 1 || m < 1 || n < 1 || ipa < 0 || ipb < 0 || ipa >= npar || ipb >= npar
+        || npar < 11 || (sjac && !sfunc) || (!sfunc && !feval))
+        return 4;
+    PoJacobian pj(feval, sfunc, sjac, npar_jp, N, m, n, npar, ipa, ipb, WT, WP, dtm,
+                  fd_step, one_call_max);
+    const int nx = (N * m + 1) * n + 2;
+    std::vector<double> par(par0, par0 + npar);
+    par[ipa] = x[nx - 2];
+    par[ipb] = x[nx - 1];
+    po_dense_values(pj, N * m + 1, w_node, up_old, vals);
+    pj.at_gauss(x);
+    if (pj.f_gauss(par.data()) != 0) return 3;
+    return pj.jacobian(par.data(), par[10], vals);
 }

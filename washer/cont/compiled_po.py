@@ -134,6 +134,20 @@ class PeriodicCorrector:
         out[...] = F
         return 0
 
+    def _bind(self, npar: int) -> bool:
+        """Ready f for a foreign call with PAR of length npar: a user file's FUNC (and
+        DFDU) pointers bound to this run (CompiledUser.po_pointers); False before the
+        file's first PVLS (CompiledUser.func_ready), where the Python loop calls it."""
+        self._npar = npar
+        if self._user is not None:
+            if not self._user.func_ready:
+                return False
+            self._sfunc, jac = self._user.po_pointers(npar, ffi, "cont_po_sym_func",
+                                                     "cont_po_sym_jac")
+            self._sjac = jac if self.problem.has_dfdu else ffi.NULL
+        self.error = None
+        return True
+
     def correct_plane(self, x_pred, x_ref, t_ref, ds: float, counters):
         """(x, iterations) of the corrector from x_pred on the plane <x - x_ref,
         border(t_ref)> = ds; None when the Python loop is to take over. ConvergenceError
@@ -144,15 +158,8 @@ class PeriodicCorrector:
         coll, mesh = sysm.coll, sysm.mesh
         N, m, n = mesh.ntst, mesh.ncol, self.n
         par = np.ascontiguousarray(sysm.par, dtype=float)
-        if self._user is not None:
-            # FUNC (and DFDU) of the user file called from C++; before the file's first
-            # PVLS (CompiledUser.func_ready) the Python loop calls it
-            if not self._user.func_ready:
-                return None
-            self._sfunc, jac = self._user.po_pointers(len(par), ffi, "cont_po_sym_func",
-                                                     "cont_po_sym_jac")
-            self._sjac = jac if self.problem.has_dfdu else ffi.NULL
-        self._npar = len(par)
+        if not self._bind(len(par)):
+            return None
         nx = coll.n_x
         row = np.ascontiguousarray(sysm.border(t_ref), dtype=float)
         x_pred = np.ascontiguousarray(x_pred, dtype=float)
@@ -210,9 +217,38 @@ class PeriodicCorrector:
         return x, it
 
     def jacobian_at(self, x):
-        """None: the Jacobian at a point is the system's (the corrector's last one
-        reaches the converged point through `newton`)."""
-        return None
+        """PeriodicOrbits.jacobian(x) in one foreign call (cont_po_jacobian: the values
+        of an iteration of the corrector at x, f evaluated as the Python Jacobian
+        evaluates it), with the system's `_last_blocks` as it leaves them; None where
+        the system's own is to be evaluated (f failing there, or not yet callable).
+        The point a Jacobian serves after chord iterations, and the trials of a
+        location, take it; the corrector's last one reaches the converged point through
+        `newton`."""
+        sysm = self.sys
+        coll, mesh = sysm.coll, sysm.mesh
+        par = np.ascontiguousarray(sysm.par, dtype=float)
+        if not self._bind(len(par)):
+            return None
+        N, m, n = mesh.ntst, mesh.ncol, self.n
+        x = np.ascontiguousarray(x, dtype=float)
+        vals = np.empty(coll.nnz)
+        p = reduction._ptr
+        status = lib.cont_po_jacobian(
+            self._cb, self._sfunc, self._sjac, self._npar_jp, N, m, n, len(par),
+            sysm.free[1] - 1, sysm.free[0] - 1, p(np.ascontiguousarray(coll.WT, float)),
+            p(np.ascontiguousarray(coll.WP, float)), p(np.ascontiguousarray(mesh.dtm, float)),
+            p(np.ascontiguousarray(coll.w_node, float)),
+            p(np.ascontiguousarray(sysm.up_old, float)), p(par), p(x), FD_STEP,
+            bvp.FU_FP_ONE_CALL_MAX, p(vals))
+        if self.error is not None:
+            err, self.error = self.error, None
+            raise err
+        if status != 0:
+            return None
+        J = coll.jacobian_from_values(vals)
+        blocks = vals[:N * m * n * (m + 1) * n].reshape(N, m * n, (m + 1) * n)
+        sysm._last_blocks = (x.copy(), blocks, J)
+        return J
 
 
 def periodic_corrector(system, settings, divergence: float):
