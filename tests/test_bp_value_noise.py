@@ -8,6 +8,8 @@ to step without any branch point; AUTO does not test there (FNBPBV returns ITP=0
 its quotient is not representable). The matrices below are built from a known SVD, so
 the determinant's sign and the singular values are known exactly by construction."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -44,3 +46,34 @@ def test_near_branch_point_keeps_its_sign(sign):
     # of the smallest one (eps sv[0] / sv[-1] ~ 2e-2 relative, backward stability)
     expect = np.prod(sv) / np.linalg.norm(sv) ** len(sv)
     assert abs(v) == pytest.approx(expect, rel=5e-2)
+
+
+def _bp_value_by_definition(S):
+    """The test as defined: no value where the two smallest singular values are both
+    below n eps of the largest, else det(S / |S|_F) (LAPACK's LU through slogdet)."""
+    scale = np.linalg.norm(S)
+    if len(S) > 1:
+        sv = np.linalg.svd(S, compute_uv=False)
+        if sv[-2] <= len(S) * np.finfo(float).eps * sv[0]:
+            return None
+    sign, logdet = np.linalg.slogdet(S / scale)
+    return float(sign * math.exp(logdet))
+
+
+@pytest.mark.parametrize("n", [2, 3, 5, 8, 14, 16])
+def test_singular_values_only_where_the_determinant_is_small(n):
+    """bp_value skips the SVD where the determinant is far above what a void test allows
+    (bvp._bp_void_logdet): the same value, bit for bit, as the test by definition, over
+    matrices from well conditioned to one, two and three singular values at and around
+    rounding, spanning up to 30 decades."""
+    rng = np.random.default_rng(n)
+    for case in range(60):
+        top = 10.0 ** rng.uniform(0, 30)
+        sv = np.sort(10.0 ** rng.uniform(-2, np.log10(top), n))[::-1]
+        sv[0] = top
+        k = min(case % 4, n)               # how many singular values go to rounding
+        if k:
+            sv[n - k:] = top * np.finfo(float).eps * 10.0 ** rng.uniform(-3, 1.5, k)
+        S = _with_singular_values(np.sort(sv)[::-1], rng.choice([-1, 1], n), case)
+        a, b = CollocationBVP.bp_value(S), _bp_value_by_definition(S)
+        assert (a is None and b is None) or a == b, (case, a, b)

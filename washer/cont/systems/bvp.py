@@ -21,6 +21,7 @@ wants_remesh(n_points) -> bool, remesh(x, *vectors) -> tuple
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -52,6 +53,23 @@ COMPILED_FACTOR = True
 #: than the calls it saves (callgrind on lrz: 12 % fewer instructions at 140 Gauss
 #: points, NTST 35; 15 % more at 800, NTST 200).
 FU_FP_ONE_CALL_MAX = 400
+
+_EPS = float(np.finfo(float).eps)
+
+
+@functools.lru_cache(maxsize=None)
+def _bp_void_logdet(n: int) -> float:
+    """log of a bound on |det(S / |S|_F)| (as LU computes it, n x n) wherever the BP
+    test's singular values could say "no test" (`CollocationBVP.bp_value`): above it they
+    cannot, and are not computed. Where the computed s_{n-2} <= n eps s_0, the exact one
+    is below (n + p) eps s_0 with p <= n^2 the SVD's error (in units of eps s_0); with
+    s_0 <= |S|_F, |det(S / |S|_F)| <= (s_{n-2} / s_0)^2 <= (2 n^2 eps)^2. The LU's
+    determinant is that of S / |S|_F + E, |E|_2 <= 8 n^4 g eps (Wilkinson's bound, in the
+    2-norm, with the growth of partial pivoting g <= 2^(n-1)), which moves each of the two
+    smallest singular values by at most that and the others by a factor near 1: below
+    2 (2 n^2 eps (1 + 8 n^4 2^(n-1)))^2."""
+    bound = 2 * (2 * n * n * _EPS * (1 + 8 * n ** 4 * 2.0 ** (n - 1))) ** 2
+    return math.log(bound)
 
 
 class VectorField:
@@ -469,17 +487,20 @@ class CollocationBVP:
         scale = np.linalg.norm(Sc)
         if not np.isfinite(scale) or scale == 0:
             return 0.0
-        if len(Sc) > 1:
+        n = len(Sc)
+        sign, logdet = np.linalg.slogdet(Sc / scale)
+        if n > 1 and not logdet > _bp_void_logdet(n):
             # A determinant whose two smallest singular values are both below rounding
             # (n eps of the largest) has no sign: it is a product of noise, and flips
             # from step to step without a branch point (a cycle family nearing an
             # infinite-period limit: S's largest singular value grows like exp(lambda T)
             # while the others stay O(1)). Like FNBPBV, which does not test (ITP=0)
             # where its quotient DET/det(P1) is not representable, there is no test.
+            # The singular values are taken only where the determinant is small enough
+            # for that to be possible (_bp_void_logdet).
             sv = np.linalg.svd(Sc, compute_uv=False)
-            if sv[-2] <= len(Sc) * np.finfo(float).eps * sv[0]:
+            if sv[-2] <= n * _EPS * sv[0]:
                 return None
-        sign, logdet = np.linalg.slogdet(Sc / scale)
         return float(sign * math.exp(logdet))
 
     def orient_stdrbv(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
