@@ -54,7 +54,8 @@ contbuilder.cdef((HERE / "csrc" / "cont" / "cont_api.h").read_text() + "\n" + _c
 contbuilder.set_source(
     "washer._cont",
     '#include "cont.h"\n' + _cont_stamp[1],
-    sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp", "csrc/cont/po_correct.cpp"],
+    sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp", "csrc/cont/po_correct.cpp",
+             "csrc/cont/format.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
     extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],

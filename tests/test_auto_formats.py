@@ -258,11 +258,12 @@ def test_a_step_number_past_9999_is_written_as_auto_writes_it(tmp_path):
         np.testing.assert_allclose(back.u, rec.u, rtol=1e-10)
 
 
-def test_row_formatting_is_fmt_e_value_by_value():
-    """The one-call formatting of whole rows and blocks (fmt_e_many, fmt_es_many) gives
-    the text of fmt_e / fmt_es value by value, including the values it hands back to
-    them: 3-digit exponents, zeros, signs, rounding at the last digit, NaN, infinities."""
+def test_row_formatting_is_the_python_formatter_value_by_value():
+    """The formatting of whole rows (fmt_e_many, fmt_es_many) gives the text of the
+    Python formatter (washer.auto.es_format.python_es_one) value by value: 3-digit
+    exponents, zeros, signs, rounding at the last digit, NaN, infinities."""
     import numpy as np
+    from washer.auto.es_format import python_es_one
     from washer.auto.files import fmt_e, fmt_e_many, fmt_es_many
     rng = np.random.default_rng(7)
     plain = np.r_[0.0, -0.0, 1.0, -1.0, 9.99999999995, 9.999999999949999, 1e-99, -1e-99,
@@ -270,27 +271,40 @@ def test_row_formatting_is_fmt_e_value_by_value():
                       -98, 98, 50)]
     odd = np.r_[plain[:5], 1e-100, -3.2e150, 1.7976931348623157e308, np.nan, np.inf, -np.inf]
     for vals in (plain, odd):
-        assert fmt_e_many(vals) == "".join(fmt_e(v) for v in vals)
-        assert fmt_es_many(vals, 14, 5) == "".join(fmt_es(v, 14, 5) for v in vals)
-        assert fmt_es_many(vals, 11, 4) == "".join(fmt_es(v, 11, 4) for v in vals)
+        assert fmt_e_many(vals) == "".join(python_es_one(v, 19, 10, True) for v in vals)
+        assert fmt_e_many(list(vals)) == "".join(fmt_e(v) for v in vals)
+        assert fmt_es_many(vals, 14, 5) == "".join(python_es_one(v, 14, 5, False) for v in vals)
+        assert fmt_es_many(vals, 11, 4) == "".join(python_es_one(v, 11, 4, False) for v in vals)
+
+
+def _rows_by_value(M) -> list:
+    """The s-file lines of M's rows from the Python formatter value by value: 7 values a
+    line after 4 blanks, every row on lines of its own."""
+    from washer.auto.es_format import python_es_one
+    out = []
+    for row in M.tolist():
+        out += ["    " + "".join(python_es_one(v, 19, 10, True) for v in row[i:i + 7])
+                for i in range(0, len(row), 7)]
+    return out
 
 
 def test_block_formatting_is_rows_of_fmt_e():
-    """A BVP record's blocks in one format (files._block_lines) give the lines of
-    files._block_rows (fmt_e value by value, 7 a line after 4 blanks, each row of the
-    block on lines of its own), for rows of 1..15 values and with the values that go
-    back to fmt_e (3-digit exponents, NaN, infinities)."""
+    """A BVP record's blocks in one call (files._block_lines) give the lines of the Python
+    formatter value by value (7 a line after 4 blanks, each row of the block on lines of
+    its own), for rows of 1..15 values and with 3-digit exponents, NaN, infinities."""
     import numpy as np
-    from washer.auto.files import _block_lines, _block_rows, fmt_e
+    from washer.auto.files import _block_lines, _rows, fmt_e
     rng = np.random.default_rng(3)
     for k, m in [(1, 1), (5, 4), (801, 4), (3, 7), (3, 8), (4, 15), (2, 14)]:
         M = rng.standard_normal((k, m)) * 10.0 ** rng.integers(-98, 98, (k, m))
         M.flat[::5] = 0.0
         M.flat[1::7] = -0.0
         lines = "\n".join(_block_lines(M)).split("\n")
-        assert lines == _block_rows(M)
+        assert lines == _rows_by_value(M)
         assert len(lines) == k * ((m + 6) // 7)
         assert lines[0] == "    " + "".join(fmt_e(v) for v in M[0, :7])
+        assert "\n".join(_rows(list(M[0]))).split("\n") == _rows_by_value(M[:1])
     odd = np.array([[1e-100, 2.0, np.nan], [np.inf, -3.2e150, 0.5]])
-    assert "\n".join(_block_lines(odd)).split("\n") == _block_rows(odd)
+    assert "\n".join(_block_lines(odd)).split("\n") == _rows_by_value(odd)
+    assert _rows([]) == []
     assert _block_lines(np.zeros((0, 3))) == [] and _block_lines(np.zeros((2, 0))) == []

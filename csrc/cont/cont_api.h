@@ -109,3 +109,19 @@ int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_ja
                      const double *WT, const double *WP, const double *dtm,
                      const double *w_node, const double *up_old, const double *par0,
                      const double *x, double fd_step, int one_call_max, double *vals);
+
+/* Fortran's ESw.d (exp3 = 0) and ESw.dE3 (exp3 = 1) edit descriptors as gfortran writes
+ * them, the text of AUTO-07p's b-, s- and d-files (csrc/cont/format.cpp; the reference
+ * is washer.auto.es_format's Python formatter, which the tests hold it to):
+ * v (k, m) row-major; each value right-justified in `width` characters (never cut): a
+ * sign if negative (-0.0 too), one digit, '.', `digits` digits (correctly rounded, ties
+ * to even), then 'E' and a signed 2-digit exponent, or with exp3 (or for a 2-digit-wide
+ * exponent beyond 99 without exp3, then without the 'E') a signed 3-digit one; NaN
+ * (either sign) as 'NaN', the infinities as 'Infinity' and '-Infinity'. Lines of at
+ * most `per_line` values, each starting with `indent` blanks; a row always starts a new
+ * line; lines are separated by '\n' (none at the end). out holds at least
+ * k * m * max(width, digits + 8) + k * ceil(m / per_line) * (indent + 1) + 1 characters
+ * (a value's text is at most digits + 8 wide); a NUL ends the text. Returns its length
+ * (-1 for bad arguments). */
+int cont_format_es(const double *v, int k, int m, int per_line, int indent, int width,
+                   int digits, int exp3, char *out);

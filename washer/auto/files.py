@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from washer.auto.es_format import es_text
 from washer.cont.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
 from washer.cont.record import Record
 from washer.text_files import decode_text
@@ -39,91 +40,26 @@ class AutoFileError(ValueError):
     was expected there."""
 
 
-def _fortran_special(x: float, width: int) -> str | None:
-    """gfortran's text for NaN and infinities, right-justified; None for finite x."""
-    if math.isnan(x):
-        return "NaN".rjust(width)
-    if math.isinf(x):
-        return ("Infinity" if x > 0 else "-Infinity").rjust(width)
-    return None
-
-
-def _mantissa_exponent(x: float, digits: int) -> tuple[str, int]:
-    """Mantissa text in [1, 10) with `digits` decimals (sign included) and the exponent."""
-    mant, exp = f"{x:.{digits}e}".split("e")     # Python rounds once, correctly
-    return mant, int(exp)
-
-
 def fmt_e(x: float, width: int = 19, digits: int = 10) -> str:
     """Fortran ESw.dE3: mantissa in [1, 10) and a 3-digit exponent (b- and s-file data)."""
-    x = float(x)
-    special = _fortran_special(x, width)
-    if special:
-        return special
-    mant, exp = _mantissa_exponent(x, digits)
-    return f"{mant}E{'+' if exp >= 0 else '-'}{abs(exp):03d}".rjust(width)
+    return es_text([x], width, digits, exp3=True)
 
 
 def fmt_es(x: float, width: int, digits: int) -> str:
     """Fortran ESw.d (no Ee): a 2-digit exponent 'E-07'; for |exponent| > 99 the 'E' is
     dropped ('-1.7976+308'), as gfortran does. b-file header reals (ES11.4, ES12.4) and
     d-file values (ES14.5)."""
-    x = float(x)
-    special = _fortran_special(x, width)
-    if special:
-        return special
-    mant, exp = _mantissa_exponent(x, digits)
-    sign = "+" if exp >= 0 else "-"
-    text = f"{mant}E{sign}{abs(exp):02d}" if abs(exp) <= 99 else f"{mant}{sign}{abs(exp):03d}"
-    return text.rjust(width)
-
-
-#: Up to this many values a row is checked and converted in plain Python (cheaper than
-#: numpy's per-call overhead at the sizes of b-rows, eigenvalues and algebraic records).
-SHORT_ROW = 64
-
-
-def _floats(values) -> list:
-    """The values as a flat list of Python floats (a short list or tuple directly)."""
-    if isinstance(values, (list, tuple)) and len(values) <= SHORT_ROW:
-        try:
-            return [float(x) for x in values]
-        except TypeError:                   # nested rows: flattened by numpy below
-            pass
-    return np.asarray(values, dtype=float).ravel().tolist()
-
-
-def _plain(v: list) -> bool:
-    """Whether every value prints with a 2-digit exponent in C's %E: finite, zero or of
-    magnitude in [1e-99, 1e99) (the rest go value by value through fmt_e / fmt_es)."""
-    if len(v) <= SHORT_ROW:
-        for x in v:             # a plain loop: a third of all()'s generator's cost
-            if not (1e-99 <= abs(x) < 1e99 or x == 0.0):
-                return False
-        return True
-    with np.errstate(invalid="ignore"):
-        a = np.abs(np.asarray(v))
-        return bool(np.all((a < 1e99) & ((a >= 1e-99) | (a == 0))))
+    return es_text([x], width, digits)
 
 
 def fmt_e_many(values, width: int = 19, digits: int = 10) -> str:
-    """fmt_e of every value, concatenated: one %-format of the whole row and one
-    exponent substitution (the b- and s-files' bulk; the same text as fmt_e value by
-    value, which the tests check)."""
-    v = _floats(values)
-    if _plain(v):
-        text = (f"%{width - 1}.{digits}E" * len(v)) % tuple(v)
-        # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3
-        return text.replace("E+", "E+0").replace("E-", "E-0")
-    return "".join(fmt_e(x, width, digits) for x in v)
+    """fmt_e of every value, concatenated (a 2-D array row after row)."""
+    return es_text(values, width, digits, exp3=True)
 
 
 def fmt_es_many(values, width: int, digits: int) -> str:
-    """fmt_es of every value, concatenated (C's %E is ESw.d for 2-digit exponents)."""
-    v = _floats(values)
-    if _plain(v):
-        return (f"%{width}.{digits}E" * len(v)) % tuple(v)
-    return "".join(fmt_es(x, width, digits) for x in v)
+    """fmt_es of every value, concatenated (a 2-D array row after row)."""
+    return es_text(values, width, digits)
 
 
 def _fortran_float(token: str) -> float:
@@ -288,44 +224,20 @@ def _record_text_bvp(rec: Record) -> str:
 
 
 def _rows(vals) -> list[str]:
-    """Values 7 a line (ES19.10E3 after 4 blanks), as AUTO's s-files."""
-    text = fmt_e_many(vals)
-    w = 7 * 19
-    return ["    " + text[i:i + w] for i in range(0, len(text), w)]
+    """Values 7 a line (ES19.10E3 after 4 blanks), as AUTO's s-files: the lines as one
+    string (joined by newlines) in a list, [] for no values."""
+    text = es_text(vals, 19, 10, exp3=True, per_line=7, indent=4)
+    return [text] if text else []
 
 
 def _block_lines(M: np.ndarray) -> list[str]:
-    """The text of `_block_rows(M)` as one string (its lines joined by newlines) in a list,
-    or [] for an empty M: one %-format of the whole block with the line layout in the
-    format itself (a BVP record's profile and direction are thousands of values: cutting
-    a formatted row into lines value group by value group cost more than formatting it).
-    Values that are not plain (`_plain`: a 3-digit exponent, inf, nan) go through
-    `_block_rows`."""
+    """`_rows` of every row of M (k, m), each row on lines of its own: the text of the
+    whole block (thousands of values in a BVP record's profile) in one call, as one string
+    in a list, [] for an empty M."""
     M = np.asarray(M, dtype=float)
-    k, m = M.shape
-    if k == 0 or m == 0:
+    if M.size == 0:
         return []
-    flat = M.ravel().tolist()
-    if not _plain(flat):
-        return ["\n".join(_block_rows(M))]
-    row = "\n".join("    " + "%18.10E" * min(7, m - i) for i in range(0, m, 7))
-    text = ("\n".join([row] * k)) % tuple(flat)
-    # every exponent has 2 digits here: a 0 after its sign makes AUTO's 3 (fmt_e_many)
-    return [text.replace("E+", "E+0").replace("E-", "E-0")]
-
-
-def _block_rows(M: np.ndarray) -> list[str]:
-    """_rows of every row of M (k, m), in order: one format call for the whole block."""
-    M = np.asarray(M, dtype=float)
-    k, m = M.shape
-    if k == 0 or m == 0:
-        return []
-    text = fmt_e_many(M)
-    out = []
-    for j in range(k):
-        line = text[j * m * 19:(j + 1) * m * 19]
-        out += ["    " + line[i:i + 7 * 19] for i in range(0, len(line), 7 * 19)]
-    return out
+    return [es_text(M, 19, 10, exp3=True, per_line=7, indent=4)]
 
 
 def prepare_output(path: Path, protect=()) -> Path | None:
@@ -359,17 +271,6 @@ def _open_output(path: Path, append: bool):
     flags = os.O_WRONLY | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0)
     flags |= os.O_APPEND if append else os.O_TRUNC
     return os.fdopen(os.open(path, flags, 0o666), "a" if append else "w", encoding="utf-8")
-
-
-def _eigen_format(n: int) -> str:
-    """The %-format of PRINTEIG's block of n eigenvalues (`OutputFiles.eigenvalues`):
-    arguments BR, PT, the stable count, then BR, PT, k, Re, Im of each."""
-    head = "%4d%6d         Eigenvalue"
-    return f"\n{head}s  :   Stable:%4d" + f"\n{head}%3d:%14.5E%14.5E" * n
-
-
-#: `_eigen_format` by the number of eigenvalues
-_EIGEN_FORMATS: dict = {}
 
 
 class OutputFiles:
@@ -566,15 +467,9 @@ class OutputFiles:
     def row(self, r: Row) -> None:
         """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
         the same point in screen format (unit 9), opening the point's block."""
-        v = _floats(r.values)
-        if _plain(v):
-            # fmt_e_many's and screen_line's formats at once (one conversion and check
-            # of the values for both; the same text)
-            vals = ("%18.10E" * len(v) % tuple(v)).replace("E+", "E+0").replace("E-", "E-0")
-            m = min(len(v), 8)
-            screen = ("%14.5E" * m) % tuple(v[:m])
-        else:
-            vals, screen = fmt_e_many(v), fmt_es_many(v[:8], 14, 5)
+        v = r.values
+        vals = es_text(v, 19, 10, exp3=True)
+        screen = es_text(v[:8], 14, 5)                                      # screen_line's
         self._append(self.b_path, self._pending_b + f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
         self._pending_b = ""
         bar = f"{D_BAR}\n" if self._d_points else ""
@@ -597,22 +492,11 @@ class OutputFiles:
             re = [z.real for z in eig]
             parts = [v for z in eig for v in (z.real, z.imag)]
         stable = sum(1 for x in re if x < 0)
-        if len(re) <= SHORT_ROW and _plain(parts):
-            # every exponent 2-digit (C's %E is ES14.5 then): the block in one %-format
-            # (the same text as the lines below, which the tests check)
-            fmt = _EIGEN_FORMATS.get(len(re))
-            if fmt is None:
-                fmt = _EIGEN_FORMATS[len(re)] = _eigen_format(len(re))
-            args = [br, pt, stable]
-            for k, x in enumerate(re):
-                args += (br, pt, k + 1, parts[2 * k], parts[2 * k + 1])
-            self.diag(fmt % tuple(args))
-            return
         head = f"{br:4d}{pt:6d}         Eigenvalue"
+        # each eigenvalue's real and imaginary part, one line of text each
+        text = es_text(parts, 14, 5, per_line=2).split("\n") if parts else []
         lines = [f"\n{head}s  :   Stable:{stable:4d}"]
-        # real and imaginary parts of every eigenvalue formatted in one call (28 characters each)
-        text = fmt_es_many(parts, 14, 5)
-        lines += [f"{head}{k + 1:3d}:{text[28 * k:28 * k + 28]}" for k in range(len(re))]
+        lines += [f"{head}{k:3d}:{t}" for k, t in enumerate(text, 1)]
         self.diag("\n".join(lines))
 
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
