@@ -102,3 +102,40 @@ def test_gfortran_texts():
     assert es_text([9.99999999999], 19, 10, True) == "  1.0000000000E+001"
     assert es_text([9.999999e99], 14, 5) == "   1.00000+100"
     assert es_text([5e-324], 14, 5) == "   4.94066-324"
+
+
+def test_point_text_is_the_python_one():
+    """A point's b-line, screen line and eigenvalue block in one compiled call equal the
+    Python layout (python_point_text): rows of 0..12 values, real and complex spectra,
+    NaN and 3-digit exponents, negative and wide integers, names of 1..4 characters and a
+    heading with non-ASCII column titles."""
+    from washer.auto.es_format import point_text, python_point_text
+    rng = np.random.default_rng(11)
+    pool = _doubles(5_000, seed=17)
+    heads = ["", "\n  BR    PT  TY  LAB  ω    \n", "=" * 47 + "\n\n  BR    PT  TY  LAB \n"]
+    for trial in range(400):
+        n = int(rng.integers(0, 13))
+        values = rng.choice(pool, n)
+        ints = [int(x) for x in rng.integers(-10**5, 10**6, 4)]
+        if trial % 3 == 0:
+            ints = [1, -int(rng.integers(1, 9999)), 0, 0]
+        name = ["", "EP", "HB", "UZ4"][trial % 4]
+        k = int(rng.integers(0, 6))
+        if trial % 5 == 0:
+            eigen = None
+        elif trial % 2:
+            eigen = (ints[0], abs(ints[1]), rng.choice(pool, k))
+        else:
+            z = np.empty(k, dtype=complex)
+            z.real, z.imag = rng.choice(pool, k), rng.choice(pool, k)
+            eigen = (ints[0], abs(ints[1]), z)
+        head = heads[trial % 3]
+        for vals in (values, values.tolist(), None):
+            got = point_text(*ints, name, vals, head, eigen)
+            assert got == python_point_text(*ints, name, vals, head, eigen), (ints, name, vals)
+    b, d = point_text(1, -2, 0, 0, "", [0.5], "", (1, 2, [-1.0 + 2j, -1.0 - 2j]))
+    assert b == "   1    -2   0    0  5.0000000000E-001\n"
+    assert d.splitlines() == ["   1    -2        0   5.00000E-01", "",
+                              "   1     2         Eigenvalues  :   Stable:   2",
+                              "   1     2         Eigenvalue  1:  -1.00000E+00   2.00000E+00",
+                              "   1     2         Eigenvalue  2:  -1.00000E+00  -2.00000E+00"]

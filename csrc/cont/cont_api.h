@@ -125,3 +125,20 @@ int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_ja
  * (-1 for bad arguments). */
 int cont_format_es(const double *v, int k, int m, int per_line, int indent, int width,
                    int digits, int exp3, char *out);
+
+/* A continuation point's text in AUTO's b- and d-files (io.f90 WRLINE, ae.f90 PRINTEIG;
+ * the reference is washer.auto.es_format.python_point_text): with n >= 0 the b-file line
+ * (I4 br, I6 pt, I4 ty, I5 lab, the n values v in ES19.10E3, a newline), then in the
+ * d-file text `dhead` as given (the bar and the screen heading), the screen line (I4 br,
+ * I6 pt, a blank, `name` right-justified in 3, I5 lab, the first min(n, 8) values in
+ * ES14.5, a newline); with neig >= 0 PRINTEIG's block: a newline, I4 ebr, I6 ept,
+ * '         Eigenvalues  :   Stable:' and I4 the count of real parts below 0, then per
+ * eigenvalue a newline, I4 ebr, I6 ept, '         Eigenvalue', I3 its number, ':', its
+ * real and imaginary parts in ES14.5, and a final newline. eig: neig real parts (cplx = 0,
+ * imaginary parts 0.0) or neig (re, im) pairs (cplx = 1). Integers are right-justified
+ * and never cut. out: the b text, then the d text, then a NUL; *blen the b text's length;
+ * returns the whole length. out holds at least 80 + 20 n + strlen(name) + strlen(dhead) +
+ * 8 * 14 + 40 + neig * 70 characters. */
+int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const double *v, int n,
+                    const char *dhead, int ebr, int ept, const double *eig, int neig, int cplx,
+                    char *out, int *blen);

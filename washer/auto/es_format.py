@@ -119,3 +119,91 @@ def es_text(values, width: int, digits: int, exp3: bool = False,
     if n < 0:
         raise ValueError(f"cannot format {k} x {m} values as ES{width}.{digits}")
     return _ffi.unpack(buf, n).decode("ascii")
+
+
+def python_point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: str,
+                      eigen=None) -> tuple[str, str]:
+    """`point_text` in Python."""
+    b = d = ""
+    if values is not None:
+        v = [float(x) for x in values]
+        b = f"{br:4d}{pt:6d}{ty:4d}{lab:5d}{python_es_text(v, 19, 10, True)}\n"
+        d = f"{dhead}{br:4d}{pt:6d} {name:>3}{lab:5d}{python_es_text(v[:8], 14, 5)}\n"
+    if eigen is not None:
+        ebr, ept, eig = eigen
+        z = np.asarray(eig, dtype=complex).tolist()
+        stable = sum(1 for x in z if x.real < 0)
+        head = f"{ebr:4d}{ept:6d}         Eigenvalue"
+        lines = [f"\n{head}s  :   Stable:{stable:4d}"]
+        lines += [f"{head}{k:3d}:{python_es_text([x.real, x.imag], 14, 5)}"
+                  for k, x in enumerate(z, 1)]
+        d += "\n".join(lines) + "\n"
+    return b, d
+
+
+_UTF8: dict = {}           # `_utf8`'s bytes by text
+
+
+def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: str,
+               eigen=None) -> tuple[str, str]:
+    """A continuation point's text in AUTO's b- and d-files (io.f90 WRLINE, ae.f90
+    PRINTEIG): (b, d).
+
+    values None: no b-line and no screen line; else b is the b-file line (I4 br, I6 pt,
+    I4 ty, I5 lab, the values in ES19.10E3) and d starts with `dhead` (the d-file's bar
+    and screen heading, as given) and the screen line (I4 br, I6 pt, a blank, `name`
+    right-justified in 3, I5 lab, the first 8 values in ES14.5). eigen: (br, pt,
+    eigenvalues) of PRINTEIG's block (the count of real parts below 0, then each
+    eigenvalue's real and imaginary part in ES14.5) that follows in d, or None. Every
+    line ends with a newline; integers are right-justified, never cut."""
+    if _lib is None:
+        return python_point_text(br, pt, ty, lab, name, values, dhead, eigen)
+    n, v = -1, _ffi.NULL
+    if values is not None:
+        if type(values) is list or type(values) is tuple:
+            n, v = len(values), values
+        else:
+            a = np.ascontiguousarray(values, dtype=float).ravel()
+            n, v = a.size, _ffi.from_buffer("double[]", a)
+    ebr = ept = 0
+    neig, e, cplx = -1, _ffi.NULL, 0
+    if eigen is not None:
+        ebr, ept, eig = eigen
+        if type(eig) is np.ndarray and eig.dtype == np.complex128:
+            a = np.ascontiguousarray(eig).view(np.float64)
+            cplx = 1
+        elif type(eig) is np.ndarray and eig.dtype == np.float64:
+            a = np.ascontiguousarray(eig)
+        else:
+            a = np.ascontiguousarray(eig, dtype=complex).view(np.float64)
+            cplx = 1
+        neig = a.size // 2 if cplx else a.size
+        e = _ffi.from_buffer("double[]", a)
+    nm, dh = _utf8(name), _utf8(dhead)
+    size = 80 + 20 * max(n, 0) + len(nm) + len(dh) + 8 * 14 + 40 + 70 * max(neig, 0)
+    buf = _buffer(size + 1)
+    blen = _lengths()
+    try:
+        total = _lib.cont_auto_point(br, pt, ty, lab, nm, v, n, dh, ebr, ept, e, neig, cplx,
+                                     buf, blen)
+    except TypeError:           # items a double cannot take: numpy's view
+        return point_text(br, pt, ty, lab, name, np.asarray(values, dtype=float), dhead, eigen)
+    b = _ffi.unpack(buf, total)
+    return b[:blen[0]].decode("ascii"), b[blen[0]:].decode("utf-8")
+
+
+def _utf8(text: str) -> bytes:
+    """text's UTF-8 bytes, remembered (a run passes the same few names and headings)."""
+    b = _UTF8.get(text)
+    if b is None:
+        if len(_UTF8) > 256:
+            _UTF8.clear()
+        b = _UTF8[text] = text.encode("utf-8")
+    return b
+
+
+def _lengths():
+    out = getattr(_buffers, "lengths", None)
+    if out is None:
+        out = _buffers.lengths = _ffi.new("int *")
+    return out

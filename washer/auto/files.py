@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.es_format import es_text
+from washer.auto.es_format import es_text, point_text
 from washer.cont.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
 from washer.cont.record import Record
 from washer.text_files import decode_text
@@ -303,7 +303,9 @@ class OutputFiles:
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
         self._flushed = time.monotonic()
-        self._heading = (None, "")     # the d-file's screen heading of column_titles
+        # the column titles the d-file's screen heading was made for, and the text before a
+        # point's screen line: the heading, and the bar and the heading
+        self._heading = (None, "", "")
         self._d_points = 0
 
     def _append(self, path: Path, text: str) -> None:
@@ -464,40 +466,26 @@ class OutputFiles:
         titles = "".join(column_title(t) for t in self.column_titles)
         self._pending_b += f"   0\n   0    PT  TY  LAB {titles}\n"
 
-    def row(self, r: Row) -> None:
+    def row(self, r: Row, eigen=None) -> None:
         """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
-        the same point in screen format (unit 9), opening the point's block."""
-        v = r.values
-        vals = es_text(v, 19, 10, exp3=True)
-        screen = es_text(v[:8], 14, 5)                                      # screen_line's
-        self._append(self.b_path, self._pending_b + f"{r.br:4d}{r.pt:6d}{r.ty:4d}{r.lab:5d}{vals}\n")
-        self._pending_b = ""
-        bar = f"{D_BAR}\n" if self._d_points else ""
+        the same point in screen format (unit 9), opening the point's block, and with
+        eigen = (br, pt, eigenvalues) PRINTEIG's block after it (`eigenvalues`)."""
+        bar = D_BAR + "\n" if self._d_points else ""
         self._d_points += 1
         if self._heading[0] != self.column_titles:
-            self._heading = (list(self.column_titles), screen_heading(self.column_titles))
-        line = f"{r.br:4d}{r.pt:6d} {type_name(r.ty):>3}{r.lab:5d}{screen}"     # screen_line
-        self._append(self.d_path, f"{bar}\n{self._heading[1]}\n{line}\n")
+            heading = screen_heading(self.column_titles)
+            self._heading = (list(self.column_titles), f"\n{heading}\n",
+                             f"{D_BAR}\n\n{heading}\n")
+        b, d = point_text(r.br, r.pt, r.ty, r.lab, type_name(r.ty), r.values,
+                          self._heading[2] if bar else self._heading[1], eigen)
+        self._append(self.b_path, self._pending_b + b)
+        self._pending_b = ""
+        self._append(self.d_path, d)
 
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
         'Eigenvalue  k:' with real and imaginary parts (ES14.5). pt: unsigned point number."""
-        if type(eig) is np.ndarray and eig.dtype.kind == "f":
-            # real eigenvalues (an equilibrium's spectrum mostly): imaginary parts 0.0,
-            # as their complex conversion gives, without it
-            re = eig.tolist()
-            parts = [v for x in re for v in (x, 0.0)]
-        else:
-            eig = np.asarray(eig, dtype=complex).tolist()
-            re = [z.real for z in eig]
-            parts = [v for z in eig for v in (z.real, z.imag)]
-        stable = sum(1 for x in re if x < 0)
-        head = f"{br:4d}{pt:6d}         Eigenvalue"
-        # each eigenvalue's real and imaginary part, one line of text each
-        text = es_text(parts, 14, 5, per_line=2).split("\n") if parts else []
-        lines = [f"\n{head}s  :   Stable:{stable:4d}"]
-        lines += [f"{head}{k:3d}:{t}" for k, t in enumerate(text, 1)]
-        self.diag("\n".join(lines))
+        self.diag(point_text(0, 0, 0, 0, "", None, "", (br, pt, eig))[1])
 
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
         """AUTO's Floquet block in the d-file (PVSPBV): 'Multipliers:     Stable:' and one

@@ -80,11 +80,13 @@ class FileSink:
     def point(self, lab, point) -> None:
         if lab.lab:
             self.files.record(lab)
-        self.files.row(_row(lab))
         st = lab.stability
         if st is not None and st.kind == "eigenvalues":
-            self.files.eigenvalues(lab.br, (lab.pt - 1) % 9999 + 1, st.values)
-        elif st is not None:
+            self.files.row(_row(lab), (lab.br, (lab.pt - 1) % 9999 + 1, st.values))
+            st = None
+        else:
+            self.files.row(_row(lab))
+        if st is not None:
             self.files.multipliers(lab.br, (lab.pt - 1) % 9999 + 1, st.values, st.n_stable)
             for note in st.notes:
                 self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d} NOTE:{note}")

@@ -40,7 +40,7 @@ from washer.cont.codes import Code
 from washer.cont.compiled_newton import compiled_corrector
 from washer.cont.events import first_zero, sign_changes, signed_distance
 from washer.cont.problem import ProblemError
-from washer.cont.linalg import orient
+from washer.cont.linalg import orient, quietly
 from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
 
 #: A Newton iterate whose correction exceeds this multiple of the first
@@ -309,8 +309,7 @@ class Continuation:
         factor = self._factor(J, sysm.border(ref))
         e = np.zeros(len(ref))
         e[-1] = 1.0
-        with np.errstate(all="ignore"):
-            z = factor.solve(e)
+        z = quietly(factor.solve, e)
         nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
             else math.inf
         if not math.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:     # nz: a float
