@@ -3,6 +3,7 @@ forms worked out with sympy: the Hopf point of the uniform states in the wave sp
 wave trains of a conservative travelling-wave equation, the branch points of stationary
 states on an interval, and implicit Euler steps of a linear heat equation. AUTO-07p's own
 demos (wav, pd1, pd2, bru) are compared with AUTO's b-files in test_auto_demo_folders."""
+import gzip
 import math
 import shutil
 from pathlib import Path
@@ -10,6 +11,9 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
+from b_rows import branch_rows
+from washer.auto.files import type_name
+from washer.auto.script import run_script
 from washer.run import run
 
 LOGISTIC = '''
@@ -266,6 +270,7 @@ def test_uniform_states_hopf_locus(tmp_path):
 WAV = Path(__file__).parent / "data" / "auto_demos" / "wav"
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
 def test_wave_train_fold_locus(tmp_path):
     """IPS = 12, ISW = 2: the fold locus of wav's wave trains in (PAR(3), PAR(10)). Its
@@ -311,3 +316,32 @@ def test_wave_train_fold_locus(tmp_path):
     # (|dT/dPAR(3)| ~ 10 near the fold: 3e-3)
     assert at.par[2] == pytest.approx(fold.par[2], abs=3e-4)
     assert at.par[10] == pytest.approx(fold.par[10], abs=3e-3)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
+def test_wave_trains_tori_and_period_doubling(tmp_path, monkeypatch):
+    """wav's wave trains with ISP = 2 (tests/data/wave_trains): AUTO-07p's two TR and its
+    PD, the switch at the PD (ISW = -1, the wave length doubled) and the doubled family's
+    own PD, each in AUTO's order at AUTO's PAR(3) within the location tolerance and at
+    its wave length."""
+    data = Path(__file__).parent / "data" / "wave_trains"
+    for f in ("wav.f90", "c.wav"):
+        shutil.copy(WAV / f, tmp_path)
+    shutil.copy(data / "sp.auto", tmp_path)
+    (tmp_path / "b.sp.ref").write_bytes(gzip.decompress((data / "autoref" / "b.sp.gz").read_bytes()))
+    monkeypatch.chdir(tmp_path)
+    run_script("sp.auto")
+    for ours, ref in (("b.sp", tmp_path / "b.sp.ref"), ("b.pd", data / "autoref" / "b.pd")):
+        a = [r for r in branch_rows(ref) if r.lab]
+        b = [r for r in branch_rows(tmp_path / ours) if r.lab]
+        assert [(type_name(r.ty), r.br) for r in b] == [(type_name(r.ty), r.br) for r in a]
+        for x, y in zip(a, b):
+            if type_name(x.ty) in ("EP", "MX"):
+                continue
+            # located within EPSS (1 + sqrt(DS DSMAX)) in arclength by each engine, PAR(3)
+            # of weight 1: twice 1e-4 (1 + sqrt(0.1)) (1 + sqrt(0.05) for the switch)
+            assert y.values[0] == pytest.approx(x.values[0], abs=3e-4)
+            # the wave length (weight 0 in the arclength) to AUTO's printed digits where
+            # it moves slowly, else through |dT/dPAR(3)| ~ 10 times the tolerance
+            assert y.values[-1] == pytest.approx(x.values[-1], abs=3e-3)

@@ -92,8 +92,11 @@ class UniformHopf(_UserNdim, HopfSystem):
 
 @register(12, 1, "HB")
 @register(12, 1, "*")
+@register(12, -1, "PD")
+@register(12, -1, "BP")
 class WaveTrains(_UserNdim, PeriodicOrbits):
-    """Wave trains (IPS = 12, ISW = 1; FNWP, BCPS, ICPS on AUTOBV)."""
+    """Wave trains (IPS = 12; FNWP, BCPS, ICPS on AUTOBV): ISW = 1, and ISW = -1 at a PD
+    (the wave length doubled, STPNPS's PDBLE) or a BP of wave trains."""
 
     def __init__(self, start: StartData):
         self._doubled_init(PeriodicOrbits, start)
