@@ -231,6 +231,111 @@ def test_vectorised_func_is_checked_on_a_few_points_of_its_first_call():
     assert calls.count(1) == VECTORISE_CHECK and calls.count(2) == 2
 
 
+def test_a_small_stencil_is_one_call_compared_at_a_point_every_spot_every_calls():
+    """A small stencil (STENCIL_MIN to VECTORISE_MIN - 1 points) of a func that takes
+    (ndim, k) arrays is one call, its first call of each size compared with separate calls
+    at every point, later calls at one point every SPOT_EVERY calls; the values are the
+    separate calls' bit for bit, in the same C-order array."""
+    from washer.cont.pointwise import SPOT_EVERY
+    from washer.cont.problem import STENCIL_MIN, VECTORISE_MIN
+    calls = []
+
+    def counted(u, par):
+        calls.append(np.ndim(u))
+        return ab(u, par)
+    prob = Problem(2, counted, npar=3)
+    rng = np.random.default_rng(3)
+    par = np.array([0.2, 8.0, 3.0])
+    for k in (STENCIL_MIN, 7, VECTORISE_MIN - 1):
+        us = rng.standard_normal((k, 2))
+        calls.clear()
+        F = prob.func_many(us, par)
+        assert calls.count(1) == k and calls.count(2) == 1
+        separate = np.array([ab(u, par) for u in us])
+        np.testing.assert_array_equal(F, separate)
+        assert F.flags.c_contiguous
+        calls.clear()
+        for _ in range(2 * SPOT_EVERY):
+            np.testing.assert_array_equal(prob.func_many(us, par), separate)
+        assert calls.count(2) == 2 * SPOT_EVERY and calls.count(1) == 2
+    calls.clear()
+    prob.func_many(rng.standard_normal((STENCIL_MIN - 1, 2)), par)
+    assert calls == [1] * (STENCIL_MIN - 1)
+
+
+def _sum_of_terms(u, par):
+    """A pointwise f whose vectorised call differs from its separate calls in the last
+    bits: np.sum over 9 terms is pairwise (eight partial sums) on a 1-D array, row after
+    row over axis 0 of a (9, k) array: another order of the same additions."""
+    terms = np.array([par[j] * u[0] ** j for j in range(9)])
+    return np.array([np.sum(terms, axis=0), u[0] - u[1]])
+
+
+def _last_bit_on_arrays(u, par):
+    """ab's f, except that on arrays the first component is one unit in the last place
+    larger where PAR(4) > 1: a difference that only calls at such points show."""
+    f = ab(u, par)
+    if np.ndim(u) == 2:
+        f[0] = np.where(par[3] > 1, np.nextafter(f[0], np.inf), f[0])
+    return f
+
+
+def test_a_vectorised_call_differing_in_the_last_bit_is_refused():
+    """A func pointwise on arrays whose vectorised values differ from separate calls' in
+    the last bit only (np.sum's order) is refused at its first small stencil: func_many's values
+    are the separate calls' bit for bit, then and afterwards, and the difference
+    stencils (Problem.jacobian) are evaluated call by call."""
+    rng = np.random.default_rng(11)
+    us = rng.uniform(0.5, 2.0, size=(10, 2))
+    par = rng.uniform(0.1, 1.0, size=9)
+    separate = np.array([_sum_of_terms(u, par) for u in us])
+    at_once = _sum_of_terms(us.T, np.broadcast_to(par, (10, 9)).T).T
+    # the premise: the same values to rounding, not the same bits
+    assert np.allclose(at_once, separate, rtol=1e-14, atol=0)
+    assert not np.array_equal(at_once, separate)
+    prob = Problem(2, _sum_of_terms, npar=9)
+    assert not prob.stencil_by_calls(1)
+    np.testing.assert_array_equal(prob.func_many(us, par), separate)
+    assert prob.stencil_by_calls(1)              # refused for good
+    calls = []
+    prob._func = lambda u, p: calls.append(np.ndim(u)) or _sum_of_terms(u, p)
+    np.testing.assert_array_equal(prob.func_many(us, par), separate)
+    assert set(calls) == {1}
+
+
+def test_a_difference_showing_only_at_later_points_is_refused_there():
+    """Where the vectorised call equals separate calls at the first points and differs at
+    later ones, the first call of each size is compared in full and later calls at one
+    point every SPOT_EVERY calls: the first call that compares a point where they differ
+    is evaluated point by point (its values the separate calls'), and so is every call
+    after it."""
+    from washer.cont.pointwise import SPOT_EVERY
+    rng = np.random.default_rng(5)
+    us = rng.uniform(0.1, 1.0, size=(7, 2))
+    prob = Problem(2, _last_bit_on_arrays, npar=4)
+    early = np.array([0.1, 8.0, 3.0, 0.0])
+    late = np.array([0.1, 8.0, 3.0, 2.0])
+    f_late = np.array([_last_bit_on_arrays(u, late) for u in us])
+    assert not np.array_equal(_last_bit_on_arrays(us.T, np.broadcast_to(late, (7, 4)).T).T,
+                              f_late)                                  # the premise
+    for _ in range(3 * SPOT_EVERY):
+        np.testing.assert_array_equal(prob.func_many(us, early),
+                                      np.array([ab(u, early) for u in us]))
+    assert not prob.stencil_by_calls(1)
+    # calls at PAR(4) = 2: the vectorised values until one call compares a point, which
+    # is evaluated point by point (the separate calls' values), and so is every call after
+    for n in range(1, SPOT_EVERY + 1):
+        got = prob.func_many(us, late)
+        if prob.stencil_by_calls(1):
+            break
+        assert not np.array_equal(got, f_late)
+    assert prob.stencil_by_calls(1) and n <= SPOT_EVERY
+    np.testing.assert_array_equal(got, f_late)
+    np.testing.assert_array_equal(prob.func_many(us, late), f_late)
+    np.testing.assert_array_equal(prob.func_many(us + 1.0, early),
+                                  np.array([ab(u, early) for u in us + 1.0]))
+
+
 @pytest.mark.parametrize("kind", ["mixes points", "raises on arrays"])
 def test_a_func_that_is_not_pointwise_on_arrays_is_called_point_by_point(kind):
     """A func that reduces over the whole batch (wrong with (ndim, k) arrays, and wrong

@@ -53,7 +53,7 @@ from washer.cont.compile import CompileError
 from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
 from washer.cont.linalg import all_finite
-from washer.cont.problem import SECOND_STEP
+from washer.cont.problem import SECOND_STEP, VECTORISE_MIN
 
 #: Sizes up to which the dense corrector is used (beyond it the work is the Jacobian's,
 #: and numpy's LAPACK is the better solver).
@@ -199,18 +199,22 @@ class GeneratedEquations:
 
 class PythonEquations:
     """The user's Python func behind ae_callback.c: f at the rows of the corrector's
-    points, as the Python loop evaluates them (stage 0: Problem.func at the point itself,
-    then Problem.jacobian's stencil, one call per point below VECTORISE_MIN points, else
-    Problem.func_many; stage 1, the loci's second differences: Problem.func_many, as
-    Problem.second_derivatives; stage 2, the first Lyapunov coefficient's differences:
-    Problem.func_many, as normal_form._directional)."""
+    points, as the Python loop evaluates them (stage 0: the point itself and Problem.
+    jacobian's stencil, one Problem.func_many call for them all where they are fewer than
+    VECTORISE_MIN, else the point by Problem.func and the stencil by Problem.func_many,
+    or one call of func per point where Problem.stencil_by_calls says so; stage 1, the
+    loci's second differences: Problem.func_many, as Problem.second_derivatives; stage 2,
+    the first Lyapunov coefficient's differences: Problem.func_many, as normal_form.
+    _directional). func_many
+    calls a func on the arrays of a small stencil where it gives separate calls' values
+    bit for bit (washer.cont.pointwise), so every route gives the Python loop's values."""
 
     func_ready = True
 
     def __init__(self, problem, ndim: int, npar: int, kind: int = 0):
         self.problem, self.n, self.npar, self.kind = problem, ndim, npar, kind
         # the free parameters differenced with u: one for equilibria, two on the loci
-        self.by_calls = problem.stencil_by_calls(1 if kind == 0 else 2)
+        self.m = 1 if kind == 0 else 2
         self.ffi, self.lib = _library("ae_callback.c", _CALLBACK_CDEF)
         self.error = None
         self._cb = self.ffi.callback("ae_callback", self._evaluate, onerror=self._onerror)
@@ -254,9 +258,14 @@ class PythonEquations:
                 return 1
             return 0
         try:
+            if not problem.stencil_by_calls(self.m) and rows - first < VECTORISE_MIN:
+                # the point and its stencil in one small batch (the point's own value
+                # is the one its separate call gives: func_many's rule for them)
+                F[first:] = problem.func_many(U[first:], P[first:])
+                return 0
             if first == 0:
                 F[0] = problem.func(U[0], P[0])
-            if self.by_calls:
+            if problem.stencil_by_calls(self.m):
                 fn = problem.user_func
                 S = np.array([fn(U[r], P[r]) for r in range(1, rows)], dtype=float)
                 if S.shape != (rows - 1, n) or not all_finite(S):

@@ -57,13 +57,23 @@ import numpy as np
 
 from washer.cont.differences import par_points, quotient, step, u_points, u_quotient
 from washer.cont.linalg import all_finite
+from washer.cont.pointwise import PointwiseCheck
 from washer.cont.pvls import Orbit
-#: Stencils of at least this many points call a plain user func once with
-#: (ndim, k) arrays; below it, separate calls are cheaper (numpy's per-array
-#: overhead exceeds a small func's cost).
+#: Batches of at least this many points call a plain user func once with (ndim, k)
+#: arrays, checked once on the first call's first VECTORISE_CHECK points against separate
+#: calls (rtol 1e-14) and off for good on a mismatch (the rule the BVP and periodic
+#: demos' files were made with: bvp.py's `par[0] ** 2` differs in the last bit between
+#: a numpy scalar and an array, and washer.cont.pointwise's bitwise rule would change
+#: those files).
 VECTORISE_MIN = 12
-#: How many points of the first vectorised call are checked against separate calls.
+#: How many points of the first vectorised batch are checked against separate calls.
 VECTORISE_CHECK = 32
+#: Difference stencils of STENCIL_MIN to VECTORISE_MIN - 1 points (the corrector's of
+#: equilibria and the fold and Hopf loci: 6 to 10 points for NDIM 2 and 3) call the func
+#: once with (ndim, k) arrays where it gives separate calls' values bit for bit
+#: (washer.cont.pointwise); below STENCIL_MIN separate calls are cheaper: one call on
+#: arrays of ab.py or lrz.py costs about three separate calls.
+STENCIL_MIN = 4
 #: Step of the second-derivative stencils, about eps^(1/4) (see second_derivatives).
 SECOND_STEP = 1.2e-4
 #: Step of the forward differences of analytic Jacobians (second_derivatives with
@@ -144,6 +154,7 @@ class Problem:
         self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
         self._dfdp_batch = dfdp_batch
         self._vectorised = None       # does func accept (ndim, k) arrays? (checked once)
+        self._pointwise = PointwiseCheck()    # func on the arrays of a small stencil
         self.parnames = dict(parnames or {})
         self.unames = dict(unames or {})
         self.jac = jac
@@ -299,8 +310,13 @@ class Problem:
                 raise ProblemError(f"{self.name}: func_batch returned shape {out.shape}, "
                                    f"expected ({len(us)}, {self.ndim})")
             return out
-        if self._vectorised is not False and len(us) >= VECTORISE_MIN:
+        k = len(us)
+        if k >= VECTORISE_MIN and self._vectorised is not False:
             out = self._call_vectorised(us, pars)
+            if out is not None:
+                return out
+        elif STENCIL_MIN <= k < VECTORISE_MIN and not self._pointwise.off:
+            out = self._call_stencil(us, pars)
             if out is not None:
                 return out
         # Point by point: the user's func directly (one wrapper and one check for
@@ -381,6 +397,48 @@ class Problem:
                 return None
         return out
 
+    def _call_stencil(self, us, pars):
+        """f at the k points of a small stencil (STENCIL_MIN <= k < VECTORISE_MIN) in one
+        call of the user's func with u (ndim, k) and par (npar, k), where it gives
+        separate calls' values bit for bit at the points washer.cont.pointwise compares
+        (all of a first call of each size, up to its CHECK_POINTS, then one every
+        SPOT_EVERY calls); None where it does not (off for good: the caller evaluates
+        point by point), or where a value is not finite (the point-by-point evaluation
+        reports it)."""
+        check, k, fn = self._pointwise, len(us), self._func
+        rows = check.rows(k)
+        try:
+            if check.first(k):
+                # the first call of its size may be a func not meant for arrays: quiet
+                with np.errstate(all="ignore"):
+                    out = np.asarray(fn(us.T, pars.T), dtype=float)
+            else:
+                out = np.asarray(fn(us.T, pars.T), dtype=float)
+            if out.shape != (self.ndim, k):
+                raise ValueError("not one column per point")
+        except Exception:
+            check.refuse()
+            return None
+        # (k, ndim) in C order, as the point-by-point route gives it: the values are the
+        # same bits, and so must be what is computed from them (a BLAS product or LAPACK
+        # call may round otherwise on a transposed layout)
+        out = np.ascontiguousarray(out.T)
+        if rows is not None:
+            try:
+                # separate calls as func_many makes them, each with arrays of its own
+                if len(rows) == 1:
+                    j = rows[0]
+                    ref, got = np.asarray(fn(us[j].copy(), pars[j].copy()), dtype=float), out[j]
+                else:
+                    ref = np.array([fn(us[j].copy(), pars[j].copy()) for j in rows],
+                                   dtype=float)
+                    got = out[rows]
+            except Exception:
+                return None       # the point-by-point evaluation raises it, and reports
+            if not check.agree(ref, got, k):
+                return None
+        return out if all_finite(out) else None
+
     def dfdu(self, u, par) -> np.ndarray:
         """(ndim, ndim) Jacobian: the user's (JAC != 0) or central differences in one batch."""
         if self._dfdu is not None and self.jac != 0:
@@ -410,8 +468,12 @@ class Problem:
     def stencil_by_calls(self, m: int) -> bool:
         """Whether central differences over u and m parameters, 2 (NDIM + m) points, are
         evaluated one call of the user's func per point (`_jacobian_by_calls`, as
-        func_many makes them): no batched func, and fewer points than VECTORISE_MIN."""
-        return self._func_batch is None and 2 * (self.ndim + m) < VECTORISE_MIN
+        func_many makes them): no batched func, and fewer points than STENCIL_MIN, or
+        fewer than VECTORISE_MIN and a func not called on arrays (washer.cont.pointwise
+        refused it). Asked at each stencil: the answer changes when a call is refused."""
+        k = 2 * (self.ndim + m)
+        return self._func_batch is None and (k < STENCIL_MIN or k < VECTORISE_MIN
+                                             and self._pointwise.off)
 
     def jacobian(self, u, par, indices) -> np.ndarray:
         """[f_u, f_PAR(indices)], shape (ndim, ndim + len(indices)): the user's
