@@ -77,6 +77,17 @@ NOT_YET = {
 }
 
 
+def _run(k: float, ds: float):
+    """Our run of the equations from the start at PAR(1) = -1 with the constants of
+    pf.auto (the ones AUTO-07p's b-files here were made with), DS = -ds."""
+    with tempfile.TemporaryDirectory() as d:
+        c = Path(d) / "c.pf"
+        c.write_text(f"NDIM = 2, IPS = 1, IRS = 0, ICP = [1], ISP = 1, ILP = 1, NMX = 60, "
+                     f"DS = {-ds}, DSMIN = 0.01, DSMAX = {DSMAX}, EPSS = {EPSS}, "
+                     "EPSL = 1e-7, EPSU = 1e-7, ITMX = 8, RL0 = -5, RL1 = 5\n")
+        return run(c, verbose=False, problem=Problem(2, func, stpnt_at(-1.0, k), name="pf"),
+                   files=False)
+
 @pytest.mark.parametrize("k, ds", [
     pytest.param(k, ds, marks=pytest.mark.xfail(reason=NOT_YET[(k, ds)], strict=True))
     if (k, ds) in NOT_YET else (k, ds)
@@ -84,13 +95,7 @@ NOT_YET = {
                   (0.3, 0.05), (0.3, 0.1), (0.3, 0.0625), (3.0, 0.13), (3.0, 0.2)]])
 def test_the_pitchfork_at_the_fold_is_one_branch_point_on_the_branch(k, ds):
     P = closed_form(k)
-    with tempfile.TemporaryDirectory() as d:
-        c = Path(d) / "c.pf"
-        c.write_text(f"NDIM = 2, IPS = 1, IRS = 0, ICP = [1], ISP = 1, ILP = 1, NMX = 60, "
-                     f"DS = {-ds}, DSMIN = 0.01, DSMAX = {DSMAX}, EPSS = {EPSS}, "
-                     "EPSL = 1e-7, EPSU = 1e-7, ITMX = 8, RL0 = -5, RL1 = 5\n")
-        r = run(c, verbose=False, problem=Problem(2, func, stpnt_at(-1.0, k), name="pf"),
-                files=False)
+    r = _run(k, ds)
     labelled = [s for s in r.specials if s.ty != "EP"]
     assert [s.ty for s in labelled] == ["BP"]
     (bp,) = labelled
@@ -119,13 +124,7 @@ def test_autos_runs_of_the_same_equations(k, ds):
     (1.0, 0.13) both label LP at PT 21 and BP at PT 22, ours the BP within the location
     tolerance of the closed form, and ours one LP more at PT 23 (NOT_YET)."""
     ref = _autos_rows(k, ds)
-    with tempfile.TemporaryDirectory() as d:
-        c = Path(d) / "c.pf"
-        c.write_text(f"NDIM = 2, IPS = 1, IRS = 0, ICP = [1], ISP = 1, ILP = 1, NMX = 60, "
-                     f"DS = {-ds}, DSMIN = 0.01, DSMAX = {DSMAX}, EPSS = {EPSS}, "
-                     "EPSL = 1e-7, EPSU = 1e-7, ITMX = 8, RL0 = -5, RL1 = 5\n")
-        r = run(c, verbose=False, problem=Problem(2, func, stpnt_at(-1.0, k), name="pf"),
-                files=False)
+    r = _run(k, ds)
     ours = {abs(row.pt): row for row in r.rows if abs(row.br) == 1}
     autos_labels = [(pt, row.ty) for pt, row in sorted(ref.items()) if row.ty not in (0, 9)]
     our_labels = [(pt, row.ty) for pt, row in sorted(ours.items()) if row.ty not in ("", "EP")]

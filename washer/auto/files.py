@@ -143,13 +143,6 @@ def screen_heading(titles: list[str]) -> str:
     return "  BR    PT  TY  LAB " + "".join(column_title(t)[:14] for t in titles[:8])
 
 
-def screen_line(row: "Row") -> str:
-    """A point in screen format (I4,I6,1X,A3,I5,ES14.5...) as the d-file repeats it; the
-    b-file's signs of BR and PT are kept (the terminal shows absolute values)."""
-    vals = fmt_es_many(row.values[:8], 14, 5)
-    return f"{row.br:4d}{row.pt:6d} {type_name(row.ty):>3}{row.lab:5d}{vals}"
-
-
 @dataclass
 class Row:
     """One continuation point as the b-file shows it."""

@@ -1,8 +1,9 @@
 """The first-order systems of a parabolic PDE u_t = D u_xx + f(u, p) (AUTO's parabolic.f90).
 
 The user supplies f (FUNC, NDIM = n components); the diffusion coefficients are
-D_i = PAR(14 + i), i = 1..n. AUTO's problem types 11, 12 and 17 continue solutions of
-the ODE in the space variable, written as a system of 2n components (u, v = u_z):
+D_i = PAR(14 + i), i = 1..n. AUTO's problem types 11, 12, 14, 16 and 17 continue
+solutions of the ODE in the space variable, written as a system of 2n components
+(u, v = u_z):
 
 * travelling waves u(x - c t) with speed c = PAR(10) (IPS = 11, 12; FNWS):
 
@@ -14,7 +15,7 @@ the ODE in the space variable, written as a system of 2n components (u, v = u_z)
 
       u' = L v,   v' = -L f(u, p) / D
 
-`parabolic_problem` builds the Problem of the 2n components from the user's; the
+`ParabolicProblem` is the Problem of the 2n components built on the user's; the
 continued systems (washer.cont.systems.waves, washer.cont.systems.parabolic_bvp) are the
 engine's equilibria, periodic orbits and boundary value problems of it.
 """
@@ -31,7 +32,8 @@ SPEED = 10
 LENGTH = 11
 #: PAR(14 + i): the diffusion coefficient of the i-th component (FNWS, FNSP, FNPE).
 DIFFUSION = 14
-#: PAR(14): the time of an evolution (IPS = 14, 16; FNPE), its continuation parameter.
+#: PAR(14): the time of an evolution (IPS = 14, 16; FNPE), its continuation parameter
+#: (as it is of time integration, IPS = -2: washer.cont.start).
 TIME = 14
 
 #: The first-order system each problem type of a parabolic PDE continues: FNWS for

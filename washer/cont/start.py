@@ -13,7 +13,7 @@ import numpy as np
 
 import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.cont.codes import split_code, type_name
-from washer.cont.parabolic import PARABOLIC_KINDS, ParabolicProblem
+from washer.cont.parabolic import PARABOLIC_KINDS, TIME, ParabolicProblem
 from washer.cont.record import find_record
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError
@@ -58,16 +58,22 @@ def settings_for(c, problem) -> tuple[Settings, object]:
     if s.IPS in (14, 16):
         # Time evolution: the time PAR(14) is the continuation parameter whatever ICP(1)
         # names, without fold or bifurcation tests (AUTOPE: ICP(1) = 14, ILP = ISP = 0).
-        s = s.with_(ICP=[14] + [i for i in s.ICP[1:] if i != 14], ILP=0, ISP=0,
-                    NPAR=max(s.NPAR, 14))
+        s = _time_first(s).with_(ILP=0, ISP=0)
     if problem.npar > s.NPAR:
         s = s.with_(NPAR=problem.npar)      # the equations read PAR up to their npar
-    if s.IPS == -2 and s.ICP[0] != 14:
+    if s.IPS == -2 and s.ICP[0] != TIME:
         # Time integration integrates in the time PAR(14) whatever ICP(1) names (AUTO's
         # AUTOTI: ICP(1) = 14, NFPR = 1): run('x', IPS=-2, ICP=[1, ..]) leaves PAR(1) as
         # it is, where taking ICP(1) for the time would integrate with PAR(1) moving.
-        s = s.with_(ICP=[14] + [i for i in s.ICP[1:] if i != 14], NPAR=max(s.NPAR, 14))
+        s = _time_first(s)
     return s, problem
+
+
+def _time_first(s: Settings) -> Settings:
+    """s with the time PAR(14) as ICP(1), the other ICP entries after it without PAR(14),
+    and NPAR at least 14: the continuation parameter of time integration (IPS = -2) and
+    time evolution (IPS = 14, 16)."""
+    return s.with_(ICP=[TIME] + [i for i in s.ICP[1:] if i != TIME], NPAR=max(s.NPAR, TIME))
 
 
 def restart_record(c, problem, records, records_source: str = "the restart file"):
