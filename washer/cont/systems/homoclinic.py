@@ -144,12 +144,15 @@ class _Projection:
         self.m, self.stable, self.ref = m, stable, None
 
     def rows(self, At: np.ndarray) -> np.ndarray:
+        """L (m, NDIM) for At = A^T (NDIM, NDIM); the first call's subspace becomes the
+        reference."""
         Q = invariant_basis(At, self.m, self.stable)
         if self.ref is None:
             self.ref = Q
         return (Q @ (Q.T @ self.ref)).T
 
     def accept(self, At: np.ndarray) -> None:
+        """The subspace of At (NDIM, NDIM) at the accepted point is the new reference."""
         self.ref = invariant_basis(At, self.m, self.stable)
 
 
@@ -245,6 +248,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
         return np.asarray(par[11:11 + self.ndm], float)
 
     def _extended(self, user, ndm: int, nbc: int) -> Problem:
+        """The Problem the general BVP continues: f scaled by T = PAR(11), the NBC
+        boundary conditions (projections at both ends, f(x0) = 0 for IEQUIB = 1) and the
+        phase condition as its one integral condition."""
         def func_batch(U, pars):
             return pars[:, 10:11] * user.func_many(U, pars)
 

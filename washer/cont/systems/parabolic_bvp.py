@@ -67,6 +67,7 @@ class _Evolution(_ParabolicBVP):
         self.t_old = float(self.par[OLD_TIME - 1])
 
     def _dt(self, par) -> float:
+        """The Euler step in time, t - t_old; 1 at the start, where t = t_old."""
         t = par[TIME - 1]
         return 1.0 if t == self.t_old else t - self.t_old
 
@@ -78,12 +79,16 @@ class _Evolution(_ParabolicBVP):
         return ug[:, :n] - uold, ratio, self._dt(par)
 
     def gauss_f(self, ug, par) -> np.ndarray:
+        """FNSP's right-hand side at the collocation points ug (NTST NCOL, 2n) with the
+        Euler term L (u - u_old) / (D dt) added to the v' rows (FNPE)."""
         f = super().gauss_f(ug, par)
         du, ratio, dt = self._memory(ug, par)
         f[:, self.ndm:] += ratio * du / dt
         return f
 
     def gauss_fu_fp(self, ug, par):
+        """`gauss_f`'s derivatives: (f_u (NTST NCOL, 2n, 2n), [f_PAR(i) (NTST NCOL, 2n)
+        in x's parameter order]), the Euler term's included."""
         fu, fp = super().gauss_fu_fp(ug, par)
         du, ratio, dt = self._memory(ug, par)
         n = self.ndm
@@ -117,9 +122,11 @@ class PeriodicEvolution(_Evolution):
     """Time evolution with periodic boundary conditions (IPS = 14; BCPS)."""
 
     def _bc(self, U, par):
+        """BCPS: u(0) - u(1), (2n,), from the profile U (n_nodes, 2n)."""
         return U[0] - U[-1]
 
     def _bc_jacobian(self, U, par) -> np.ndarray:
+        """d `_bc` / d (u(0), u(1), free parameters): (2n, 4n + NFPR), exact."""
         n = self.ndim
         return np.hstack([np.eye(n), -np.eye(n), np.zeros((n, self.nfpr))])
 
