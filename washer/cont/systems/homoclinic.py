@@ -65,6 +65,12 @@ from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
 from washer.cont.systems.general_bvp import BoundaryValueProblem
 
+#: PAR(11): the truncation interval T of the homoclinic orbit (time scaled to [0, 1]).
+PERIOD = 11
+#: PAR(12 .. 11 + NDIM): the equilibrium (set by PVLS with IEQUIB = 0, solved for with 1).
+EQUILIBRIUM = 12
+#: PAR(20 + k): the value of test function k of IPSI after each point.
+PSI = 20
 #: The IPSI codes computed here (PSIHO's): see the module docstring.
 PSI_CODES = frozenset(range(1, 13))
 
@@ -192,7 +198,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
                                 keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
         user, ndm = data.problem, s.NDIM
         self.user, self.ndm, self.iequib = user, ndm, s.IEQUIB
-        npar = max(s.NPAR, 11 + ndm, 20 + max(s.IPSI, default=0))
+        npar = max(s.NPAR, EQUILIBRIUM - 1 + ndm, PSI + max(s.IPSI, default=0))
         par = np.zeros(npar)
         p = np.asarray(data.par, float)
         par[:min(len(p), npar)] = p[:npar]
@@ -205,7 +211,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
         # NSTAB, NUNSTAB at the start's equilibrium (STPNHO: PVLS, then GETSTAB where -1).
         if self.iequib == 0:
             par = user.pvls(self._start_u0(rec, par, data), par)
-        re = np.linalg.eigvals(self._A(par[11:11 + ndm], par)).real
+        re = np.linalg.eigvals(self._A(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], par)).real
         nstab, nunstab = s.NSTAB, s.NUNSTAB
         nproj = ndm if -1 in (nstab, nunstab) else nstab + nunstab
         if nstab == -1 and nunstab != -1:
@@ -239,13 +245,13 @@ class HomoclinicOrbits(BoundaryValueProblem):
     def _A(self, x0, par) -> np.ndarray:
         """f_u at the equilibrium, time reversed where PAR(11) < 0 (PRJCTN, EIGHO)."""
         A = self.user.dfdu(np.asarray(x0, float), par)
-        return -A if par[10] < 0 else A
+        return -A if par[PERIOD - 1] < 0 else A
 
     def _equilibrium(self, u0, par) -> np.ndarray:
         """x0: PAR(12 .. 11 + NDIM), after the user's PVLS at u(0) for IEQUIB = 0."""
         if self.iequib == 0:
             par = self.user.pvls(np.asarray(u0, float), par)
-        return np.asarray(par[11:11 + self.ndm], float)
+        return np.asarray(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + self.ndm], float)
 
     def _extended(self, user, ndm: int, nbc: int) -> Problem:
         """The Problem the general BVP continues: f scaled by T = PAR(11), the NBC
@@ -255,7 +261,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
             return pars[:, 10:11] * user.func_many(U, pars)
 
         def func(u, par):
-            return par[10] * user.func(u, par)
+            return par[PERIOD - 1] * user.func(u, par)
 
         dfdu_batch = None
         if user.has_dfdu:
@@ -305,8 +311,8 @@ class HomoclinicOrbits(BoundaryValueProblem):
         t, U, ntst, ncol = record_profile(rec, ndm)
         if self.iequib > 0:
             F = self.user.func_many(U, par)
-            par[11:11 + ndm] = U[int(np.argmin(np.sum(F * F, axis=1)))]
-        x0 = par[11:11 + ndm]
+            par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm] = U[int(np.argmin(np.sum(F * F, axis=1)))]
+        x0 = par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm]
         mesh_U = U[::ncol]
         j = int(np.argmin(np.sum((mesh_U - x0) ** 2, axis=1)))
         if j in (0, ntst):
@@ -338,13 +344,13 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if ipsi:
             U, _ = self.unpack(x)
             for k in ipsi:
-                par[19 + k] = self.psi(k, U, par)
+                par[PSI - 1 + k] = self.psi(k, U, par)
         return par
 
     def psi(self, k: int, U: np.ndarray, par: np.ndarray) -> float:
         """PSIHO's test function k (module docstring) of the orbit U (n_nodes, NDIM)."""
         ndm, s = self.ndm, self.nstab - 1              # s: 0-based index of l_NSTAB
-        x0 = np.asarray(par[11:11 + ndm], float)
+        x0 = np.asarray(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], float)
         lam, V, W = spectrum(self._A(x0, par))
         V, W = self._right_vectors(V), self._left_vectors(W)
         rr, ri = lam.real, lam.imag
@@ -376,10 +382,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
             return float(rr[s + 1])
         if k == 11:
             f1 = self.user.func(U[-1], par)
-            return float(f1 @ W[s] * math.exp(-par[10] * rr[s] / 2))
+            return float(f1 @ W[s] * math.exp(-par[PERIOD - 1] * rr[s] / 2))
         if k == 12:
             f0 = self.user.func(U[0], par)
-            return float(f0 @ W[s + 1] * math.exp(par[10] * rr[s + 1] / 2))
+            return float(f0 @ W[s + 1] * math.exp(par[PERIOD - 1] * rr[s + 1] / 2))
         raise ValueError(f"IPSI code {k}: not computed (see washer.cont.systems.homoclinic)")
 
 
