@@ -319,11 +319,23 @@ class PeriodicOrbits(CollocationBVP):
         bv0, bv1, the multipliers and the stable count, computed on first use; None
         with ISP = 0)."""
         U, par = self.unpack(x)
+        # A point's PAR is asked for twice (the UZ tests, then its b-row): the second
+        # time PVLS would see the same profile, PAR and mesh, so its result is kept,
+        # unless it read the multipliers (their cache follows the Jacobian and the
+        # suspension state, which may move in between).
+        key = (x.tobytes(), par.tobytes(), self.mesh.tm.tobytes(), self.mesh.ncol)
+        kept = getattr(self, "_params_kept", None)
+        if kept is not None and kept[0] == key:
+            return kept[1].copy()
+        asked = []
 
         def multipliers():
+            asked.append(True)
             st = self.stability(x) if self.settings.ISP != 0 else None
             return None if st is None else st.values
-        return self.pvls_params(U, par, self.period(par), multipliers)
+        out = self.pvls_params(U, par, self.period(par), multipliers)
+        self._params_kept = None if asked else (key, out.copy())
+        return out
 
     def update(self, x: np.ndarray, tangent: np.ndarray) -> None:
         """CONTBV's STUPBV: the accepted profile becomes the phase condition's
