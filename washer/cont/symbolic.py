@@ -244,9 +244,14 @@ def symbolic_problem(mod, path: Path, ndim: int, name: str) -> Problem:
     exprs = [sympy.sympify(e) for e in exprs]
     # the key is the equations themselves (a copy of NAME.py in another folder, a chain of
     # runs each in its own folder, reuses the C; a module whose expressions depend on
-    # anything else gets its own)
-    key = (ndim, sympy.srepr(u_syms), sympy.srepr(sorted(par_syms.items())),
-           tuple(sympy.srepr(e) for e in exprs))
+    # anything else gets its own). srepr with order="none" prints every node's args as
+    # stored (sympy keeps them in canonical order) instead of sorting each Add's terms for
+    # display: still the whole tree, so distinct equations never share a key, at a fifth
+    # of the cost (the key is made on every run; the display sort was most of a run's
+    # set-up)
+    def rep(e):
+        return sympy.srepr(e, order="none")
+    key = (ndim, rep(u_syms), rep(sorted(par_syms.items())), tuple(rep(e) for e in exprs))
     text = _GENERATED.get(key)
     if text is None:             # sympy's differentiation and cse: once per process
         text = _GENERATED[key] = generate_c(u_syms, par_syms, exprs)
