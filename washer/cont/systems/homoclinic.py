@@ -24,9 +24,31 @@ IEQUIB = 0: the equilibrium is the user's, set into PAR(12 .. 11 + NDIM) by PVLS
 u(0) (FBHO calls PVLS(NDM, U0, PAR) at each evaluation), and only the NSTAB + NUNSTAB
 projection conditions are imposed.
 
-Free parameters: NFPR = NSTAB + NUNSTAB - NDIM + 2 + IEQUIB NDIM; the first
-NFPR - IEQUIB NDIM of ICP, then PAR(12 .. 11 + NDIM) (INHO appends them to ICP). Further
-ICP entries are written only (the test functions PAR(20 + k) among them).
+Heteroclinic orbits (IEQUIB = -1, -2): the orbit leaves x1 = PAR(12 .. 11 + NDIM) and
+reaches x2 = PAR(12 + NDIM .. 11 + 2 NDIM); the NSTAB conditions at t = 0 are x1's, the
+NUNSTAB at t = 1 x2's (both counts, where -1, from x1's eigenvalues, as STPNHO's). -1: the
+user's PVLS sets both; -2: both solved for, f(x1) = f(x2) = 0 with PAR(12 .. 11 + 2 NDIM)
+free.
+
+Homoclinic to a saddle-node (IEQUIB = 2): x0 solved for as with 1, plus Re l_(NSTAB+1)
+= 0 (the eigenvalues by real part, smallest first: the one between the NSTAB stable
+and NUNSTAB unstable ones); NSTAB + NUNSTAB = NDIM - 1, counted without the eigenvalue
+nearest zero. Test functions 15, 16: the orbit's ends seen along the centre direction
+v_(NSTAB+1), (x0 - u(1)) . v and (x0 - u(0)) . v, zero for a non-central orbit.
+
+Reversible systems (IREV, one entry per component): the orbit is the half from x0 to the
+symmetric section, the components i with IREV(i) > 0 vanishing at t = 1 in place of the
+NUNSTAB projection conditions there, and no phase condition (the section fixes the time
+shift).
+
+Fixed test functions (IFIXED): psi_k = 0 for each k listed (the IPSI codes below), one
+more boundary condition and one more free parameter each.
+
+Free parameters: NFPR = NBC + NINT - NDIM + 1 with NBC = NSTAB + (NUNSTAB, or the number
+of IREV(i) > 0) + NFIXED + (1 for IEQUIB = 2) + NDIM per solved-for equilibrium and NINT =
+1 (0 with IREV); the first NFPR - NDIM (solved-for equilibria) of ICP, then
+PAR(12 .. ) of the solved-for equilibria (INHO appends them to ICP). Further ICP entries
+are written only (the test functions PAR(20 + k) among them).
 
 Starts (ISTART, INHO/STPNHO): ISTART = 5 (the default) is 1 from STPNT or a stored
 homoclinic orbit, 4 from a stored orbit of another problem type (a periodic orbit of
@@ -48,9 +70,11 @@ the leading unstable one:
   9  local bifurcation, NSTAB decreases: Re l_s;  10  NSTAB increases: Re l_{s+1}
   11 orbit flip w.r.t. the leading stable direction: f(u(1)) . w_s e^(-T Re l_s / 2)
   12 orbit flip w.r.t. the leading unstable direction: f(u(0)) . w_{s+1} e^(T Re l_{s+1} / 2)
+  15 non-central saddle-node homoclinic (stable side): (x0 - u(1)) . v_{s+1}
+  16 non-central saddle-node homoclinic (unstable side): (x0 - u(0)) . v_{s+1}
 (w the left eigenvectors, v the right ones, real parts, unit length, signs continued
-from the previous evaluation as EIGHO's). Not yet: 13, 14 (inclination flips: they
-need the adjoint of ITWIST = 1), 15, 16 (non-central saddle-node homoclinics: IEQUIB = 2).
+from the previous evaluation as EIGHO's; all at the left equilibrium x1). Not yet: 13,
+14 (inclination flips: they need the adjoint of ITWIST = 1).
 """
 from __future__ import annotations
 
@@ -71,8 +95,11 @@ PERIOD = 11
 EQUILIBRIUM = 12
 #: PAR(20 + k): the value of test function k of IPSI after each point.
 PSI = 20
-#: The IPSI codes computed here (PSIHO's): see the module docstring.
-PSI_CODES = frozenset(range(1, 13))
+#: The IPSI (and IFIXED) codes computed here (PSIHO's): see the module docstring.
+PSI_CODES = frozenset(range(1, 13)) | {15, 16}
+#: IEQUIB: 0 the user's equilibrium (PVLS), 1 solved for, 2 a saddle-node solved for,
+#: -1 two equilibria from PVLS (heteroclinic), -2 two equilibria solved for.
+EQUILIBRIUM_KINDS = (-2, -1, 0, 1, 2)
 
 #: PSIHO's COMPZERO (INHO's HMACHHO): an imaginary part below it is zero.
 COMPZERO = 1e-13
@@ -84,21 +111,18 @@ def unsupported(s) -> list[str]:
     if s.ITWIST != 0:
         out.append(f"ITWIST = {s.ITWIST} (the adjoint for orientation and inclination "
                    "flips; ITWIST = 0 is)")
-    if s.IEQUIB not in (0, 1):
-        out.append(f"IEQUIB = {s.IEQUIB} (saddle-node or heteroclinic orbits; IEQUIB = 0 "
-                   "and 1 are)")
+    if s.IEQUIB not in EQUILIBRIUM_KINDS:
+        out.append(f"IEQUIB = {s.IEQUIB} (HomCont's are -2, -1, 0, 1, 2)")
     if s.ISTART not in (1, 2, 4, 5):
         out.append(f"ISTART = {s.ISTART} (" + ("the homotopy start" if s.ISTART == 3 else
                                                 "n-homoclinic branch switching")
                    + "; ISTART = 1, 2, 4, 5 are)")
-    if s.IREV:
-        out.append("IREV (reversible systems)")
-    if s.IFIXED:
-        out.append(f"IFIXED = {list(s.IFIXED)} (test functions held fixed)")
-    missing = [k for k in s.IPSI if k not in PSI_CODES]
+    if s.IREV and len(s.IREV) != s.NDIM:
+        out.append(f"IREV = {list(s.IREV)} (one entry per component of NDIM = {s.NDIM})")
+    missing = [k for k in tuple(s.IPSI) + tuple(s.IFIXED) if k not in PSI_CODES]
     if missing:
-        out.append(f"IPSI codes {missing} (13, 14 need ITWIST = 1, 15, 16 IEQUIB = 2; "
-                   "codes 1-12 are computed)")
+        out.append(f"IPSI/IFIXED codes {missing} (13, 14 need ITWIST = 1; codes 1-12, "
+                   "15, 16 are computed)")
     if s.NBC or s.NINT:
         out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
                    "integral conditions)")
@@ -184,10 +208,39 @@ class _SignedVectors:
         return V
 
 
+def _solved_equilibria(iequib: int) -> int:
+    """How many equilibria are unknowns (PAR(12 ..) free, f = 0 imposed): IEQUIB 1, 2
+    one, -2 two, 0 and -1 none (the user's PVLS sets them)."""
+    return {1: 1, 2: 1, -2: 2}.get(iequib, 0)
+
+
+def _counts(s, eigenvalues) -> tuple[int, int]:
+    """(NSTAB, NUNSTAB): the given ones, or (INHO, GETSTAB) the rest of NDIM (NDIM - 1
+    for a saddle-node) where one is given, or counted from the start's eigenvalues (a
+    saddle-node's nearest zero excluded) where -1."""
+    nstab, nunstab = s.NSTAB, s.NUNSTAB
+    ndm = len(eigenvalues)
+    nproj = (ndm - (s.IEQUIB == 2)) if -1 in (nstab, nunstab) else nstab + nunstab
+    if nstab == -1 and nunstab != -1:
+        nstab = nproj - nunstab
+    elif nunstab == -1 and nstab != -1:
+        nunstab = nproj - nstab
+    re = np.asarray(eigenvalues).real
+    keep = np.ones(ndm, bool)
+    if s.IEQUIB == 2:
+        keep[int(np.argmin(np.abs(re)))] = False
+    if nstab == -1:
+        nstab = int(np.sum((re < 0) & keep))
+    if nunstab == -1:
+        nunstab = int(np.sum((re > 0) & keep))
+    return nstab, nunstab
+
+
 @register(9, 1, "*")
 class HomoclinicOrbits(BoundaryValueProblem):
     """The continued system of homoclinic orbits (IPS = 9, ISW = 1): see the module
-    docstring. `ndim` = `ndm` = the user's NDIM; PAR(12 .. 11 + NDIM) hold x0."""
+    docstring. `ndim` = `ndm` = the user's NDIM; PAR(12 .. 11 + NDIM) hold x0 (x1; x2 follows for
+    IEQUIB < 0)."""
 
     def __init__(self, data):
         s = data.settings
@@ -198,7 +251,12 @@ class HomoclinicOrbits(BoundaryValueProblem):
                                 keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
         user, ndm = data.problem, s.NDIM
         self.user, self.ndm, self.iequib = user, ndm, s.IEQUIB
-        npar = max(s.NPAR, EQUILIBRIUM - 1 + ndm, PSI + max(s.IPSI, default=0))
+        #: the components u_i with IREV(i) > 0 vanish at t = 1 (IREV given), else None
+        self.rev = [i for i, r in enumerate(s.IREV) if r > 0] if s.IREV else None
+        self.fixed = tuple(s.IFIXED)
+        n_eq = _solved_equilibria(self.iequib) * ndm
+        npar = max(s.NPAR, EQUILIBRIUM - 1 + (2 if self.iequib < 0 else 1) * ndm,
+                   PSI + max(tuple(s.IPSI) + self.fixed, default=0))
         par = np.zeros(npar)
         p = np.asarray(data.par, float)
         par[:min(len(p), npar)] = p[:npar]
@@ -208,37 +266,31 @@ class HomoclinicOrbits(BoundaryValueProblem):
             istart = 4 if rec is not None and getattr(rec, "ips", 9) not in (9, 0) else 1
         if istart == 4 and rec is not None:
             rec = self._shifted(rec, par)
-        # NSTAB, NUNSTAB at the start's equilibrium (STPNHO: PVLS, then GETSTAB where -1).
-        if self.iequib == 0:
+        # NSTAB, NUNSTAB at the start's (left) equilibrium (STPNHO: PVLS, then GETSTAB
+        # where -1; a saddle-node's eigenvalue nearest zero is neither).
+        if self.iequib in (0, -1):
             par = user.pvls(self._start_u0(rec, par, data), par)
-        re = np.linalg.eigvals(self._A(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], par)).real
-        nstab, nunstab = s.NSTAB, s.NUNSTAB
-        nproj = ndm if -1 in (nstab, nunstab) else nstab + nunstab
-        if nstab == -1 and nunstab != -1:
-            nstab = nproj - nunstab
-        elif nunstab == -1 and nstab != -1:
-            nunstab = nproj - nstab
-        if nstab == -1:
-            nstab = int(np.sum(re < 0))
-        if nunstab == -1:
-            nunstab = int(np.sum(re > 0))
-        self.nstab, self.nunstab = nstab, nunstab
-        nbc = nstab + nunstab + self.iequib * ndm
-        nfpr = nbc + 1 - ndm + 1
-        n_user = nfpr - self.iequib * ndm
+        self.nstab, self.nunstab = _counts(
+            s, np.linalg.eigvals(self._A(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], par)))
+        nright = len(self.rev) if self.rev is not None else self.nunstab
+        nbc = (self.nstab + nright + len(self.fixed) + (self.iequib == 2) + n_eq)
+        nint = 0 if self.rev is not None else 1
+        nfpr = nbc + nint - ndm + 1
+        n_user = nfpr - n_eq
         if n_user < 1 or len(s.ICP) < n_user:
-            raise SettingsError(f"IPS = 9 with NSTAB = {nstab}, NUNSTAB = {nunstab}: "
-                                f"{n_user} free parameters of ICP, but ICP = {list(s.ICP)}",
-                                keys=("ICP",))
-        self._free = list(s.ICP[:n_user]) + \
-            ([11 + i for i in range(1, ndm + 1)] if self.iequib else [])
-        self._left = _Projection(nstab, stable=True)       # at t = 0
-        self._right = _Projection(nunstab, stable=False)   # at t = 1
+            raise SettingsError(f"IPS = 9 with NSTAB = {self.nstab}, NUNSTAB = "
+                                f"{self.nunstab}: {n_user} free parameters of ICP, but "
+                                f"ICP = {list(s.ICP)}", keys=("ICP",))
+        self._free = list(s.ICP[:n_user]) + [EQUILIBRIUM + i for i in range(n_eq)]
+        self._left = _Projection(self.nstab, stable=True)       # at t = 0
+        self._right = _Projection(self.nunstab, stable=False)   # at t = 1
         self._right_vectors, self._left_vectors = _SignedVectors(), _SignedVectors()
-        s2 = s.with_(NBC=nbc, NINT=1, NPAR=npar)
+        # the fixed test functions' own sign memory (EIGHO's), apart from IPSI's output
+        self._fixed_vectors = (_SignedVectors(), _SignedVectors())
+        s2 = s.with_(NBC=nbc, NINT=nint, NPAR=npar)
         self.run_settings = s2
-        super().__init__(StartData(self._extended(user, ndm, nbc), s2, data.u, par, rec,
-                                   data.kind, data.unames, data.data))
+        super().__init__(StartData(self._extended(user, ndm, nbc, nint), s2, data.u, par,
+                                   rec, data.kind, data.unames, data.data))
         self.ndm = ndm
 
     # ------------------------------------------------------------------ the equations
@@ -247,16 +299,28 @@ class HomoclinicOrbits(BoundaryValueProblem):
         A = self.user.dfdu(np.asarray(x0, float), par)
         return -A if par[PERIOD - 1] < 0 else A
 
-    def _equilibrium(self, u0, par) -> np.ndarray:
-        """x0: PAR(12 .. 11 + NDIM), after the user's PVLS at u(0) for IEQUIB = 0."""
-        if self.iequib == 0:
+    def _equilibria(self, u0, par):
+        """(x1, x2, par): the left and right equilibria, PAR(12 .. 11 + NDIM) and (IEQUIB
+        < 0) PAR(12 + NDIM .. 11 + 2 NDIM), after the user's PVLS at u(0) for IEQUIB = 0
+        and -1 (FBHO); x2 is x1 for a homoclinic orbit."""
+        if self.iequib in (0, -1):
             par = self.user.pvls(np.asarray(u0, float), par)
-        return np.asarray(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + self.ndm], float)
+        n, k = self.ndm, EQUILIBRIUM - 1
+        x1 = np.asarray(par[k:k + n], float)
+        x2 = np.asarray(par[k + n:k + 2 * n], float) if self.iequib < 0 else x1
+        return x1, x2, par
 
-    def _extended(self, user, ndm: int, nbc: int) -> Problem:
+    def _equilibrium(self, u0, par) -> np.ndarray:
+        """x0 (the left equilibrium): PAR(12 .. 11 + NDIM), after PVLS where the user's."""
+        return self._equilibria(u0, par)[0]
+
+    def _extended(self, user, ndm: int, nbc: int, nint: int) -> Problem:
         """The Problem the general BVP continues: f scaled by T = PAR(11), the NBC
-        boundary conditions (projections at both ends, f(x0) = 0 for IEQUIB = 1) and the
-        phase condition as its one integral condition."""
+        boundary conditions (FBHO's order: projections at t = 0, projections or the
+        reversibility conditions at t = 1, the fixed test functions, Re l_(NSTAB+1) = 0
+        of a saddle-node, f = 0 at the solved-for equilibria) and the phase condition as
+        its one integral condition (none for a reversible system: the section at t = 1
+        fixes the time shift)."""
         def func_batch(U, pars):
             return pars[:, 10:11] * user.func_many(U, pars)
 
@@ -269,13 +333,26 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 return pars[:, 10, None, None] * user.dfdu_many(U, pars)
 
         def bcnd(u0, u1, par):
-            x0 = self._equilibrium(u0, par)
-            At = self._A(x0, par).T
-            parts = [self._left.rows(At) @ (np.asarray(u0) - x0),
-                     self._right.rows(At) @ (np.asarray(u1) - x0)]
-            if self.iequib == 1:
-                parts.append(user.func(x0, par))
-            return np.concatenate(parts)
+            u0, u1 = np.asarray(u0, float), np.asarray(u1, float)
+            x1, x2, par = self._equilibria(u0, par)
+            A1 = self._A(x1, par)
+            parts = [self._left.rows(A1.T) @ (u0 - x1)]
+            if self.rev is not None:
+                parts.append(u1[self.rev])
+            else:
+                A2 = A1 if x2 is x1 else self._A(x2, par)
+                parts.append(self._right.rows(A2.T) @ (u1 - x2))
+            if self.fixed:
+                U = np.vstack([u0, u1])
+                parts.append([self.psi(k, U, par, self._fixed_vectors)
+                              for k in self.fixed])
+            if self.iequib == 2:
+                parts.append([np.sort(np.linalg.eigvals(A1).real)[self.nstab]])
+            if self.iequib in (1, 2, -2):
+                parts.append(user.func(x1, par))
+            if self.iequib == -2:
+                parts.append(user.func(x2, par))
+            return np.concatenate([np.ravel(q) for q in parts])
 
         def icnd(u, uold, udot, upold, par):
             # one point (NDIM,) -> (1,); a batch (NDIM, k) -> (1, k)
@@ -284,7 +361,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
         return Problem(ndm, func, func_batch=func_batch, dfdu_batch=dfdu_batch,
                        name=user.name, npar=user.npar, pvls=user._pvls,
                        parnames=user.parnames, unames=user.unames, jac=user.jac,
-                       bcnd=bcnd, icnd=icnd)
+                       bcnd=bcnd, icnd=icnd if nint else None)
 
     def _start_u0(self, rec, par, data) -> np.ndarray:
         """u(0) of the start (for PVLS's equilibrium with IEQUIB = 0)."""
@@ -333,9 +410,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
         projections' reference bases."""
         super().update(x, tangent)
         U, par = self.unpack(x)
-        At = self._A(self._equilibrium(U[0], par), par).T
-        self._left.accept(At)
-        self._right.accept(At)
+        x1, x2, par = self._equilibria(U[0], par)
+        self._left.accept(self._A(x1, par).T)
+        if self.rev is None:
+            self._right.accept(self._A(x2, par).T)
 
     def params(self, x):
         """PAR after the user's PVLS, with PAR(20 + k) = psi_k for k in IPSI (FNCSHO)."""
@@ -347,12 +425,14 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 par[PSI - 1 + k] = self.psi(k, U, par)
         return par
 
-    def psi(self, k: int, U: np.ndarray, par: np.ndarray) -> float:
-        """PSIHO's test function k (module docstring) of the orbit U (n_nodes, NDIM)."""
+    def psi(self, k: int, U: np.ndarray, par: np.ndarray, signs=None) -> float:
+        """PSIHO's test function k (module docstring) of the orbit U (n_nodes, NDIM), the
+        eigenvectors' signs continued by `signs` (right, left; IPSI's own by default)."""
         ndm, s = self.ndm, self.nstab - 1              # s: 0-based index of l_NSTAB
         x0 = np.asarray(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], float)
         lam, V, W = spectrum(self._A(x0, par))
-        V, W = self._right_vectors(V), self._left_vectors(W)
+        right, left = signs or (self._right_vectors, self._left_vectors)
+        V, W = right(V), left(W)
         rr, ri = lam.real, lam.imag
         if k == 1:
             return float(rr[s] + rr[s + 1] + ri[s] + ri[s + 1])
@@ -386,6 +466,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if k == 12:
             f0 = self.user.func(U[0], par)
             return float(f0 @ W[s + 1] * math.exp(par[PERIOD - 1] * rr[s + 1] / 2))
+        if k == 15:
+            return float((x0 - U[-1]) @ V[s + 1])
+        if k == 16:
+            return float((x0 - U[0]) @ V[s + 1])
         raise ValueError(f"IPSI code {k}: not computed (see washer.cont.systems.homoclinic)")
 
 
