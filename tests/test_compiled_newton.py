@@ -150,8 +150,9 @@ def test_ctrl_c_in_func_is_not_taken_for_a_failure(tmp_path, cache):
 
 def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     """Compiled and Python equations with difference Jacobians take the compiled loop;
-    with the user's Jacobians (JAC = 1) they keep the Python loop; sympy equations take
-    it with differences or their generated exact Jacobians."""
+    with the user's Jacobians (JAC = 1) a compiled user file keeps the Python loop and
+    Python equations take the compiled one (their dfdu called back); sympy equations
+    take it with differences or their generated exact Jacobians."""
     from washer.cont.compiled import load_compiled_problem
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
@@ -176,7 +177,9 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     assert compiled_newton.compiled_corrector(system(compiled, 1), s, 20.0) is None
     assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is not None
     assert compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
-    assert compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0) is None
+    exact = compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0)
+    assert exact is not None and exact.user.exact
+    assert not compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0).user.exact
     # sympy equations: their generated f and exact Jacobians are C (JAC = 1; JAC = -1,
     # exact f_u with differenced f_p, keeps the Python loop)
     sym_dir = tmp_path / "sym"
@@ -191,6 +194,54 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     for jac, chosen in ((0, True), (1, True), (-1, False)):
         c = compiled_newton.compiled_corrector(system(sym, jac), s, 20.0)
         assert (c is not None) == chosen, jac
+
+
+def test_python_jacobians_take_the_python_loops_steps(tmp_path, monkeypatch, cache):
+    """plp (tests/data/plp/plp.py, JAC = 1: the user's dfdu and dfdp) on its equilibria:
+    the compiled corrector calling the user's Jacobian and func back takes the Python
+    loop's steps. Both solve the same bordered systems, LAPACK's GESV against the C
+    elimination with the same pivots (the module docstring's tolerance of 1e-9 is what
+    the two guarantee); on these 3 x 3 systems every correction came out the same bits
+    (not a property of the method: AUTO's own GE pivots completely, another rounding
+    still), so the b- and s-files are compared too, as the demo's files must not
+    change by the choice of loop."""
+    def one(sub):
+        d = tmp_path / sub
+        d.mkdir()
+        shutil.copy(DEMOS / "plp" / "c.plp.ss", d)
+        shutil.copy(DATA / "plp" / "plp.py", d)
+        return run(d / "c.plp.ss", e="plp", sv="ss", verbose=False)
+    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+                                     "correct", one)
+    assert len(used) > 50 and all(used), used
+    assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
+    assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
+    np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
+                               rtol=1e-9, atol=1e-12)
+    assert (fast.counters.residuals, fast.counters.jacobians, fast.counters.factorisations) \
+        == (slow.counters.residuals, slow.counters.jacobians, slow.counters.factorisations)
+    for f in ("b.ss", "s.ss"):
+        assert (tmp_path / "fast" / f).read_bytes() == (tmp_path / "slow" / f).read_bytes()
+
+
+def test_a_failing_python_jacobian_hands_over_to_the_python_loop(tmp_path, monkeypatch,
+                                                                cache):
+    """A dfdu that fails beyond PAR(4) = 3 (called back from C): the Python loop takes
+    the step over and reports the failure as it does alone; the runs end the same."""
+    def one(sub):
+        d = tmp_path / sub
+        d.mkdir()
+        shutil.copy(DEMOS / "plp" / "c.plp.ss", d)
+        (d / "plp.py").write_text((DATA / "plp" / "plp.py").read_text() + (
+            "\n_dfdu = dfdu\n\n\ndef dfdu(u, par):\n    if par[3] > 3.0:\n"
+            "        raise ValueError('outside the model')\n    return _dfdu(u, par)\n"))
+        return run(d / "c.plp.ss", e="plp", sv="ss", verbose=False)
+    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+                                     "correct", one)
+    assert "outside the model" in fast.status and not all(used)
+    assert fast.status == slow.status.replace("/slow/", "/fast/")
+    np.testing.assert_allclose([r.values for r in fast.rows], [r.values for r in slow.rows],
+                               rtol=1e-9, atol=1e-12)
 
 
 def _ab_system(problem, settings):

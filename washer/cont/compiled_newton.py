@@ -27,6 +27,8 @@ f is evaluated by
   use, calls back into Python once per Newton iteration (twice on the loci: f_u first,
   then the second differences along vectors made of it), where the user's func is called
   point by point (or in one batch) exactly as the Python loop calls it: the same values;
+  on equilibria with the user's Jacobians (JAC = 1: dfdu and dfdp; JAC = -1: dfdu and
+  the differenced f_PAR), twice: Problem.jacobian, then func at the iterate;
 * equations as sympy expressions (washer.cont.symbolic): washer/cont/ae_generated.c,
   compiled on first use, calls the generated C's f (a stencil's points in one call, as
   the Python loop's func_many) and, with JAC = 1, its exact f_u and f_p (as the Python
@@ -36,7 +38,8 @@ It applies to systems that declare their equations the problem's f itself (IPS 0
 EquilibriumSystem.residual_is_func, one free parameter; FixedPoints, f^k - u, does not;
 the loci FoldSystem and HopfSystem by compiled_system, two free parameters; those of
 maps do not), with the sphere arclength, and difference Jacobians (JAC = 0, or no
-Jacobian given) or, on equilibria, a sympy problem's exact ones (JAC = 1). Everything
+Jacobian given) or, on equilibria, a sympy problem's exact ones (JAC = 1) or a Python
+problem's own (JAC = 1, -1). Everything
 else, and every case the compiled loop does not finish cleanly (a failing or non-finite
 f, a non-finite Jacobian or correction, a zero pivot: the Python loop then repeats the
 correction and reports or resolves it as before), is the Python loop.
@@ -63,11 +66,12 @@ HERE = Path(__file__).parent
 _CALLBACK_CDEF = """
 typedef int (*ae_callback)(int stage, int rows, int first, const double *us,
                            const double *ps, double *fs);
-int washer_ae_correct_cb(ae_callback callback, int kind, int ndim, int npar, int ip, int ip2,
-                         const double *par, const double *v_old, const double *x_pred,
-                         const double *x_ref, const double *theta, double ds, double epsl,
-                         double epsu, int itnw, double divergence, double hmach, double h2,
-                         double *x, int *iterations, double *jac, double *work);
+int washer_ae_correct_cb(ae_callback callback, int exact, int kind, int ndim, int npar,
+                         int ip, int ip2, const double *par, const double *v_old,
+                         const double *x_pred, const double *x_ref, const double *theta,
+                         double ds, double epsl, double epsu, int itnw, double divergence,
+                         double hmach, double h2, double *x, int *iterations, double *jac,
+                         double *work);
 size_t washer_ae_work_size(int kind, int ndim, int npar);
 int washer_ae_l1_cb(ae_callback callback, int ndim, int npar, const double *x,
                     const double *par, double omega, const double *A, double *l1,
@@ -205,14 +209,20 @@ class PythonEquations:
     or one call of func per point where Problem.stencil_by_calls says so; stage 1, the
     loci's second differences: Problem.func_many, as Problem.second_derivatives; stage 2,
     the first Lyapunov coefficient's differences: Problem.func_many, as normal_form.
-    _directional). func_many
+    _directional; with the user's Jacobians on equilibria (`exact`), stage 0 of one row,
+    f at the iterate by Problem.func, and stage 3, [f_u, f_PAR(ICP(1))] there by Problem.
+    jacobian into the first NDIM (NDIM + 1) values of stage 0's fs). func_many
     calls a func on the arrays of a small stencil where it gives separate calls' values
     bit for bit (washer.cont.pointwise), so every route gives the Python loop's values."""
 
     func_ready = True
 
-    def __init__(self, problem, ndim: int, npar: int, kind: int = 0):
+    def __init__(self, problem, ndim: int, npar: int, kind: int = 0, free=None):
         self.problem, self.n, self.npar, self.kind = problem, ndim, npar, kind
+        # the user's Jacobians (JAC = 1, -1; equilibria): Problem.jacobian in the free
+        # parameter `free` (1-based ICP(1)), as EquilibriumSystem.jacobian calls it
+        self.exact = kind == 0 and not problem.differenced_jacobian
+        self.free = list(free) if free is not None else None
         # the free parameters differenced with u: one for equilibria, two on the loci
         self.m = 1 if kind == 0 else 2
         self.ffi, self.lib = _library("ae_callback.c", _CALLBACK_CDEF)
@@ -235,22 +245,37 @@ class PythonEquations:
         # made once (ae_binder: ae_correct.h's layout, each stage's us, ps, fs one after
         # the other); a C that passes other pointers or another number of rows fails
         # loudly (three pointer comparisons a call)
-        if stage not in (0, 1, 2) or stage == 1 and self.kind == 0 \
-                or stage == 2 and self.kind != 2:
+        if stage not in (0, 1, 2, 3) or stage == 1 and self.kind == 0 \
+                or stage == 2 and self.kind != 2 or stage == 3 and not self.exact:
             raise WorkLayoutError(f"ae_correct.h asked for stage {stage} of f, which "
                                   "compiled_newton.PythonEquations does not know")
-        U, P, F = self._views[stage]
-        where, n = self._where[stage], self.n
+        U, P, F = self._views[min(stage, 2) if stage < 3 else 0]
+        where, n = self._where[stage if stage < 3 else 0], self.n
+        one = stage == 3 or stage == 0 and self.exact
         if us != where[0] or ps != where[1] or fs != where[2] or \
-                not (rows == U.shape[0] or stage == 2 and 0 < rows <= U.shape[0]):
+                not (rows == U.shape[0] or stage == 2 and 0 < rows <= U.shape[0]
+                     or one and rows == 1 and first == 0):
             raise WorkLayoutError(
                 "ae_correct.h passed points outside the views of its work array that "
                 "compiled_newton.PythonEquations reads (the layouts differ)")
+        problem = self.problem
+        if one:
+            # the user's Jacobian and f at the iterate, each by its own call as the
+            # Python loop makes them (EquilibriumSystem.jacobian, residual), on fresh
+            # copies of the point
+            try:
+                if stage == 3:
+                    F.reshape(-1)[:n * (n + 1)] = problem.jacobian(
+                        U[0].copy(), P[0].copy(), self.free).reshape(-1)
+                else:
+                    F[0] = problem.func(U[0].copy(), P[0].copy())
+            except Exception:
+                return 1    # f or the Jacobian failed: the Python loop evaluates and reports
+            return 0
         if stage == 2:                      # a batch of up to L1_ROWS rows
             U, P, F = U[:rows], P[:rows], F[:rows]
         # fresh copies: every call of func gets arrays of its own, as in the Python loop
         U, P = U.copy(), P.copy()
-        problem = self.problem
         if stage:
             try:
                 F[:] = problem.func_many(U, P)      # Problem.second_derivatives' one call
@@ -282,7 +307,7 @@ class PythonEquations:
         ffi, d = self.ffi, self._dptr_type
         p = {k: (ffi.from_buffer("int[]", a) if k == "iterations" else ffi.from_buffer(d, a))
              for k, a in arrays.items()}
-        lib, cb = self.lib, self._cb
+        lib, cb, exact = self.lib, self._cb, int(self.exact)
         w, work = arrays["work"], p["work"]
         views, where, start = [], [], 0
         for rows in stage_rows(kind, ndim):
@@ -297,7 +322,7 @@ class PythonEquations:
         def call(ds, epsl, epsu, itnw, divergence, hmach, h2) -> int:
             self.error = None
             return lib.washer_ae_correct_cb(
-                cb, kind, ndim, npar, ip, ip2, p["par"], p["v_old"], p["x_pred"], p["x_ref"],
+                cb, exact, kind, ndim, npar, ip, ip2, p["par"], p["v_old"], p["x_pred"], p["x_ref"],
                 p["theta"], ds, epsl, epsu, itnw, divergence, hmach, h2, p["x"],
                 p["iterations"], p["jac"], p["work"])
         return call
@@ -454,14 +479,16 @@ def compiled_corrector(system, settings, divergence: float):
             return None
     elif type(problem) is Problem:
         # difference Jacobians of a plain func (Problem.jacobian's stencil; on the loci
-        # Problem.second_derivatives' stencil of f, not the analytic Jacobians')
-        if not problem.differenced_jacobian or problem.has_func_batch \
+        # Problem.second_derivatives' stencil of f, not the analytic Jacobians'), or on
+        # equilibria the user's own (Problem.jacobian's dfdu and dfdp, called back)
+        if kind and not problem.differenced_jacobian or problem.has_func_batch \
                 or problem.has_func_dfdu_batch \
                 or kind and getattr(problem, "_dfdu_batch", None) is not None \
                 and problem.has_dfdp_batch:
             return None
         try:
-            equations = PythonEquations(problem, system.ndim, len(system.par), kind)
+            equations = PythonEquations(problem, system.ndim, len(system.par), kind,
+                                        free=system.free)
         except (CompileError, OSError):
             # no C compiler, or the compiled callback cannot be built or loaded here
             # (cffi's dlopen raises OSError): the Python loop. Anything else is a bug.

@@ -13,7 +13,8 @@
  * stencil); stage 1: the mixed second differences of the loci (Problem.
  * second_derivatives' stencil, one batch).
  * An includer whose equations come with their exact Jacobians (the generated C of
- * sympy problems: ae_generated.c) also defines AE_EXACT_JACOBIAN and
+ * sympy problems: ae_generated.c; the user's dfdu and dfdp of Python problems called
+ * back: ae_callback.c) also defines AE_EXACT_JACOBIAN and
  *
  *   static int ae_exact(void *ctx, int ndim, int npar, int ip, const double *u,
  *                       const double *par, double *J, int stride);
