@@ -15,11 +15,20 @@ Saddle-node: in polar coordinates r' = r (nu - r^2), theta' = mu - r sin(theta):
 r = sqrt(nu) is invariant, and at mu = sqrt(nu) the point (0, sqrt(nu)) on it is a
 saddle-node (eigenvalues 0 along the circle, -2 nu across it) whose homoclinic orbit is the
 circle itself.
+
+AUTO's demo mtn (a saddle-node homoclinic orbit with IPSI 15, 16, then the fixed psi_15 of
+a non-central one) beyond the demo table: its runs 4-6 from AUTO's own solutions.
 """
+import gzip
+import shutil
+from pathlib import Path
+
 import numpy as np
 import pytest
 import sympy as sp
 
+from auto_demo_compare import DEMOS, compare_files
+from washer.auto.script import run_script
 from washer.cont import runner
 from washer.cont.constants import Constants
 from washer.cont.problem import Problem
@@ -200,3 +209,49 @@ def test_saddle_node_homoclinic_circle():
     # circle, and the projection conditions put them on its tangent, off the circle by
     # O(T^-2). Measured 4.9e-3 at T = 40 and 1.2e-3 at T = 80: twice T, a quarter.
     assert off[0] < 1e-2 and 3.5 < off[0] / off[1] < 4.5, off
+
+
+def _b_blocks(path):
+    """The branches of a b-file as arrays of their rows (PT, TY, LAB, then the columns)."""
+    blocks, cur = [], None
+    for line in Path(path).read_text().splitlines():
+        f = line.split()
+        if not f:
+            continue
+        if f[0] == "0":
+            if cur:
+                blocks.append(np.array(cur))
+            cur = None
+            continue
+        cur = (cur or []) + [[float(x.replace("E", "e")) for x in f[1:]]]
+    if cur:
+        blocks.append(np.array(cur))
+    return blocks
+
+
+@pytest.mark.slow
+def test_mtn_runs_4_to_6_from_autos_own_solutions(tmp_path, monkeypatch):
+    """AUTO's demo mtn (tests/data/auto_demos/mtn) runs 4-6 restarted from AUTO's own s.1:
+    the demo's script cannot reach them in washer, whose labels differ from AUTO's after
+    AUTO's UZ6 of run 2, a jump of psi_15 and not a zero (README's table). Run 6 holds
+    psi_15 = 0 (IFIXED = [15], IEQUIB = 2) in (PAR(3), PAR(1), PAR(2))."""
+    src = DEMOS / "mtn"
+    work = tmp_path / "mtn"
+    shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref"))
+    (work / "s.1").write_bytes(gzip.decompress((src / "autoref" / "s.1.gz").read_bytes()))
+    (work / "r.auto").write_text("r1=sl('1')\n"
+                                 "r4=run('mtn',c='mtn.4',s='1',sv='4')\n"
+                                 "r5=run(r1('UZ3'),e='mtn',c='mtn.5',sv='5')\n"
+                                 "r6=run(r1('UZ1'),e='mtn',c='mtn.6',sv='6')\n")
+    monkeypatch.chdir(work)
+    run_script("r.auto")
+    for n in (4, 6):
+        a, matched, why = compare_files(work / f"b.{n}", src / "autoref" / f"b.{n}")
+        assert a and len(matched) == len(a), why
+    # run 5 is appended to AUTO's b.1 (its last branch): every row's PAR(1), L2-norm,
+    # PAR(2), PAR(29), PAR(30) (measured: within 2.4e-6; the MAX U columns, maxima over
+    # the mesh, within 1e-4)
+    ours, auto = _b_blocks(work / "b.5")[-1], _b_blocks(src / "autoref" / "b.1")[-1]
+    assert ours.shape == auto.shape
+    cols = [3, 4, 7, 8, 9]
+    assert np.max(np.abs(ours[:, cols] - auto[:, cols])) < 1e-5
