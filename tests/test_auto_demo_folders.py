@@ -48,6 +48,9 @@ EXPECTED_FAIL = {
     "mtn": "6 of 13: AUTO's UZ6 of run 2 is a jump of psi_15, not a zero (ours notes it, "
            "unlabelled); the labels then differ by one and run 4's IRS = 15 is not found "
            "(runs 4-6 from AUTO's own s.1: tests/test_homoclinic_kinds.py)",
+    "rev": "15 of 17, AUTO's (tests/test_homoclinic_kinds.py: the first integral vanishes "
+           "on every orbit): its UZ for PAR(1) = 1.7 after the LP is written at 1.698836, and "
+           "its run 3 ends MX at -0.90993 where ours goes on to NMX",
     "snh": "4 of 8: tb.auto's fold loci of its connection (ISW = 2 from an LP of a BVP with "
            "NBC + NINT - NDIM + 1 = 5 free parameters) are refused",
     "ppp": "47 of 58, AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "

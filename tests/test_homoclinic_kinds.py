@@ -17,7 +17,8 @@ saddle-node (eigenvalues 0 along the circle, -2 nu across it) whose homoclinic o
 circle itself.
 
 AUTO's demo mtn (a saddle-node homoclinic orbit with IPSI 15, 16, then the fixed psi_15 of
-a non-central one) beyond the demo table: its runs 4-6 from AUTO's own solutions.
+a non-central one) beyond the demo table: its runs 4-6 from AUTO's own solutions; AUTO's
+demo rev (reversible) checked against the first integral of its equation.
 """
 import gzip
 import shutil
@@ -255,3 +256,32 @@ def test_mtn_runs_4_to_6_from_autos_own_solutions(tmp_path, monkeypatch):
     assert ours.shape == auto.shape
     cols = [3, 4, 7, 8, 9]
     assert np.max(np.abs(ours[:, cols] - auto[:, cols])) < 1e-5
+
+
+@pytest.mark.slow
+def test_rev_demo_orbits_are_symmetric_homoclinic_orbits(tmp_path, monkeypatch):
+    """AUTO's demo rev (tests/data/auto_demos/rev), u'''' + P u'' + u - u^3 = 0 with IREV
+    = [0,1,0,1] (runs 1, 2: u', u''' vanish at t = 1) and [1,0,1,0] (runs 3, 4: u, u''),
+    run as shipped. Along every orbit the first integral
+    H = u' u''' - u''^2/2 + P u'^2/2 + u^2/2 - u^4/4 vanishes (0 at the equilibrium), so
+    the computed orbits are homoclinic orbits of the ODE whatever AUTO's run did: run 3's
+    branch goes on past AUTO's MX at PAR(1) = -0.90993 (AUTO's step failure), and its UZ
+    after the LP sits at PAR(1) = 1.7 where AUTO's is written at 1.698836."""
+    from washer.auto.files import read_s
+    work = tmp_path / "rev"
+    shutil.copytree(DEMOS / "rev", work, ignore=shutil.ignore_patterns("autoref"))
+    monkeypatch.chdir(work)
+    run_script("rev.auto")
+    for name, zero in (("s.1", [1, 3]), ("s.3", [0, 2])):
+        recs = read_s(work / name)
+        for r in recs[1:]:                 # the first: the dat= start as read
+            U, P = np.asarray(r.U, float), r.par[0]
+            u, u1, u2, u3 = U.T
+            H = u1 * u3 - u2 ** 2 / 2 + P * u1 ** 2 / 2 + u ** 2 / 2 - u ** 4 / 4
+            # the collocation's error at NTST = 35: measured 1.1e-5 at most (AUTO's own
+            # orbits the same); the reversibility conditions hold to rounding
+            assert np.max(np.abs(H)) < 5e-5, (name, r.lab, P)
+            assert np.max(np.abs(U[-1, zero])) < 1e-12
+    run3 = [r for r in read_s(work / "s.3") if r.lab <= 8]
+    assert [round(r.par[0], 7) for r in run3 if r.lab == 4] == [1.7]
+    assert min(r.par[0] for r in run3) < -0.91
