@@ -449,6 +449,21 @@ class BoundaryValueProblem(CollocationBVP):
             out_log += power * float(np.sum(np.log(np.abs(d))))
         return out_sign, out_log
 
+    def fold_null_vector(self, x) -> np.ndarray:
+        """The null vector of the Jacobian at a fold x of the branch (n_x,): the tangent,
+        with PAR(ICP(1)) at rest. The direction stored with the point (else the reduced
+        matrix's smallest singular vector) borders the Jacobian, and the bordered system
+        is solved by the sparse factorisation: one step of inverse iteration, which makes
+        the null vector exact to rounding also where the reduced matrix (single shooting
+        over [0, 1]) is inexact on a stiff profile."""
+        J = self.jacobian(x)
+        guess = self._stored if self._stored is not None else \
+            self.null_vector(J, np.zeros(self.n_x))
+        e = np.zeros(self.n_x)
+        e[-1] = 1.0
+        z = self.factor(J, self.border(guess)).solve(e)
+        return z / math.sqrt(self.inner(z, z))
+
     # ------------------------------------------------------------------ switching
     def directions(self, x, tangent, code) -> list:
         if int(code) != int(Code.BPC):
@@ -470,17 +485,47 @@ register(4, -1, "BP")(BoundaryValueProblem)
 DIR_STEP = 1e-4
 
 
-def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Problem:
+def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int,
+                 null_pars: tuple = ()) -> Problem:
     """The extended BVP of a fold of a BVP (AUTO's FNBL, BCBL, ICBL) as a problem in
     W = (u, v), NDIM = 2n:
 
-        u' = f(u, p),               v' = f_u(u, p) v
-        b(u(0), u(1), p) = 0,       b_u0 v(0) + b_u1 v(1) = 0
-        int g(u, ...) dt = 0,       int g_u v dt = 0,       int |v|^2 dt - PAR(norm) = 0
+        u' = f(u, p),               v' = f_u(u, p) v + f_p q
+        b(u(0), u(1), p) = 0,       b_u0 v(0) + b_u1 v(1) + b_p q = 0
+        int g(u, ...) dt = 0,       int g_u v + g_p q dt = 0,
+                                    int |v|^2 dt + |q|^2 - PAR(norm) = 0
 
-    (v the null vector of the linearised BVP: NBC' = 2 NBC, NINT' = 2 NINT + 1). f_u v
-    is the user's dfdu times v where JAC allows, else a central difference along v."""
+    (v the null vector of the linearised BVP: NBC' = 2 NBC, NINT' = 2 NINT + 1). Where
+    the BVP has m = NBC + NINT - NDIM + 1 > 1 free parameters on its branch, the null
+    vector has parameter components too: `null_pars` = ((i, j), ...), the direction
+    q_i = PAR(j) along PAR(i) for ICP(2..m) (AUTO's PAR(NPAR + 1..NPAR + m - 1)); f_p q
+    and b_p q are then part of one central difference along (v, q), g_p q a central
+    difference of its own along q (the integrand's parameters are shared by the nodes).
+    Without q, f_u v is the user's dfdu times v where JAC allows, else a central
+    difference along v."""
     exact = problem._dfdu is not None and problem.jac != 0
+    null_pars = tuple((int(i), int(j)) for i, j in null_pars)
+
+    def pdir(pars):
+        """The parameter part of the direction, (k, NPAR): q_j at PAR(i) (None: none)."""
+        if not null_pars:
+            return None
+        pars = np.atleast_2d(np.asarray(pars, float))
+        q = np.zeros_like(pars)
+        for i, j in null_pars:
+            q[:, i - 1] = pars[:, j - 1]
+        return q
+
+    def steps_pq(u, v, pars, q):
+        """Steps along (v, q) for central differences of f and b along the null
+        vector, parameters included: the largest that moves u and each PAR(i) by at
+        most DIR_STEP relative to its own size (one scale for all would let a large
+        parameter, as a connection time of 200, widen the step in u by as much)."""
+        h = steps(u, v)
+        for i, _ in null_pars:
+            h = np.minimum(h, DIR_STEP * (1 + np.abs(pars[:, i - 1]))
+                           / np.maximum(np.abs(q[:, i - 1]), 1e-300))
+        return h
 
     def steps(u, v):
         return DIR_STEP * (1 + np.max(np.abs(u), axis=1)) / \
@@ -490,7 +535,14 @@ def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Probl
         W = np.asarray(W, float)
         u, v = W[:, :n], W[:, n:]
         f0 = problem.func_many(u, pars)
-        if exact:
+        q = pdir(pars)
+        if q is not None:
+            pars = np.broadcast_to(np.asarray(pars, float), q.shape)
+            h = steps_pq(u, v, pars, q)[:, None]
+            F = problem.func_many(np.vstack([u + h * v, u - h * v]),
+                                  np.vstack([pars + h * q, pars - h * q]))
+            fv = (F[:len(u)] - F[len(u):]) / (2 * h)
+        elif exact:
             fv = np.einsum("kij,kj->ki", problem.dfdu_many(u, pars), v)
         else:
             h = steps(u, v)[:, None]
@@ -504,10 +556,18 @@ def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Probl
     def bcnd(W0, W1, par):
         u0, v0, u1, v1 = W0[:n], W0[n:], W1[:n], W1[n:]
         b = problem.bcnd(u0, u1, par, nbc)
-        h = DIR_STEP * (1 + max(np.max(np.abs(u0)), np.max(np.abs(u1)))) / \
-            max(np.max(np.abs(v0)), np.max(np.abs(v1)), 1e-300)
-        bv = (problem.bcnd(u0 + h * v0, u1 + h * v1, par, nbc)
-              - problem.bcnd(u0 - h * v0, u1 - h * v1, par, nbc)) / (2 * h)
+        q = pdir(par)
+        if q is None:
+            h = DIR_STEP * (1 + max(np.max(np.abs(u0)), np.max(np.abs(u1)))) / \
+                max(np.max(np.abs(v0)), np.max(np.abs(v1)), 1e-300)
+            bv = (problem.bcnd(u0 + h * v0, u1 + h * v1, par, nbc)
+                  - problem.bcnd(u0 - h * v0, u1 - h * v1, par, nbc)) / (2 * h)
+            return np.r_[b, bv]
+        par = np.asarray(par, float)
+        h = float(steps_pq(np.r_[u0, u1][None, :], np.r_[v0, v1][None, :], par[None, :],
+                           q)[0])
+        bv = (problem.bcnd(u0 + h * v0, u1 + h * v1, par + h * q[0], nbc)
+              - problem.bcnd(u0 - h * v0, u1 - h * v1, par - h * q[0], nbc)) / (2 * h)
         return np.r_[b, bv]
 
     def icnd(W, Wold, Wdot, Wpold, par):
@@ -517,14 +577,26 @@ def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Probl
         Wk, Wo, Wd, Wp = args
         u, v = Wk[:, :n], Wk[:, n:]
         parts = []
+        q = pdir(par)
         if nint:
             rest = (Wo[:, :n], Wd[:, :n], Wp[:, :n])
             g = problem.icnd_many(u, *rest, par, nint)
             h = steps(u, v)[:, None]
             gv = (problem.icnd_many(u + h * v, *rest, par, nint)
                   - problem.icnd_many(u - h * v, *rest, par, nint)) / (2 * h)
+            if q is not None and np.any(q):
+                # g_p q apart from g_u v: the parameters are one vector for every node,
+                # so a step along q shared by the rows, and each row's own step along v
+                # as above; a node's integrand is then the same alone or in a batch (one
+                # batched call per sweep instead of one per node).
+                p, qp = np.asarray(par, float), q[0]
+                hp = float(np.min([DIR_STEP * (1 + abs(p[i - 1])) / abs(qp[i - 1])
+                                   for i, _ in null_pars if qp[i - 1] != 0]))
+                gv = gv + (problem.icnd_many(u, *rest, p + hp * qp, nint)
+                           - problem.icnd_many(u, *rest, p - hp * qp, nint)) / (2 * hp)
             parts += [g, gv]
-        parts.append((np.sum(v * v, axis=1) - par[norm_index - 1])[:, None])
+        qq = 0.0 if q is None else float(sum(par[j - 1] ** 2 for _, j in null_pars))
+        parts.append((np.sum(v * v, axis=1) + qq - par[norm_index - 1])[:, None])
         out = np.hstack(parts)
         return out.T if batch else out[0]
 
@@ -536,32 +608,37 @@ def fold_problem(problem, n: int, nbc: int, nint: int, norm_index: int) -> Probl
 @register(4, 2, "LP")
 @register(4, 2, "LP-curve")
 class BVPFoldLocus(BoundaryValueProblem):
-    """The fold locus of a BVP in two parameters (ISW = 2 from an LP of code 5): the
-    BVP `fold_problem` in W = (u, v) continued in PAR(ICP(1)), PAR(ICP(2)), with
-    PAR(NPAR + 1) (AUTO's internal PAR(NPAR)) holding int |v|^2 dt.
+    """The fold locus of a BVP (ISW = 2 from an LP of code 5): the BVP `fold_problem` in
+    W = (u, v) continued in the branch's m = NBC + NINT - NDIM + 1 free parameters
+    PAR(ICP(1..m)) and one more, PAR(ICP(m + 1)), with PAR(NPAR + m) (AUTO's internal
+    PAR(NPAR)) holding int |v|^2 dt + |q|^2, and, where m > 1, the null vector's
+    parameter components q along PAR(ICP(2..m)) in PAR(NPAR + 1..NPAR + m - 1) (AUTO's
+    AUTOBVP: NFPR = 2 m free parameters, NPARI = m).
 
     As AUTO (AUTOBVP with ISW = -2), a start at the LP itself is a generating run: the
-    null vector v (found here directly, the null vector of the BVP's Jacobian at the
-    LP, scaled to int |v|^2 = 1) grows in norm with PAR(ICP(2)) fixed, ILP = ISP = 0,
-    NMX = 5; restarting from its end point (a record of this curve) continues the
-    locus in the user's ICP. Only problems with one free parameter on their branch
-    (NBC + NINT - NDIM + 1 = 1) are handled."""
+    null vector (v, q) grows from 0 along the BVP's null vector at the LP, its norm free
+    in place of PAR(ICP(m + 1)), which stays fixed, ILP = ISP = 0, NMX = 5; restarting
+    from its end point (a record of this curve) continues the locus in the user's ICP.
+    The parameters PAR(ICP(2..m)) of the locus need not be those of the LP's run (snh's
+    tb.auto: the LP of a branch in nu1, mu, T, delta, T- continued with nu2 in place of
+    mu); the BVP's null vector is then the one in the locus's parameters."""
     curve_type = 5
 
     def __init__(self, data):
         s = data.settings
         n = s.NDIM
-        if s.NBC + s.NINT - n + 1 != 1:
-            raise ValueError(f"fold loci of BVPs with NBC + NINT - NDIM + 1 = "
-                             f"{s.NBC + s.NINT - n + 1} free parameters on their branch are "
-                             "not supported yet (1 is)")
-        if len(s.ICP) < 2:
-            raise SettingsError("ISW = 2 continues the fold locus in two parameters: ICP needs "
-                             f"two entries, got {list(s.ICP)}", keys=("ICP",))
-        norm = s.NPAR + 1
+        m = s.NBC + s.NINT - n + 1
+        if len(s.ICP) < m + 1:
+            raise SettingsError(f"ISW = 2 continues the fold locus of a BVP with NBC + NINT - "
+                                f"NDIM + 1 = {m} free parameters in {m + 1}: ICP needs "
+                                f"{m + 1} entries, got {list(s.ICP)}", keys=("ICP",))
+        norm = s.NPAR + m
+        # the null vector's parameter components: q_k = PAR(NPAR + k) along PAR(ICP(k + 1))
+        null_pars = tuple((s.ICP[k], s.NPAR + k) for k in range(1, m))
+        q_idx = [j for _, j in null_pars]
         generating = data.kind == "LP"
-        if generating:
-            self._free = [s.ICP[0], norm]
+        self._free = (list(s.ICP[:m]) + [norm] + q_idx if generating
+                      else list(s.ICP[:m + 1]) + q_idx)
         # AUTO's generating run has ISW = -2 internally: its branch number is new.
         over = dict(NMX=5, ILP=0, ISP=0, ISW=-2) if generating else {}
         s2 = s.with_(NDIM=2 * n, NBC=2 * s.NBC, NINT=2 * s.NINT + 1, NPAR=norm, **over)
@@ -569,46 +646,51 @@ class BVPFoldLocus(BoundaryValueProblem):
         par = np.zeros(norm)
         p = np.asarray(data.par, float)
         par[:min(len(p), norm)] = p[:norm]
-        ext = fold_problem(data.problem, n, s.NBC, s.NINT, norm)
+        ext = fold_problem(data.problem, n, s.NBC, s.NINT, norm, null_pars)
         rec = data.record
         self._generating = generating
         if generating:
-            # STPNBL: the LP's solution with v = 0 and the norm PAR(NPAR) = 0 (a solution
-            # of the extended BVP: the LP's branch with v = 0 crosses there the family
-            # v = c phi, PAR(NPAR) = c^2 int |phi|^2, which the generating run follows), and
-            # the LP's own direction with v-dot = 0, from which `start` switches (STDRBV,
-            # IPERP = 1, as CNRLBV does for ISW < 0). The null vector's norm then grows
-            # with the arclength from 0, as AUTO's (int: PAR(NPAR) = 6.6e-3 after the
-            # generating run's five points); it is no scaling of the locus's equations,
-            # but it weighs v in the arclength of every later step of the locus.
-            base = BoundaryValueProblem(StartData(data.problem, s.with_(ISW=1, ICP=s.ICP[:1]),
+            # STPNBL: the LP's solution with v = 0, q = 0 and the norm PAR(NPAR + m) = 0, a
+            # solution of the extended BVP where two families cross: the LP's branch (v =
+            # 0) and the null vectors (v, q) = c phi, PAR(NPAR + m) = c^2 |phi|^2, phi the
+            # BVP's null vector at the fold in (u, PAR(ICP(2..m))). The generating run
+            # follows the second: AUTO's STDRBV (IPERP = 1, as CNRLBV takes for ISW < 0)
+            # borders the extended Jacobian by the LP's direction (phi, 0), whose one null
+            # vector orthogonal to it is (0, phi). That direction is set here from phi
+            # itself: the extended Jacobian's null space is two-dimensional at this point,
+            # and its null vector from the reduced matrix (single shooting over [0, 1]) is
+            # rounding where the profile is stiff (snh's connection of time 200: |J z| =
+            # 4e-2 |J|). The null vector's norm then grows with the arclength from 0, as
+            # AUTO's (int: PAR(NPAR) = 6.6e-3 after the generating run's five points); it
+            # is no scaling of the locus's equations, but it weighs v in the arclength of
+            # every later step of the locus.
+            base = BoundaryValueProblem(StartData(data.problem, s.with_(ISW=1, ICP=s.ICP[:m]),
                                                   data.u, data.par, rec, "", data.unames))
             x0 = base._start[0]
             U = base.unpack(x0)[0]
-            if base._stored is not None:
-                d_u, d_p = base._stored[:base.n_u].reshape(-1, n), float(base._stored[-1])
-            else:
-                z = base.null_vector(base.jacobian(x0), np.zeros(base.n_x))
-                d_u, d_p = z[:base.n_u].reshape(-1, n), 0.0
+            phi = base.fold_null_vector(x0)
+            slot = dict(zip(base._order, range(base.n_u, base.n_x)))
             par[norm - 1] = 0.0
+            for j in q_idx:
+                par[j - 1] = 0.0
+            d_u = phi[:base.n_u].reshape(-1, n)
             rec = SimpleNamespace(U=np.hstack([U, np.zeros_like(U)]), t=base.mesh.node_times(),
                                   ntst=base.mesh.ntst, ncol=base.mesh.ncol,
-                                  udot=np.hstack([d_u, np.zeros_like(d_u)]),
-                                  rldot=[d_p, 0.0], icp=[s.ICP[0], norm])
+                                  udot=np.hstack([np.zeros_like(d_u), d_u]),
+                                  rldot=[0.0] * (m + 1) + [float(phi[slot[i]])
+                                                           for i, _ in null_pars],
+                                  icp=list(self._free))
         self.ndm = n
-        # AUTO's NPARI: the norm's PAR(NPAR + 1) is internal (AUTO-07p restarts read the
-        # user's NPAR as NPAR - NPARI).
-        self.npari = 1
+        # AUTO's NPARI: the norm's PAR(NPAR + m) and the q's are internal (AUTO-07p
+        # restarts read the user's NPAR as NPAR - NPARI).
+        self.npari = m
         super().__init__(StartData(ext, s2, data.u, par, rec, data.kind, data.unames))
 
     def start(self):
-        if not self._generating or self._stored is None:
+        if not self._generating:
             return super().start()
-        # The generating run leaves the LP's branch (v = 0) along the family v = c phi:
-        # the null vector of the Jacobian bordered by the LP's direction (STDRBV with
-        # IPERP = 1), oriented by STDRBV's rule.
-        x0 = self._start[0]
-        z = self.null_vector(self.jacobian(x0), self.weights * self._stored)
+        # The generating run's direction (0, phi), oriented by STDRBV's rule.
+        x0, z = self._start[0], self._stored
         return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
 
 
