@@ -139,8 +139,10 @@ def _reversible(a0):
     return Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="rev2", jac=-1, pvls=equilibrium)
 
 
-def test_reversible_symmetric_homoclinic_family():
-    c = Constants(dict(NDIM=2, IPS=9, IEQUIB=0, IREV=[0, 1], ICP=[1], NTST=30, NCOL=4,
+@pytest.mark.parametrize("iequib", [0, 1])
+def test_reversible_symmetric_homoclinic_family(iequib):
+    """IEQUIB = 0: the saddle from PVLS; 1: solved for (f(x0) = 0, PAR(12), PAR(13) free)."""
+    c = Constants(dict(NDIM=2, IPS=9, IEQUIB=iequib, IREV=[0, 1], ICP=[1], NTST=30, NCOL=4,
                        JAC=-1, ISP=0, ILP=0, DS=0.05, DSMAX=0.2, NMX=20, NPR=5))
     br = runner.run(c, _reversible(1.0))
     assert br.status == "ok"
@@ -154,6 +156,7 @@ def test_reversible_symmetric_homoclinic_family():
         # energy y^2/2 - a x^2/2 + x^3/3 = 0 on the orbit: the collocation's error
         H = U[:, 1] ** 2 / 2 - a * U[:, 0] ** 2 / 2 + U[:, 0] ** 3 / 3
         assert np.max(np.abs(H)) < 1e-6
+        assert np.max(np.abs(r.par[11:13])) < 1e-12      # the saddle at the origin
 
 
 def _snic(T):
