@@ -62,9 +62,9 @@ if str(ROOT) not in sys.path:          # washer.problems.auto07p builds AUTO's w
 
 DATA = ROOT / "tests" / "data"
 REF = DATA / "auto_reference"
-AB2 = dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]})
-LRZ2 = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DS=0.1, DSMAX=2.0,
-            UZR={"sigma": [5.0, 10.0, 20.0]}, UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0})
+# the loci of ab2p.auto and lrz2p.auto as the tests define them (tests/auto_reference.py)
+sys.path.insert(0, str(ROOT / "tests"))
+from auto_reference import AB2P_LOCUS as AB2, LRZ2P_LOCUS as LRZ2  # noqa: E402
 LRZ_PO = dict(IPS=2, ICP=["rho", "PERIOD"], NMX=35, NPR=2, DS=0.5)
 
 AB_FILES = [(DATA / "ab" / "ab.py", "ab.py"), (DATA / "ab" / "c.ab", "c.ab"),

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from auto_reference import AB2P_LOCUS, LRZ2P_LOCUS
 from washer.auto.files import read_b, type_name
 from washer.run import run
 
@@ -31,8 +32,7 @@ def demo_dir(tmp_path_factory, demo: str) -> Path:
 def ab_runs(tmp_path_factory):
     d = demo_dir(tmp_path_factory, "ab")
     out = {"eq": run(d / "c.ab", verbose=False, sv="eq")}
-    common = dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]},
-                  PAR={}, s="eq", verbose=False)
+    common = dict(AB2P_LOCUS, PAR={}, s="eq", verbose=False)
     for name, irs, ds in (("lp_fwd", "LP1", 0.01), ("lp_bwd", "LP1", -0.01),
                           ("hb_fwd", "HB1", 0.01), ("hb_bwd", "HB1", -0.01)):
         out[name] = run(d / "c.ab", IRS=irs, DS=ds, sv=name, **common)
@@ -44,11 +44,9 @@ def ab_runs(tmp_path_factory):
 def lrz_runs(tmp_path_factory):
     d = demo_dir(tmp_path_factory, "lrz")
     out = {"eq": run(d / "c.lrz", verbose=False, sv="eq")}
-    common = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DSMAX=2.0,
-                  UZR={"sigma": [5.0, 10.0, 20.0]}, UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0},
-                  s="eq", IRS="HB1", verbose=False)
-    out["hb_fwd"] = run(d / "c.lrz", DS=0.1, sv="hb_fwd", **common)
-    out["hb_bwd"] = run(d / "c.lrz", DS=-0.1, sv="hb_bwd", **common)
+    common = dict(LRZ2P_LOCUS, s="eq", IRS="HB1", verbose=False)
+    out["hb_fwd"] = run(d / "c.lrz", sv="hb_fwd", **common)
+    out["hb_bwd"] = run(d / "c.lrz", sv="hb_bwd", **dict(common, DS=-0.1))
     out["dir"] = d
     return out
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from auto_reference import AB2P_LOCUS
 from washer.auto.constants import Constants, read_constants
 from washer.auto.files import D_BAR, OutputFiles, Row, column_title, fmt_es
 
@@ -112,8 +113,7 @@ def _ab2p(sv: str, ds: float, irs: int) -> Constants:
     IRS = the label of eq('HB1') or eq('LP1') (AUTO's CLUI passes the label number)."""
     c = read_constants(DATA / "ab" / "c.ab")
     dict.__setitem__(c, "PAR", {})          # those runs restart from eq's s-file, no PAR
-    for k, v in dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, DS=ds,
-                     UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]}, sv=sv, IRS=irs).items():
+    for k, v in dict(AB2P_LOCUS, DS=ds, sv=sv, IRS=irs).items():
         c.set(k, v)
     return c
 

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from auto_reference import AB2P_LOCUS as AB2, LRZ2P_LOCUS as LRZ2
 from corrector_runs import fast_and_slow
 from washer.cont import compiled_newton
 from washer.run import run
@@ -329,10 +330,6 @@ def test_an_error_of_the_call_back_itself_is_raised(cache):
         corrector.correct(x0 + 0.01 * t / np.linalg.norm(t), x0, 0.01, Counters())
 
 
-# The loci (ISW = 2) of AUTO's ab2p and lrz2p: the runs of benchmarks/bench_vs_auto.py.
-AB2 = dict(ICP=[1, 2], ISW=2, NMX=400, DSMAX=0.05, UZSTOP={1: [0.0, 0.3], 2: [5.0, 30.0]})
-LRZ2 = dict(ICP=["rho", "sigma"], ISW=2, NMX=300, DS=0.1, DSMAX=2.0,
-            UZR={"sigma": [5.0, 10.0, 20.0]}, UZSTOP={"sigma": [4.0, 40.0], "rho": 200.0})
 
 
 @pytest.mark.parametrize("kind", ["f90", "py"])

@@ -9,6 +9,7 @@ the general evaluation gives.
   quotient's error of central differences.
 """
 import importlib.util
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -369,3 +370,29 @@ def test_all_finite_is_numpys_check_on_both_sides_of_its_python_path(size):
             a[rng.integers(size)] = (np.nan, np.inf, -np.inf)[trial % 3]
         for shaped in (a, a.reshape(1, -1), a * (1 - 2j)):
             assert all_finite(shaped) == bool(np.isfinite(shaped).all())
+
+
+@pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
+@pytest.mark.parametrize("name", ["bvp", "lin", "stw"])
+def test_a_python_demo_on_arrays_is_autos_func_bit_for_bit(name, tmp_path):
+    """AUTO's demos bvp, lin and stw square in FUNC (`(PAR(1)*PI)**2`, `U(1)**2`: x * x
+    in gfortran's code); their Python transcriptions (tests/data/bvp/NAME/NAME.py) write
+    `** 2`, which numpy computes as a square on an array (x * x) and as libm's pow on a
+    numpy scalar (pow(x, 2) is not x * x at about 0.08 % of doubles). A batch of 12
+    points and more is one call on arrays (Problem.func_many): AUTO's compiled FUNC
+    (tests/data/auto_demos/NAME/NAME.f90) bit for bit at every point, where separate
+    calls on numpy scalars are not at some: why that rule is not the small stencils'
+    bitwise comparison with separate calls, which would refuse these files' arrays."""
+    from washer.cont.compiled import load_compiled_problem
+    from washer.cont.user_files import load_python_problem
+    data = Path(__file__).parent / "data"
+    shutil.copy(data / "auto_demos" / name / f"{name}.f90", tmp_path)
+    fortran = load_compiled_problem(tmp_path / f"{name}.f90", 2, name)
+    python = load_python_problem(name, data / "bvp" / name, 2)
+    rng = np.random.default_rng(1)
+    us = rng.uniform(-2.0, 2.0, size=(20000, 2))
+    pars = rng.uniform(0.1, 2.0, size=(20000, 36))
+    auto = fortran.func_many(us, pars)
+    np.testing.assert_array_equal(python.func_many(us, pars), auto)
+    scalars = np.array([python.user_func(u, p) for u, p in zip(us, pars)])
+    assert not np.array_equal(scalars, auto)

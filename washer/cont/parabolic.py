@@ -57,7 +57,8 @@ class ParabolicProblem(Problem):
         if kind not in ("wave", "stationary"):
             raise ValueError(f"kind {kind!r}: expected 'wave' or 'stationary'")
         n = user.ndim
-        self.user, self.kind, self.n_user = user, kind, n
+        self.user, self.kind = user, kind
+        self.ndm = n              # AUTO's NDM: the user's NDIM, n
         super().__init__(2 * n, self._f, stpnt=self._stpnt, name=user.name,
                          npar=max(user.npar, DIFFUSION + n, LENGTH), func_batch=self._f_batch,
                          pvls=user._pvls, parnames=user.parnames, unames=user.unames,
@@ -69,16 +70,16 @@ class ParabolicProblem(Problem):
     def _diffusion(self, pars: np.ndarray) -> np.ndarray:
         """(k, n) diffusion coefficients PAR(15..14 + n) of k parameter rows; a zero one
         is the user's error (the PDE is then not parabolic in that component)."""
-        D = pars[:, DIFFUSION:DIFFUSION + self.n_user]
+        D = pars[:, DIFFUSION:DIFFUSION + self.ndm]
         if np.any(D == 0):
-            raise ProblemError(f"{self.name}: a diffusion coefficient PAR(15..{DIFFUSION + self.n_user}) "
+            raise ProblemError(f"{self.name}: a diffusion coefficient PAR(15..{DIFFUSION + self.ndm}) "
                                "is 0: a parabolic PDE needs PAR(14 + i) != 0 for each component")
         return D
 
     def _f_batch(self, us, pars) -> np.ndarray:
         """The 2n right-hand sides at k points: us (k, 2n), pars (k, NPAR) -> (k, 2n)."""
         us, pars = np.asarray(us, float), np.asarray(pars, float)
-        n = self.n_user
+        n = self.ndm
         u, v = us[:, :n], us[:, n:]
         f = self.user.func_many(np.ascontiguousarray(u), pars)
         D = self._diffusion(pars)

@@ -61,10 +61,13 @@ from washer.cont.pointwise import PointwiseCheck
 from washer.cont.pvls import Orbit
 #: Batches of at least this many points call a plain user func once with (ndim, k)
 #: arrays, checked once on the first call's first VECTORISE_CHECK points against separate
-#: calls (rtol 1e-14) and off for good on a mismatch (the rule the BVP and periodic
-#: demos' files were made with: bvp.py's `par[0] ** 2` differs in the last bit between
-#: a numpy scalar and an array, and washer.cont.pointwise's bitwise rule would change
-#: those files).
+#: calls (rtol 1e-14) and off for good on a mismatch. Not washer.cont.pointwise's bitwise
+#: rule: `x ** 2` is a square on an array and libm's pow on a numpy scalar, and the square
+#: is AUTO's Fortran x**2 (bvp.py, lin.py and stw.py on arrays are their FUNC bit for bit,
+#: separate calls are not: tests/test_hot_path_jacobians.py), which that rule would refuse.
+#: Nor does one bitwise rule against calls of one point on (ndim, 1) arrays serve both
+#: sizes: it takes numpy's SIMD pow for x ** 3 and up (not correctly rounded at 2.7 % of
+#: doubles in [-3, 3], libm's pow at 0.07 %) where small stencils keep separate calls.
 VECTORISE_MIN = 12
 #: How many points of the first vectorised batch are checked against separate calls.
 VECTORISE_CHECK = 32

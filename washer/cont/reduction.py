@@ -127,22 +127,16 @@ class BorderedCollocation:
         n = w - mn
         m = mn // n
         npar = parcols.shape[2]
-        self.shape = (N, m, n, npar)
-        self.nx = (N * m + 1) * n + npar
-        if (parcols.shape[:2] != (N, mn) or extra.shape != (n + npar, self.nx)
+        nx = (N * m + 1) * n + npar
+        if (parcols.shape[:2] != (N, mn) or extra.shape != (n + npar, nx)
                 or mn != m * n):
             raise ValueError(f"inconsistent shapes {blocks.shape}, {parcols.shape}, "
                              f"{extra.shape}")
-        self._f = ffi.gc(lib.cont_bvp_new(N, m, n, npar), lib.cont_bvp_free)
-        self.P0 = np.zeros((n, n))
-        self.P1 = np.zeros((n, n))
-        # the determinant on request (collocation systems never ask: their BP test is the
-        # reduced matrix's)
-        self._sl = None
-        rc = lib.cont_bvp_factor(self._f, _ptr(blocks), _ptr(parcols), _ptr(extra),
-                                 ffi.NULL, _ptr(self.P0), _ptr(self.P1))
-        self.singular = rc == 1
-        self._dense = dense
+        handle = ffi.gc(lib.cont_bvp_new(N, m, n, npar), lib.cont_bvp_free)
+        P0, P1 = np.zeros((n, n)), np.zeros((n, n))
+        rc = lib.cont_bvp_factor(handle, _ptr(blocks), _ptr(parcols), _ptr(extra),
+                                 ffi.NULL, _ptr(P0), _ptr(P1))
+        self._hold(handle, (N, m, n, npar), P0, P1, rc == 1, dense)
 
     @classmethod
     def adopt(cls, handle, shape, P0, P1, dense=None) -> "BorderedCollocation":
@@ -150,15 +144,23 @@ class BorderedCollocation:
         last one, non-singular): the cont_bvp `handle` (owned by the object from now on),
         shape (NTST, NCOL, NDIM, NPAR) and its Floquet pair."""
         self = object.__new__(cls)
+        self._hold(handle, shape, P0, P1, False, dense)
+        return self
+
+    def _hold(self, handle, shape, P0, P1, singular: bool, dense) -> None:
+        """The object's state, a factorisation in the cont_bvp `handle` (freed with the
+        object) of shape (NTST, NCOL, NDIM, NPAR), with its Floquet pair P0, P1 (NDIM,
+        NDIM) and whether a pivot was zero."""
         N, m, n, npar = shape
         self.shape = (N, m, n, npar)
         self.nx = (N * m + 1) * n + npar
         self._f = handle
         self.P0, self.P1 = P0, P1
+        self.singular = singular
+        # the determinant on request (collocation systems never ask: their BP test is the
+        # reduced matrix's)
         self._sl = None
-        self.singular = False
         self._dense = dense
-        return self
 
     @classmethod
     def from_jacobian(cls, coll, J, border) -> "BorderedCollocation":

@@ -89,7 +89,7 @@ def restart_record(c, problem, records, records_source: str = "the restart file"
         raise RunError(f"{records_source}: {exc}") from None
     # A general BVP may restart from a solution of fewer components (AUTO's READBV
     # fills the others with 0: pcl's connecting orbits start from a periodic orbit).
-    ndim = getattr(problem, "n_user", problem.ndim)      # a parabolic PDE's user NDIM
+    ndim = getattr(problem, "ndm", problem.ndim)      # a parabolic PDE's user NDIM
     widen = c["IPS"] in (4, 7) and np.ndim(rec.u) == 2 and rec.ndim_user < ndim
     if rec.ndim_user != ndim and not widen:
         raise RunError(f"{c.source}: IRS={irs!r} names a solution of a problem with NDIM="

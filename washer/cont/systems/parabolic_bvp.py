@@ -42,15 +42,10 @@ class _ParabolicBVP(BoundaryValueProblem):
     def __init__(self, start: StartData):
         problem = start.problem
         n2 = problem.ndim
-        self.ndm = problem.n_user                    # the b-file's columns: AUTO's NDM
+        self.ndm = problem.ndm           # the user's n: BoundaryValueProblem's NDM
         s = start.settings.with_(NDIM=n2, NBC=n2, NINT=0)
         super().__init__(replace(start, settings=s))
         self.run_settings = s
-
-    def solution(self, x, tangent):
-        sol = super().solution(x, tangent)
-        sol.ndim_user = self.ndm
-        return sol
 
 
 @register(17, 1, "*")

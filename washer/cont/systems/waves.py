@@ -50,14 +50,14 @@ class _UserNdim:
 
     def _doubled_init(self, base, start: StartData) -> None:
         inner = doubled(start)
-        self.n_user = start.problem.n_user
+        self.ndm = start.problem.ndm
         base.__init__(self, inner)
         if not hasattr(self, "run_settings"):
             self.run_settings = inner.settings
 
     def solution(self, x, tangent):
         sol = super().solution(x, tangent)
-        sol.ndim_user = self.n_user
+        sol.ndim_user = self.ndm
         return sol
 
 
