@@ -43,6 +43,7 @@ import pytest
 import sympy as sp
 from scipy.integrate import solve_ivp
 
+from washer.auto.constants import read_constants
 from washer.auto.diagram import type_name
 from washer.auto.files import read_b
 from washer.cont.normal_form import first_lyapunov
@@ -79,6 +80,22 @@ _TRACEF = sp.lambdify((u2, p4), _TRACE, "mpmath")
 U2_CROSS = sp.Rational(1, 6)
 #: PAR(4) there (AUTO's and washer's BP at PAR(1) = 0.0772911), to pick the quadratic's root.
 P4_NEAR_CROSS = 5.43
+#: The demo's constants; the Hopf loci's run (ppp.auto's third) sets DSMAX = 0.1.
+CONSTANTS = read_constants(DEMO / "c.ppp")
+#: Where both engines locate a special point of the Hopf loci: within EPSS (1 + sqrt(|DS
+#: DSMAX|)) = 1.03e-4 in arclength, which bounds PAR(1) and PAR(4) (weight 1: each moves
+#: at most as fast as the arclength).
+LOCATED_HB = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CONSTANTS["DS"] * 0.1)))
+
+
+def corrected_hb(row) -> float:
+    """How far a converged point of a Hopf locus may lie from its step's solution: the
+    corrector's last change, below EPSU (1 + max |x|) on the unknowns (EPSL on PAR(1), here
+    the same), x = (u, v with |v| = 1, kappa = omega^2, PAR(4)) (washer.cont.systems.hopf)."""
+    kappa = (2 * math.pi / row.par[10]) ** 2
+    big = max(np.max(np.abs(row.U)), abs(row.par[3]), kappa, 1.0)
+    assert CONSTANTS["EPSL"] == CONSTANTS["EPSU"]
+    return CONSTANTS["EPSU"] * (1 + max(big, abs(row.par[0])))
 
 
 def _digits30(fn):
@@ -174,14 +191,11 @@ def test_the_hopf_loci_cross_where_lambda3_vanishes_with_one_imaginary_pair(tmp_
     # lam (lam^2 + w^2): trace 0 (Hopf), det 0 (lambda3 = -p3 + p5 u2 = 0), w^2 > 0
     assert abs(c[1]) < 1e-25 and abs(c[3]) < 1e-25 and c[2] > 0.4
     # AUTO's BP of the Hopf locus there (b.hb label 18, PAR(1), PAR(4)): the same point
-    # within its location tolerance in arclength, EPSS (1 + sqrt(DS DSMAX)) = 1.03e-4
-    # (the third run's DS = 0.01, DSMAX = 0.1), which bounds PAR(1) and PAR(4) (weight 1:
-    # each moves at most as fast as the arclength). Measured: 1.6e-6 and 1.7e-5.
-    located = 1e-4 * (1 + (0.01 * 0.1) ** 0.5)
+    # within its location tolerance LOCATED_HB. Measured: 1.6e-6 and 1.7e-5.
     bp = [r for r in _auto_rows("hb", tmp_path) if r.lab == 18][0]
     assert bp.ty == "BP"
-    assert bp.values[0] == pytest.approx(float(q1), abs=located)
-    assert bp.values[-1] == pytest.approx(float(q4), abs=located)
+    assert bp.values[0] == pytest.approx(float(q1), abs=LOCATED_HB)
+    assert bp.values[-1] == pytest.approx(float(q4), abs=LOCATED_HB)
 
 
 # ------------------------------------------------------- l1 on the boundary locus
@@ -282,10 +296,12 @@ def test_the_loci_switched_at_the_first_hopf_locus_bp_follow_autos_rows(runs, tm
     depends on which unit v of the two-dimensional null space of A^2 + kappa I the locus
     carries: AUTO's is NLVC's at the Hopf start (STPNHBF), which the phase condition then
     keeps. Branch 9 leaves the first locus's BP (the locus from HB2, where v is the start's
-    all along u3 = 0): its first ten rows each way are AUTO's within the corrector's
-    tolerance, EPSU (1 + max |U|) = 1e-6 (1 + 3.35) on the extended U with PAR(4) = 3.35
-    (measured: 7.4e-7 at PT 1, the BP's location, 1.4e-7 .. 2.9e-7 after it; with another
-    unit v of that plane they were 7.6e-5 apart at PT 2 and 1.1e-3 at PT 10)."""
+    all along u3 = 0): its first ten rows each way are AUTO's to twice the corrector's
+    tolerance (`corrected_hb`: each engine's row within it of the same step's solution;
+    2 EPSU (1 + 3.35) = 8.7e-6 with PAR(4) = 3.35 the largest unknown; PT 1, the BP, is
+    the corrected last trial of the same location from the same bracket) (measured: 7.4e-7
+    at PT 1, 1.4e-7 .. 2.9e-7 after it; with another unit v of that plane they were 7.6e-5
+    apart at PT 2 and 1.1e-3 at PT 10)."""
     _, _, _, hb = runs
     ours = _halves(hb.rows, 9)
     auto = _halves(_auto_rows("hb", tmp_path), 9)
@@ -294,7 +310,7 @@ def test_the_loci_switched_at_the_first_hopf_locus_bp_follow_autos_rows(runs, tm
         for ro, ra in zip(o[:10], a[:10]):
             got = np.r_[ro.par[0], ro.U, ro.par[3]]
             want = np.array(ra.values[:1] + ra.values[2:6])
-            assert np.max(np.abs(got - want)) < 1e-6 * (1 + 3.35), (ro.pt, got - want)
+            assert np.max(np.abs(got - want)) <= 2 * corrected_hb(ro), (ro.pt, got - want)
 
 
 @pytest.mark.slow
@@ -303,18 +319,26 @@ def test_the_eighteenth_locus_reaches_autos_bp_on_its_forward_half(runs, tmp_pat
     0.0772911 on both halves within NMX = 100 as AUTO's does (PT 91 forward, PT 86
     backward). Its v is inherited along the 14th locus, whose steps differ from AUTO's
     after AUTO's GH at its PT 4 (a label takes a step there), so its rows are not AUTO's
-    to the corrector's tolerance: PT 2 is 2.3e-6 from AUTO's (1.3e-4 with another unit v
-    at the Hopf start) and the gap grows by about that per step."""
+    to the corrector's tolerance: its start, the BP each engine located on the 14th, is
+    within the location tolerance LOCATED_HB of that BP for each, and PT 2 one corrected
+    step DS along the inherited direction from it: within 2 (LOCATED_HB + `corrected_hb`)
+    = 2.2e-4 of AUTO's (measured 2.3e-6; 1.3e-4 with another unit v at the Hopf start)
+    and the gap grows by about that per step. The BPs at PT 91 and 86 are the crossing
+    with the interior locus (u2 = 1/6) in closed form, located to LOCATED_HB (measured
+    3.5e-11 and 1.0e-10 in PAR(1))."""
     _, _, _, hb = runs
     bps = [[r for r in seg if r.ty == "BP"] for seg in _halves(hb.rows, 18)]
     assert [[r.pt for r in seg] for seg in bps] == [[91], [86]]
+    _, _, q1, q4 = boundary_hopf(U2_CROSS)
     for seg in bps:
-        assert seg[0].par[0] == pytest.approx(0.0772911, abs=2e-6)
+        assert seg[0].par[0] == pytest.approx(float(q1), abs=LOCATED_HB)
+        assert seg[0].par[3] == pytest.approx(float(q4), abs=LOCATED_HB)
     ours = _halves(hb.rows, 18)
     auto = _halves(_auto_rows("hb", tmp_path), 18)
     for o, a in zip(ours, auto):
         got = np.r_[o[1].par[0], o[1].U, o[1].par[3]]
-        assert np.max(np.abs(got - np.array(a[1].values[:1] + a[1].values[2:6]))) < 1e-5
+        assert np.max(np.abs(got - np.array(a[1].values[:1] + a[1].values[2:6]))) <= \
+            2 * (LOCATED_HB + corrected_hb(o[1]))
 
 
 # ------------------------------------------------------- the cycles end at HB7
