@@ -4,7 +4,10 @@ does: a run's files are sinks attached to it). Its modules:
 
 problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
               finite-difference derivatives; user_files, compile, compiled, symbolic load
-              them from NAME.py, Fortran/C user files or sympy expressions
+              them from NAME.py, Fortran/C user files or sympy expressions; pointwise:
+              when a Python func is called once on the arrays of a small stencil;
+              parabolic: a parabolic PDE's user problem as the first-order system in x
+              that the systems of IPS 11-17 continue
 differences   central differences: AUTO's step, the points and the quotient, the one
               definition every finite-difference derivative of the engine uses
 constants, settings

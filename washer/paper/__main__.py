@@ -1,3 +1,4 @@
+"""`python -m washer.paper`: washer.paper.job.main."""
 from washer.paper.job import main
 
 raise SystemExit(main())

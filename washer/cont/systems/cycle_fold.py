@@ -48,6 +48,7 @@ NORM = 1.0
 @register(2, 2, "LP")
 @register(2, 2, "LPC-curve")
 class CycleFoldLocus(CycleLocus):
+    """The locus of folds of cycles (FNPL/BCPL/ICPL); see the module docstring."""
     curve_type = 5
     nint = 3
     _generating = False
