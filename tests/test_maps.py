@@ -290,3 +290,62 @@ def test_unknown_problem_types_are_refused(tmp_path, ips):
     with pytest.raises(RunError, match=rf"c.x:1: IPS = {ips} is not a problem type of "
                                        r"AUTO-07p: expected one of -2, -1, 0, 1, 2, 4, 5, 7, "):
         run(tmp_path / "c.x", e="fold", verbose=False)
+
+
+def test_map_loci_restart_from_their_points(tmp_path):
+    """A point of a locus of a map (a UZ of the fold, period-doubling or Neimark-Sacker
+    curve) restarts that curve with ISW = 2, from the record's extended unknowns and
+    direction, as AUTO's STPNLPF / STPNHBF read them; with ISW = 1 it restarts the fixed
+    points in PAR(ICP(1)) (FINDLB: ITPST = 0). u -> u + p - q u - u^2: folds on
+    p = -q^2/4 (u = -q/2), period doublings (multiplier 1 - q - 2u = -1) on
+    p = 1 - q^2/4 (u = 1 - q/2); the Neimark-Sacker map's locus is the unit circle with
+    theta = atan2(b, a). Each restarted locus on its closed form to the tolerances of the
+    loci from the special points themselves (test_map_fold_locus,
+    test_neimark_sacker_closed_form)."""
+    (tmp_path / "fq.py").write_text(FOLD_MAP.replace("u[0] + par[0] - u[0] ** 2",
+                                                     "u[0] + par[0] - par[1] * u[0] - u[0] ** 2"))
+    (tmp_path / "c.fq").write_text("NDIM=1, IPS=-1, ICP=[1], ILP=1, ISP=1, NMX=300, DS=-0.01, "
+                                   "DSMAX=0.05, DSMIN=1e-4, NPAR=2, EPSS=1e-6, "
+                                   "UZSTOP={1: [-1.0, 5.0]}\n")
+    c = tmp_path / "c.fq"
+    run(c, e="fq", sv="fq", verbose=False)
+    closed = {"LP": lambda q: -q * q / 4, "PD": lambda q: 1 - q * q / 4}
+    for ty, curve in (("LP", "fql"), ("PD", "pdl")):
+        loc = run(c, e="fq", s="fq", IRS=f"{ty}1", ICP=[1, 2], ISW=2, DS=0.01,
+                  UZSTOP={2: [-1.0, 1.0]}, sv=curve, verbose=False)
+        end = loc.specials[-1]
+        assert end.ty == "UZ" and end.par[1] == pytest.approx(-1.0)
+        again = run(c, e="fq", s=curve, IRS=end.lab, ICP=[1, 2], ISW=2, DS=0.01,
+                    UZSTOP={2: [-1.0, 1.0]}, sv="again", verbose=False)
+        assert again.status == "ok" and again.specials[-1].ty == "UZ"
+        assert again.specials[-1].par[1] == pytest.approx(1.0)
+        assert len(again.rows) > 20
+        for row in again.rows:
+            assert row.par[0] == pytest.approx(closed[ty](row.par[1]), abs=1e-8)
+    # ISW = 1 at the fold locus's end (q = -1, located): the fixed points u^2 + q u = p
+    # at that q, which stays fixed
+    fixed = run(c, e="fq", s="fql", IRS="UZ1", ICP=[1], ISW=1, DS=0.01, NMX=20, UZSTOP={},
+                sv="fixed", verbose=False)
+    assert fixed.status == "ok" and len(fixed.rows) == 20
+    q = fixed.rows[0].par[1]
+    assert q == pytest.approx(-1.0, abs=1e-8)
+    for row in fixed.rows:
+        assert row.par[1] == q
+        assert row.U[0] ** 2 + q * row.U[0] == pytest.approx(row.par[0], abs=1e-9)
+    (tmp_path / "ns.py").write_text(NS_MAP)
+    (tmp_path / "c.ns").write_text("NDIM=2, IPS=-1, ICP=[1], ILP=1, ISP=1, NMX=200, DS=0.01, "
+                                   "DSMAX=0.05, DSMIN=1e-4, NPAR=2, EPSS=1e-6, "
+                                   "UZSTOP={1: 1.0}\n")
+    run(tmp_path / "c.ns", e="ns", sv="ns", verbose=False)
+    loc = run(tmp_path / "c.ns", e="ns", s="ns", IRS="TR1", ICP=[1, 2], ISW=2, DS=0.01,
+              UZSTOP={2: 0.3}, sv="nsl", verbose=False)
+    end = loc.specials[-1]
+    assert end.ty == "UZ" and end.par[1] == pytest.approx(0.3)
+    again = run(tmp_path / "c.ns", e="ns", s="nsl", IRS=end.lab, ICP=[1, 2], ISW=2,
+                DS=-0.01, UZSTOP={2: 0.99}, sv="again", verbose=False)
+    assert again.status == "ok" and again.specials[-1].ty == "UZ"
+    assert len(again.rows) > 20
+    for row in again.rows:
+        a, b = row.par[0], row.par[1]
+        assert a * a + b * b == pytest.approx(1.0, abs=1e-9)
+        assert row.par[11] == pytest.approx(math.atan2(b, a), abs=1e-9)

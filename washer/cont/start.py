@@ -148,6 +148,10 @@ def start_kind(rec) -> str:
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
     if curve == 6 and rec.ips in (4, 7):
         return "BP-curve"            # a point of the branch-point locus of a BVP
+    if curve in (7, 8) and rec.ips == -1 and np.ndim(rec.u) == 1:
+        # a point of the period-doubling or Neimark-Sacker locus of a map (maps.f90's
+        # ITPST 7, 8)
+        return {7: "PD-curve", 8: "TR-curve"}[curve]
     if curve in (5, 6, 7, 8) and rec.ips in (2, 12) and np.ndim(rec.u) == 2:
         # a point of a locus of folds, branch points, period doublings or tori of cycles
         return {5: "LPC-curve", 6: "BPC-curve", 7: "PD-curve", 8: "TR-curve"}[curve]
@@ -222,8 +226,9 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # AUTO continues the equilibria in PAR(ICP(1)) from it, as from any label (a curve's
     # solutions carry the constants of their run, ISW = 2 or 3, so run(curve('UZ1'))
     # goes on along the curve).
-    equilibria = s.IPS in (0, 1) and s.ISW == 1 and kind in ALGEBRAIC_CURVES and \
-        np.ndim(rec.u) == 1
+    # Maps alike (AUTODS with ITPST = 0): the fixed points from a point of a locus.
+    equilibria = s.IPS in (0, 1, -1) and s.ISW == 1 and \
+        kind in ALGEBRAIC_CURVES + ("PD-curve", "TR-curve") and np.ndim(rec.u) == 1
     if s.ISW == 1 and kind == "BP-curve" and abs(rec.isw) in (2, 3) and not equilibria:
         # ... a branch-point locus of a BVP as it was computed: non-generic (2) or
         # generic (3), which its stored unknowns mean (b or PAR(ICP(3)))

@@ -372,6 +372,7 @@ class _MapLocus:
 
 
 @register(-1, 2, "LP")
+@register(-1, 2, "LP-curve")
 class MapFoldLocus(_MapLocus, FoldSystem):
     """Folds of fixed points of f^k in two parameters (FNLPDS): the fold locus of F."""
     curve_type = 2
@@ -388,6 +389,7 @@ class MapFoldLocus(_MapLocus, FoldSystem):
 
 
 @register(-1, 2, "PD")
+@register(-1, 2, "PD-curve")
 class MapPDLocus(_MapLocus, FoldSystem):
     """Period doublings in two parameters (FNLPDS with ITPST = 7, FFLP):
 
@@ -401,13 +403,18 @@ class MapPDLocus(_MapLocus, FoldSystem):
         start = self.map_start(start)
         self._setup(start, start.problem.ndim)
         n = self.ndim
-        u = np.asarray(start.u, dtype=float)[:n]
-        phi = null_vectors(self.problem.dfdu(u, self.par) + self.SHIFT * np.eye(n), 1)[:, 0]
-        ext = np.r_[u, phi / np.linalg.norm(phi), self.par[self.free[1] - 1]]
+        # a restart from a point of this locus: its stored (u, phi, PAR(ICP(2))) and
+        # direction (STPNLPF reads them as FNLPDS's unknowns)
+        ext = self.stored_point(start, "PD-curve")
+        if ext is None:
+            u = np.asarray(start.u, dtype=float)[:n]
+            phi = null_vectors(self.problem.dfdu(u, self.par) + self.SHIFT * np.eye(n),
+                               1)[:, 0]
+            ext = np.r_[u, phi / np.linalg.norm(phi), self.par[self.free[1] - 1]]
         self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
-        self.w_ref = null_vectors((self.problem.dfdu(u, self.par)
+        self.w_ref = null_vectors((self.problem.dfdu(ext[:n], self._p(self._x0))
                                    + self.SHIFT * np.eye(n)).T, 1)[:, 0]
-        self._t0 = None
+        self._t0 = self.stored_direction(start, "PD-curve")
 
     def residual(self, x):
         r = FoldSystem.residual(self, x)
@@ -435,6 +442,7 @@ class MapPDLocus(_MapLocus, FoldSystem):
 
 
 @register(-1, 2, "TR")
+@register(-1, 2, "TR-curve")
 class MapTorusLocus(_MapLocus, LocusSystem):
     """Neimark-Sacker points in two parameters (FNNS, FFNSX; Kuznetsov, 3rd ed.,
     eq. 10.83). With A = D f^k = F_u + I and c = cos(theta):
@@ -460,18 +468,22 @@ class MapTorusLocus(_MapLocus, LocusSystem):
         start = self.map_start(start)
         self._setup(start, start.problem.ndim + 1)
         n = self.ndim
-        u = np.asarray(start.u, dtype=float)[:n]
-        theta = self.par[11] if len(self.par) > 11 else 0.0
-        if not theta > 0:
-            raise ValueError("the TR record has no angle PAR(12) > 0 to start the "
-                             "Neimark-Sacker curve from")
-        A = self.problem.dfdu(u, self.par) + np.eye(n)
-        M = A @ A - 2 * math.cos(theta) * A + np.eye(n)
-        v = null_vectors(M, 2)[:, 0]
-        self._x0 = np.r_[u, v / np.linalg.norm(v), theta, self.par[self.free[1] - 1],
-                         self.par[self.free[0] - 1]]
-        self.v_old = self._x0[n:2 * n].copy()
-        self._t0 = None
+        # a restart from a point of this locus: its stored (u, v, theta, PAR(ICP(2)))
+        # and direction (STPNHBF reads them as FNNS's unknowns)
+        ext = self.stored_point(start, "TR-curve")
+        if ext is None:
+            u = np.asarray(start.u, dtype=float)[:n]
+            theta = self.par[11] if len(self.par) > 11 else 0.0
+            if not theta > 0:
+                raise ValueError("the TR record has no angle PAR(12) > 0 to start the "
+                                 "Neimark-Sacker curve from")
+            A = self.problem.dfdu(u, self.par) + np.eye(n)
+            M = A @ A - 2 * math.cos(theta) * A + np.eye(n)
+            v = null_vectors(M, 2)[:, 0]
+            ext = np.r_[u, v / np.linalg.norm(v), theta, self.par[self.free[1] - 1]]
+        self._x0 = np.r_[ext, self.par[self.free[0] - 1]]
+        self.v_old = self._x0[n:2 * n] / np.linalg.norm(self._x0[n:2 * n])
+        self._t0 = self.stored_direction(start, "TR-curve")
 
     def residual(self, x):
         n = self.ndim
