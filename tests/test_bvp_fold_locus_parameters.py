@@ -214,3 +214,32 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
         assert ours.shape == auto.shape
         err = np.abs(ours - auto)[:, cols] / (1 + np.abs(auto[:, cols]))
         assert err.max() < 1e-6, (ds, err.max(axis=0))
+
+
+def test_bvp_from_a_point_of_its_fold_locus(tmp_path):
+    """ISW = 1 at a point of the fold locus (its UZ at p3 = 1) continues the BVP itself
+    there, as AUTOBVP does for |ISW| < 2: the record's first NDIM components, PAR(ICP(1..2))
+    free and p3 fixed. The point is a fold of that branch, p1 e^p3 = C its maximum
+    (module docstring): both ways p1 e^p3 falls below C, p3 stays."""
+    C, _ = _bratu_shift_fold()
+    (tmp_path / "brs.py").write_text(BRATU_SHIFT)
+    (tmp_path / "c.brs").write_text("NDIM=2, IPS=4, ICP=[1, 2], NBC=2, NINT=1, NTST=20, "
+                                    "NCOL=4, ILP=1, ISP=0, NMX=100, DS=0.05, DSMAX=0.5, "
+                                    "NPAR=3, STOP=['LP1']\n")
+    c = tmp_path / "c.brs"
+    r1 = run(c, e="brs", sv="brs", verbose=False)
+    gen = run(c, e="brs", s="brs", IRS=r1("LP1").lab, ICP=[1, 2, 3], ISW=2, sv="gen",
+              verbose=False)
+    loc = run(c, e="brs", s="gen", IRS=gen.specials[-1].lab, ICP=[1, 2, 3], ISW=2, DS=-0.05,
+              NMX=300, STOP=[], UZSTOP={3: 1.0}, sv="loc", verbose=False)
+    uz = loc.specials[-1]
+    assert uz.ty == "UZ" and uz.par[2] == pytest.approx(1.0)
+    for ds in (0.05, -0.05):
+        b = run(c, e="brs", s="loc", IRS=uz.lab, ICP=[1, 2], ISW=1, DS=ds, NMX=6, STOP=[],
+                ILP=0, sv="bvp", verbose=False)
+        assert b.status == "ok" and len(b.rows) == 6
+        assert "NDIM=   2" in (tmp_path / "b.bvp").read_text()
+        assert b.rows[0].par[0] * math.exp(b.rows[0].par[2]) == pytest.approx(C, rel=1e-8)
+        for row in b.rows[1:]:
+            assert row.par[2] == pytest.approx(uz.par[2], abs=1e-10)      # rows: 11 digits
+            assert row.par[0] * math.exp(row.par[2]) < C * (1 - 1e-6)

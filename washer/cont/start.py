@@ -229,6 +229,9 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     # Maps alike (AUTODS with ITPST = 0): the fixed points from a point of a locus.
     equilibria = s.IPS in (0, 1, -1) and s.ISW == 1 and \
         kind in ALGEBRAIC_CURVES + ("PD-curve", "TR-curve") and np.ndim(rec.u) == 1
+    # A BVP alike (AUTOBVP continues the fold locus only for |ISW| = 2): the BVP's branch
+    # from a point of its fold locus, the record's first NDIM components (READBV).
+    equilibria = equilibria or (s.IPS in (4, 7) and s.ISW == 1 and kind == "LP-curve")
     if s.ISW == 1 and kind == "BP-curve" and abs(rec.isw) in (2, 3) and not equilibria:
         # ... a branch-point locus of a BVP as it was computed: non-generic (2) or
         # generic (3), which its stored unknowns mean (b or PAR(ICP(3)))
