@@ -394,7 +394,7 @@ class Continuation:
             par = self.sys.params(pt.x)
             for k in uz_keys:
                 i, v, _ = self.uz[k]
-                q = float(par[i - 1] - v)
+                q = float(par[i - 1]) - v       # the same double as numpy's difference
                 # A parameter sitting on the value to rounding (a free parameter that
                 # stays 0 while Newton leaves it at +-1e-190, as obv's multipliers on
                 # their trivial branch) is on it, not crossing it back and forth.
@@ -408,11 +408,13 @@ class Continuation:
         x, it = self.correct(p.x + ds * d, p.x, d, ds)
         # A continuation step's point takes the corrector's last matrix; the trials of a
         # location (keys given) evaluate the Jacobian at the point (`_trial`).
-        pt = self.evaluate(x, (x - p.x) / ds, keys, ds=ds, it=it,
+        secant = (x - p.x) / ds
+        pt = self.evaluate(x, secant, keys, ds=ds, it=it,
                            newton=self._newton if keys is None else None)
-        return self._secant(pt, p.x, ds) if keys is None else pt
+        # (the point's x is a copy of x: its secant from p.x is this one, bit for bit)
+        return self._secant(pt, p.x, ds, secant) if keys is None else pt
 
-    def _secant(self, pt: Point, origin, ds) -> Point:
+    def _secant(self, pt: Point, origin, ds, secant=None) -> Point:
         """pt with its step direction on the sphere: AUTO's SOLVAE predicts the next
         point along the secant of the step that reached this one, UDOT = (U - UOLD) /
         RDS (of unit length in the weighted norm to Newton's tolerance: pt lies on the
@@ -421,7 +423,7 @@ class Continuation:
         where AUTO's stayed: ab's equilibria reached PAR(1) = 0.25 in 92 points, AUTO's
         in 107. The plane arclength of BVPs keeps its own direction (`evaluate`)."""
         if self.sys.arclength == "sphere":
-            pt.direction = (pt.x - origin) / ds
+            pt.direction = (pt.x - origin) / ds if secant is None else secant
         return pt
 
     def _retrying_step(self, p: Point, ds):

@@ -132,9 +132,10 @@ def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
     (systems.equilibrium) and in a compiled user file's PVLS."""
     lam = eigvals(A)
     re = lam.real.tolist()
-    # Python's sort is stable as argsort(kind="stable") is: the same order, without
-    # numpy's per-call overhead at the sizes of equilibria
-    return lam[sorted(range(len(re)), key=lambda i: -re[i])]
+    # Python's sort is stable as argsort(kind="stable") is, and stays so reversed (equal
+    # real parts keep their order): the order of a stable sort by -Re, without numpy's
+    # per-call overhead at the sizes of equilibria
+    return lam[sorted(range(len(re)), key=re.__getitem__, reverse=True)]
 
 
 def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
