@@ -55,7 +55,7 @@ contbuilder.set_source(
     "washer._cont",
     '#include "cont.h"\n' + _cont_stamp[1],
     sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp", "csrc/cont/po_correct.cpp",
-             "csrc/cont/format.cpp"],
+             "csrc/cont/es_format.cpp", "csrc/cont/auto_point.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
     extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],

@@ -1,4 +1,4 @@
-"""The compiled ES formatter (csrc/cont/format.cpp) against the Python one
+"""The compiled ES formatter (csrc/cont/es_format.cpp) against the Python one
 (washer.auto.es_format.python_es_one, Python's correctly rounded float formatting) on
 random doubles: every bit pattern (subnormals, NaN with either sign, the infinities,
 3-digit exponents), magnitudes spread over the exponents AUTO's files see, integers and

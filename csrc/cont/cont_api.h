@@ -111,7 +111,7 @@ int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_ja
                      const double *x, double fd_step, int one_call_max, double *vals);
 
 /* Fortran's ESw.d (exp3 = 0) and ESw.dE3 (exp3 = 1) edit descriptors as gfortran writes
- * them, the text of AUTO-07p's b-, s- and d-files (csrc/cont/format.cpp; the reference
+ * them, the text of AUTO-07p's b-, s- and d-files (csrc/cont/es_format.cpp; the reference
  * is washer.auto.es_format's Python formatter, which the tests hold it to):
  * v (k, m) row-major; each value right-justified in `width` characters (never cut): a
  * sign if negative (-0.0 too), one digit, '.', `digits` digits (correctly rounded, ties
@@ -127,7 +127,8 @@ int cont_format_es(const double *v, int k, int m, int per_line, int indent, int 
                    int digits, int exp3, char *out);
 
 /* A continuation point's text in AUTO's b- and d-files (io.f90 WRLINE, ae.f90 PRINTEIG;
- * the reference is washer.auto.es_format.python_point_text): with n >= 0 the b-file line
+ * csrc/cont/auto_point.cpp, the numbers by es_format.cpp's field; the reference is
+ * washer.auto.es_format.python_point_text): with n >= 0 the b-file line
  * (I4 br, I6 pt, I4 ty, I5 lab, the n values v in ES19.10E3, a newline), then in the
  * d-file text `dhead` as given (the bar and the screen heading), the screen line (I4 br,
  * I6 pt, a blank, `name` right-justified in 3, I5 lab, the first min(n, 8) values in

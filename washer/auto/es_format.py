@@ -1,6 +1,6 @@
 """Fortran's ESw.d and ESw.dE3 edit descriptors as gfortran writes them: the numbers of
 AUTO-07p's b-, s- and d-files. One formatter: the compiled one of the engine's module
-(csrc/cont/format.cpp, `cont_format_es`), with `python_es_text` below as its reference
+(csrc/cont/es_format.cpp, `cont_format_es`), with `python_es_text` below as its reference
 and the fallback where that module cannot be imported (the tests hold the two to the
 same text on millions of doubles).
 
@@ -147,7 +147,7 @@ _UTF8: dict = {}           # `_utf8`'s bytes by text
 def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: str,
                eigen=None) -> tuple[str, str]:
     """A continuation point's text in AUTO's b- and d-files (io.f90 WRLINE, ae.f90
-    PRINTEIG): (b, d).
+    PRINTEIG): (b, d), in one compiled call (csrc/cont/auto_point.cpp, cont_auto_point).
 
     values None: no b-line and no screen line; else b is the b-file line (I4 br, I6 pt,
     I4 ty, I5 lab, the values in ES19.10E3) and d starts with `dhead` (the d-file's bar

@@ -1,5 +1,6 @@
-// Fortran's ESw.d and ESw.dE3 edit descriptors as gfortran writes them (AUTO-07p's b-, s-
-// and d-files), for rows of doubles: see cont_format_es in cont_api.h.
+// Fortran's ESw.d and ESw.dE3 edit descriptors as gfortran writes them, for one value
+// (es_field, es_format.h) and for rows of doubles (cont_format_es in cont_api.h): the
+// numbers of AUTO-07p's b-, s- and d-files, whose lines auto_point.cpp lays out.
 //
 // The decimal digits are the correctly rounded ones (ties to even, as C's printf and
 // Python's float formatting): a value whose scaled mantissa x * 10^s (or x / 10^-s) is
@@ -13,6 +14,7 @@
 #include <cstring>
 
 #include "cont.h"
+#include "es_format.h"
 
 namespace {
 
@@ -126,9 +128,9 @@ int special(double x, int w, char *out) {
     return pad + len;
 }
 
-// One value in ESw.d (exp3 = 0: 'E' and 2 exponent digits, 3 digits without the 'E' beyond
-// 99) or ESw.dE3 (exp3 = 1: 'E' and 3 digits), right-justified in w (never cut).
-int one(double x, int w, int d, int exp3, char *out) {
+}  // namespace
+
+int es_field(double x, int w, int d, int exp3, char *out) {
     int sp = special(x, w, out);
     if (sp)
         return sp;
@@ -178,8 +180,6 @@ int one(double x, int w, int d, int exp3, char *out) {
     return pad + len;
 }
 
-}  // namespace
-
 extern "C" int cont_format_es(const double *v, int k, int m, int per_line, int indent,
                               int width, int digits, int exp3, char *out) {
     if (k < 0 || m < 0 || per_line < 1 || indent < 0 || width < 0 || digits < 0 || digits > 17)
@@ -193,93 +193,8 @@ extern "C" int cont_format_es(const double *v, int k, int m, int per_line, int i
                 std::memset(out + len, ' ', indent);
                 len += indent;
             }
-            len += one(v[(size_t)i * m + j], width, digits, exp3, out + len);
+            len += es_field(v[(size_t)i * m + j], width, digits, exp3, out + len);
         }
-    }
-    out[len] = '\0';
-    return len;
-}
-
-namespace {
-
-// C's %*d (Python's {:wd}): the decimal text of i right-justified in w, never cut.
-int put_int(char *out, int i, int w) {
-    char t[16];
-    int len = 0;
-    unsigned u = i < 0 ? 0u - (unsigned)i : (unsigned)i;
-    do {
-        t[len++] = (char)('0' + u % 10);
-        u /= 10;
-    } while (u);
-    if (i < 0)
-        t[len++] = '-';
-    int pad = w > len ? w - len : 0;
-    std::memset(out, ' ', pad);
-    for (int k = 0; k < len; ++k)
-        out[pad + k] = t[len - 1 - k];
-    return pad + len;
-}
-
-int put_str(char *out, const char *s) {
-    int len = (int)std::strlen(s);
-    std::memcpy(out, s, len);
-    return len;
-}
-
-}  // namespace
-
-extern "C" int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const double *v,
-                               int n, const char *dhead, int ebr, int ept, const double *eig,
-                               int neig, int cplx, char *out, int *blen) {
-    int len = 0;
-    if (n >= 0) {
-        // b-file (WRLINE): I4, I6, I4, I5, ES19.10E3 each value
-        len += put_int(out + len, br, 4);
-        len += put_int(out + len, pt, 6);
-        len += put_int(out + len, ty, 4);
-        len += put_int(out + len, lab, 5);
-        for (int j = 0; j < n; ++j)
-            len += one(v[j], 19, 10, 1, out + len);
-        out[len++] = '\n';
-    }
-    *blen = len;
-    if (n >= 0) {
-        // d-file: the caller's bar and heading, then the screen line (I4, I6, 1X, A3, I5,
-        // ES14.5 of the first 8 values)
-        len += put_str(out + len, dhead);
-        len += put_int(out + len, br, 4);
-        len += put_int(out + len, pt, 6);
-        out[len++] = ' ';
-        int nl = (int)std::strlen(name);
-        for (int k = nl; k < 3; ++k)
-            out[len++] = ' ';
-        len += put_str(out + len, name);
-        len += put_int(out + len, lab, 5);
-        for (int j = 0; j < n && j < 8; ++j)
-            len += one(v[j], 14, 5, 0, out + len);
-        out[len++] = '\n';
-    }
-    if (neig >= 0) {
-        // PRINTEIG: the stable count (Re < 0), then each eigenvalue's Re and Im (ES14.5)
-        int stable = 0;
-        for (int k = 0; k < neig; ++k)
-            stable += (cplx ? eig[2 * k] : eig[k]) < 0.0;
-        out[len++] = '\n';
-        len += put_int(out + len, ebr, 4);
-        len += put_int(out + len, ept, 6);
-        len += put_str(out + len, "         Eigenvalues  :   Stable:");
-        len += put_int(out + len, stable, 4);
-        for (int k = 0; k < neig; ++k) {
-            out[len++] = '\n';
-            len += put_int(out + len, ebr, 4);
-            len += put_int(out + len, ept, 6);
-            len += put_str(out + len, "         Eigenvalue");
-            len += put_int(out + len, k + 1, 3);
-            out[len++] = ':';
-            len += one(cplx ? eig[2 * k] : eig[k], 14, 5, 0, out + len);
-            len += one(cplx ? eig[2 * k + 1] : 0.0, 14, 5, 0, out + len);
-        }
-        out[len++] = '\n';
     }
     out[len] = '\0';
     return len;
