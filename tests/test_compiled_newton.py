@@ -149,7 +149,7 @@ def test_ctrl_c_in_func_is_not_taken_for_a_failure(tmp_path, cache):
         run(d / "c.ab", verbose=False)
 
 
-def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
+def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, monkeypatch):
     """Compiled and Python equations with difference Jacobians take the compiled loop;
     with the user's Jacobians (JAC = 1) a compiled user file keeps the Python loop and
     Python equations take the compiled one (their dfdu called back); sympy equations
@@ -167,6 +167,7 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
                                            u=u, par=par))
 
     compiled = load_compiled_problem(DEMOS / "ab" / "ab.f90", 2)
+    monkeypatch.setenv("WASHER_TRACE", "0")      # the Python functions (the call back)
     python = load_python_problem("ab", DATA / "ab", 2)
     jac_py = tmp_path / "jac"
     jac_py.mkdir()
@@ -181,6 +182,14 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache):
     exact = compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0)
     assert exact is not None and exact.user.exact
     assert not compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0).user.exact
+    # traced into C (washer.cont.traced): FUNC directly with differences, the call back
+    # (of the traced dfdu) with the user's Jacobians
+    monkeypatch.setenv("WASHER_TRACE", "1")
+    traced = load_python_problem("ab", jac_py, 2)
+    assert type(compiled_newton.compiled_corrector(system(traced, 0), s, 20.0).user) \
+        is not compiled_newton.PythonEquations
+    assert compiled_newton.compiled_corrector(system(traced, 1), s, 20.0).user.exact
+    monkeypatch.setenv("WASHER_TRACE", "0")
     # sympy equations: their generated f and exact Jacobians are C (JAC = 1; JAC = -1,
     # exact f_u with differenced f_p, keeps the Python loop)
     sym_dir = tmp_path / "sym"
@@ -262,6 +271,7 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
+    monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
     monkeypatch.setattr(compiled_newton, "_libraries", {})
     monkeypatch.setattr(compiled_newton, "_failures", {})
@@ -284,7 +294,7 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
         compiled_newton.compiled_corrector(system, s, 20.0)
 
 
-def test_a_work_layout_out_of_step_with_c_fails_loudly(cache):
+def test_a_work_layout_out_of_step_with_c_fails_loudly(cache, monkeypatch):
     """The call back reads the points through views of the C corrector's work array: if
     the pointers C passes are not where the views start (a layout changed on one side
     only), the correction raises instead of reading other numbers as the points."""
@@ -292,6 +302,7 @@ def test_a_work_layout_out_of_step_with_c_fails_loudly(cache):
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
+    monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
     corrector = compiled_newton.compiled_corrector(system, s, 20.0)
     x0, _ = system.start()
@@ -314,13 +325,14 @@ def test_fixed_points_of_maps_keep_the_python_loop():
     assert FixedPoints.residual_is_func is False
 
 
-def test_an_error_of_the_call_back_itself_is_raised(cache):
+def test_an_error_of_the_call_back_itself_is_raised(cache, monkeypatch):
     """Only the user's func failing hands a correction over to the Python loop: an
     error in the call back's own code is raised, not hidden behind a Python-loop step."""
     from washer.cont.branch import Counters
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
+    monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
     corrector = compiled_newton.compiled_corrector(system, s, 20.0)
     x0, _ = system.start()

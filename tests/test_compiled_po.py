@@ -141,7 +141,9 @@ def test_inner_products_round_as_numpy():
 
 
 def _system(tmp_path, monkeypatch):
-    """A Continuation of lrz's periodic orbits from HB1 and its first step's predictor."""
+    """A Continuation of lrz's periodic orbits from HB1 and its first step's predictor,
+    lrz.py's func in Python (called back from C++; not traced into C)."""
+    monkeypatch.setenv("WASHER_TRACE", "0")
     d = _folder(tmp_path, "lrz", "one", DATA / "lrz" / "lrz.py")
     run(d / "c.lrz", verbose=False, e="lrz", sv="eq")
     grabbed = {}

@@ -106,6 +106,9 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     restart_from, restart = restart, folder / f"s.{c['s'] or default_name}"
     if problem is None:
         problem = resolve_problem(c, folder, params)
+    if verbose and getattr(problem, "route", None):
+        # how a Python file's func is evaluated (washer.cont.traced), and why
+        print(f"note: e='{c['e']}': {problem.route}", file=sys.stderr)
     _check_size(c, problem, allow_large)
     # The restart data is read whole before any output file is opened: the
     # default sv is the restart file's own name, and it must survive.

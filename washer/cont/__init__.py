@@ -6,6 +6,8 @@ problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and the
               finite-difference derivatives; user_files, compile, compiled, symbolic load
               them from NAME.py, Fortran/C user files or sympy expressions; pointwise:
               when a Python func is called once on the arrays of a small stencil;
+              trace, traced: a Python func recorded into C, compiled and trusted where
+              it is the Python func bit for bit;
               parabolic: a parabolic PDE's user problem as the first-order system in x
               that the systems of IPS 11-17 continue
 differences   central differences: AUTO's step, the points and the quotient, the one

@@ -123,16 +123,19 @@ def library_key(sources: list[Source], includes: list[Path] = (), extra: str = "
 
 
 def build_library(sources: list[Source], name: str, includes: list[Path] = (),
-                  defines: dict | None = None, cache: Path | None = None) -> Path:
+                  defines: dict | None = None, cache: Path | None = None,
+                  flags: tuple = ()) -> Path:
     """The shared library of `sources`, compiled now or found in the cache.
 
     name: a readable prefix of the library file; includes: header folders;
-    defines: preprocessor macros for the C sources. Compiling happens in a
+    defines: preprocessor macros for the C sources; flags: more options of the C
+    compiler (after C_FLAGS). Compiling happens in a
     temporary folder (Fortran module files go there too, never beside the
     user's file) and the finished library is moved into place atomically, so
     concurrent builds of the same sources cannot leave half a file."""
     defines = dict(defines or {})
-    key = library_key(sources, includes, repr(sorted(defines.items())))
+    key = library_key(sources, includes, repr(sorted(defines.items())) + (
+        repr(tuple(flags)) if flags else ""))
     folder = Path(cache) if cache is not None else cache_dir()
     lib = folder / f"{_safe(name)}-{key}.so"
     if lib.exists():
@@ -155,7 +158,7 @@ def build_library(sources: list[Source], name: str, includes: list[Path] = (),
             if s.fortran:
                 cmd = [_compiler("fortran"), *FORTRAN_FLAGS, "-J", tmp, "-c", src, "-o", obj]
             else:
-                cmd = [_compiler("c"), *C_FLAGS, *(f"-I{i}" for i in includes),
+                cmd = [_compiler("c"), *C_FLAGS, *flags, *(f"-I{i}" for i in includes),
                        *(f"-D{k}={v}" for k, v in defines.items()), "-c", src, "-o", obj]
             _call(cmd, s.name)
             objs.append(obj)

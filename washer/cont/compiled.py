@@ -148,9 +148,11 @@ class CompiledUser:
     Arrays passed in must be float64; they are made C-contiguous here. PAR
     arrays are passed whole (the user may read any PAR(i) up to their length)."""
 
-    def __init__(self, path: Path, ndim: int):
+    def __init__(self, path: Path, ndim: int, lib_path: Path | None = None):
+        """path: the user file; lib_path: its library when built otherwise (generated
+        C: washer.cont.traced), else compiled here with the bridge."""
         self.path, self.ndim = Path(path), ndim
-        self._lib_path = compile_user_file(path)
+        self._lib_path = compile_user_file(path) if lib_path is None else Path(lib_path)
         self.lib = _open(self._lib_path)
         _users.setdefault(str(self._lib_path), weakref.WeakSet()).add(self)
         self.has = {n: bool(self.lib.washer_has(n.encode()))

@@ -461,9 +461,22 @@ def compiled_corrector(system, settings, divergence: float):
             or system.arclength != "sphere" or not 0 < system.ndim <= MAX_NDIM \
             or not all(0 < i <= len(system.par) for i in system.free):
         return None
-    if isinstance(problem, CompiledProblem):
-        if problem.jac != 0 or problem.has_func_dfdu_batch \
-                or not hasattr(problem.user.lib, "washer_ae_correct"):
+    traced = getattr(problem, "traced", False)
+    if traced and kind == 0 and not problem.differenced_jacobian:
+        # a Python file traced into C (washer.cont.traced) with its own Jacobians on
+        # equilibria: called back as the Python file's problem is (Problem.jacobian's
+        # traced dfdu and dfdp, func_many's traced f)
+        try:
+            equations = PythonEquations(problem, system.ndim, len(system.par), kind,
+                                        free=system.free)
+        except (CompileError, OSError):
+            return None
+    elif isinstance(problem, CompiledProblem):
+        # (a traced Python file differences its f as the Python file's problem does: the
+        # user's Jacobians only where it has them)
+        if not problem.differenced_jacobian or problem.has_func_dfdu_batch \
+                or not hasattr(problem.user.lib, "washer_ae_correct") \
+                or len(system.par) < getattr(problem, "npar_used", 0):
             return None
         equations = problem.user
     elif type(problem) is SymbolicProblem:

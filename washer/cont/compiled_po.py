@@ -272,10 +272,12 @@ def periodic_corrector(system, settings, divergence: float):
         if len(system.par) < generated.npar:
             return None
         return PeriodicCorrector(system, settings, divergence, generated)
-    if type(problem) is CompiledProblem:
+    if isinstance(problem, CompiledProblem):
         # FUNC by pointer; f_u by differences (JAC = 0) or the user's DFDU (JAC != 0),
         # f_p by differences either way, as the Python loop (VectorField.fu_fp: the
         # bridge gives no batched DFDP)
+        if len(system.par) < getattr(problem, "npar_used", 0):
+            return None               # a traced file's FUNC reads PAR beyond the run's
         if problem.user.po_pointers(len(system.par), ffi, "cont_po_sym_func",
                                     "cont_po_sym_jac") is None:
             return None

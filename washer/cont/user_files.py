@@ -64,7 +64,11 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     if not callable(getattr(mod, "func", None)):
         raise ProblemError(f"{path}: defines no func(u, par) (nor sympy expressions u, par "
                            "and f)")
-    return Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
-                   getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
-                   bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None),
-                   fopt=getattr(mod, "fopt", None))
+    problem = Problem(ndim, mod.func, getattr(mod, "stpnt", None), getattr(mod, "dfdu", None),
+                      getattr(mod, "dfdp", None), name=name, pvls=getattr(mod, "pvls", None),
+                      bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None),
+                      fopt=getattr(mod, "fopt", None))
+    # func (dfdu, dfdp) traced into compiled C where that is verified to be the same
+    # function bit for bit; else this problem (washer.cont.traced)
+    from washer.cont.traced import traced_problem
+    return traced_problem(problem, path)

@@ -1,0 +1,329 @@
+"""A Python user file's func (and its dfdu, dfdp) as compiled C, where that is what the
+Python functions compute, bit for bit.
+
+    problem = traced_problem(python_problem, path)   # a TracedProblem, or python_problem
+
+washer.cont.trace records func (and dfdu, dfdp when the file has them) on stand-ins and
+writes AUTO's C user file of the same operations; it is compiled with washer's bridge
+(compiled_shim.c: the path of NAME.c user files, cached by content, with
+-ffp-contract=off) and loaded as a compiled user file (washer.cont.compiled), so the
+compiled correctors of equilibria, the fold and Hopf loci and periodic orbits call FUNC
+directly. STPNT, PVLS, BCND, ICND and FOPT stay the Python file's.
+
+Trusted only where verified, byte for byte (the rule of washer.cont.pointwise: IEEE
+arithmetic is the same whichever code runs it, so equal values are expected everywhere
+and a single difference means the trace is not the function):
+* on loading, at LOAD_POINTS points around the file's starting point (stpnt; random
+  offsets of several sizes, a fixed seed): f (and the Jacobians) of the compiled FUNC
+  against the Python functions called one point at a time;
+* in every run, the first RUN_POINTS points whose f the run asks for through the
+  problem (the start, the first Jacobians' stencils) and the first Jacobians.
+A difference, or a Python function that traces to nothing honest (washer.cont.trace:
+a branch on a value, an unknown function), and the problem is the Python one for good:
+the call that showed the difference returns the Python values, the compiled correctors
+hand the rest of the run to the Python loop (`func_ready` False) and later runs take the
+Python problem (`with_jac`). Which path a problem took, and why, is its `route` (a note
+of washer.run's verbose output).
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import os
+from pathlib import Path
+
+import numpy as np
+
+from washer.cont.compile import CompileError, build_library, source_text
+from washer.cont.compiled import SHIM, INCLUDE, CompiledProblem, CompiledUser
+from washer.cont.problem import Problem, ProblemError, VECTORISE_MIN
+from washer.cont.trace import TraceError, emit_user_file, numpy_loop, trace_function
+
+#: The length of PAR the functions are traced with (AUTO's NPARX): a func reading
+#: PAR beyond it is not traced.
+TRACE_NPAR = 36
+#: Points compared when the file is loaded (around its starting point).
+LOAD_POINTS = 24
+#: Points compared in each run (the first ones it evaluates through the problem).
+RUN_POINTS = 32
+#: Extra options of the C compiler: no fused multiply-add (x * y + z rounded twice, as
+#: Python computes it).
+FLAGS = ("-ffp-contract=off",)
+#: What the bridge's cffi declarations lack: washer_traced_bind of the generated C.
+_BIND_CDEF = "int washer_traced_bind(int k, void *const *loops, void *const *data);"
+
+_FFI: list = []
+#: library path -> its handle by _FFI (kept open: the loops bound stay bound)
+_BOUND: dict = {}
+
+
+class TraceState:
+    """Whether a traced problem is still trusted (shared by its copies, `with_jac`), and
+    what was said about its route."""
+
+    __slots__ = ("off", "route")
+
+    def __init__(self, route: str):
+        self.off = False
+        self.route = route
+
+    def refuse(self, why: str) -> None:
+        self.off = True
+        self.route = f"func(u, par) in Python: {why}"
+
+
+class TracedUser(CompiledUser):
+    """The compiled FUNC of a traced file: ready while the trace is trusted."""
+
+    def __init__(self, path, ndim, lib_path, state: TraceState):
+        super().__init__(path, ndim, lib_path=lib_path)
+        self.state = state
+        self._pvls_seen = True         # the generated file's PVLS is empty
+
+    @property
+    def func_ready(self) -> bool:
+        return not self.state.off
+
+    def reload(self) -> None:
+        """Nothing: the generated FUNC keeps no state between calls (and its numpy loops
+        stay bound)."""
+
+
+class TracedProblem(CompiledProblem):
+    """A Python file's problem whose func (and dfdu, dfdp) are compiled traces; its
+    STPNT, PVLS, BCND, ICND and FOPT the Python file's. `python` is the Python problem
+    it stands for."""
+
+    #: a Python file's functions traced (washer.cont.compiled_newton asks)
+    traced = True
+    pvls = Problem.pvls
+    bcnd = Problem.bcnd
+    icnd = Problem.icnd
+    icnd_many = Problem.icnd_many
+
+    def __init__(self, user: TracedUser, python: Problem, npar_used: int):
+        self.user, self.python, self.state = user, python, user.state
+        self.npar_used = npar_used
+        py = python
+        Problem.__init__(self, py.ndim, None, py._stpnt, name=py.name, npar=py.npar,
+                         dfdu_batch=user.dfdu_batch if py._dfdu is not None else None,
+                         pvls=py._pvls, bcnd=py._bcnd, icnd=py._icnd, fopt=py._fopt,
+                         jac=py.jac)
+        self._bind_checked()
+        self._left = 0               # points still to compare in this run
+
+    def _bind_checked(self) -> None:
+        """f and the Jacobians through this object's compared calls (a copy's own)."""
+        py = self.python
+        self._func, self._func_batch = self._checked_func, self._checked_batch
+        self._dfdu = self._checked_dfdu if py._dfdu is not None else None
+        self._dfdp = self._checked_dfdp if py._dfdp is not None else None
+
+    @property
+    def route(self) -> str:
+        return self.state.route
+
+    def fresh(self) -> None:
+        """A new run: its first RUN_POINTS points are compared again."""
+        self._left = RUN_POINTS
+
+    def with_jac(self, jac: int) -> Problem:
+        """The problem of a run with AUTO's JAC = jac: this one (its first points
+        compared again), or the Python problem once a difference was seen."""
+        if self.state.off:
+            return self.python.with_jac(jac)
+        p = copy.copy(self)
+        p.jac = jac
+        p._left = RUN_POINTS
+        p._bind_checked()
+        return p
+
+    # ---------------------------------------------------------------- compared calls
+    def _python_rows(self, fn, us, pars):
+        return [np.asarray(fn(u.copy(), p.copy()), dtype=float) for u, p in zip(us, pars)]
+
+    def _compare(self, got, fn, us, pars, what: str) -> np.ndarray | None:
+        """Python's values where they differ from `got` (the compiled values at the rows
+        us, pars; the first `_left` of them compared): None where they agree."""
+        m = min(self._left, len(us))
+        if m <= 0:
+            return None
+        self._left -= m
+        try:
+            ref = self._python_rows(fn, us[:m], pars[:m])
+            ref = np.array(ref, dtype=float)
+        except Exception:
+            ref = None                       # the Python call raises: not the same
+        if ref is not None and ref.shape == got[:m].shape and \
+                ref.tobytes() == np.ascontiguousarray(got[:m]).tobytes():
+            return None
+        self.state.refuse(f"its compiled trace gave other values than {what} at a point "
+                          "of the run (compared bit for bit)")
+        self._switch_to_python()
+        return ref
+
+    def _switch_to_python(self) -> None:
+        """The rest of this run on the Python functions (the compiled correctors see
+        func_ready False and hand over to the Python loop)."""
+        py = self.python
+        self._func, self._dfdu, self._dfdp = py._func, py._dfdu, py._dfdp
+        self._func_batch = self._dfdu_batch = None
+
+    def _pars(self, us, pars):
+        pars = np.asarray(pars, dtype=float)
+        if pars.ndim == 1:
+            pars = np.broadcast_to(pars, (len(us), len(pars)))
+        return pars
+
+    def _short_par(self, pars) -> bool:
+        return pars.shape[-1] < self.npar_used
+
+    def _checked_batch(self, us, pars) -> np.ndarray:
+        us = np.asarray(us, dtype=float)
+        if self.state.off or self._short_par(np.asarray(pars)):
+            return self.python.func_many(us, pars)
+        out = self.user.func_batch(us, pars)
+        if self._left > 0:
+            ref = self._compare(out, self.python.user_func, us, self._pars(us, pars),
+                                "func(u, par)")
+            if ref is not None or self.state.off:
+                return self.python.func_many(us, pars)
+        if len(us) < VECTORISE_MIN and not np.isfinite(out).all():
+            # as the Python route reports it (func_many: point by point below
+            # VECTORISE_MIN points)
+            raise ProblemError(f"{self.name}: func(u, par) returned non-finite values")
+        return out
+
+    def _checked_func(self, u, par) -> np.ndarray:
+        return self._checked_batch(np.asarray(u, dtype=float)[None, :], par)[0]
+
+    def _checked_dfdu(self, u, par) -> np.ndarray:
+        if self.state.off or self._short_par(np.asarray(par)):
+            return self.python._dfdu(u, par)
+        J = self.user.dfdu(u, par)
+        if self._left > 0:
+            u1, p1 = np.asarray(u, float)[None], np.asarray(par, float)[None]
+            ref = self._compare(J[None], self.python._dfdu, u1, p1, "dfdu(u, par)")
+            if ref is not None or self.state.off:
+                return self.python._dfdu(u, par)
+        return J
+
+    def _checked_dfdp(self, u, par) -> np.ndarray:
+        if self.state.off or self._short_par(np.asarray(par)):
+            return self.python._dfdp(u, par)
+        P = self.user.dfdp(u, par)
+        if self._left > 0:
+            ref = np.asarray(self.python._dfdp(np.array(u, float), np.array(par, float)),
+                             dtype=float)
+            self._left -= 1
+            # the compiled DFDP has NPAR columns (zero beyond the Python's)
+            if ref.ndim != 2 or ref.shape[0] != P.shape[0] or \
+                    ref.tobytes() != np.ascontiguousarray(P[:, :ref.shape[1]]).tobytes():
+                self.state.refuse("its compiled trace gave other values than dfdp(u, par) "
+                                  "at a point of the run (compared bit for bit)")
+                self._switch_to_python()
+                return ref
+        return P
+
+
+def _ffi():
+    if not _FFI:
+        import cffi
+        ffi = cffi.FFI()
+        ffi.cdef(_BIND_CDEF)
+        _FFI.append(ffi)
+    return _FFI[0]
+
+
+def _bind(lib_path: Path, ufuncs: list) -> None:
+    """numpy's double loops of `ufuncs` into the library's tables (washer_traced_bind),
+    through a handle kept open (a reload of the file by another handle keeps them)."""
+    ffi = _ffi()
+    key = str(lib_path)
+    if key not in _BOUND:
+        _BOUND[key] = ffi.dlopen(key)
+    loops = [numpy_loop(u) for u in ufuncs]
+    k = max(len(loops), 1)
+    fns = ffi.new("void *[]", [ffi.cast("void *", f) for f, _ in loops] or [ffi.NULL])
+    data = ffi.new("void *[]", [ffi.cast("void *", d) for _, d in loops] or [ffi.NULL])
+    if _BOUND[key].washer_traced_bind(k, fns, data) != 0:
+        raise TraceError("the generated C's loop table has another size")
+
+
+def _start_points(python: Problem, rng) -> tuple[np.ndarray, np.ndarray]:
+    """LOAD_POINTS points (u, par) around the file's starting point (stpnt, else u = 0
+    and PAR = 0): offsets of relative sizes 1e-3 to 1 (and the point itself)."""
+    n = python.ndim
+    try:
+        u0, p0 = python.start(TRACE_NPAR)
+    except Exception:
+        u0, p0 = np.zeros(n), np.zeros(TRACE_NPAR)
+    scales = np.geomspace(1e-3, 1.0, LOAD_POINTS - 1)
+    us = [u0] + [u0 + s * (1 + np.abs(u0)) * rng.standard_normal(n) for s in scales]
+    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * rng.standard_normal(len(p0)) for s in scales]
+    return np.array(us), np.array(ps)
+
+
+def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
+    """TraceError unless `compiled` (rows) equals fn at every point where fn gives finite
+    values, bit for bit."""
+    for j, (u, p) in enumerate(zip(us, pars)):
+        try:
+            with np.errstate(all="ignore"):
+                ref = np.asarray(fn(u.copy(), p.copy()), dtype=float)
+        except Exception:
+            continue                 # not a point of the function's domain
+        if not np.isfinite(ref).all():
+            continue
+        got = np.ascontiguousarray(compiled[j][tuple(slice(0, s) for s in ref.shape)])
+        if ref.shape != got.shape or ref.tobytes() != got.tobytes():
+            raise TraceError(f"the compiled trace of {what} differs from it at a point "
+                             "near the start (compared bit for bit)")
+
+
+def traced_problem(python: Problem, path: Path) -> Problem:
+    """The TracedProblem of a Python file's problem, or the problem itself (its `route`
+    says why) where its functions cannot be traced, compiled or verified, or where
+    $WASHER_TRACE is 0 (the Python functions throughout: a benchmark's reference)."""
+    if os.environ.get("WASHER_TRACE", "1") == "0":
+        python.route = "func(u, par) in Python: WASHER_TRACE=0"
+        return python
+    try:
+        return _build(python, Path(path))
+    except (TraceError, CompileError, OSError) as exc:
+        python.route = f"func(u, par) in Python: {exc}"
+        return python
+
+
+def _build(python: Problem, path: Path) -> TracedProblem:
+    n = python.ndim
+    loops: list = []
+    traced_f = trace_function(python._func, n, TRACE_NPAR, (n,), loops=loops)
+    traced_j = traced_p = None
+    if python._dfdu is not None:
+        traced_j = trace_function(python._dfdu, n, TRACE_NPAR, (n, n), loops=loops,
+                                  prefix="a")
+    if python._dfdp is not None:
+        traced_p = trace_function(python._dfdp, n, TRACE_NPAR, (n, None), loops=loops,
+                                  prefix="b")
+    npar_used = max(t[0].npar_used for t in (traced_f, traced_j, traced_p) if t is not None)
+    text = emit_user_file(path.name, n, traced_f, traced_j, traced_p)
+    shim = SHIM.read_bytes()
+    tag = hashlib.sha256(text.encode()).hexdigest()[:12]
+    lib = build_library([source_text(f"{path.stem}_traced_{tag}.c", text),
+                         source_text("washer_shim.c", shim)], f"{path.stem}_traced",
+                        includes=[INCLUDE], defines={"WASHER_FORTRAN": 0}, flags=FLAGS)
+    _bind(lib, loops)
+    state = TraceState("func(u, par) traced into C (compared with the Python func bit for "
+                       "bit at the start and at the first points of each run)")
+    user = TracedUser(path, n, lib, state)
+    # verified where the file starts before it is trusted
+    us, ps = _start_points(python, np.random.default_rng(20261202))
+    with np.errstate(all="ignore"):
+        _agree(user.func_batch(us, ps), python._func, us, ps, "func(u, par)")
+        if traced_j is not None:
+            _agree(user.dfdu_batch(us, ps), python._dfdu, us, ps, "dfdu(u, par)")
+        if traced_p is not None:
+            P = np.array([user.dfdp(u, p) for u, p in zip(us, ps)])
+            _agree(P, python._dfdp, us, ps, "dfdp(u, par)")
+    return TracedProblem(user, python, npar_used)
