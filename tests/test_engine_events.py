@@ -155,6 +155,30 @@ def test_a_failing_location_step_is_retried_halved():
                1.0, settings)
 
 
+def test_when_itmx_runs_out_autos_rule_decides():
+    """AUTO's LCSPBV stops at the first trial whose next correction is below the
+    tolerance EPSS (1 + sqrt|DS DSMAX|); washer goes on narrowing the sign bracket, and
+    where ITMX runs out first, AUTO's rule decides. q(s) = tanh(3 (s - z) / S) over a
+    step S = 1e-3, zero z = 0.37 S: with ITMX = 3 (four trials) the last trial lies
+    2.7e-8 from z after a step of 2.5e-6, its next correction below the tolerance 1e-7:
+    the zero is there, within the tolerance of z (it failed before: 'no convergence in
+    ITMX = 3 iterations'). With ITMX = 2 the last trial is 2.5e-6 off and its next
+    correction above the tolerance: no convergence, as in AUTO."""
+    from types import SimpleNamespace
+    from washer.cont.events import LocationFailed, locate
+    S, z = 1e-3, 0.37e-3
+
+    def trial(s):
+        return ("point", s), math.tanh(3 * (s - z) / S)
+    q0, q1 = trial(0.0)[1], trial(S)[1]
+    settings = SimpleNamespace(EPSS=1e-7, DS=0.01, DSMAX=0.1, ITMX=3, DSMIN=1e-12)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
+    pt, s = locate(trial, "PD", q0, q1, S, settings)
+    assert pt == ("point", s) and abs(s - z) < tol
+    with pytest.raises(LocationFailed, match="ITMX = 2"):
+        locate(trial, "PD", q0, q1, S, SimpleNamespace(**{**vars(settings), "ITMX": 2}))
+
+
 def test_a_location_ends_at_the_last_trial_when_the_failing_correction_is_below_tolerance():
     """Next to a branch point of cycles the last, tiny trial step may not converge (the
     Newton matrix is nearly singular): AUTO's LCSPBV tests the correction before it

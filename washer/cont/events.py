@@ -247,7 +247,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
-    best = last = auto_nit = None
+    best = last = auto_nit = auto_stop = None
     zero = False
     side = 0                  # which end moved last (Illinois: halve the stale end)
     streak = [(s_cur, q_cur)]  # consecutive trials (s, q) on one side of the zero
@@ -328,10 +328,18 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             # AUTO's LCSPBV would stop here (the next correction is below the
             # tolerance): ADPTDS then sees this trial's Newton count.
             auto_nit = getattr(pt, "iterations", None)
+            auto_stop = (pt, s_new, q)
         s_new = cand
     if best is None and last is not None and \
             abs(last[2]) <= ZERO_FACTOR * max(abs(q_prev), abs(q_cur)):
         best, zero = last, True        # crept onto a zero of high order: it is there
+    if best is None and auto_stop is not None:
+        # ITMX ran out before the bracket closed: AUTO's rule decides, which stops at
+        # the first trial whose next correction is below the tolerance (the iteration
+        # converging just as ITMX runs out: the base hepatocyte model's PD of cycles in
+        # README's problems of AUTO users, its next correction 5.7e-10 after a step of
+        # 9.3e-8, ITMX = 4).
+        best = auto_stop
     if best is None:
         tried = f"; {len(ss) - 2} trials, the last at s = {last[1]:.6g} with test " \
             f"{last[2]:.3g}" if last is not None else ""
