@@ -105,8 +105,8 @@ def test_exact_homoclinic_family_with_the_equilibrium_solved_for():
 def test_unsupported_homcont_features_are_refused_by_name(tmp_path):
     xi, _ = _exact_orbit()
     base = dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=20, JAC=-1, NMX=2)
-    for extra, words in ((dict(ITWIST=1), "ITWIST = 1"), (dict(IEQUIB=3), "IEQUIB = 3"),
-                         (dict(ISTART=3), "homotopy"), (dict(IPSI=[1, 13]), "[13]"),
+    for extra, words in ((dict(ITWIST=2), "ITWIST = 2"), (dict(IEQUIB=3), "IEQUIB = 3"),
+                         (dict(ISTART=-2), "n-homoclinic"), (dict(IPSI=[1, 13]), "[13]"),
                          (dict(IFIXED=[14]), "[14]"), (dict(IREV=[0, 1, 0]), "IREV")):
         with pytest.raises(RunError, match="not supported yet") as err:
             runner.run(Constants({**base, **extra}), _problem(xi))

@@ -73,8 +73,14 @@ the leading unstable one:
   15 non-central saddle-node homoclinic (stable side): (x0 - u(1)) . v_{s+1}
   16 non-central saddle-node homoclinic (unstable side): (x0 - u(0)) . v_{s+1}
 (w the left eigenvectors, v the right ones, real parts, unit length, signs continued
-from the previous evaluation as EIGHO's; all at the left equilibrium x1). Not yet: 13,
-14 (inclination flips: they need the adjoint of ITWIST = 1).
+from the previous evaluation as EIGHO's; all at the left equilibrium x1). With ITWIST = 1
+(the adjoint v beside u: washer.cont.systems.homoclinic_adjoint, PAR(10) free after the
+user's parameters):
+  13 inclination flip w.r.t. the stable manifold: v(0) . v_s e^(-T Re l_s / 2)
+  14 inclination flip w.r.t. the unstable manifold: v(1) . v_{s+1} e^(T Re l_{s+1} / 2)
+
+ISTART = 3: the homotopy start (washer.cont.systems.homoclinic_homotopy): the orbit
+grown from the equilibrium along its unstable manifold, no phase condition.
 """
 from __future__ import annotations
 
@@ -87,6 +93,8 @@ from washer.cont import collocation as col
 from washer.cont.problem import Problem
 from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
+from washer.cont.systems import homoclinic_adjoint as adj
+from washer.cont.systems import homoclinic_homotopy as hom
 from washer.cont.systems.general_bvp import BoundaryValueProblem
 
 #: PAR(11): the truncation interval T of the homoclinic orbit (time scaled to [0, 1]).
@@ -96,7 +104,9 @@ EQUILIBRIUM = 12
 #: PAR(20 + k): the value of test function k of IPSI after each point.
 PSI = 20
 #: The IPSI (and IFIXED) codes computed here (PSIHO's): see the module docstring.
-PSI_CODES = frozenset(range(1, 13)) | {15, 16}
+PSI_CODES = frozenset(range(1, 17))
+#: The codes that read the adjoint v (ITWIST = 1).
+ADJOINT_CODES = frozenset((13, 14))
 #: IEQUIB: 0 the user's equilibrium (PVLS), 1 solved for, 2 a saddle-node solved for,
 #: -1 two equilibria from PVLS (heteroclinic), -2 two equilibria solved for.
 EQUILIBRIUM_KINDS = (-2, -1, 0, 1, 2)
@@ -108,21 +118,22 @@ COMPZERO = 1e-13
 def unsupported(s) -> list[str]:
     """What of HomCont's constants this module does not compute yet (empty: all of it)."""
     out = []
-    if s.ITWIST != 0:
-        out.append(f"ITWIST = {s.ITWIST} (the adjoint for orientation and inclination "
-                   "flips; ITWIST = 0 is)")
+    if s.ITWIST not in (0, 1):
+        out.append(f"ITWIST = {s.ITWIST} (0 and 1 are)")
     if s.IEQUIB not in EQUILIBRIUM_KINDS:
         out.append(f"IEQUIB = {s.IEQUIB} (HomCont's are -2, -1, 0, 1, 2)")
-    if s.ISTART not in (1, 2, 4, 5):
-        out.append(f"ISTART = {s.ISTART} (" + ("the homotopy start" if s.ISTART == 3 else
-                                                "n-homoclinic branch switching")
-                   + "; ISTART = 1, 2, 4, 5 are)")
+    if s.ISTART not in (1, 2, 3, 4, 5):
+        out.append(f"ISTART = {s.ISTART} (n-homoclinic branch switching; ISTART = 1-5 are)")
+    if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED or s.IEQUIB == 2):
+        out.append("ISTART = 3 with ITWIST, IREV, IFIXED or IEQUIB = 2 (the homotopy "
+                   "start of a plain homoclinic or heteroclinic orbit is)")
     if s.IREV and len(s.IREV) != s.NDIM:
         out.append(f"IREV = {list(s.IREV)} (one entry per component of NDIM = {s.NDIM})")
-    missing = [k for k in tuple(s.IPSI) + tuple(s.IFIXED) if k not in PSI_CODES]
+    missing = [k for k in tuple(s.IPSI) + tuple(s.IFIXED)
+               if k not in PSI_CODES or (k in ADJOINT_CODES and s.ITWIST != 1)]
     if missing:
-        out.append(f"IPSI/IFIXED codes {missing} (13, 14 need ITWIST = 1; codes 1-12, "
-                   "15, 16 are computed)")
+        out.append(f"IPSI/IFIXED codes {missing} (13, 14 need ITWIST = 1; codes 1-16 "
+                   "are computed)")
     if s.NBC or s.NINT:
         out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
                    "integral conditions)")
@@ -251,6 +262,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
                                 keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
         user, ndm = data.problem, s.NDIM
         self.user, self.ndm, self.iequib = user, ndm, s.IEQUIB
+        self.itwist = s.ITWIST
         #: the components u_i with IREV(i) > 0 vanish at t = 1 (IREV given), else None
         self.rev = [i for i, r in enumerate(s.IREV) if r > 0] if s.IREV else None
         self.fixed = tuple(s.IFIXED)
@@ -266,6 +278,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
             istart = 4 if rec is not None and getattr(rec, "ips", 9) not in (9, 0) else 1
         if istart == 4 and rec is not None:
             rec = self._shifted(rec, par)
+        if self.itwist and rec is not None and np.ndim(rec.U) == 2:
+            rec = adj.widened_start(rec, ndm, par)
+        self.istart = istart
         # NSTAB, NUNSTAB at the start's (left) equilibrium (STPNHO: PVLS, then GETSTAB
         # where -1; a saddle-node's eigenvalue nearest zero is neither).
         if self.iequib in (0, -1):
@@ -275,19 +290,32 @@ class HomoclinicOrbits(BoundaryValueProblem):
         nright = len(self.rev) if self.rev is not None else self.nunstab
         nbc = (self.nstab + nright + len(self.fixed) + (self.iequib == 2) + n_eq)
         nint = 0 if self.rev is not None else 1
-        nfpr = nbc + nint - ndm + 1
-        n_user = nfpr - n_eq
+        # the adjoint's: v beside u, NSTAB + NUNSTAB conditions, one integral, PAR(10)
+        ndim = ndm * (1 + self.itwist)
+        nbc += self.itwist * (self.nstab + self.nunstab)
+        nint += self.itwist
+        if istart == 3:
+            nbc = hom.n_conditions(ndm, n_eq // ndm, self.nunstab)
+            nint = 0
+        nfpr = nbc + nint - ndim + 1
+        n_user = nfpr - n_eq - self.itwist
         if n_user < 1 or len(s.ICP) < n_user:
             raise SettingsError(f"IPS = 9 with NSTAB = {self.nstab}, NUNSTAB = "
                                 f"{self.nunstab}: {n_user} free parameters of ICP, but "
                                 f"ICP = {list(s.ICP)}", keys=("ICP",))
-        self._free = list(s.ICP[:n_user]) + [EQUILIBRIUM + i for i in range(n_eq)]
+        self._free = (list(s.ICP[:n_user]) + ([adj.ADJOINT_PAR] if self.itwist else [])
+                      + [EQUILIBRIUM + i for i in range(n_eq)])
         self._left = _Projection(self.nstab, stable=True)       # at t = 0
         self._right = _Projection(self.nunstab, stable=False)   # at t = 1
         self._right_vectors, self._left_vectors = _SignedVectors(), _SignedVectors()
         # the fixed test functions' own sign memory (EIGHO's), apart from IPSI's output
         self._fixed_vectors = (_SignedVectors(), _SignedVectors())
-        s2 = s.with_(NBC=nbc, NINT=nint, NPAR=npar)
+        # the adjoint's (ITWIST = 1): v(0) against A's unstable subspace, v(1) its stable one
+        self._adj_left = _Projection(self.nunstab, stable=False)
+        self._adj_right = _Projection(self.nstab, stable=True)
+        # the homotopy's (ISTART = 3): its boundary conditions' eigenvectors
+        self._hom_right, self._hom_left = _SignedVectors(), _SignedVectors()
+        s2 = s.with_(NDIM=ndim, NBC=nbc, NINT=nint, NPAR=npar)
         self.run_settings = s2
         super().__init__(StartData(self._extended(user, ndm, nbc, nint), s2, data.u, par,
                                    rec, data.kind, data.unames, data.data))
@@ -331,10 +359,18 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if user.has_dfdu:
             def dfdu_batch(U, pars):
                 return pars[:, 10, None, None] * user.dfdu_many(U, pars)
+        if self.itwist:
+            func_batch, dfdu_batch = adj.field(user, ndm)
 
-        def bcnd(u0, u1, par):
-            u0, u1 = np.asarray(u0, float), np.asarray(u1, float)
+            def func(u, par):
+                return func_batch(np.asarray(u, float)[None], np.asarray(par, float)[None])[0]
+
+        def bcnd(w0, w1, par):
+            w0, w1 = np.asarray(w0, float), np.asarray(w1, float)
+            u0, u1 = w0[:ndm], w1[:ndm]
             x1, x2, par = self._equilibria(u0, par)
+            if self.istart == 3:
+                return self._homotopy_bc(u0, u1, x1, x2, par)
             A1 = self._A(x1, par)
             parts = [self._left.rows(A1.T) @ (u0 - x1)]
             if self.rev is not None:
@@ -343,7 +379,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 A2 = A1 if x2 is x1 else self._A(x2, par)
                 parts.append(self._right.rows(A2.T) @ (u1 - x2))
             if self.fixed:
-                U = np.vstack([u0, u1])
+                U = np.vstack([w0, w1])
                 parts.append([self.psi(k, U, par, self._fixed_vectors)
                               for k in self.fixed])
             if self.iequib == 2:
@@ -352,16 +388,39 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 parts.append(user.func(x1, par))
             if self.iequib == -2:
                 parts.append(user.func(x2, par))
+            if self.itwist:
+                A2 = A1 if x2 is x1 else self._A(x2, par)
+                parts.append(adj.boundary_rows(self._adj_left, self._adj_right, A1, A2,
+                                               w0[ndm:], w1[ndm:]))
             return np.concatenate([np.ravel(q) for q in parts])
 
         def icnd(u, uold, udot, upold, par):
-            # one point (NDIM,) -> (1,); a batch (NDIM, k) -> (1, k)
-            return np.sum(upold * (u - uold), axis=0)[None]
+            # one point (NDIM,) -> (NINT,); a batch (NDIM, k) -> (NINT, k)
+            phase = np.sum(upold[:ndm] * (u[:ndm] - uold[:ndm]), axis=0)
+            if self.rev is not None:        # no phase condition: the adjoint's alone
+                return adj.integrand(u, uold, ndm)[None]
+            if not self.itwist:
+                return phase[None]
+            return np.stack([phase, adj.integrand(u, uold, ndm)])
 
-        return Problem(ndm, func, func_batch=func_batch, dfdu_batch=dfdu_batch,
+        return Problem(ndm * (1 + self.itwist), func, func_batch=func_batch, dfdu_batch=dfdu_batch,
                        name=user.name, npar=user.npar, pvls=user._pvls,
                        parnames=user.parnames, unames=user.unames, jac=user.jac,
                        bcnd=bcnd, icnd=icnd if nint else None)
+
+    def _homotopy_bc(self, u0, u1, x1, x2, par) -> np.ndarray:
+        """FBHO with ISTART = 3 (washer.cont.systems.homoclinic_homotopy), then f = 0 at
+        the solved-for equilibria (IEQUIB = 1, -2)."""
+        _, V, _ = spectrum(self._A(x1, par))
+        _, _, W = spectrum(self._A(x2, par))
+        V, W = self._hom_right(V), self._hom_left(W)
+        parts = hom.boundary_rows(u0, u1, x1, x2, par, V, W, self.nstab, self.nunstab,
+                                  hom.first_index(self.ndm, self.iequib))
+        if self.iequib in (1, -2):
+            parts.append(self.user.func(x1, par))
+        if self.iequib == -2:
+            parts.append(self.user.func(x2, par))
+        return np.concatenate(parts)
 
     def _start_u0(self, rec, par, data) -> np.ndarray:
         """u(0) of the start (for PVLS's equilibrium with IEQUIB = 0)."""
@@ -376,7 +435,18 @@ class HomoclinicOrbits(BoundaryValueProblem):
         """STPNBV: the user's stpnt(u, par, t) at every node of the uniform mesh."""
         s = self.settings
         self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
-        self._begin(self.user.start_profile(self.par.copy(), self.mesh.node_times()), None)
+        U = self.user.start_profile(self.par.copy(), self.mesh.node_times())
+        if self.istart == 3:
+            x1, x2, self.par = self._equilibria(U[0], self.par)
+            lam, V, W = spectrum(self._A(x1, self.par))
+            U = hom.start(x1, x2, self.par, lam, self._hom_right(V), self._hom_left(W),
+                          self.mesh.node_times(), self.nstab, self.nunstab,
+                          hom.first_index(self.ndm, self.iequib))
+        if self.itwist:
+            # the adjoint as PREHO starts a restart's (AUTO's own STPNT start leaves it 0,
+            # where its integral condition is degenerate)
+            U, self.par[adj.ADJOINT_PAR - 1] = adj.widened_profile(U, self.ndm), 0.0
+        self._begin(U, None)
 
     def _shifted(self, rec, par):
         """PREHO with ISTART = 4: a stored periodic orbit moved in time so that it starts
@@ -409,11 +479,18 @@ class HomoclinicOrbits(BoundaryValueProblem):
         """The accepted point: the integral condition's reference (the base's) and the
         projections' reference bases."""
         super().update(x, tangent)
+        if self.istart == 3:
+            return
         U, par = self.unpack(x)
-        x1, x2, par = self._equilibria(U[0], par)
-        self._left.accept(self._A(x1, par).T)
+        x1, x2, par = self._equilibria(U[0, :self.ndm], par)
+        A1 = self._A(x1, par)
+        self._left.accept(A1.T)
+        A2 = A1 if x2 is x1 else self._A(x2, par)
         if self.rev is None:
-            self._right.accept(self._A(x2, par).T)
+            self._right.accept(A2.T)
+        if self.itwist:
+            self._adj_left.accept(A1)
+            self._adj_right.accept(A2)
 
     def params(self, x):
         """PAR after the user's PVLS, with PAR(20 + k) = psi_k for k in IPSI (FNCSHO)."""
@@ -424,6 +501,13 @@ class HomoclinicOrbits(BoundaryValueProblem):
             for k in ipsi:
                 par[PSI - 1 + k] = self.psi(k, U, par)
         return par
+
+    def orientation(self, U: np.ndarray, par: np.ndarray) -> float:
+        """PSIHO's 0 (FNCSHO's orientable / non-orientable) of the orbit and its adjoint
+        U (n_nodes, 2 NDIM): see washer.cont.systems.homoclinic_adjoint.orientation."""
+        ndm = self.ndm
+        f0, f1 = self.user.func(U[0, :ndm], par), self.user.func(U[-1, :ndm], par)
+        return adj.orientation(f0, f1, U[0, ndm:], U[-1, ndm:])
 
     def psi(self, k: int, U: np.ndarray, par: np.ndarray, signs=None) -> float:
         """PSIHO's test function k (module docstring) of the orbit U (n_nodes, NDIM), the
@@ -461,15 +545,18 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if k == 10:
             return float(rr[s + 1])
         if k == 11:
-            f1 = self.user.func(U[-1], par)
+            f1 = self.user.func(U[-1, :ndm], par)
             return float(f1 @ W[s] * math.exp(-par[PERIOD - 1] * rr[s] / 2))
         if k == 12:
-            f0 = self.user.func(U[0], par)
+            f0 = self.user.func(U[0, :ndm], par)
             return float(f0 @ W[s + 1] * math.exp(par[PERIOD - 1] * rr[s + 1] / 2))
+        if k in ADJOINT_CODES:
+            return adj.inclination(k, U[0, ndm:], U[-1, ndm:], lam, V, par[PERIOD - 1],
+                                   self.nstab)
         if k == 15:
-            return float((x0 - U[-1]) @ V[s + 1])
+            return float((x0 - U[-1, :ndm]) @ V[s + 1])
         if k == 16:
-            return float((x0 - U[0]) @ V[s + 1])
+            return float((x0 - U[0, :ndm]) @ V[s + 1])
         raise ValueError(f"IPSI code {k}: not computed (see washer.cont.systems.homoclinic)")
 
 
