@@ -52,10 +52,9 @@ from washer.auto.diagram import read_branches, type_name  # noqa: E402
 UNLOCATED = ("EP", "MX")
 PERIOD_RTOL = 1e-3
 
-#: Demos whose own script would first run HomCont (IPS = 9), which washer refuses: the
-#: scripts of the folder that run without it, in order (snh.auto runs h1b.auto, HomCont,
-#: before cb.auto and tb.auto).
-SCRIPTS = {"snh": ("cb.auto", "tb.auto")}
+#: Demos run script by script: the scripts of the folder, in order (snh.auto runs h1b.auto,
+#: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep).
+SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto")}
 
 #: Demos whose script reaches HomCont runs (IPS = 9) after the runs compared: washer
 #: refuses one of them (a HomCont option it does not do yet) and the script stops there. AUTO's b-files of those runs are kept in

@@ -54,7 +54,7 @@ EXPECTED_FAIL = {
     "kpr": "21 of 23: two runs continued past a zero of PSI 9 (the equilibrium's leading "
            "stable eigenvalue crossing 0, where the truncated problem is ill-posed) end "
            "earlier in ours (MX) than in AUTO (EP at NMX)",
-    "snh": "7 of 8: tb.auto's 8th run, away from the Hopf point, goes on where AUTO's steps "
+    "snh": "28 of 29: tb.auto's 8th run, away from the Hopf point, goes on where AUTO's steps "
            "collapse (its MX at nu1 = 1.2910) to an LP at nu1 = 1.417015, where the "
            "other tangency locus comes too; a point of ours past AUTO's MX is a fold of "
            "the connection's branch (README)",

@@ -103,3 +103,48 @@ def test_homotopy_start_grows_the_orbit_and_hands_it_to_the_projection_condition
     # a = 1.25, falling with every point to 2e-7 at a = 3.4 (measured)
     assert all(b < a for a, b in zip(mus, mus[1:]))
     assert mus[-1] < 1e-6 and br3.specials[-1].par[0] > 3
+
+
+def test_an_orbit_whose_angle_turns_once_ends_at_the_equilibrium_plus_2_pi():
+    # The pendulum theta'' = -a sin(theta) + mu theta': at mu = 0 the orbit
+    # theta = 4 arctan(e^(sqrt(a) t)) - pi (sympy below) leaves the saddle (-pi, 0) and
+    # reaches (pi, 0), the same equilibrium of the angle: SETRTN's NRTN = 1 puts the end's
+    # equilibrium at x0 + 2 pi (FBHO's XEQUIB2), and the family is continued in (a, mu).
+    import sympy as sp
+    t, a = sp.symbols("t a", positive=True)
+    th = 4 * sp.atan(sp.exp(sp.sqrt(a) * t)) - sp.pi
+    residual = sp.diff(th, t, 2) + a * sp.sin(th)
+    for tv, av in ((sp.Rational(-3, 2), 1), (sp.Rational(1, 3), 2), (2, sp.Rational(1, 2))):
+        assert abs(sp.N(residual.subs({t: tv, a: av}), 40)) < 1e-35
+    T = 24.0
+
+    def func(u, par):
+        return np.array([u[1], -par[0] * np.sin(u[0]) + par[1] * u[1]])
+
+    def dfdu(u, par):
+        return np.array([[0.0, 1.0], [-par[0] * np.cos(u[0]), par[1]]])
+
+    def stpnt(u, par, s):
+        par[0], par[1], par[10] = 1.0, 0.0, T
+        par[11], par[12] = -np.pi, 0.0
+        z = (s - 0.5) * T
+        u[0] = 4 * np.arctan(np.exp(z)) - np.pi
+        u[1] = 2 / np.cosh(z)
+    prob = Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="pendulum", jac=-1)
+    br = runner.run(Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=40, NCOL=4,
+                                   JAC=-1, ISP=0, ILP=0, NMX=12, NPR=4, DS=0.05, DSMAX=0.2)),
+                    prob)
+    assert br.status == "ok" and br.specials[-1].par[0] > 1.5
+    for rec in br.specials[1:]:
+        par, U = np.asarray(rec.par, float), np.asarray(rec.U, float)
+        # the equilibrium and mu of the exact family: the truncation to T = 24 (the ends
+        # e^(-sqrt(a) T / 2) ~ 6e-6 from the saddle, the projection conditions' error
+        # quadratic in it) and the collocation's error
+        assert np.allclose(par[11:13], [-np.pi, 0.0], atol=1e-10)
+        assert abs(par[1]) < 1e-6
+        # the energy, 0 on the orbit, up to the collocation's error at the nodes inside
+        # the mesh intervals (h = T / NTST = 0.6 against the front's width 1 / sqrt(a):
+        # measured 1e-5 at a = 2)
+        H = U[:, 1] ** 2 / 2 - par[0] * (1 + np.cos(U[:, 0]))
+        assert np.max(np.abs(H)) < 1e-4
+        assert U[-1, 0] == pytest.approx(np.pi, abs=1e-4)

@@ -122,8 +122,8 @@ def unsupported(s) -> list[str]:
         out.append(f"ITWIST = {s.ITWIST} (0 and 1 are)")
     if s.IEQUIB not in EQUILIBRIUM_KINDS:
         out.append(f"IEQUIB = {s.IEQUIB} (HomCont's are -2, -1, 0, 1, 2)")
-    if s.ISTART not in (1, 2, 3, 4, 5):
-        out.append(f"ISTART = {s.ISTART} (n-homoclinic branch switching; ISTART = 1-5 are)")
+    if s.ISTART not in (0, 1, 2, 3, 4, 5):
+        out.append(f"ISTART = {s.ISTART} (n-homoclinic branch switching; ISTART = 0-5 are)")
     if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED or s.IEQUIB == 2):
         out.append("ISTART = 3 with ITWIST, IREV, IFIXED or IEQUIB = 2 (the homotopy "
                    "start of a plain homoclinic or heteroclinic orbit is)")
@@ -330,13 +330,28 @@ class HomoclinicOrbits(BoundaryValueProblem):
     def _equilibria(self, u0, par):
         """(x1, x2, par): the left and right equilibria, PAR(12 .. 11 + NDIM) and (IEQUIB
         < 0) PAR(12 + NDIM .. 11 + 2 NDIM), after the user's PVLS at u(0) for IEQUIB = 0
-        and -1 (FBHO); x2 is x1 for a homoclinic orbit."""
+        and -1 (FBHO); x2 is x1 for a homoclinic orbit, x1 + 2 pi NRTN for one whose
+        angles rotate (`_begin`)."""
         if self.iequib in (0, -1):
             par = self.user.pvls(np.asarray(u0, float), par)
         n, k = self.ndm, EQUILIBRIUM - 1
         x1 = np.asarray(par[k:k + n], float)
         x2 = np.asarray(par[k + n:k + 2 * n], float) if self.iequib < 0 else x1
+        if self.iequib >= 0 and self._rotations is not None:
+            x2 = x1 + 2 * math.pi * self._rotations
         return x1, x2, par
+
+    #: NRTN (NDIM,) of an orbit whose angles turn by 2 pi NRTN from t = 0 to 1 (SETRTN on
+    #: the start, IEQUIB >= 0), None where none does
+    _rotations = None
+
+    def _begin(self, U, old) -> None:
+        """The start's rotations (PREHO, STPNHO: SETRTN for IEQUIB >= 0), then the base's."""
+        if self.iequib >= 0:
+            U = np.asarray(U, float)
+            k = np.rint((U[-1, :self.ndm] - U[0, :self.ndm]) / (2 * math.pi))
+            self._rotations = k if np.any(k) else None
+        super()._begin(U, old)
 
     def _equilibrium(self, u0, par) -> np.ndarray:
         """x0 (the left equilibrium): PAR(12 .. 11 + NDIM), after PVLS where the user's."""
