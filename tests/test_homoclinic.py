@@ -154,8 +154,8 @@ def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
 #: PAR(2) = 0 the equilibrium's stable pair crosses the imaginary axis (a Hopf point: the
 #: truncated problem is ill-conditioned there), and UZ6-UZ8 differ from AUTO's by 5e-5 in
 #: PAR(1), the size of the discretisation error there (NTST = 70 instead of 35 moves ours by
-#: 4e-5); after UZ8 our branch turns back where AUTO's goes on to its EP (the location's
-#: first trial, 2e-4 past the last point, oriented by a secant that Newton's error outweighs).
+#: 4e-5). After UZ8 both branches go on to their EP at NMX (the located point's direction
+#: is kept pointing along the branch: `iterator.Continuation._orient_located`).
 CIR_DIFFER = {("b.2", "UZ", 6), ("b.2", "UZ", 7), ("b.2", "UZ", 8)}
 
 
@@ -167,9 +167,12 @@ def test_cir_runs_match_auto_away_from_the_hopf_point(tmp_path, monkeypatch):
     run_script("cir.auto")
     unmatched = set()
     for ref in sorted((DATA / "cir" / "autoref").glob("b.*")):
-        a, matched, _ = compare_files(work / ref.name, ref)
+        a, matched, why = compare_files(work / ref.name, ref)
         assert a, ref
         unmatched |= {(ref.name, p.ty, p.lab) for i, p in enumerate(a) if i not in matched}
+        # no point of ours without AUTO's counterpart (the branch that turned back after
+        # UZ8 added two UZ before its EP)
+        assert not [w for w in why if " vs ours " in w], why
     assert unmatched == CIR_DIFFER
 
 

@@ -653,6 +653,8 @@ class Continuation:
         if hit is not None:
             # sp's located tests are stored as 0 (`events.clear_located`).
             sp, key, same = hit
+            if sysm.arclength == "plane" and sp is not nxt:
+                self._orient_located(sp, current, nxt)
             sysm.update(sp.x, sp.tangent)
             st.point = sp
             st.n_points += 1
@@ -666,6 +668,22 @@ class Continuation:
             return
         yield from self._accept(nxt, current)
         self._adapt_step(nxt.iterations)
+
+    def _orient_located(self, sp: Point, prev: Point, cur: Point) -> None:
+        """A located point of a BVP lies between prev and cur on the branch: its
+        predictor's direction (the location's secant over its last, possibly very short
+        trial step, AUTO's CONTBV) points from prev towards cur. Where that secant is
+        shorter than Newton's error it can point back (cir's UZ at PAR(2) = -0.01, 2e-4
+        past the last point, near a Hopf point of its equilibrium: the branch turned
+        back there); it is then replaced by the secant of the whole step that the
+        location split (AUTO's first trial steps back from cur along that one)."""
+        inner = self.sys.inner
+        if inner(sp.step_direction, prev.step_direction) >= 0:
+            return
+        d = cur.x - prev.x
+        sp.direction = d / math.sqrt(inner(d, d))
+        if inner(sp.tangent, sp.direction) < 0:
+            sp.tangent = -sp.tangent
 
     def _untested(self, prev: Point, cur: Point):
         """A warning for each user value (UZR, UZSTOP) passed on the first written
