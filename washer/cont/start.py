@@ -144,7 +144,7 @@ def start_kind(rec) -> str:
     base, curve = split_code(rec.code)
     if curve in (1, 2, 3) and np.ndim(rec.u) == 1:
         return {1: "BP-curve", 2: "LP-curve", 3: "HB-curve"}[curve]
-    if curve == 5 and rec.ips in (4, 7):
+    if curve == 5 and rec.ips in (4, 7, 9):
         return "LP-curve"            # a point of the fold locus of a BVP (ISW = 2)
     if curve == 6 and rec.ips in (4, 7):
         return "BP-curve"            # a point of the branch-point locus of a BVP

@@ -16,6 +16,11 @@ bvp          the collocation base of periodic orbits and their loci (registers n
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching, and
              their fold locus (ISW = 2 from LP; FNBL)
 homoclinic   homoclinic orbits on the general BVP (IPS = 9, HomCont; FNHO, BCHO, ICHO)
+homoclinic_adjoint, homoclinic_homotopy
+             HomCont's adjoint (ITWIST = 1) and homotopy start (ISTART = 3) (register
+             nothing: parts of homoclinic's system)
+homoclinic_fold
+             the fold locus of homoclinic orbits (IPS = 9, ISW = 2 from LP; FNHOL)
 bvp_branch_point
              the branch-point locus of general BVPs (IPS = 4, ISW = 2 or 3; FNBBP)
 periodic_optimisation
