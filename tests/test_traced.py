@@ -47,9 +47,7 @@ def test_traced_func_is_the_python_func_bit_for_bit(path):
     except Exception as exc:           # a file whose NDIM this test does not guess
         pytest.skip(f"not loaded with NDIM guessed: {exc}")
     if not isinstance(problem, TracedProblem):
-        assert type(problem) is not TracedProblem
-        assert "in Python" in getattr(problem, "route", "in Python") or \
-            not hasattr(problem, "route")
+        assert problem.route.startswith("func(u, par) in Python: ")
         return
     py = problem.python
     rng = np.random.default_rng(7)
@@ -192,3 +190,73 @@ def test_difference_in_a_run_falls_back_for_good(tmp_path):
     assert run.func_many(np.array([u, u]), par).tobytes() == \
         np.array([func(u, par)] * 2).tobytes()
     assert type(p.with_jac(0)) is Problem
+
+
+@pytest.mark.parametrize("name, locus", [("ab", "AB2P_LOCUS"), ("lrz", "LRZ2P_LOCUS")])
+def test_traced_runs_write_the_python_runs_files(name, locus, tmp_path, monkeypatch):
+    """The equilibria, the Hopf locus from HB1 and the cycles from HB1 of a traced file
+    (its FUNC called from the compiled correctors) write the b-, s- and d-files of the
+    same runs on the Python functions (WASHER_TRACE=0) byte for byte, but for the
+    d-file's Total Time: the trace is the same function, bit for bit, so every step is
+    the same. The trace is taken and never refused on the way."""
+    import shutil
+    import auto_reference
+    from washer.cont import traced
+    from washer.run import run
+    refused = []
+    monkeypatch.setattr(traced.TraceState, "refuse",
+                        lambda self, why: refused.append(why))
+
+    def runs(sub, trace):
+        monkeypatch.setenv("WASHER_TRACE", trace)
+        d = tmp_path / sub
+        d.mkdir()
+        shutil.copy(DATA / name / f"c.{name}", d)
+        shutil.copy(DATA / name / f"{name}.py", d)
+        c = d / f"c.{name}"
+        run(c, sv="eq", verbose=False)
+        run(c, s="eq", IRS="HB1", sv="hb", verbose=False,
+            **dict(getattr(auto_reference, locus), PAR={}))
+        run(c, s="eq", IRS="HB1", IPS=2, ICP=[1, 11], NMX=20, sv="po", verbose=False)
+        return d
+
+    built = []
+    real_build = traced._build
+    monkeypatch.setattr(traced, "_build", lambda *a: built.append(1) or real_build(*a))
+    fast = runs("traced", "1")
+    assert built and not refused
+    slow = runs("python", "0")
+    for f in ("b.eq", "s.eq", "d.eq", "b.hb", "s.hb", "d.hb", "b.po", "s.po", "d.po"):
+        a, b = ((p / f).read_text().split("Total Time")[0] for p in (fast, slow))
+        assert a == b, f
+    assert len((fast / "b.po").read_text().splitlines()) > 20
+
+
+CHANGING = '''
+import numpy as np
+calls = [0]
+def func(u, par):
+    calls[0] += 1
+    s = 1.0 if calls[0] < 30 else 1.0 + 2.0 ** -40
+    return np.array([par[0] - s * u[0]])
+def stpnt(u, par, t=0.0):
+    par[0] = 0.0
+    u[0] = 0.0
+'''
+
+
+def test_a_refusal_during_a_run_is_said(tmp_path, capsys):
+    """A func whose values change after it was traced and verified on loading (a
+    module-level counter it reads): the run's first compared points show it, the run
+    goes on in Python, and the verbose output says so after the run as it said the
+    traced route before it."""
+    from washer.run import run
+    (tmp_path / "chg.py").write_text(CHANGING)
+    (tmp_path / "c.chg").write_text("NDIM=1, IPS=1, ICP=[1], NMX=10, DS=0.1, DSMAX=0.1, "
+                                    "ISP=0, ILP=0\n")
+    r = run(tmp_path / "c.chg", e="chg", sv="chg")
+    assert r.status == "ok"
+    err = capsys.readouterr().err
+    assert "traced into C" in err
+    assert "in Python: its compiled trace gave other values than func(u, par)" in err
+    assert err.index("traced into C") < err.index("in Python: its compiled trace")

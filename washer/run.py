@@ -106,9 +106,10 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     restart_from, restart = restart, folder / f"s.{c['s'] or default_name}"
     if problem is None:
         problem = resolve_problem(c, folder, params)
-    if verbose and getattr(problem, "route", None):
+    route = getattr(problem, "route", None)
+    if verbose and route:
         # how a Python file's func is evaluated (washer.cont.traced), and why
-        print(f"note: e='{c['e']}': {problem.route}", file=sys.stderr)
+        print(f"note: e='{c['e']}': {route}", file=sys.stderr)
     _check_size(c, problem, allow_large)
     # The restart data is read whole before any output file is opened: the
     # default sv is the restart file's own name, and it must survive.
@@ -147,6 +148,9 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
             list(sinks or [])
         result = execute(r, br, mode, all_sinks)
     result.files = file_sink.files if files else None
+    if verbose and getattr(problem, "route", None) != route:
+        # a traced func refused during the run (a difference seen): said, not only done
+        print(f"note: e='{c['e']}': {problem.route}", file=sys.stderr)
     if files and not result.rows:
         # No point: empty b- and s-files would only hide that the run failed.
         for p in (result.files.b_path, result.files.s_path):
