@@ -137,8 +137,6 @@ def unsupported(s) -> list[str]:
     if s.NBC or s.NINT:
         out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
                    "integral conditions)")
-    if abs(s.ISW) == 2:
-        out.append("ISW = 2 (the fold locus of homoclinic orbits)")
     return out
 
 

@@ -35,13 +35,11 @@ class HomoclinicFoldLocus(BVPFoldLocus):
                                            data.record, "", data.unames, data.data))
         hs = orbit.run_settings
         free = list(orbit._free)
-        n_user = len([i for i in free if i in s.ICP[:len(free)]])
         rest = [i for i in s.ICP if i not in free]
         if not rest:
             raise SettingsError(f"ISW = 2 (the fold locus of homoclinic orbits) frees one "
                                 f"more parameter than the branch's {free}: ICP = "
                                 f"{list(s.ICP)} names none", keys=("ICP",))
-        del n_user
         par = np.asarray(orbit.par, float)
         s2 = hs.with_(ISW=2, ICP=free + rest, IPS=9)
         super().__init__(StartData(orbit.problem, s2, data.u, par, data.record, data.kind,
