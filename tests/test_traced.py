@@ -260,3 +260,12 @@ def test_a_refusal_during_a_run_is_said(tmp_path, capsys):
     assert "traced into C" in err
     assert "in Python: its compiled trace gave other values than func(u, par)" in err
     assert err.index("traced into C") < err.index("in Python: its compiled trace")
+
+
+def test_nothing_compared_on_loading_is_not_trusted(tmp_path):
+    """A func with no finite value at any of the points near the start it is compared
+    at (here: none anywhere) is not trusted with nothing verified: the Python problem,
+    saying why."""
+    p = traced_problem(_problem(lambda u, par: np.array([u[0] / 0.0, u[1] * np.inf])),
+                       tmp_path / "t.py")
+    assert type(p) is Problem and "nothing verified" in p.route

@@ -266,7 +266,9 @@ def _start_points(python: Problem, rng) -> tuple[np.ndarray, np.ndarray]:
 
 def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
     """TraceError unless `compiled` (rows) equals fn at every point where fn gives finite
-    values, bit for bit."""
+    values, bit for bit, and there is at least one such point (none compared is nothing
+    verified)."""
+    compared = 0
     for j, (u, p) in enumerate(zip(us, pars)):
         try:
             with np.errstate(all="ignore"):
@@ -279,6 +281,10 @@ def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
         if ref.shape != got.shape or ref.tobytes() != got.tobytes():
             raise TraceError(f"the compiled trace of {what} differs from it at a point "
                              "near the start (compared bit for bit)")
+        compared += 1
+    if not compared:
+        raise TraceError(f"{what} gave no finite values at the {len(us)} points near the "
+                         "start it is compared at: nothing verified")
 
 
 def traced_problem(python: Problem, path: Path) -> Problem:
