@@ -115,25 +115,37 @@ EQUILIBRIUM_KINDS = (-2, -1, 0, 1, 2)
 COMPZERO = 1e-13
 
 
-def unsupported(s) -> list[str]:
-    """What of HomCont's constants this module does not compute yet (empty: all of it)."""
+def invalid(s) -> list[str]:
+    """HomCont's constants whose values are none of HomCont's (empty: every value is one)."""
     out = []
     if s.ITWIST not in (0, 1):
-        out.append(f"ITWIST = {s.ITWIST} (0 and 1 are)")
+        out.append(f"ITWIST = {s.ITWIST} (HomCont's are 0 and 1)")
     if s.IEQUIB not in EQUILIBRIUM_KINDS:
         out.append(f"IEQUIB = {s.IEQUIB} (HomCont's are -2, -1, 0, 1, 2)")
-    if s.ISTART not in (0, 1, 2, 3, 4, 5):
+    if s.ISTART > 5:
+        out.append(f"ISTART = {s.ISTART} (HomCont's are 0-5, and below 0 for "
+                   "n-homoclinic branch switching)")
+    if s.IREV and len(s.IREV) != s.NDIM:
+        out.append(f"IREV = {list(s.IREV)} (one entry per component of NDIM = {s.NDIM})")
+    codes = tuple(s.IPSI) + tuple(s.IFIXED)
+    unknown = [k for k in codes if k not in PSI_CODES]
+    if unknown:
+        out.append(f"IPSI/IFIXED codes {unknown} (HomCont's are 1-16)")
+    adjoint = [k for k in codes if k in ADJOINT_CODES and s.ITWIST != 1]
+    if adjoint:
+        out.append(f"IPSI/IFIXED codes {adjoint} with ITWIST = {s.ITWIST} (13 and 14 read "
+                   "the adjoint: ITWIST = 1)")
+    return out
+
+
+def unsupported(s) -> list[str]:
+    """HomCont's options this module does not compute yet (empty: all it is asked)."""
+    out = []
+    if s.ISTART < 0:
         out.append(f"ISTART = {s.ISTART} (n-homoclinic branch switching; ISTART = 0-5 are)")
     if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED or s.IEQUIB == 2):
         out.append("ISTART = 3 with ITWIST, IREV, IFIXED or IEQUIB = 2 (the homotopy "
                    "start of a plain homoclinic or heteroclinic orbit is)")
-    if s.IREV and len(s.IREV) != s.NDIM:
-        out.append(f"IREV = {list(s.IREV)} (one entry per component of NDIM = {s.NDIM})")
-    missing = [k for k in tuple(s.IPSI) + tuple(s.IFIXED)
-               if k not in PSI_CODES or (k in ADJOINT_CODES and s.ITWIST != 1)]
-    if missing:
-        out.append(f"IPSI/IFIXED codes {missing} (13, 14 need ITWIST = 1; codes 1-16 "
-                   "are computed)")
     if s.NBC or s.NINT:
         out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
                    "integral conditions)")
@@ -253,6 +265,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
 
     def __init__(self, data):
         s = data.settings
+        wrong = invalid(s)
+        if wrong:
+            raise SettingsError("IPS = 9 (homoclinic orbits): " + "; ".join(wrong),
+                                keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
         missing = unsupported(s)
         if missing:
             raise SettingsError("IPS = 9 (homoclinic orbits): not supported yet: "
