@@ -146,20 +146,21 @@ def test_a_bad_value_of_a_constants_file_names_its_line_and_a_keywords_the_comma
 
 
 def test_a_run_not_done_says_why_in_its_d_file_and_the_script_goes_on(tmp_path, monkeypatch):
-    # A run of a kind the engine does not do (HomCont's ITWIST = 2) is reported on the
-    # screen and in the d-file its output would have had; later commands still run.
+    # A run of a kind the engine does not do (HomCont's n-homoclinic branch switching,
+    # ISTART < 0) is reported on the screen and in the d-file its output would have had;
+    # later commands still run.
     monkeypatch.chdir(tmp_path)
     for f in ("ab.f90", "c.ab.1"):
         shutil.copy(DEMOS / "ab" / f, tmp_path)
     Path("z.auto").write_text("r = run(e='ab', c='ab.1', NMX=5)\n"
-                              "r = run(e='ab', c='ab.1', IPS=9, ITWIST=2, sv='hom')\n"
-                              "r = run(e='ab', c='ab.1', IPS=9, ITWIST=2)\n"
+                              "r = run(e='ab', c='ab.1', IPS=9, ISTART=-1, sv='hom')\n"
+                              "r = run(e='ab', c='ab.1', IPS=9, ISTART=-1)\n"
                               "save(r, 'kept')\n"
                               "print 'after'\n")
     clui._runner.refused.clear()
     run_script("z.auto")
     for d in ("d.hom", "fort.9"):
-        assert "run not done" in Path(d).read_text() and "ITWIST = 2" in Path(d).read_text()
+        assert "run not done" in Path(d).read_text() and "ISTART = -1" in Path(d).read_text()
     assert not Path("b.hom").exists() and len(clui._runner.refused) == 2
     # fort.7/fort.8 are the refused run's (none), not the first run's beside its fort.9;
     # saving the refused run's result writes no file
