@@ -31,6 +31,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
+from b_rows import branch_rows
 from washer.run import run
 
 PROBLEM = '''
@@ -173,12 +174,7 @@ ICP=['nu1', 'T', 'delta', 'nu2', 'T-', 'mu'], STOP=['LP1']
 
 def _b_rows(path):
     """The b-file's rows (PAR(ICP(1)), L2-NORM, MAX U(1), PAR(ICP(2..))), one array."""
-    out = []
-    for line in Path(path).read_text().splitlines():
-        parts = line.split()
-        if parts and parts[0] != "0":
-            out.append([float(x) for x in parts[4:]])
-    return np.array(out)
+    return np.array([r.values for r in branch_rows(path)])
 
 
 @pytest.mark.slow
