@@ -39,6 +39,13 @@ CHECK_POINTS = 32
 SPOT_EVERY = 8
 
 
+def same_bits(ref: np.ndarray, got: np.ndarray) -> bool:
+    """Whether two float arrays hold the same values bit for bit: equal shapes and equal
+    bytes in C order (NaN where NaN with the same payload, -0.0 apart from 0.0), whatever
+    the memory layout of either."""
+    return ref.shape == got.shape and ref.tobytes() == got.tobytes()
+
+
 class PointwiseCheck:
     """The state of one user function's vectorised calls: unchecked, equal so far, or off
     for good (`off`). Shared by a problem's copies (Problem.with_jac): the same function."""
@@ -67,10 +74,8 @@ class PointwiseCheck:
 
     def agree(self, ref: np.ndarray, got: np.ndarray, k: int) -> bool:
         """Whether `got` (the vectorised call's values at `rows(k)`) are `ref` (separate
-        calls') bit for bit: the same bytes (NaN where NaN with the same payload, -0.0
-        apart from 0.0); if not, vectorised calls are off for good. Float arrays of any
-        equal shape, C-contiguous."""
-        if ref.shape != got.shape or ref.tobytes() != got.tobytes():
+        calls') bit for bit (`same_bits`); if not, vectorised calls are off for good."""
+        if not same_bits(ref, got):
             self.off = True
             return False
         self._sizes.add(k)

@@ -36,6 +36,7 @@ import numpy as np
 
 from washer.cont.compile import CompileError, build_library, source_text
 from washer.cont.compiled import SHIM, INCLUDE, CompiledProblem, CompiledUser
+from washer.cont.pointwise import same_bits
 from washer.cont.problem import Problem, ProblemError, VECTORISE_MIN
 from washer.cont.trace import TraceError, emit_user_file, numpy_loop, trace_function
 
@@ -154,8 +155,7 @@ class TracedProblem(CompiledProblem):
             ref = np.array(ref, dtype=float)
         except Exception:
             ref = None                       # the Python call raises: not the same
-        if ref is not None and ref.shape == got[:m].shape and \
-                ref.tobytes() == np.ascontiguousarray(got[:m]).tobytes():
+        if ref is not None and same_bits(ref, got[:m]):
             return None
         self.state.refuse(f"its compiled trace gave other values than {what} at a point "
                           "of the run (compared bit for bit)")
@@ -217,8 +217,7 @@ class TracedProblem(CompiledProblem):
                              dtype=float)
             self._left -= 1
             # the compiled DFDP has NPAR columns (zero beyond the Python's)
-            if ref.ndim != 2 or ref.shape[0] != P.shape[0] or \
-                    ref.tobytes() != np.ascontiguousarray(P[:, :ref.shape[1]]).tobytes():
+            if ref.ndim != 2 or not same_bits(ref, P[:, :ref.shape[1]]):
                 self.state.refuse("its compiled trace gave other values than dfdp(u, par) "
                                   "at a point of the run (compared bit for bit)")
                 self._switch_to_python()
@@ -277,8 +276,7 @@ def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
             continue                 # not a point of the function's domain
         if not np.isfinite(ref).all():
             continue
-        got = np.ascontiguousarray(compiled[j][tuple(slice(0, s) for s in ref.shape)])
-        if ref.shape != got.shape or ref.tobytes() != got.tobytes():
+        if not same_bits(ref, compiled[j][tuple(slice(0, s) for s in ref.shape)]):
             raise TraceError(f"the compiled trace of {what} differs from it at a point "
                              "near the start (compared bit for bit)")
         compared += 1
