@@ -115,6 +115,12 @@ EQUILIBRIUM_KINDS = (-2, -1, 0, 1, 2)
 COMPZERO = 1e-13
 
 
+def homotopy_index(ndm: int, iequib: int) -> int:
+    """IP of the homotopy start (ISTART = 3): eps_0 = PAR(IP), the first PAR after the
+    equilibria (12 + NDIM; 12 + 2 NDIM for a heteroclinic orbit, IEQUIB < 0)."""
+    return EQUILIBRIUM + ndm * (2 if iequib < 0 else 1)
+
+
 def invalid(s) -> list[str]:
     """HomCont's constants whose values are none of HomCont's (empty: every value is one)."""
     out = []
@@ -444,7 +450,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
         _, _, W = spectrum(self._A(x2, par))
         V, W = self._hom_right(V), self._hom_left(W)
         parts = hom.boundary_rows(u0, u1, x1, x2, par, V, W, self.nstab, self.nunstab,
-                                  hom.first_index(self.ndm, self.iequib))
+                                  homotopy_index(self.ndm, self.iequib))
         if self.iequib in (1, -2):
             parts.append(self.user.func(x1, par))
         if self.iequib == -2:
@@ -470,7 +476,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
             lam, V, W = spectrum(self._A(x1, self.par))
             U = hom.start(x1, x2, self.par, lam, self._hom_right(V), self._hom_left(W),
                           self.mesh.node_times(), self.nstab, self.nunstab,
-                          hom.first_index(self.ndm, self.iequib))
+                          homotopy_index(self.ndm, self.iequib))
         if self.itwist:
             # the adjoint as PREHO starts a restart's (AUTO's own STPNT start leaves it 0,
             # where its integral condition is degenerate)

@@ -3,7 +3,8 @@ using homotopy"): a homoclinic orbit grown from the equilibrium along its unstab
 manifold, with no phase condition (NINT = 0).
 
 The orbit leaves x0 at a fixed small distance eps_0 = PAR(IP) along the unstable
-eigenspace, IP = 12 + NDIM (IEQUIB >= 0; 12 + 2 NDIM for a heteroclinic one):
+eigenspace, IP the first PAR after the equilibria (12 + NDIM for IEQUIB >= 0, 12 + 2 NDIM
+for a heteroclinic orbit: washer.cont.systems.homoclinic's `homotopy_index`):
 
     NUNSTAB = 1:  u(0) = x0 + eps_0 v_{s+1}                                 (NDIM rows)
     NUNSTAB > 1:  u(0) = x0 + sum_j xi_j v_{s+j},  sum_j xi_j^2 = eps_0^2    (NDIM + 1 rows)
@@ -12,9 +13,9 @@ eigenspace, IP = 12 + NDIM (IEQUIB >= 0; 12 + 2 NDIM for a heteroclinic one):
     f(x0) = 0 (IEQUIB = 1)
 
 with v, w the right and left eigenvectors of A = f_u(x0) (rows sorted by real part,
-s = NSTAB; x0' = x0 for a homoclinic orbit), omega_i = PAR(KP + i), KP = IP + 1 for
-NUNSTAB = 1 and IP + NUNSTAB beyond. The omega_i measure how far u(1) is from the
-stable manifold's tangent space: continuing in T = PAR(11) and the omega_i until they
+s = NSTAB; x0' = x0 for a homoclinic orbit), omega_i = PAR(KP + i), KP = IP + NUNSTAB
+(`omega_base`). The omega_i measure how far u(1) is from the stable manifold's tangent
+space: continuing in T = PAR(11) and the omega_i until they
 vanish (UZR on them) brings u(1) onto it, after which a regular run (ISTART = 1) takes
 the orbit over with the projection conditions.
 
@@ -28,19 +29,10 @@ import math
 
 import numpy as np
 
-#: PAR(12): the first equilibrium's first component.
-EQUILIBRIUM = 12
-
-
-def first_index(ndm: int, iequib: int) -> int:
-    """IP: the PAR index of eps_0 (12 + NDIM, 12 + 2 NDIM for IEQUIB < 0)."""
-    return EQUILIBRIUM + ndm * (1 if iequib >= 0 else 2)
-
-
-def omega_index(ndm: int, iequib: int, nunstab: int) -> int:
-    """KP: PAR(KP + i) is omega_i, i = 1 .. NUNSTAB."""
-    ip = first_index(ndm, iequib)
-    return ip + (1 if nunstab == 1 else nunstab)
+def omega_base(ip: int, nunstab: int) -> int:
+    """KP: PAR(KP + i) is omega_i, i = 1 .. NUNSTAB, after eps_0 = PAR(IP) and the xi_j =
+    PAR(IP + j) (xi_1 alone, a copy of eps_0, for NUNSTAB = 1): KP = IP + NUNSTAB."""
+    return ip + nunstab
 
 
 def n_conditions(ndm: int, n_solved: int, nunstab: int) -> int:
@@ -56,12 +48,11 @@ def boundary_rows(u0, u1, x0, x1, par, V, W, nstab: int, nunstab: int,
     eigenvectors as rows (sorted by real part, signs continued)."""
     if nunstab == 1:
         start = [u0 - x0 - par[ip - 1] * V[nstab]]
-        kp = ip + 1
     else:
         xi = np.array([par[ip - 1 + j] for j in range(1, nunstab + 1)])
         start = [u0 - x0 - xi @ V[nstab:nstab + nunstab],
                  np.array([xi @ xi - par[ip - 1] ** 2])]
-        kp = ip + nunstab
+    kp = omega_base(ip, nunstab)
     omega = np.array([(u1 - x1) @ W[nstab + i] - par[kp + i] for i in range(nunstab)])
     return start + [omega]
 
@@ -76,7 +67,7 @@ def start(x0, x1, par, lam, V, W, times, nstab: int, nunstab: int, ip: int) -> n
     par[ip] = eps0
     for i in range(2, nunstab + 1):
         par[ip - 1 + i] = 0.0
-    kp = ip + nunstab
+    kp = omega_base(ip, nunstab)
     T = par[10]
     rate = float(lam[nstab].real)
     U = x0[None, :] + eps0 * V[nstab][None, :] * np.exp(rate * T * np.asarray(times))[:, None]
@@ -86,4 +77,4 @@ def start(x0, x1, par, lam, V, W, times, nstab: int, nunstab: int, ip: int) -> n
     return U
 
 
-__all__ = ["boundary_rows", "first_index", "n_conditions", "omega_index", "start"]
+__all__ = ["boundary_rows", "n_conditions", "omega_base", "start"]
