@@ -249,8 +249,9 @@ class PythonEquations:
                 or stage == 2 and self.kind != 2 or stage == 3 and not self.exact:
             raise WorkLayoutError(f"ae_correct.h asked for stage {stage} of f, which "
                                   "compiled_newton.PythonEquations does not know")
-        U, P, F = self._views[min(stage, 2) if stage < 3 else 0]
-        where, n = self._where[stage if stage < 3 else 0], self.n
+        slot = 0 if stage == 3 else stage   # stage 3 writes into stage 0's views
+        U, P, F = self._views[slot]
+        where, n = self._where[slot], self.n
         one = stage == 3 or stage == 0 and self.exact
         if us != where[0] or ps != where[1] or fs != where[2] or \
                 not (rows == U.shape[0] or stage == 2 and 0 < rows <= U.shape[0]
