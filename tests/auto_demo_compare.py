@@ -56,12 +56,6 @@ PERIOD_RTOL = 1e-3
 #: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep).
 SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto")}
 
-#: Demos whose script reaches HomCont runs (IPS = 9) after the runs compared: washer
-#: refuses one of them (a HomCont option it does not do yet) and the script stops there. AUTO's b-files of those runs are kept in
-#: NAME/autoref-ips9 (listed in the README's row, not compared).
-STOPS_AT_IPS9 = {"sib"}
-#: What washer's refusal of a HomCont run (IPS = 9, or one of its options) says.
-IPS9_REFUSAL = ("IPS = 9", "not supported")
 
 
 @dataclass
@@ -90,12 +84,6 @@ class Result:
     matched: int = 0
     problems: list = field(default_factory=list)
     log: str = ""
-
-    @property
-    def stopped_at_ips9(self) -> bool:
-        """The script's first error is washer's refusal of a HomCont run (IPS = 9)."""
-        errors = [ln for ln in self.log.splitlines() if ln.startswith("error:")]
-        return bool(errors) and all(w in errors[0] for w in IPS9_REFUSAL)
 
 
 def _text(path: Path) -> str:

@@ -95,6 +95,7 @@ from washer.cont.settings import SettingsError
 from washer.cont.system import StartData, register
 from washer.cont.systems import homoclinic_adjoint as adj
 from washer.cont.systems import homoclinic_homotopy as hom
+from washer.cont.systems import homoclinic_switching as sw
 from washer.cont.systems.general_bvp import BoundaryValueProblem
 
 #: PAR(11): the truncation interval T of the homoclinic orbit (time scaled to [0, 1]).
@@ -147,8 +148,9 @@ def invalid(s) -> list[str]:
 def unsupported(s) -> list[str]:
     """HomCont's options this module does not compute yet (empty: all it is asked)."""
     out = []
-    if s.ISTART < 0:
-        out.append(f"ISTART = {s.ISTART} (n-homoclinic branch switching; ISTART = 0-5 are)")
+    if s.ISTART < 0 and s.IREV:
+        out.append(f"ISTART = {s.ISTART} with IREV (AUTO's FBHO reads IREV for every one of "
+                   "the N + 1 pieces' components, past its NDIM entries)")
     if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED or s.IEQUIB == 2):
         out.append("ISTART = 3 with ITWIST, IREV, IFIXED or IEQUIB = 2 (the homotopy "
                    "start of a plain homoclinic or heteroclinic orbit is)")
@@ -289,6 +291,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
         n_eq = _solved_equilibria(self.iequib) * ndm
         npar = max(s.NPAR, EQUILIBRIUM - 1 + (2 if self.iequib < 0 else 1) * ndm,
                    PSI + max(tuple(s.IPSI) + self.fixed, default=0))
+        if s.ISTART < 0:
+            # INHO's NPARI: Lin's direction and f(x_max) after the constants' NPAR
+            npar = max(s.NPAR, sw.gap_index(-s.ISTART - 1)) + 2 * ndm
         par = np.zeros(npar)
         p = np.asarray(data.par, float)
         par[:min(len(p), npar)] = p[:npar]
@@ -296,9 +301,21 @@ class HomoclinicOrbits(BoundaryValueProblem):
         istart = s.ISTART
         if istart == 5:
             istart = 4 if rec is not None and getattr(rec, "ips", 9) not in (9, 0) else 1
+        #: N + 1 pieces of an N-homoclinic orbit (ISTART = -N), else 0
+        self.pieces = sw.n_pieces(istart) if istart < 0 else 0
+        stored = np.shape(rec.U)[1] if rec is not None and np.ndim(rec.U) == 2 else 0
+        if istart >= 0 and stored > 2 * ndm:
+            rec = sw.orbit_from_pieces(rec, ndm, par)
         if istart == 4 and rec is not None:
             rec = self._shifted(rec, par)
-        if self.itwist and rec is not None and np.ndim(rec.U) == 2:
+        #: the gaps along Lin's direction (ITWIST = 1 with ISTART < 0)
+        self.lin = bool(self.pieces and self.itwist)
+        #: the components of u(1): the last piece's (ISTART < 0), else the orbit's
+        self._last = slice(max(self.pieces - 1, 0) * ndm, max(self.pieces, 1) * ndm)
+        if self.pieces:
+            rec = self._pieces_start(rec, stored, par)
+            self.itwist = 0                    # no adjoint among the pieces
+        elif self.itwist and rec is not None and np.ndim(rec.U) == 2:
             rec = adj.widened_start(rec, ndm, par)
         self.istart = istart
         # NSTAB, NUNSTAB at the start's (left) equilibrium (STPNHO: PVLS, then GETSTAB
@@ -314,6 +331,11 @@ class HomoclinicOrbits(BoundaryValueProblem):
         ndim = ndm * (1 + self.itwist)
         nbc += self.itwist * (self.nstab + self.nunstab)
         nint += self.itwist
+        if self.pieces:
+            # N + 1 pieces: N joins of NDM rows and N sections, no phase condition
+            ndim = ndm * self.pieces
+            nbc += (self.pieces - 1) * (ndm + 1)
+            nint = 0
         if istart == 3:
             nbc = hom.n_conditions(ndm, n_eq // ndm, self.nunstab)
             nint = 0
@@ -366,12 +388,42 @@ class HomoclinicOrbits(BoundaryValueProblem):
     _rotations = None
 
     def _begin(self, U, old) -> None:
-        """The start's rotations (PREHO, STPNHO: SETRTN for IEQUIB >= 0), then the base's."""
+        """The start's rotations (PREHO, STPNHO: SETRTN for IEQUIB >= 0), the pieces'
+        ends at the start (FBHO's UMAX, ISTART < 0), then the base's."""
+        U = np.asarray(U, float)
         if self.iequib >= 0:
-            U = np.asarray(U, float)
-            k = np.rint((U[-1, :self.ndm] - U[0, :self.ndm]) / (2 * math.pi))
+            k = np.rint((U[-1, self._last] - U[0, :self.ndm]) / (2 * math.pi))
             self._rotations = k if np.any(k) else None
+            if self.pieces and self._rotations is not None:
+                raise SettingsError("IPS = 9 with ISTART < 0: not supported yet: an orbit "
+                                    "whose angles turn (NRTN, TRANHO's rotations)",
+                                    keys=("ISTART",))
+        self._umax = U[-1].copy()
         super()._begin(U, old)
+
+    def _pieces_start(self, rec, stored: int, par: np.ndarray):
+        """The start of ISTART = -N (washer.cont.systems.homoclinic_switching): a record
+        of the N + 1 pieces as it is, a 1-homoclinic orbit cut into them (TRANHO)."""
+        ndm, n = self.ndm, self.pieces
+        if rec is None or stored == 0:
+            raise SettingsError(f"IPS = 9 with ISTART = {1 - n} (n-homoclinic branch "
+                                "switching): not supported yet: a start from STPNT (AUTO "
+                                "calls STPNT for the N + 1 pieces' NDIM components); "
+                                "restart (IRS) from a stored homoclinic orbit",
+                                keys=("ISTART", "IRS"))
+        if stored >= n * ndm:
+            return rec
+        if stored >= 3 * ndm:
+            raise SettingsError(f"IPS = 9 with ISTART = {1 - n} (n-homoclinic branch "
+                                f"switching): not supported yet: from a stored "
+                                f"{stored // ndm - 1}-homoclinic orbit (PREHO's copy of "
+                                "the forelast piece); restart from a 1-homoclinic orbit",
+                                keys=("ISTART",))
+        try:
+            return sw.pieces_from_orbit(rec, ndm, n, par, self.lin,
+                                        lambda u, p: self.user.func(np.asarray(u, float), p))
+        except ValueError as e:
+            raise SettingsError("IPS = 9: " + str(e), keys=("ISTART", "ITWIST")) from e
 
     def _equilibrium(self, u0, par) -> np.ndarray:
         """x0 (the left equilibrium): PAR(12 .. 11 + NDIM), after PVLS where the user's."""
@@ -394,8 +446,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if user.has_dfdu:
             def dfdu_batch(U, pars):
                 return pars[:, 10, None, None] * user.dfdu_many(U, pars)
-        if self.itwist:
-            func_batch, dfdu_batch = adj.field(user, ndm)
+        if self.itwist or self.pieces:
+            func_batch, dfdu_batch = (sw.field(user, ndm, self.pieces) if self.pieces
+                                      else adj.field(user, ndm))
 
             def func(u, par):
                 return func_batch(np.asarray(u, float)[None], np.asarray(par, float)[None])[0]
@@ -412,7 +465,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 parts.append(u1[self.rev])
             else:
                 A2 = A1 if x2 is x1 else self._A(x2, par)
-                parts.append(self._right.rows(A2.T) @ (u1 - x2))
+                end = self._right.rows(A2.T) @ (w1[self._last] - x2)
+                if self.pieces and not self.lin:
+                    end = end + ndm * par[sw.gap_index(1) - 1]   # FBHO's jump, see sw
+                parts.append(end)
             if self.fixed:
                 U = np.vstack([w0, w1])
                 parts.append([self.psi(k, U, par, self._fixed_vectors)
@@ -427,6 +483,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 A2 = A1 if x2 is x1 else self._A(x2, par)
                 parts.append(adj.boundary_rows(self._adj_left, self._adj_right, A1, A2,
                                                w0[ndm:], w1[ndm:]))
+            if self.pieces:
+                parts += sw.boundary_rows(w0, w1, par, ndm, self.pieces, self.lin,
+                                          self._umax)
             return np.concatenate([np.ravel(q) for q in parts])
 
         def icnd(u, uold, udot, upold, par):
@@ -438,7 +497,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
                 return phase[None]
             return np.stack([phase, adj.integrand(u, uold, ndm)])
 
-        return Problem(ndm * (1 + self.itwist), func, func_batch=func_batch, dfdu_batch=dfdu_batch,
+        return Problem(ndm * max(1 + self.itwist, self.pieces), func, func_batch=func_batch, dfdu_batch=dfdu_batch,
                        name=user.name, npar=user.npar, pvls=user._pvls,
                        parnames=user.parnames, unames=user.unames, jac=user.jac,
                        bcnd=bcnd, icnd=icnd if nint else None)

@@ -1,0 +1,170 @@
+"""HomCont's n-homoclinic branch switching (ISTART = -N,
+washer.cont.systems.homoclinic_switching): the cut of a 1-homoclinic orbit into N + 1
+pieces (TRANHO) and back (CPBKHO) on an orbit whose collocation polynomials are exact,
+and AUTO's demo sib, runs 7-9 (tests/data/homcont/sib: the switch to the 2-homoclinic
+orbit along Lin's direction, its gap closed in (PAR(4), PAR(5)), the orbit continued as
+one), row for row against AUTO-07p's output from the same start.
+"""
+from __future__ import annotations
+
+import gzip
+import shutil
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from b_rows import branch_rows
+from washer.auto.script import run_script
+from washer.cont import collocation as col
+from washer.cont.systems import homoclinic_switching as sw
+
+DATA = Path(__file__).parent / "data" / "homcont" / "sib"
+DEMO = Path(__file__).parent / "data" / "auto_demos" / "sib"
+NDM = 3
+
+
+def _orbit(t):
+    """A closed curve through x0 = 0 (u(0) = u(1) = 0), polynomial of degree 4 in t:
+    NCOL = 4 collocation polynomials represent it exactly, so every cut and join below
+    is exact to rounding. Its farthest point from 0 is at t = 0.5."""
+    t = np.asarray(t, float)[:, None]
+    s = t * (1 - t)
+    return np.hstack([4 * s, 16 * s ** 2, s * (2 * t - 1)])
+
+
+def _record(ncol=4):
+    tm = np.r_[0.0, np.sort(np.random.default_rng(3).uniform(0.02, 0.98, 18)), 1.0]
+    tm[9] = 0.5                                    # a mesh point at the farthest point
+    tm = np.sort(tm)
+    t = col.Mesh(tm, ncol).node_times()
+    U = _orbit(t)
+    V = np.tile([0.0, 3.0, 4.0], (len(t), 1))      # an "adjoint": Lin's direction (0, .6, .8)
+    return SimpleNamespace(U=np.hstack([U, V]), t=t, ntst=len(tm) - 1, ncol=ncol, udot=None,
+                           rldot=[], icp=[], lab=1)
+
+
+def test_pieces_of_an_exact_orbit_and_back():
+    rec = _record()
+    T, npar = 7.0, 36 + 2 * NDM
+    par = np.zeros(npar)
+    par[10] = T
+
+    def f(u, p):                                   # only f(x_max) is stored
+        return np.array([1.0, 2.0, 3.0]) + u
+    out = sw.pieces_from_orbit(rec, NDM, 3, par, True, f)
+    # the times: PAR(10) = T t_max, PAR(21) = T, PAR(11) = T (1 - t_max); gaps 0
+    assert (par[9], par[20], par[10]) == (3.5, 7.0, 3.5)
+    assert par[19] == par[21] == 0.0
+    d, fm = sw.lin_slices(npar, NDM)
+    assert np.allclose(par[d], [0.0, 0.6, 0.8], atol=1e-15)
+    assert np.allclose(par[fm], f(_orbit([0.5])[0], par), atol=1e-15)
+    # the merged mesh: 2 NTST - 2 intervals, AUTO's count (no two meshes share a point)
+    assert out.ntst == 2 * rec.ntst - 2 and out.U.shape == (out.ntst * 4 + 1, 3 * NDM)
+    s = out.t
+    # piece 0 = u on [0, 1/2], the middle piece u from 1/2 round to 1/2, the last u on
+    # [1/2, 1]: exact polynomials, rounding only
+    assert np.allclose(out.U[:, :3], _orbit(s / 2), atol=1e-13)
+    assert np.allclose(out.U[:, 3:6], _orbit((s + 0.5) % 1.0), atol=1e-13)
+    assert np.allclose(out.U[:, 6:], _orbit(0.5 + s / 2), atol=1e-13)
+    # the pieces join: each end is the next start
+    assert np.allclose(out.U[-1, :6], out.U[0, 3:], atol=1e-13)
+    # back to one orbit: twice round the curve in PAR(11) = 2 T
+    back = sw.orbit_from_pieces(out, NDM, par)
+    assert (par[9], par[10]) == (0.0, 2 * T)
+    assert back.ntst == 3 * out.ntst and back.U.shape == (back.ntst * 4 + 1, NDM)
+    assert np.allclose(back.U, _orbit((2 * back.t) % 1.0), atol=1e-13)
+
+
+def test_piece_times_and_gaps_are_autos_parameters():
+    # FFHO's IT and FBHO's gaps: PAR(10), PAR(21), PAR(23), .., PAR(11); PAR(20), PAR(22), ..
+    assert [sw.time_index(k, 4) for k in range(4)] == [10, 21, 23, 11]
+    assert [sw.gap_index(k) for k in range(3)] == [20, 22, 24]
+    assert sw.n_pieces(-3) == 4
+
+
+def _rows(path):
+    return [r for r in branch_rows(path)]
+
+
+#: the b-rows' MAX U(1) .. MAX U(3) columns (after PAR(ICP(1)) and the L2 norm)
+MAX_COLUMNS = slice(2, 5)
+
+
+def _assert_rows_match(ours, auto, skip_last=False):
+    """Every row: PT and TY AUTO's; the parameter columns and the L2 norm to 2e-6
+    relative (both solve the same collocation equations, Newton to EPSL = EPSU = 1e-7 in
+    relative change at each point; measured at most 1.7e-6 over the 70 rows), values
+    near 0 to 1e-7 absolute. The MAX U columns are the largest node values, which
+    depend on where the mesh puts its nodes: the start's mesh from ADAPT2 is not AUTO's
+    (PT 1: MAX U(2) 0.3847327 against 0.3848650, while the L2 norm, an integral, agrees
+    to 2e-9; why the two adapted meshes differ is not traced), so over the first 6 rows of
+    a run, while the mesh adapts to the solution at every step (IAD = 1), they agree to
+    1e-3 (measured 9e-4), then to 2e-6 as the rest."""
+    assert [(r.pt, r.ty) for r in ours] == [(r.pt, r.ty) for r in auto]
+    for o, a in zip(ours[:-1] if skip_last else ours, auto):
+        ov, av = np.array(o.values), np.array(a.values)
+        if o.pt <= 6:
+            assert np.allclose(ov[MAX_COLUMNS], av[MAX_COLUMNS], rtol=1e-3)
+            ov[MAX_COLUMNS] = av[MAX_COLUMNS]
+        assert np.allclose(ov, av, rtol=2e-6, atol=1e-7), (o.pt, o.values, a.values)
+
+
+@pytest.mark.slow
+def test_sib_switch_to_the_2_homoclinic_orbit_matches_auto(tmp_path, monkeypatch):
+    work = tmp_path / "sib"
+    work.mkdir()
+    for f in ("c.sib", "sib.c"):
+        shutil.copy(DEMO / f, work)
+    shutil.copy(DATA / "sib_switch.auto", work)
+    (work / "s.6").write_bytes(gzip.decompress((DATA / "s.6.gz").read_bytes()))
+    monkeypatch.chdir(work)
+    run_script("sib_switch.auto")
+    ref = DATA / "autoref"
+    # run 7: the 2-homoclinic start and its gap PAR(22) opened to 0.2 (38 rows)
+    _assert_rows_match(_rows(work / "b.7"), _rows(ref / "b.7"))
+    # run 8: the gap closed in (PAR(4), PAR(5)): UZ at PAR(4) = 0.074 and at PAR(22) = 0,
+    # the 2-homoclinic orbit. AUTO locates that zero to its EPSS = 1e-5 (PAR(22) =
+    # 2.3e-6 there), ours to Newton's tolerance; the located points agree to that
+    ours, auto = _rows(work / "b.8"), _rows(ref / "b.8")
+    _assert_rows_match(ours, auto, skip_last=True)
+    assert ours[-1].ty == -4 and abs(ours[-1].values[-1]) < 1e-10
+    assert np.allclose(ours[-1].values[:-1], auto[-1].values[:-1], rtol=1e-5)
+
+
+@pytest.mark.slow
+def test_sib_2_homoclinic_orbit_continued_as_one_from_autos_orbit(tmp_path, monkeypatch):
+    # run 9 from AUTO's own 2-homoclinic orbit (its s.8, UZ23): the pieces joined into one
+    # orbit (CPBKHO) continued with the projection conditions (ISTART = 1). Rows 1-7 (to the
+    # UZ at PAR(4) = 0.15) are AUTO's; after the located UZ the steps differ (AUTO's next
+    # step from 0.1499999, ours from 0.15) along the same curve.
+    work = tmp_path / "sib"
+    work.mkdir()
+    for f in ("c.sib", "sib.c"):
+        shutil.copy(DEMO / f, work)
+    shutil.copy(DATA / "sib_run9.auto", work)
+    (work / "s.8").write_bytes(gzip.decompress((DATA / "autoref" / "s.8.gz").read_bytes()))
+    monkeypatch.chdir(work)
+    run_script("sib_run9.auto")
+    ours, auto = _rows(work / "b.9"), _rows(DATA / "autoref" / "b.9")
+    assert [r.ty for r in ours[:7]] == [r.ty for r in auto[:7]] and ours[6].ty == -4
+    for o, a in zip(ours[:6], auto[:6]):
+        assert np.allclose(o.values, a.values, rtol=1e-6, atol=1e-7), (o.pt, o.values, a.values)
+    # the UZ: PAR(4) = 0.15 located by both (AUTO's at 0.14999991), PAR(5) there
+    assert ours[6].values[0] == pytest.approx(0.15, abs=1e-12)
+    assert ours[6].values[-1] == pytest.approx(auto[6].values[-1], abs=1e-8)
+    # past it, the same curve PAR(5)(PAR(4)): ours interpolated (a cubic spline through
+    # our points, 0.004-0.015 apart in PAR(4)) at AUTO's PAR(4)
+    from scipy.interpolate import CubicSpline
+    p4, p5 = (np.array([r.values[0] for r in ours[6:]]),
+              np.array([r.values[-1] for r in ours[6:]]))
+    order = np.argsort(p4)
+    curve = CubicSpline(p4[order], p5[order])
+    inside = [a for a in auto[7:] if p4.min() <= a.values[0] <= p4.max()]
+    err = np.array([abs(curve(a.values[0]) - a.values[-1]) for a in inside])
+    # the spline's own error where our points are farthest apart and the curve bends
+    # most (PAR(4) 0.12-0.15: measured 5e-7), rounding where they are dense (measured
+    # 1.3e-9, 20 of AUTO's 23 points)
+    assert len(inside) == 23 and err.max() < 1e-6
+    assert np.sum(err < 2e-9) >= 19
