@@ -53,8 +53,11 @@ UNLOCATED = ("EP", "MX")
 PERIOD_RTOL = 1e-3
 
 #: Demos run script by script: the scripts of the folder, in order (snh.auto runs h1b.auto,
-#: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep).
-SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto")}
+#: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep),
+#: and demos whose script is not named after the folder (fhh and fnb are AUTO's two folders
+#: of the FitzHugh-Nagumo model's homoclinic orbits, each with its own fhn.auto).
+SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto"), "fhh": ("fhn.auto",),
+           "fnb": ("fhn.auto",)}
 
 
 
@@ -288,7 +291,8 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
 
 
 def all_demos() -> list[str]:
-    return sorted(p.name for p in DEMOS.iterdir() if (p / f"{p.name}.auto").exists())
+    return sorted(p.name for p in DEMOS.iterdir()
+                  if (p / SCRIPTS.get(p.name, (f"{p.name}.auto",))[0]).exists())
 
 
 def main(argv: list[str]) -> int:

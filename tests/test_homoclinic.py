@@ -251,12 +251,43 @@ EXACT_F90 = """
 """
 
 
+#: The same file in C: AUTO's C user files declare the block as `blhom_1` (fnb's and kdv's
+#: STPNT read ISTART and IEQUIB from it).
+EXACT_C = """
+#include "auto_f2c.h"
+extern struct { integer itwist, istart, iequib, nfixed, npsi, nunstab, nstab, nrev; } blhom_1;
+int func(integer ndim, const doublereal *u, const integer *icp, const doublereal *par,
+         integer ijac, doublereal *f, doublereal *dfdu, doublereal *dfdp)
+{
+    doublereal x = u[0] - par[2];
+    f[0] = u[1];
+    f[1] = par[0] * x - x * x + par[1] * u[1];
+    return 0;
+}
+int stpnt(integer ndim, doublereal t, doublereal *u, doublereal *par)
+{
+    doublereal s;
+    par[0] = 1.0; par[1] = 0.0; par[2] = 0.5; par[10] = 40.0;
+    if (blhom_1.iequib != 0) { par[11] = 0.5; par[12] = 0.0; } else { par[11] = 9.0; }
+    s = (t - 0.5) * par[10];
+    u[0] = par[2] + 1.5 / (cosh(s / 2) * cosh(s / 2));
+    u[1] = -1.5 * tanh(s / 2) / (cosh(s / 2) * cosh(s / 2));
+    return 0;
+}
+int bcnd() { return 0; }
+int icnd() { return 0; }
+int fopt() { return 0; }
+int pvls() { return 0; }
+"""
+
+
 @pytest.mark.skipif(shutil.which("gfortran") is None or shutil.which("gcc") is None,
                     reason="gcc and gfortran are needed (Debian: gcc gfortran)")
-def test_a_fortran_stpnt_reads_homconts_common_block(tmp_path):
+@pytest.mark.parametrize("source", ["hx.f90", "hx.c"])
+def test_a_user_files_stpnt_reads_homconts_common_block(tmp_path, source):
     # AUTO's user files read HomCont's constants from COMMON /BLHOM/ (kpr's STPNT sets the
     # equilibrium only for IEQUIB /= 0): this one writes PAR(12) = 0.5 there, else 9.
-    (tmp_path / "hx.f90").write_text(EXACT_F90)
+    (tmp_path / source).write_text(EXACT_F90 if source.endswith(".f90") else EXACT_C)
     prob = load_user_problem("hx", tmp_path, 2)
     c = Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=40, NCOL=4, JAC=0, ISP=0,
                        ILP=0, DS=0.05, DSMAX=0.2, NMX=3, NPR=1))

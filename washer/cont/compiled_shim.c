@@ -342,21 +342,16 @@ void washer_stpnt(int ndim, double t, double *u, double *par)
 #endif
 }
 
-#if WASHER_FORTRAN
 /* AUTO's COMMON /BLHOM/ (homcont.f90): ITWIST, ISTART, IEQUIB, NFIXED, NPSI, NUNSTAB, NSTAB,
  * NREV, which a user's STPNT or PVLS may read (kpr's STPNT sets the equilibrium only for
  * IEQUIB /= 0, cir's PVLS only for IEQUIB = 0). Defined here so that every file links,
- * whether it declares the block or not; a file's COMMON of that name is this storage. */
+ * whether it declares the block or not; a Fortran file's COMMON of that name is this
+ * storage, and so is a C file's `blhom_1` (auto_f2c.h names it blhom_, as AUTO's does). */
 int blhom_[8];
-#endif
 
 void washer_set_homcont(const int *values)
 {
-#if WASHER_FORTRAN
     memcpy(blhom_, values, sizeof blhom_);
-#else
-    (void)values;       /* AUTO's C interface has no such block */
-#endif
 }
 
 void washer_pvls(int ndim, const double *u, double *par)

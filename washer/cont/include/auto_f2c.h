@@ -37,6 +37,11 @@ typedef integer logical;
 #define ARRAY2D(array,i,j) array[(i) + (j) * array ## _dim1]
 #define ARRAY3D(array,i,j,k) array[(i) + ((j)  + (k) * array ## _dim2) * array ## _dim1]
 
+/* HomCont's constants (ITWIST, ISTART, IEQUIB, NFIXED, NPSI, NUNSTAB, NSTAB, NREV): a C file
+ * declares `extern struct {...} blhom_1;` and AUTO's header names it the Fortran COMMON
+ * /BLHOM/, blhom_ (the fnb and kdv demos' STPNT read IEQUIB and ISTART from it). */
+#define blhom_1 blhom_
+
 typedef int user_func_t(integer ndim, const doublereal *u, const integer *icp,
                         const doublereal *par, integer ijac,
                         doublereal *f, doublereal *dfdu, doublereal *dfdp);
