@@ -58,12 +58,13 @@ EXPECTED_FAIL = {
            "collapse (its MX at nu1 = 1.2910) to an LP at nu1 = 1.417015, where the "
            "other tangency locus comes too; a point of ours past AUTO's MX is a fold of "
            "the connection's branch (README)",
-    "fhh": "29 of 34: run 4's UZ on PAR(22) = 0 differs; run 8's UZR on HomCont's test "
-           "functions PAR(29), PAR(30), PAR(33) past NPAR is refused and the script stops",
-    "fnb": "20 of 52: run 5's UZR on PAR(22) past NPAR = 14 is refused and the script stops; "
-           "run 6 is homoclinic branch switching (ISTART = -2), not done",
-    "kdv": "5 of 15: run 2's step in PAR(9) (in no equation) is not AUTO's, run 3 has one UZ "
-           "where AUTO has two; runs 4-7 are homoclinic branch switching (ISTART = -3)",
+    "fhh": "32 of 34: AUTO's UZ for PAR(2) = 0 in run 5 is written at -7.53e-4 (its "
+           "location stopped on step size off the zero); run 8 (IFIXED = [13]) ends MX in "
+           "ours where PSI 2 = 0, AUTO's steps pass it to EP at NMX",
+    "fnb": "21 of 52: run 6 is homoclinic branch switching (ISTART = -2), not done",
+    "kdv": "5 of 15: AUTO's UZ for PAR(1) = 3 over run 3's Newton jump is at 2.7295 (ours "
+           "none), so r3('UZ2') is not found; runs 4-7 are homoclinic branch switching "
+           "(ISTART = -3)",
     "ppp": "47 of 58, AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "
            "switched Hopf loci where the exact l1 is -0.662 (its test reads a Newton "
            "residual), and its BP of cycles 7.0e-4 before HB7, where the family ends "

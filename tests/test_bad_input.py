@@ -472,3 +472,19 @@ def test_a_failing_stpnt_of_a_profile_names_its_time_and_the_users_line(tmp_path
     with pytest.raises(ProblemError, match=r"failed extending the restart to NDIM = 2 at "
                                            r"t = 1\.0: ValueError"):
         prob.extend_profile(np.zeros((2, 1)), np.zeros(3), [0.0, 1.0])
+
+
+def test_uzr_on_a_parameter_past_npar_widens_the_parameters(tmp_path):
+    """AUTO tests UZR/UZSTOP on any parameter of its PAR array, longer than NPAR (HomCont's
+    fhh demo stops on PAR(33) with NPAR = 14): the run goes on with the parameters widened
+    to that index (a value never reached labels nothing), an index below 1 is refused."""
+    from washer.run import RunError, run
+    c = _ab(tmp_path)
+    base = c.read_text()
+    c.write_text(base + "UZSTOP = {20: 1.0}\nNMX = 5\n")
+    br = run(c, verbose=False)
+    assert br.status == "ok" and len(br.rows) == 5
+    assert all(len(r.par) >= 20 and r.par[19] == 0.0 for r in br.rows)
+    c.write_text(base + "UZR = {-0: 1.0}\n")
+    with pytest.raises(RunError, match=r"UZR/UZSTOP on PAR\(0\)"):
+        run(c, verbose=False)

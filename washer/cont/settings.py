@@ -259,9 +259,13 @@ class Settings:
         uz = [(abs(i), v, i < 0) for i, v in c.par_values("UZR")]
         uz += [(abs(i), v, True) for i, v in c.par_values("UZSTOP")]
         for i, _, _ in uz:
-            if not 1 <= i <= npar:
+            if i < 1:
                 raise SettingsError(f"{src}: UZR/UZSTOP on PAR({i}): expected an index in "
                                     f"1..NPAR={npar}")
+        # AUTO tests a UZR/UZSTOP value on any parameter of its PAR array, which is longer
+        # than the c-file's NPAR (HomCont's demos fhh and fnb stop on PSI 13 = PAR(33) with
+        # NPAR = 14, the test functions of the run before): the parameters widen to cover it.
+        npar = max([npar] + [i for i, _, _ in uz])
         stop, off, on = {}, set(), set()
         for entry in list(c["STOP"]):
             name, num = split_type_entry(entry)
