@@ -425,10 +425,9 @@ def test_isw2_at_a_regular_label_names_the_labels_it_takes(tmp_path):
 def test_missing_system_lists_what_exists_for_that_ips():
     """IPS = 5 has no ISW = 2 system: the refusal says what IPS = 5 does, not the
     whole registry."""
-    import washer.cont.systems  # noqa: F401  (fills the registry)
-    from washer.cont.system import lookup
+    from washer.cont.systems import find
     with pytest.raises(KeyError) as err:
-        lookup(5, 2, "LP")
+        find(5, 2, "LP")
     msg = err.value.args[0]
     assert "IPS=5, ISW=2 starting at 'LP'" in msg and "with IPS=5: ISW=1 from any point" in msg
     assert "IPS=2" not in msg

@@ -1,6 +1,7 @@
 """The engine's shape: every registered system honours the contract, runs live
 in memory without any sink, a run's result pickles and re-executes identically, and the
 test switches follow AUTO's CHECKSP table (docs/auto.md section 1.3)."""
+import ast
 import pickle
 import shutil
 from pathlib import Path
@@ -8,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import washer.cont.systems  # noqa: F401  (fills the registry)
+from washer.cont import systems
 from washer.auto.constants import Constants, read_constants
 from washer.auto.files import read_s
 from washer.cont.user_files import load_python_problem
@@ -19,6 +20,7 @@ from washer.cont.system import SYSTEMS, ContinuedSystem
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
+systems.load()          # every module of washer.cont.systems: the whole registry
 
 
 @pytest.mark.parametrize("key", sorted(SYSTEMS, key=str))
@@ -32,6 +34,28 @@ def test_every_registered_system_has_the_whole_contract(key):
     for attr in ("curve_type", "arclength"):
         assert hasattr(cls, attr), f"{cls.__name__} lacks {attr}"
     assert cls.arclength in ("sphere", "plane")
+
+
+def _registered_ips(source: str) -> set:
+    """The IPS values of a module's register(IPS, ...) calls (decorators and plain calls),
+    read from its source."""
+    found = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "register":
+            found.add(ast.literal_eval(node.args[0]))
+    return found
+
+
+def test_a_run_imports_the_modules_of_its_ips():
+    """systems.MODULES names, for each IPS, every module registering a system of that IPS
+    (read from the modules' register calls), so that a run of one IPS imports those only;
+    and every IPS of the registry is in it."""
+    folder = Path(systems.__file__).parent
+    for path in sorted(folder.glob("*.py")):
+        for ips in _registered_ips(path.read_text()):
+            assert path.stem in systems.MODULES.get(ips, ()), \
+                f"{path.name} registers IPS={ips}: add it to MODULES[{ips}]"
+    assert {ips for ips, _, _ in SYSTEMS} == set(systems.MODULES)
 
 
 def _fd_jacobian(sysm, x, h=1e-4):

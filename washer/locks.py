@@ -17,7 +17,6 @@ import contextlib
 import datetime
 import json
 import os
-import socket
 import sys
 from pathlib import Path
 
@@ -77,7 +76,7 @@ def output_lock(folder, name: str, what: str = ""):
         os.close(fd)
     try:
         info = json.dumps({
-            "pid": os.getpid(), "host": socket.gethostname(),
+            "pid": os.getpid(), "host": os.uname().nodename,   # gethostname(2)'s name
             "started": datetime.datetime.now().isoformat(timespec="seconds"),
             "command": " ".join([Path(sys.argv[0]).name] + sys.argv[1:])[:300]}).encode()
         # Written over any stale content, then cut to its length: a truncation to 0 makes

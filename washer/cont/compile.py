@@ -17,6 +17,7 @@ Used by the AUTO user files (washer.cont.compiled) and by generated problems.
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -169,6 +170,40 @@ def build_library(sources: list[Source], name: str, includes: list[Path] = (),
         shutil.copyfile(out, partial)
         os.replace(partial, lib)
     return lib
+
+
+def declarations(cdef: str, name: str):
+    """cffi's FFI of the C declarations `cdef`, to dlopen libraries with (ABI mode).
+
+    It is cffi's out-of-line ABI module of them (`set_source(module, None)`), written once
+    into the cache folder, named by a hash of the declarations and cffi's version, and
+    imported from there: parsing them (pycparser's import and its parse) at every start
+    cost a short run about 150 M instructions, a third of numpy's import. Where the cache
+    cannot be written, the declarations are parsed here (the same FFI, slower to make)."""
+    # the version of cffi's backend, which the module is made for (cffi's own import
+    # is not needed to load it)
+    from _cffi_backend import __version__ as version
+    key = hashlib.sha256(f"{version}\0{cdef}".encode()).hexdigest()[:20]
+    module = f"_washer_ffi_{_safe(name)}_{key}"
+    path = cache_dir() / f"{module}.py"
+    if not path.exists():
+        import cffi
+        builder = cffi.FFI()
+        builder.set_source(module, None)
+        builder.cdef(cdef)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            # written whole under another name, then moved: a concurrent start never
+            # imports half a file
+            partial = path.with_name(f".{path.name}.{os.getpid()}")
+            builder.emit_python_code(str(partial))
+            os.replace(partial, path)
+        except OSError:
+            return builder
+    spec = importlib.util.spec_from_file_location(module, path)
+    loaded = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(loaded)
+    return loaded.ffi
 
 
 def _call(cmd: list[str], what: str) -> None:

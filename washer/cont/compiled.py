@@ -25,9 +25,9 @@ import weakref
 from pathlib import Path
 
 import numpy as np
-from cffi import FFI
 
-from washer.cont.compile import (CompileError, build_library, source_file, source_text)
+from washer.cont.compile import (CompileError, build_library, declarations, source_file,
+                                 source_text)
 from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
@@ -77,8 +77,7 @@ int washer_ae_l1(int ndim, int npar, const int *icp, const double *x, const doub
                  double omega, const double *A, double *l1, double *work, double *scratch);
 """
 
-_ffi = FFI()
-_ffi.cdef(CDEF)
+_ffi = declarations(CDEF, "bridge")
 _libs: dict[str, object] = {}          # one dlopen per library file
 _users: dict[str, "weakref.WeakSet"] = {}   # the CompiledUsers of each library file
 

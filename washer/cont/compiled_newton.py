@@ -149,11 +149,9 @@ def _library(source: str, cdef: str):
     if source in _failures:
         raise _failures[source]
     if source not in _libraries:
-        from cffi import FFI
-        from washer.cont.compile import build_library, source_file
+        from washer.cont.compile import build_library, declarations, source_file
         from washer.cont.compiled import INCLUDE
-        ffi = FFI()
-        ffi.cdef(cdef)
+        ffi = declarations(cdef, Path(source).stem)
         try:
             path = build_library([source_file(HERE / source)], Path(source).stem,
                                  includes=[INCLUDE])
@@ -451,9 +449,10 @@ def compiled_corrector(system, settings, divergence: float):
     from washer.cont.compiled import CompiledProblem
     from washer.cont.problem import Problem
     from washer.cont.symbolic import SymbolicProblem
-    from washer.cont.compiled_po import periodic_corrector
     problem = getattr(system, "problem", None)
     if getattr(system, "arclength", None) == "plane":
+        # here: compiled_po brings the collocation code, which equilibria never use
+        from washer.cont.compiled_po import periodic_corrector
         return periodic_corrector(system, settings, divergence)
     name = "equilibrium" if getattr(system, "residual_is_func", False) else \
         getattr(system, "compiled_system", None)

@@ -11,13 +11,13 @@ import re
 
 import numpy as np
 
-import washer.cont.systems  # noqa: F401  (fills the registry)
 from washer.cont.codes import split_code, type_name
 from washer.cont.parabolic import PARABOLIC_KINDS, TIME, ParabolicProblem
 from washer.cont.record import find_record
 from washer.cont.problem import ProblemError
 from washer.cont.settings import Settings, SettingsError
-from washer.cont.system import StartData, lookup
+from washer.cont.system import StartData
+from washer.cont.systems import find
 
 
 class RunError(RuntimeError):
@@ -243,7 +243,7 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     if kind in CYCLE_CURVES and s.ISW not in (2, 3):
         isw_key = 1       # ISW = 1 at a point of a locus of cycles: the orbit's branch
     try:
-        ctor = lookup(s.IPS, isw_key, "shooting" if shooting else kind)
+        ctor = find(s.IPS, isw_key, "shooting" if shooting else kind)
     except KeyError as exc:
         raise RunError(f"{c.source}: {exc.args[0]}") from None
     names = {int(k): v for k, v in c["unames"].items()}

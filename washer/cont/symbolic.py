@@ -130,13 +130,10 @@ _LIBS: dict = {}                # library path -> its dlopen (libraries are cont
 
 
 def _ffi():
-    """The FFI declaring CDEF: parsed once per process (a cdef costs milliseconds, more
-    than a short run of a small problem)."""
+    """The FFI declaring CDEF, made once per process (washer.cont.compile.declarations)."""
     if not _FFI:
-        import cffi
-        ffi = cffi.FFI()
-        ffi.cdef(CDEF)
-        _FFI.append(ffi)
+        from washer.cont.compile import declarations
+        _FFI.append(declarations(CDEF, "symbolic"))
     return _FFI[0]
 
 

@@ -30,11 +30,12 @@ from __future__ import annotations
 import copy
 import hashlib
 import os
+import random
 from pathlib import Path
 
 import numpy as np
 
-from washer.cont.compile import CompileError, build_library, source_text
+from washer.cont.compile import CompileError, build_library, declarations, source_text
 from washer.cont.compiled import SHIM, INCLUDE, CompiledProblem, CompiledUser
 from washer.cont.pointwise import same_bits
 from washer.cont.problem import Problem, ProblemError, VECTORISE_MIN
@@ -227,10 +228,7 @@ class TracedProblem(CompiledProblem):
 
 def _ffi():
     if not _FFI:
-        import cffi
-        ffi = cffi.FFI()
-        ffi.cdef(_BIND_CDEF)
-        _FFI.append(ffi)
+        _FFI.append(declarations(_BIND_CDEF, "traced_bind"))
     return _FFI[0]
 
 
@@ -249,17 +247,23 @@ def _bind(lib_path: Path, ufuncs: list) -> None:
         raise TraceError("the generated C's loop table has another size")
 
 
-def _start_points(python: Problem, rng) -> tuple[np.ndarray, np.ndarray]:
+def _start_points(python: Problem, rng: random.Random) -> tuple[np.ndarray, np.ndarray]:
     """LOAD_POINTS points (u, par) around the file's starting point (stpnt, else u = 0
-    and PAR = 0): offsets of relative sizes 1e-3 to 1 (and the point itself)."""
+    and PAR = 0): offsets of relative sizes 1e-3 to 1 (and the point itself), normal
+    deviates of `rng` (Python's generator: importing numpy.random costs a short run more
+    than drawing these few hundred numbers one by one)."""
     n = python.ndim
     try:
         u0, p0 = python.start(TRACE_NPAR)
     except Exception:
         u0, p0 = np.zeros(n), np.zeros(TRACE_NPAR)
+
+    def normal(k: int) -> np.ndarray:
+        return np.array([rng.gauss(0.0, 1.0) for _ in range(k)])
+
     scales = np.geomspace(1e-3, 1.0, LOAD_POINTS - 1)
-    us = [u0] + [u0 + s * (1 + np.abs(u0)) * rng.standard_normal(n) for s in scales]
-    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * rng.standard_normal(len(p0)) for s in scales]
+    us = [u0] + [u0 + s * (1 + np.abs(u0)) * normal(n) for s in scales]
+    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * normal(len(p0)) for s in scales]
     return np.array(us), np.array(ps)
 
 
@@ -322,7 +326,7 @@ def _build(python: Problem, path: Path) -> TracedProblem:
                        "bit at the start and at the first points of each run)")
     user = TracedUser(path, n, lib, state)
     # verified where the file starts before it is trusted
-    us, ps = _start_points(python, np.random.default_rng(20261202))
+    us, ps = _start_points(python, random.Random(20261202))
     with np.errstate(all="ignore"):
         _agree(user.func_batch(us, ps), python._func, us, ps, "func(u, par)")
         if traced_j is not None:

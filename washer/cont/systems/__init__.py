@@ -1,5 +1,8 @@
-"""The continued systems, one module each; importing this package fills the
-registry `washer.cont.system.SYSTEMS` (each module registers its classes).
+"""The continued systems, one module each; importing a module fills its entries of the
+registry `washer.cont.system.SYSTEMS` (each module registers its classes), and a run
+imports those of its IPS only (`find`): all of them, with the collocation code they
+share, are a third of a short equilibrium run's instructions where Python compiles
+their sources afresh.
 
 equilibrium  f(u, par) = 0 in one parameter (IPS = 0, 1; AUTO's FUNI)
 fold         the fold locus in two parameters (ISW = 2 from LP; FNLP)
@@ -33,8 +36,48 @@ circles      invariant circles of maps (Fourier collocation), born at a Neimark-
 _algebraic, _loci  the bases of the algebraic systems
 """
 import importlib
-import pkgutil
 
-for _mod in pkgutil.iter_modules(__path__):
-    if not _mod.name.startswith("_"):
-        importlib.import_module(f"{__name__}.{_mod.name}")
+from washer.cont.system import lookup
+
+#: IPS -> the modules registering its systems (tests/test_engine_contract.py reads every
+#: module's register() calls against it; one missing here costs a run time, not its system:
+#: `find` then imports them all).
+MODULES = {
+    0: ("equilibrium", "fold", "branch_point"),
+    1: ("equilibrium", "fold", "hopf", "branch_point"),
+    -1: ("maps",),
+    -2: ("timeint",),
+    2: ("periodic", "shooting", "cycle_fold", "cycle_pd_tr", "cycle_branch_point"),
+    4: ("general_bvp", "bvp_branch_point"),
+    5: ("algebraic_optimisation",),
+    7: ("bvp_floquet",),
+    9: ("homoclinic", "homoclinic_fold"),
+    11: ("waves",),
+    12: ("waves",),
+    14: ("parabolic_bvp",),
+    15: ("periodic_optimisation",),
+    16: ("parabolic_bvp",),
+    17: ("parabolic_bvp",),
+}
+
+
+def load(ips: int | None = None) -> None:
+    """Import the modules registering the systems of `ips` (None: every module)."""
+    if ips is None:
+        import pkgutil
+        names = [m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_")]
+    else:
+        names = MODULES.get(ips, ())
+    for name in names:
+        importlib.import_module(f"{__name__}.{name}")
+
+
+def find(ips: int, isw: int, kind: str):
+    """The constructor for (IPS, ISW, start kind) (washer.cont.system.lookup), its IPS's
+    modules imported first; a KeyError naming what exists when there is none."""
+    load(ips)
+    try:
+        return lookup(ips, isw, kind)
+    except KeyError:
+        load()
+        return lookup(ips, isw, kind)

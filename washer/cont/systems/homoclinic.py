@@ -87,7 +87,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.linalg as sla
 
 from washer.cont import collocation as col
 from washer.cont.problem import Problem
@@ -163,6 +162,7 @@ def unsupported(s) -> list[str]:
 def spectrum(A: np.ndarray):
     """(eigenvalues sorted by real part, smallest first (EIGHO's order), the real parts
     of the unit right eigenvectors as rows, the same of the left ones)."""
+    import scipy.linalg as sla     # here: an equilibrium run never loads scipy.linalg
     lam, W, V = sla.eig(A, left=True, right=True)
     order = np.argsort(lam.real, kind="stable")
     lam, V, W = lam[order], V[:, order], W[:, order]
@@ -182,6 +182,7 @@ def invariant_basis(A: np.ndarray, m: int, stable: bool) -> np.ndarray:
     if not stable:
         re = -re[::-1]
     cut = 0.5 * (re[m - 1] + re[m]) if m < n else math.inf
+    import scipy.linalg as sla     # here: an equilibrium run never loads scipy.linalg
     if stable:
         _, Z, k = sla.schur(A, output="real", sort=lambda x, y: x < cut)
     else:
