@@ -32,6 +32,7 @@ import numpy as np
 import pytest
 
 from b_rows import branch_rows
+from washer.auto.files import read_s
 from washer.run import run
 
 PROBLEM = '''
@@ -162,6 +163,9 @@ SNH = Path(__file__).parent / "data" / "auto_demos" / "snh"
 #: of the codimension-zero connection at nu1 = 0.739324, 0.745796), written by AUTO-07p
 #: running tb.auto with the demo's constants (s.r7 of that run, the two LP records).
 SNH_R7 = Path(__file__).parent / "data" / "bvp_fold" / "s.snh7.gz"
+#: AUTO-07p's own record of the end (EP, label 10) of the 8th run's generating run from
+#: that LP record (tests/data/bvp_fold/README.md says how it was made).
+SNH_GEN8 = Path(__file__).parent / "data" / "bvp_fold" / "s.snh8gen.gz"
 #: tb.auto's constants at its 8th run (the 7th run's, with the 8th run's ICP, ISW, ISP,
 #: ITMX and STOP)
 SNH_8 = """e='snh', NDIM=9, IPS=4, NBC=11, NINT=2, NTST=100, NCOL=4, ILP=1, ITNW=7, ITMX=20,
@@ -170,6 +174,12 @@ parnames={1: 'nu1', 2: 'nu2', 3: 'd', 4: 'codim', 5: 'delta', 6: 'eps', 7: 'mu',
           9: 'T-', 10: 'T+', 11: 'T', 21: 'sigma-'},
 ICP=['nu1', 'T', 'delta', 'nu2', 'T-', 'mu'], STOP=['LP1']
 """
+
+
+def _gunzipped(gz, path):
+    """gz's content written to path (returned)."""
+    path.write_bytes(gzip.decompress(gz.read_bytes()))
+    return path
 
 
 def _b_rows(path):
@@ -183,9 +193,9 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
     """snh's tb.auto, 8th run, from AUTO-07p's own record of the LP (5 free parameters
     on the connection's branch: nu1, mu, T, delta, T-; the locus frees nu2 in place of mu
     and adds mu, so NFPR = 10 with the null vector's q along T, delta, nu2, T-). The
-    generating run ends where AUTO's does (its null vector's norm 0.1390297407 and q
-    along T- 0.35859489854, up to the null vector's sign, which AUTO's STDRBV takes from
-    a rate at rounding level); the locus then follows AUTO's rows of b.tb both ways:
+    generating run ends where AUTO's does (AUTO's own end record: its null vector's norm
+    PAR(31) and q along T- PAR(30), up to the null vector's sign, which AUTO's STDRBV
+    takes from a rate at rounding level); the locus then follows AUTO's rows of b.tb both ways:
     12 rows towards the Hopf point of the orbit (where AUTO's LP ends the run; its
     location is singular there, the orbit's amplitude going to 0) and 36 rows the other
     way, before AUTO's steps collapse (its MX at nu1 = 1.2910; ours goes on: README).
@@ -194,13 +204,15 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
     same (measured: 1.8e-8 in nu1, 1.3e-7 in T-). MAX xgamma is a maximum over the mesh's
     nodes, which the mesh adaptation moves: left out."""
     shutil.copy(SNH / "snh.f90", tmp_path)
-    (tmp_path / "s.r7").write_bytes(gzip.decompress(SNH_R7.read_bytes()))
+    _gunzipped(SNH_R7, tmp_path / "s.r7")
     (tmp_path / "c.tb8").write_text(SNH_8)
     gen = run(tmp_path / "c.tb8", s="r7", IRS=8, sv="gen", verbose=False)
     end = gen.specials[-1]
     assert end.ty == "EP" and len(gen.rows) == 5
-    assert end.par[30] == pytest.approx(0.1390297407, rel=1e-6)
-    assert abs(end.par[29]) == pytest.approx(0.35859489854, rel=1e-5)
+    [auto_end] = read_s(_gunzipped(SNH_GEN8, tmp_path / "s.autogen"))
+    assert auto_end.ty == "EP" and auto_end.pt == 5
+    assert end.par[30] == pytest.approx(auto_end.par[30], rel=1e-6)
+    assert abs(end.par[29]) == pytest.approx(abs(auto_end.par[29]), rel=1e-5)
     ref = _b_rows(SNH / "autoref" / "b.tb")
     cols = [0, 1, 3, 4, 5, 6, 7]
     for ds, nmx, auto in ((-0.1, 12, ref[54:66]), (0.1, 36, ref[:55][::-1][:36])):
