@@ -29,11 +29,41 @@ def _env():
 PROMPT_EXIT_S = 10.0
 
 
+# CPU time the child must have spent after printing `ready` before SIGINT is sent. What
+# the child runs between the print and the long call takes microseconds, so 0.2 s of its
+# CPU proves it is inside the call (the kernel's SIGINT handler installed). A wall-clock
+# wait does not: on a loaded machine the child may not run at all for a second after the
+# print, and a SIGINT that arrives before the call reaches Python's handler only, whose
+# KeyboardInterrupt waits for the call to end (hours).
+BUSY_CPU_S = 0.2
+
+
+def _cpu_seconds(pid: int) -> float:
+    """User + system CPU time of process pid so far (Linux: /proc/PID/stat)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _wait_busy(proc, seconds: float, timeout: float) -> None:
+    """Return once proc has used `seconds` of CPU more than now; AssertionError if it
+    ends first or takes longer than `timeout` of wall time."""
+    start, t0 = _cpu_seconds(proc.pid), time.monotonic()
+    while _cpu_seconds(proc.pid) - start < seconds:
+        if proc.poll() is not None:
+            raise AssertionError(f"the child ended right after getting ready: "
+                                 f"{proc.stderr.read()[-2000:]}")
+        if time.monotonic() - t0 > timeout:
+            proc.kill()
+            raise AssertionError(f"the child used under {seconds} s of CPU in {timeout} s")
+        time.sleep(0.02)
+
+
 def interrupt_after_ready(code: str, *, ready: str = "ready", timeout: float = 60.0,
                           cwd=None, args=None):
     """Run `code` (or `args`) in a child with Python's own SIGINT handler; once it prints
-    `ready`, send SIGINT and measure how long it takes to exit. Returns
-    (seconds from SIGINT to exit, return code, stdout, stderr)."""
+    `ready` and has then computed for BUSY_CPU_S of CPU time, send SIGINT and measure how
+    long it takes to exit. Returns (seconds from SIGINT to exit, return code, stdout,
+    stderr)."""
     cmd = args or [sys.executable, "-c",
                    "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
                    + code]
@@ -52,7 +82,7 @@ def interrupt_after_ready(code: str, *, ready: str = "ready", timeout: float = 6
         if time.monotonic() - t_start > timeout:
             proc.kill()
             raise AssertionError("the child never got ready")
-    time.sleep(0.5)                    # inside the long call now
+    _wait_busy(proc, BUSY_CPU_S, timeout)        # inside the long call now
     proc.send_signal(signal.SIGINT)
     t0 = time.monotonic()
     try:
