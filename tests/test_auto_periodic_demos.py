@@ -1,7 +1,6 @@
 """The periodic-orbit runs (IPS = 2) of AUTO-07p's demo scripts ab, lrz, chu, plp and
-frc against AUTO-07p's own output, ready for the periodic-orbit engine.
+frc against AUTO-07p's own output.
 
-A test skips (with the engine's own message) where the engine refuses a case.
 Constants files are used unchanged (tests/data/auto_reference/periodic/<demo>/c.*),
 with only the overrides each .auto script passes; restarts read our own equilibrium
 runs, as the scripts read theirs. Compared with AUTO's b-files: the labelled rows'
@@ -18,7 +17,6 @@ appended oscillator fixes it).
 """
 import functools
 import math
-import re
 import shutil
 from pathlib import Path
 
@@ -31,22 +29,9 @@ from washer.run import run
 
 LOCATED = ("UZ", "LP", "PD", "BP", "TR")
 
-# The periodic-orbit engine's acceptance checks against AUTO-07p's own output. A test
-# skips (with the engine's message) only where the engine says it does not do a case.
-REFUSAL = re.compile(r"IPS\s*=\s*2.*(not (yet )?implemented|no continued system)|"
-                     r"(not (yet )?implemented|no continued system).*IPS\s*=\s*2", re.I | re.S)
-
-
 def run_periodic(cfile: Path, sv: str, **overrides):
-    """run(), skipping the test when the engine says it does not do IPS = 2 yet."""
-    try:
-        res = run(cfile, verbose=False, sv=sv, **overrides)
-    except Exception as exc:                      # the refusal's class is the engine's
-        if REFUSAL.search(str(exc)):
-            pytest.skip(f"engine refuses IPS=2: {exc}")
-        raise
-    if REFUSAL.search(res.status):
-        pytest.skip(f"engine refuses IPS=2: {res.status}")
+    """run(), which must end its branch normally."""
+    res = run(cfile, verbose=False, sv=sv, **overrides)
     assert res.status == "ok", f"{cfile.name} {overrides}: {res.status}"
     return res
 
