@@ -246,6 +246,17 @@ def compare_files(ours: Path | None, ref: Path) -> tuple[list[Point], set[int], 
     return a, matched, why + notes[:1]
 
 
+def point_key(p: Point) -> tuple:
+    """What counts a point once per demo (merged and saved copies of a run repeat it):
+    type, PAR(ICP(1)) to 7 decimals, period to 5."""
+    return p.ty, round(p.par, 7), None if p.period is None else round(p.period, 5)
+
+
+def auto_point_count(demo: str) -> int:
+    """How many special points AUTO's b-files of the demo hold, each counted once."""
+    return len({point_key(p) for ref in reference_files(demo) for p in points(ref, True)})
+
+
 def reference_files(demo: str) -> list[Path]:
     ref = DEMOS / demo / "autoref"
     return sorted(p for p in ref.rglob("*") if p.name.startswith("b.") or
@@ -279,8 +290,7 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
         a, matched, why = compare_files(ours, ref)
         res.problems += why
         for i, p in enumerate(a):
-            # each point once per demo (merged and saved copies of a run repeat it)
-            k = (p.ty, round(p.par, 7), None if p.period is None else round(p.period, 5))
+            k = point_key(p)
             seen[k] = seen.get(k, False) or i in matched
     res.auto_points = len(seen)
     res.matched = sum(seen.values())
