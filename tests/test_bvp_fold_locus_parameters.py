@@ -119,6 +119,9 @@ def _bratu_shift_fold():
     return float(lam(th) * mp.exp(integral(th))), float(integral(th))
 
 
+# 3.9 s: slow; the fast loop follows the first problem's locus, and this one's to p3 = 1
+# in test_bvp_from_a_point_of_its_fold_locus
+@pytest.mark.slow
 def test_bvp_fold_locus_bratu_shifted_by_a_branch_parameter(tmp_path):
     """The LP of the branch in (p1, p2) at p3 = 0, the generating run from it and the
     locus both ways to p3 = -2 and 2: every row on p1 e^p3 = C and p3 - p2 = I*, C and

@@ -80,7 +80,8 @@ def _problem(sigma):
     return Problem(3, func, stpnt=stpnt, dfdu=dfdu, name="flip", jac=-1)
 
 
-@pytest.mark.parametrize("sigma, ipsi", [(-1, 13), (1, 14)])
+# 3.3 s each: the fast loop runs IPSI 13 (the adjoint continued to its flip), -m slow both
+@pytest.mark.parametrize("sigma, ipsi", [(-1, 13), pytest.param(1, 14, marks=pytest.mark.slow)])
 def test_inclination_flip_at_its_closed_form_parameter(sigma, ipsi):
     kappa_star = _flip_kappa(MU)
     prob = _problem(sigma)
@@ -122,6 +123,7 @@ def test_unsupported_adjoint_codes_without_itwist_are_refused():
         runner.run(c, prob)
 
 
+@pytest.mark.slow          # 2.7 s: AUTO's demo runs, as the other demo folders
 def test_san_adjoint_runs_match_auto(tmp_path, monkeypatch):
     work = tmp_path / "san"
     shutil.copytree(DATA / "san", work, ignore=shutil.ignore_patterns("autoref*"))

@@ -107,6 +107,7 @@ def test_circle_born_at_the_neimark_sacker_point_is_the_exact_one(fmap):
     assert c.stable
 
 
+@pytest.mark.slow          # 3 s; the fast loop continues circles in the file sink's test
 def test_continued_family_follows_the_closed_form(fmap):
     """Pseudo-arclength from the birth to mu = 0.18: every circle exact, its rotation number
     and moduli as the closed form says; the last circle exactly at mu = 0.18. (The end is
