@@ -110,7 +110,11 @@ def test_homcont_values_refused_by_name(tmp_path):
     for extra, words in ((dict(ITWIST=2), "ITWIST = 2"), (dict(IEQUIB=3), "IEQUIB = 3"),
                          (dict(ISTART=7), "ISTART = 7"), (dict(IPSI=[1, 13]), "[13]"),
                          (dict(IFIXED=[14]), "[14]"), (dict(IPSI=[17]), "[17]"),
-                         (dict(IREV=[0, 1, 0]), "IREV")):
+                         (dict(IREV=[0, 1, 0]), "IREV"),
+                         (dict(ISTART=3, IEQUIB=2), "NOT ALLOWED"),
+                         (dict(ISTART=3, ITWIST=1), "ISTART = 3 with ITWIST"),
+                         (dict(ISTART=3, IFIXED=[1]), "ISTART = 3 with ITWIST, IREV or "
+                                                      "IFIXED")):
         with pytest.raises(RunError) as err:
             runner.run(Constants({**base, **extra}), _problem(xi))
         assert words in str(err.value)
@@ -296,3 +300,34 @@ def test_a_user_files_stpnt_reads_homconts_common_block(tmp_path, source):
     # the first row is the start as STPNT left it; the later ones the corrected family
     assert br.rows[0].par[11] == 0.5
     assert all(abs(r.par[1]) < 1e-6 and abs(r.par[11] - C) < 1e-6 for r in br.rows[1:])
+
+
+def test_users_boundary_and_integral_conditions_with_ipsi_9():
+    """The user's NBC = 1 and NINT = 1 beside HomCont's (FBHO's BCND, ICHO's ICNI), each
+    with one more free parameter: PAR(4) = int_0^1 (x - x0_1) dt and PAR(5) = a^2. On the
+    exact family (mu = 0) the integral over the truncated orbit is
+    (1/T) int_{-T/2}^{T/2} (3a/2) sech^2(sqrt(a) s/2) ds = 6 sqrt(a) tanh(sqrt(a) T/4) / T."""
+    xi, _ = _exact_orbit()
+    prob = _problem(xi)
+    prob._bcnd = lambda u0, u1, par: [par[4] - par[0] ** 2]
+    prob._icnd = lambda u, uold, udot, upold, par: [u[0] - par[11] - par[3]]
+    def exact(a):
+        return 6 * np.sqrt(a) * np.tanh(np.sqrt(a) * T / 4) / T
+    # the start's PAR(4), PAR(5) are the closed form's at a = 1 (stpnt's)
+    c = Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2, 4, 5], NBC=1, NINT=1, NTST=40,
+                       NCOL=4, JAC=-1, ISP=0, ILP=0, DS=0.05, DSMAX=0.2, NMX=12, NPR=4,
+                       PAR={4: exact(1.0), 5: 1.0}))
+    br = runner.run(c, prob)
+    assert br.status == "ok"
+    pts = br.specials[1:]
+    assert len(pts) >= 3 and pts[-1].par[0] > 1.3
+    for r in pts:
+        par = np.asarray(r.par)
+        a = par[0]
+        # mu: the discretisation's error, as in the family above (measured ~1e-10)
+        assert abs(par[1]) < 1e-6
+        assert par[4] == pytest.approx(a * a, abs=1e-12)              # rounding only
+        # the integral: the collocation's quadrature of the profile (H's error, 1e-6) and
+        # the truncated orbit's deviation from the exact one, O(e^(-sqrt(a) T / 2)) = 2e-9
+        # (measured 7e-10)
+        assert par[3] == pytest.approx(exact(a), abs=1e-6)

@@ -137,25 +137,24 @@ def invalid(s) -> list[str]:
     unknown = [k for k in codes if k not in PSI_CODES]
     if unknown:
         out.append(f"IPSI/IFIXED codes {unknown} (HomCont's are 1-16)")
+    if s.ISTART == 3 and s.IEQUIB == 2:
+        out.append("ISTART = 3 with IEQUIB = 2 (HomCont's INHO: 'IEQUIB=2 NOT ALLOWED WITH "
+                   "ISTART=3')")
+    if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED):
+        # FBHO's homotopy branch imposes none of their conditions, and INHO still counts
+        # them among the free parameters: PAR(10) and the adjoint without conditions
+        # (ITWIST), the equilibrium's ICP entries moved (IFIXED, IREV)
+        out.append("ISTART = 3 with ITWIST, IREV or IFIXED (HomCont's homotopy conditions "
+                   "replace the adjoint's, the reversibility and the fixed test functions, "
+                   "which then leave the adjoint or the equilibrium undetermined: start "
+                   "with ISTART = 3 without them, then restart with ISTART = 1)")
+    if s.ISTART < 0 and s.IREV:
+        out.append(f"ISTART = {s.ISTART} with IREV (HomCont's FBHO reads IREV for each of "
+                   "the N + 1 pieces' components, past its NDIM entries)")
     adjoint = [k for k in codes if k in ADJOINT_CODES and s.ITWIST != 1]
     if adjoint:
         out.append(f"IPSI/IFIXED codes {adjoint} with ITWIST = {s.ITWIST} (13 and 14 read "
                    "the adjoint: ITWIST = 1)")
-    return out
-
-
-def unsupported(s) -> list[str]:
-    """HomCont's options this module does not compute yet (empty: all it is asked)."""
-    out = []
-    if s.ISTART < 0 and s.IREV:
-        out.append(f"ISTART = {s.ISTART} with IREV (AUTO's FBHO reads IREV for every one of "
-                   "the N + 1 pieces' components, past its NDIM entries)")
-    if s.ISTART == 3 and (s.ITWIST or s.IREV or s.IFIXED or s.IEQUIB == 2):
-        out.append("ISTART = 3 with ITWIST, IREV, IFIXED or IEQUIB = 2 (the homotopy "
-                   "start of a plain homoclinic or heteroclinic orbit is)")
-    if s.NBC or s.NINT:
-        out.append(f"NBC = {s.NBC}, NINT = {s.NINT} (the user's extra boundary and "
-                   "integral conditions)")
     return out
 
 
@@ -278,12 +277,8 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if wrong:
             raise SettingsError("IPS = 9 (homoclinic orbits): " + "; ".join(wrong),
                                 keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
-        missing = unsupported(s)
-        if missing:
-            raise SettingsError("IPS = 9 (homoclinic orbits): not supported yet: "
-                                + "; ".join(missing),
-                                keys=("ITWIST", "IEQUIB", "ISTART", "IREV", "IFIXED", "IPSI"))
         user, ndm = data.problem, s.NDIM
+        self.settings_user = s
         self.user, self.ndm, self.iequib = user, ndm, s.IEQUIB
         self.itwist = s.ITWIST
         #: the components u_i with IREV(i) > 0 vanish at t = 1 (IREV given), else None
@@ -340,6 +335,8 @@ class HomoclinicOrbits(BoundaryValueProblem):
         if istart == 3:
             nbc = hom.n_conditions(ndm, n_eq // ndm, self.nunstab)
             nint = 0
+        else:                               # the user's NBC and NINT (INHO adds them)
+            nbc, nint = nbc + s.NBC, nint + s.NINT
         nfpr = nbc + nint - ndim + 1
         n_user = nfpr - n_eq - self.itwist
         if n_user < 1 or len(s.ICP) < n_user:
@@ -437,6 +434,11 @@ class HomoclinicOrbits(BoundaryValueProblem):
         of a saddle-node, f = 0 at the solved-for equilibria) and the phase condition as
         its one integral condition (none for a reversible system: the section at t = 1
         fixes the time shift)."""
+        # the user's own boundary and integral conditions (none in the homotopy, whose
+        # conditions INHO counts alone)
+        n_user_bc, n_user_int = ((0, 0) if self.istart == 3
+                                 else (self.settings_user.NBC, self.settings_user.NINT))
+
         def func_batch(U, pars):
             return pars[:, 10:11] * user.func_many(U, pars)
 
@@ -487,18 +489,30 @@ class HomoclinicOrbits(BoundaryValueProblem):
             if self.pieces:
                 parts += sw.boundary_rows(w0, w1, par, ndm, self.pieces, self.lin,
                                           self._umax)
+            if n_user_bc:                   # FBHO's BCND on all NDIM components, last
+                parts.append(user.bcnd(w0, w1, par, n_user_bc))
             return np.concatenate([np.ravel(q) for q in parts])
 
         def icnd(u, uold, udot, upold, par):
-            # one point (NDIM,) -> (NINT,); a batch (NDIM, k) -> (NINT, k)
-            phase = np.sum(upold[:ndm] * (u[:ndm] - uold[:ndm]), axis=0)
-            if self.rev is not None:        # no phase condition: the adjoint's alone
-                return adj.integrand(u, uold, ndm)[None]
-            if not self.itwist:
-                return phase[None]
-            return np.stack([phase, adj.integrand(u, uold, ndm)])
+            # one point (NDIM,) -> (NINT,); a batch (NDIM, k) -> (NINT, k): the phase
+            # condition (none with IREV or for the pieces of ISTART < 0), the adjoint's,
+            # then the user's NINT on the orbit's NDIM components (ICHO's ICNI)
+            parts = []
+            if self.rev is None and not self.pieces:
+                parts.append(np.sum(upold[:ndm] * (u[:ndm] - uold[:ndm]), axis=0))
+            if self.itwist:
+                parts.append(adj.integrand(u, uold, ndm))
+            if n_user_int:
+                a = [np.asarray(v, float)[:ndm] for v in (u, uold, udot, upold)]
+                if a[0].ndim == 1:
+                    parts.extend(user.icnd(*a, par, n_user_int))
+                else:
+                    parts.extend(np.array([user.icnd(*[v[:, j] for v in a], par, n_user_int)
+                                           for j in range(a[0].shape[1])]).T)
+            return np.stack(parts)
 
-        return Problem(ndm * max(1 + self.itwist, self.pieces), func, func_batch=func_batch, dfdu_batch=dfdu_batch,
+        return Problem(ndm * max(1 + self.itwist, self.pieces), func, func_batch=func_batch,
+                       dfdu_batch=dfdu_batch,
                        name=user.name, npar=user.npar, pvls=user._pvls,
                        parnames=user.parnames, unames=user.unames, jac=user.jac,
                        bcnd=bcnd, icnd=icnd if nint else None)
@@ -655,4 +669,4 @@ class HomoclinicOrbits(BoundaryValueProblem):
         raise ValueError(f"IPSI code {k}: not computed (see washer.cont.systems.homoclinic)")
 
 
-__all__ = ["HomoclinicOrbits", "PSI_CODES", "invariant_basis", "spectrum", "unsupported"]
+__all__ = ["HomoclinicOrbits", "PSI_CODES", "invariant_basis", "spectrum"]
