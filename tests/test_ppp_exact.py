@@ -80,12 +80,13 @@ _TRACEF = sp.lambdify((u2, p4), _TRACE, "mpmath")
 U2_CROSS = sp.Rational(1, 6)
 #: PAR(4) there (AUTO's and washer's BP at PAR(1) = 0.0772911), to pick the quadratic's root.
 P4_NEAR_CROSS = 5.43
-#: The demo's constants; the Hopf loci's run (ppp.auto's third) sets DSMAX = 0.1.
+#: The demo's constants; ppp.auto's third run, the Hopf loci from HB2: its constants over them.
 CONSTANTS = read_constants(DEMO / "c.ppp")
+HOPF_RUN = dict(ICP=[1, 4], ILP=0, ISW=2, NMX=100, RL1=0.58, DSMAX=0.1)
 #: Where both engines locate a special point of the Hopf loci: within EPSS (1 + sqrt(|DS
 #: DSMAX|)) = 1.03e-4 in arclength, which bounds PAR(1) and PAR(4) (weight 1: each moves
 #: at most as fast as the arclength).
-LOCATED_HB = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CONSTANTS["DS"] * 0.1)))
+LOCATED_HB = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CONSTANTS["DS"] * HOPF_RUN["DSMAX"])))
 
 
 def corrected_hb(row) -> float:
@@ -156,6 +157,10 @@ def _auto_rows(name, tmp_path):
             for branch in read_b(path) for r in branch]
 
 
+#: ppp.auto's second run, the cycles from HB2: its constants over the demo's.
+CYCLES_RUN = dict(IPS=2, ICP=[1, 11], ILP=0, NMX=15, NPR=50, DS=0.1, DSMAX=0.5)
+
+
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
     """washer's runs of ppp.auto (the demo's constants unchanged), in memory."""
@@ -164,10 +169,8 @@ def runs(tmp_path_factory):
         shutil.copy(DEMO / f, folder)
     c = folder / "c.ppp"
     eq = run(c, verbose=False, e="ppp", files=False)
-    cycles = run(c, verbose=False, e="ppp", files=False, restart=eq, IRS="HB2", IPS=2,
-                 ICP=[1, 11], ILP=0, NMX=15, NPR=50, DS=0.1, DSMAX=0.5)
-    hb = run(c, verbose=False, e="ppp", files=False, restart=eq, IRS="HB2", ICP=[1, 4],
-             ILP=0, ISW=2, NMX=100, RL1=0.58, DSMAX=0.1)
+    cycles = run(c, verbose=False, e="ppp", files=False, restart=eq, IRS="HB2", **CYCLES_RUN)
+    hb = run(c, verbose=False, e="ppp", files=False, restart=eq, IRS="HB2", **HOPF_RUN)
     return folder, eq, cycles, hb
 
 
@@ -372,7 +375,8 @@ def test_the_cycles_from_hb8_end_at_hb7_where_washer_places_the_bp(runs):
     bp = [r for r in cycles.rows if r.ty == "BP"]
     assert len(bp) == 1
     # located to EPSS (1 + sqrt(DS DSMAX)) = 1.22e-4 in arclength (PAR(1) weight 1)
-    assert bp[0].par[0] == pytest.approx(q1, abs=1.22e-4)
+    located = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CYCLES_RUN["DS"] * CYCLES_RUN["DSMAX"])))
+    assert bp[0].par[0] == pytest.approx(q1, abs=located)
     assert bp[0].par[10] == pytest.approx(period, rel=1e-4)
     assert bp[0].values[2] == pytest.approx(x1, abs=1e-4)        # MAX U(1): amplitude ~0
 
