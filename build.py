@@ -58,7 +58,11 @@ contbuilder.set_source(
              "csrc/cont/es_format.cpp", "csrc/cont/auto_point.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
-    extra_compile_args=["-std=c++17", "-O2", "-fno-math-errno", "-DNDEBUG"],
+    # -O3: the elimination's short row updates (sub_scaled below 24 terms) and the
+    # collocation loops vectorised: 2.7 % fewer instructions on lrz's orbits (callgrind),
+    # the same values bit for bit (no -ffast-math and no -march: no reassociation, no
+    # fused multiply-adds; reductions stay in order).
+    extra_compile_args=["-std=c++17", "-O3", "-fno-math-errno", "-DNDEBUG"],
     extra_link_args=["-s"],
     language="c++",
 )
