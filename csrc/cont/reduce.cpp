@@ -8,6 +8,7 @@
 #include "cont.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <new>
 #include <vector>
@@ -456,10 +457,19 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
             const int p = f->piv1(j)[t];
             if (p != t) std::swap(rb[t], rb[p]);
         }
-        for (int t = 0; t < K; ++t) {
-            const int c = n + t;
-            for (int r = t + 1; r < mn; ++r) rb[r] -= W(r, c) * rb[t];
-            for (int e = 0; e < ne; ++e) re[e] -= f->E1(j)(e, t) * rb[t];
+        // row by row: each rb[r] takes its updates in the pivots' order, as column by
+        // column (the same operations), from a contiguous row of multipliers
+        for (int r = 1; r < mn; ++r) {
+            const double *wr = W.data() + (size_t)r * W.cols() + n;
+            double s = rb[r];
+            for (int t = 0, tn = std::min(r, K); t < tn; ++t) s -= wr[t] * rb[t];
+            rb[r] = s;
+        }
+        const double *E1 = f->E1b.data() + (size_t)j * ne * K;
+        for (int e = 0; e < ne; ++e) {
+            double s = re[e];
+            for (int t = 0; t < K; ++t) s -= E1[(size_t)e * K + t] * rb[t];
+            re[e] = s;
         }
     }
     // forward: reduction
@@ -475,9 +485,17 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
             const int p = f->piv2(j)[t];
             if (p != t) std::swap(tv[t], tv[p]);
         }
-        for (int t = 0; t < n; ++t) {
-            for (int r = t + 1; r < 2 * n; ++r) tv[r] -= T(r, t) * tv[t];
-            for (int e = 0; e < ne; ++e) re[e] -= f->E2(j)(e, t) * tv[t];
+        for (int r = 1; r < 2 * n; ++r) {            // row by row, as above
+            const double *tr = T.data() + (size_t)r * T.cols();
+            double s = tv[r];
+            for (int t = 0, tn = std::min(r, n); t < tn; ++t) s -= tr[t] * tv[t];
+            tv[r] = s;
+        }
+        const double *E2 = f->E2b.data() + (size_t)j * ne * n;
+        for (int e = 0; e < ne; ++e) {
+            double s = re[e];
+            for (int t = 0; t < n; ++t) s -= E2[(size_t)e * n + t] * tv[t];
+            re[e] = s;
         }
         for (int r = 0; r < n; ++r) tR[r] = tv[n + r];
     }
