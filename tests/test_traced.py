@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from washer.cont.pointwise import same_bits
 from washer.cont.problem import Problem
 from washer.cont.trace import TraceError, numpy_loop, trace_function
 from washer.cont.traced import TracedProblem, traced_problem
@@ -26,7 +27,7 @@ def _ndim(path: Path) -> int:
                 return int(words[words.index("NDIM") + 1])
             if words and words[0].isdigit() and len(words) >= 4 and "NDIM" in line:
                 return int(words[0])
-    return {"ab": 2, "plp": 2, "chu": 3, "frc": 3}.get(path.stem, 2)
+    return {"ab": 2, "plp": 2, "chu": 3, "frc": 4}.get(path.stem, 2)
 
 
 def _module(path: Path):
@@ -152,14 +153,132 @@ def test_numpy_loop_is_numpy(tmp_path):
         numpy_loop(np.isnan)            # no loop from doubles to doubles
 
 
-def test_power_operator_falls_back(tmp_path):
-    """x ** 2 rounds otherwise on a np.float64 (libm's pow) than on the arrays of a
-    stencil (x * x): not traced, and said so."""
-    p = traced_problem(_problem(lambda u, par: np.array([u[0] ** 2, u[1]])),
-                       tmp_path / "t.py")
-    assert type(p) is Problem and "x ** y" in p.route
-    x = np.random.default_rng(2).uniform(-10, 10, 100_000)
-    assert any(np.float64(v) ** 2 != w for v, w in zip(x, x ** 2))    # the reason
+#: Every class of power numpy distinguishes (washer.cont.trace): the operator with a
+#: Python int -1, 2 (ufuncs on arrays), a Python float 0.5, other ints and floats, the
+#: loop's own fast values (0, 1, -1.0, 2.0) and np.float64 exponents, a constant base,
+#: a computed exponent, PAR(i) itself as the exponent (its stride on arrays), np.power.
+POWERS = [
+    lambda x, y, q: x ** 2, lambda x, y, q: x ** -1, lambda x, y, q: abs(x) ** 0.5,
+    lambda x, y, q: x ** 3, lambda x, y, q: x ** -2, lambda x, y, q: abs(x) ** 2.5,
+    lambda x, y, q: x ** 2.0, lambda x, y, q: x ** -1.0, lambda x, y, q: x ** 0,
+    lambda x, y, q: x ** 1, lambda x, y, q: x ** np.float64(2), lambda x, y, q: x ** 0.0,
+    lambda x, y, q: abs(x) ** y, lambda x, y, q: 2 ** x, lambda x, y, q: 1.5 ** y,
+    lambda x, y, q: abs(x) ** q, lambda x, y, q: abs(x) ** +q, lambda x, y, q: q ** x,
+    lambda x, y, q: abs(x) ** (y * 1.0), lambda x, y, q: np.power(x, 2),
+    lambda x, y, q: np.power(x, 2.0), lambda x, y, q: np.power(x, 3),
+    lambda x, y, q: np.power(abs(x), y), lambda x, y, q: np.power(abs(x), q),
+    lambda x, y, q: np.power(2.0, x), lambda x, y, q: (x * y) ** 2 - x ** 2 * y ** 2,
+]
+#: exponents drawn for u[1] and PAR(1): numpy's special values and ordinary ones
+SPECIAL = np.array([-1.0, 0.0, 0.5, 1.0, 2.0, 3.0, 2.5, -0.5, -2.0])
+
+
+def _powers(u, par):
+    x, y, q = u[0], u[1], par[0]
+    return np.array([f(x, y, q) for f in POWERS])
+
+
+def test_every_class_of_power_is_numpys_bit_for_bit_in_each_mode(tmp_path):
+    """x ** y and np.power(x, y) in every class (POWERS) at 4000 random points: the
+    compiled FUNC in mode SCALARS is the Python func called with one point (numpy
+    scalars: libm's pow), in mode ARRAYS the func called once on (NDIM, k) arrays with
+    par's rows strided, in mode ARRAYS_PAR_BROADCAST with par one broadcast vector
+    (numpy's fast paths where the exponent's stride is zero, its SIMD pow elsewhere),
+    for each of the special exponents as that vector's PAR(1). Exact: the C computes
+    the same operations or calls numpy's own loop. And the modes do differ (x ** 2 is
+    not pow(x, 2) at some x): the test can fail."""
+    from washer.cont.problem import broadcast_rows
+    from washer.cont.traced import ARRAYS, ARRAYS_PAR_BROADCAST, SCALARS
+    n = len(POWERS)
+    p = traced_problem(_problem(_powers, ndim=n), tmp_path / "t.py")
+    assert isinstance(p, TracedProblem) and p.two_ways, getattr(p, "route", "")
+    rng = np.random.default_rng(11)
+    k = 4000
+    us = np.zeros((k, n))
+    us[:, 0] = rng.uniform(-4, 4, k) * 10.0 ** rng.integers(-3, 4, k)
+    us[:, 1] = np.where(rng.random(k) < 0.5, rng.choice(SPECIAL, k), rng.uniform(-3, 3, k))
+    ps = rng.uniform(-3, 3, (k, 3))
+    ps[:, 0] = np.where(rng.random(k) < 0.5, rng.choice(SPECIAL, k), ps[:, 0])
+    fn = p.python.user_func
+    with np.errstate(all="ignore"):
+        scalars = np.array([fn(u.copy(), q.copy()) for u, q in zip(us, ps)])
+        assert same_bits(p.user.func_in_mode(us, ps, SCALARS), scalars)
+        arrays = np.ascontiguousarray(fn(us.T, ps.T).T)
+        assert same_bits(p.user.func_in_mode(us, ps, ARRAYS), arrays)
+        for q in SPECIAL:
+            par = np.array([q, 0.3, 0.7])
+            rows = broadcast_rows(par, k)
+            ref = np.ascontiguousarray(fn(us.T, rows.T).T)
+            got = p.user.func_in_mode(us, np.ascontiguousarray(rows), ARRAYS_PAR_BROADCAST)
+            assert same_bits(got, ref), q
+            if q == 2.0:
+                # PAR(1) = 2 per point (a copy, strided rows): numpy's SIMD pow, not the
+                # square its broadcast vector gets
+                strided = p.user.func_in_mode(us, np.array(rows), ARRAYS)
+                assert same_bits(strided, np.ascontiguousarray(fn(us.T, np.array(rows).T).T))
+                assert not same_bits(strided[:, 15], got[:, 15])
+    assert not same_bits(scalars[:, 0], arrays[:, 0])        # x ** 2: pow or x * x
+
+
+def test_a_power_file_is_called_as_the_python_problem_calls_it(tmp_path):
+    """func_many of a traced file with x ** 2 makes Problem.func_many's choices: one
+    point, small stencils (arrays while the bitwise comparison with separate calls
+    holds), batches (arrays), par given once or per point; over a sequence of calls
+    the traced problem and the Python one return the same bits, and keep the same
+    state (vectorised, pointwise refused or not)."""
+    def func(u, par):
+        x, y = u
+        return np.array([x ** 2 - par[0] * y ** 3, x * y ** 2 + abs(x) ** par[1]])
+    py = _problem(func)
+    traced = traced_problem(_problem(func), tmp_path / "t.py")
+    assert isinstance(traced, TracedProblem) and traced.two_ways
+    rng = np.random.default_rng(5)
+    with np.errstate(all="ignore"):
+        for call in range(400):
+            k = int(rng.choice([1, 2, 6, 8, 11, 12, 40]))
+            us = rng.uniform(-3, 3, (k, 2))
+            pars = rng.uniform(0.1, 3, 3) if call % 2 else rng.uniform(0.1, 3, (k, 3))
+            if call % 5 == 0 and pars.ndim == 1:
+                pars[1] = 2.0                     # numpy's fast path on broadcast rows
+            assert same_bits(traced.func_many(us, pars), py.func_many(us, pars)), call
+    assert traced._pointwise.off == py._pointwise.off
+    assert traced._vectorised == py._vectorised
+    assert not traced.state.off
+
+
+def test_a_func_not_for_arrays_is_called_point_by_point(tmp_path):
+    """A traced power file whose func fails on arrays (a constant entry beside an
+    array) is compiled, and its batches are separate calls' values (numpy scalars), as
+    the Python problem computes them."""
+    def func(u, par):
+        return np.array([u[0] ** 2, 1.0])
+    p = traced_problem(_problem(func), tmp_path / "t.py")
+    assert isinstance(p, TracedProblem) and not p.arrays
+    us = np.random.default_rng(3).uniform(-3, 3, (40, 2))
+    par = np.zeros(3)
+    ref = np.array([func(u, par) for u in us])
+    assert same_bits(p.func_many(us, par), ref)
+
+
+def test_a_dfdp_that_does_not_trace_leaves_func_traced(tmp_path):
+    """dfdp filling np.zeros((n, len(par))) is not traced (len(par), a write into a float
+    array): func (and dfdu) are, dfdp stays the Python function, and the route says so."""
+    def func(u, par):
+        return np.array([u[1], -par[0] * np.exp(u[0])])
+
+    def dfdu(u, par):
+        return np.array([[0.0, 1.0], [-par[0] * np.exp(u[0]), 0.0]])
+
+    def dfdp(u, par):
+        out = np.zeros((2, len(par)))
+        out[1, 0] = -np.exp(u[0])
+        return out
+    p = traced_problem(_problem(func, dfdu=dfdu, dfdp=dfdp, jac=1), tmp_path / "t.py")
+    assert isinstance(p, TracedProblem) and not p.dfdp_traced
+    assert "traced into C" in p.route and "dfdp(u, par) in Python: len(par)" in p.route
+    u, par = np.array([0.3, -0.2]), np.array([1.5, 0.0, 0.0])
+    assert same_bits(p.dfdp(u, par, [1]), dfdp(u, par)[:, [0]])
+    assert same_bits(p.jacobian(u, par, [1]), np.hstack([dfdu(u, par), dfdp(u, par)[:, [0]]]))
 
 
 def test_par_length_is_not_traced():
@@ -269,3 +388,73 @@ def test_nothing_compared_on_loading_is_not_trusted(tmp_path):
     p = traced_problem(_problem(lambda u, par: np.array([u[0] / 0.0, u[1] * np.inf])),
                        tmp_path / "t.py")
     assert type(p) is Problem and "nothing verified" in p.route
+
+
+#: Folders with an AUTO script or a constants file whose Python file traces: True where
+#: it has a power numpy computes otherwise on numpy scalars and on arrays (traced in two
+#: modes), False for the files traced since their dfdp stays Python (np.zeros((n,
+#: len(par)))) or since a value times an array of values is traced element by element.
+TRACED_FOLDERS = {"bvp/bvp": True, "bvp/ext": True, "bvp/lin": True, "bvp/nep": True,
+                  "bvp/non": True, "bvp/obv": True, "bvp/spb": True, "bvp/um2": True,
+                  "bvp/um3": True, "optcusp": True, "pfchain": True, "pvlsstop": True,
+                  "sharpfold": True, "bvp/stw": True, "bvp/int": False, "bvp/fsh": False,
+                  "bvp/man": False, "maps/dd2": False, "maps/log": False}
+
+_RUN_BOTH_WAYS = '''
+import sys
+from washer.cont import traced
+seen = []
+real_build, real_refuse = traced._build, traced.TraceState.refuse
+def build(*a):
+    p = real_build(*a)
+    seen.append("two ways" if p.two_ways else "one way")
+    return p
+def refuse(self, why):
+    seen.append("refused: " + why)
+    real_refuse(self, why)
+traced._build, traced.TraceState.refuse = build, refuse
+if sys.argv[1].endswith(".auto"):
+    from washer.auto.__main__ import main
+    rc = main([sys.argv[1]])
+else:
+    from washer.run import run
+    rc = 0 if run(sys.argv[1], sv="out", verbose=False).status == "ok" else 1
+print("ROUTES", seen)
+sys.exit(rc)
+'''
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("folder", sorted(TRACED_FOLDERS))
+def test_traced_folders_write_the_python_runs_files(folder, tmp_path):
+    """Each folder's runs (its AUTO script, else its constants file) with the traced
+    func write the b-, s- and d-files of the same runs on the Python functions
+    (WASHER_TRACE=0) byte for byte but for the d-files' Total Time, each in a process of
+    its own as AUTO runs a script; the trace is taken (in two modes where the file has
+    such powers) and never refused."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+    src = DATA / folder
+    outs = {}
+    for trace in ("0", "1"):
+        d = tmp_path / trace
+        shutil.copytree(src, d)
+        target = (sorted(d.glob("*.auto")) or sorted(d.glob("c.*")))[0]
+        env = dict(os.environ, WASHER_TRACE=trace, OMP_NUM_THREADS="1",
+                   PYTHONPATH=os.pathsep.join([str(Path(__file__).parents[1]),
+                                               os.environ.get("PYTHONPATH", "")]))
+        r = subprocess.run([sys.executable, "-c", _RUN_BOTH_WAYS, target.name], cwd=d,
+                           env=env, capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stderr[-2000:]
+        outs[trace] = (d, r.stdout)
+    assert "ROUTES []" in outs["0"][1]
+    way = "two ways" if TRACED_FOLDERS[folder] else "one way"
+    assert f"ROUTES ['{way}']" in outs["1"][1], outs["1"][1][-500:]
+    names = sorted(p.name for p in outs["0"][0].iterdir() if p.name[:2] in ("b.", "s.", "d."))
+    assert names and names == sorted(p.name for p in outs["1"][0].iterdir()
+                                     if p.name[:2] in ("b.", "s.", "d."))
+    for name in names:
+        a, b = ((outs[t][0] / name).read_text().split("Total Time")[0] for t in ("0", "1"))
+        assert a == b, name

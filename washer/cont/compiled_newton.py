@@ -462,10 +462,13 @@ def compiled_corrector(system, settings, divergence: float):
             or not all(0 < i <= len(system.par) for i in system.free):
         return None
     traced = getattr(problem, "traced", False)
-    if traced and kind == 0 and not problem.differenced_jacobian:
+    if traced and (kind == 0 and not problem.differenced_jacobian
+                   or problem.two_ways and problem.differenced_jacobian):
         # a Python file traced into C (washer.cont.traced) with its own Jacobians on
-        # equilibria: called back as the Python file's problem is (Problem.jacobian's
-        # traced dfdu and dfdp, func_many's traced f)
+        # equilibria, or with a power numpy computes otherwise on a stencil's arrays
+        # (with difference Jacobians: the Python file's loci with its own are the Python
+        # loop): called back as the Python file's problem is (Problem.jacobian's traced
+        # dfdu and dfdp, func_many's traced f in the mode of the Python problem's call)
         try:
             equations = PythonEquations(problem, system.ndim, len(system.par), kind,
                                         free=system.free)

@@ -272,7 +272,9 @@ def periodic_corrector(system, settings, divergence: float):
         if len(system.par) < generated.npar:
             return None
         return PeriodicCorrector(system, settings, divergence, generated)
-    if isinstance(problem, CompiledProblem):
+    if isinstance(problem, CompiledProblem) and not getattr(problem, "two_ways", False):
+        # (a traced Python file with a power numpy computes otherwise on arrays calls
+        # back below: its func_many chooses FUNC's mode as the Python problem would)
         # FUNC by pointer; f_u by differences (JAC = 0) or the user's DFDU (JAC != 0),
         # f_p by differences either way, as the Python loop (VectorField.fu_fp: the
         # bridge gives no batched DFDP)

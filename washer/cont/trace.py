@@ -14,9 +14,11 @@ Python int or float operand is a double), so the C computes the same IEEE double
     np.add, np.multiply, ... np.sqrt,      the same IEEE operations (numpy's loops compute
                                            them correctly rounded, as C does)
     np.square, np.absolute, np.negative
+    a ** b, np.power(a, b)                 as numpy computes them on numpy scalars and
+                                           on arrays (below)
     any other numpy ufunc of one or two    numpy's own compiled loop for doubles, called
     doubles (np.exp, np.sin, np.arctan,    through its pointer (the ufunc's `functions`
-    np.power, np.hypot, ...)               table): numpy's exp differs from glibc's in a
+    np.hypot, ...)                         table): numpy's exp differs from glibc's in a
                                            few per cent of arguments on AVX-512 machines,
                                            so the C calls numpy's implementation itself; a
                                            scalar and an array's elements go through the
@@ -25,20 +27,39 @@ Python int or float operand is a double), so the C computes the same IEEE double
 Constants are written as hexadecimal floats (exact). The generated C is compiled with
 -ffp-contract=off (no fused multiply-adds) and without -ffast-math.
 
-`x ** y` is not traced: numpy computes it with libm's pow on a np.float64 and otherwise
-on arrays (x * x for y = 2, a SIMD power loop for others), about one result in a thousand
-differing in the last bit, and the Python route calls func both ways (one point, or the
-(NDIM, k) arrays of a difference stencil or a batch).
+`x ** y` and np.power(x, y) are traced as numpy computes them, which depends on whether
+func was called with one point (u[i] a np.float64) or with the (NDIM, k) arrays of a
+difference stencil or a batch (washer.cont.problem.Problem.func_many), so the C holds
+both and a mode says which (`washer_traced_mode`; washer.cont.traced chooses it per call
+as the Python problem would call func):
+
+    mode 0, numpy scalars    x ** y is libm's pow (numpy's scalar power: npy_pow);
+                             np.power(x, y) numpy's power loop with a zero exponent
+                             stride (0-d operands)
+    mode 1, 2, arrays        x ** -1, x ** 2, x ** 0.5 (a Python int, int, float) are
+                             numpy's reciprocal, square, sqrt (fast_scalar_power in
+                             numpy's number.c): 1.0 / x, x * x, sqrt(x); any other
+                             exponent goes to numpy's power loop, which takes its own
+                             fast paths (-1, 0, 0.5, 1, 2) where the exponent's stride
+                             is zero (a constant; PAR(i) itself where par's rows are
+                             one broadcast vector, mode 2) and its SIMD pow otherwise
+                             (PAR(i) from a (k, NPAR) array, mode 1; u[i]; a computed
+                             value): the C calls that loop with the same strides.
+
+libm's pow is not x * x for y = 2 at about 0.08 % of doubles, and numpy's SIMD pow
+differs from libm's at several per cent, so each route is reproduced exactly, not
+approximately; tests/test_traced.py compares every class of exponent bit for bit.
 
 What cannot be traced honestly raises TraceError, and the problem keeps its Python func:
 a branch or loop on a value (bool(), a comparison), conversion to a Python number
 (float(), int(), math.exp(x), writing a value into a float array), operations that
 are not listed (//, %, divmod, a ufunc with out= or where=, a reduction), a write into u
-or par, operands of other types (complex, float32, arrays), a result that is not one
-double per component. An operation on an object array the user built from values (A @ v,
-np.sum(v)) is traced element by element and can round otherwise than on floats; the
-comparison of the compiled function with the Python one (washer.cont.traced) is what
-tells, and refuses it.
+or par, operands of other types (complex, float32), a result that is not one double per
+component. A value with an array (of values, or of numbers: `par[10] * np.array([...])`)
+is the array's ufunc element by element, each element's operation traced. An operation
+on an object array the user built from values (A @ v, np.sum(v), v ** 2) is traced
+element by element and can round otherwise than on floats; the comparison of the
+compiled function with the Python one (washer.cont.traced) is what tells, and refuses it.
 """
 from __future__ import annotations
 
@@ -49,13 +70,15 @@ import re
 import numpy as np
 
 
-#: Why `**` is not traced: numpy rounds it one way on a scalar (np.float64's power is
-#: libm's pow) and another on arrays (x * x for ** 2, its SIMD power loop otherwise;
-#: about one x in a thousand differs), and the Python route calls func on both
-#: (washer.cont.problem: arrays for difference stencils and batches), so no one C
-#: function is the Python func. np.power(x, y) is numpy's loop either way, and traced.
-_POWER = ("x ** y (numpy rounds it otherwise on a scalar and on arrays, and func is "
-          "called with both; np.power(x, y) or x * x are traced)")
+#: The exponents numpy's array power replaces by a ufunc (number.c, fast_scalar_power:
+#: a Python int -1 or 2, a Python float 0.5) and the C of each (numpy's loops for
+#: doubles compute these correctly rounded, as C does).
+_FAST_OPERATOR = {(int, -1): "(1.0 / {0})", (int, 2): "({0} * {0})",
+                  (float, 0.5): "sqrt({0})"}
+#: The C of numpy's power loop's own fast paths for an exponent of zero stride
+#: (loops_umath_fp's POWER_FAST_PATH), by the exponent's value.
+_FAST_LOOP = {-1.0: "(1.0 / {0})", 0.0: "1.0", 0.5: "sqrt({0})", 1.0: "{0}",
+              2.0: "({0} * {0})"}
 
 
 class TraceError(Exception):
@@ -88,6 +111,8 @@ class Tape:
         self._n = 0
         self._prefix = prefix
         self.npar_used = 0        # PAR(1 ..) read: the run's PAR must be this long
+        # a power whose C on numpy scalars differs from its C on arrays (the mode decides)
+        self.two_ways = False
 
     def temp(self, expr: str) -> "Value":
         name = f"{self._prefix}{self._n}"
@@ -142,6 +167,15 @@ def _operand(tape: Tape, x) -> str:
     raise TraceError(f"an operand of type {type(x).__name__}")
 
 
+def _object_array(x) -> np.ndarray:
+    """x as an object array (a Value as a 0-d one: not a ufunc's override any more)."""
+    if isinstance(x, np.ndarray):
+        return x.astype(object)
+    a = np.empty((), dtype=object)
+    a[()] = x
+    return a
+
+
 def _refuse(what):
     def method(self, *args, **kwargs):
         raise TraceError(f"{what} of a traced value (a branch, loop or conversion that "
@@ -160,6 +194,8 @@ class Value:
         self.tape, self.ref = tape, ref
 
     def _bin(self, op: str, a, b) -> "Value":
+        if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+            return NotImplemented     # the array's operator: element by element (below)
         return self.tape.temp(f"{_operand(self.tape, a)} {op} {_operand(self.tape, b)}")
 
     def __add__(self, o):
@@ -187,16 +223,19 @@ class Value:
         return self._bin("/", o, self)
 
     def __pow__(self, o, mod=None):
-        raise TraceError(_POWER)
+        if mod is not None:
+            raise TraceError("pow(x, y, mod)")
+        return _power(self.tape, self, o, operator=True)
 
     def __rpow__(self, o):
-        raise TraceError(_POWER)
+        return _power(self.tape, o, self, operator=True)
 
     def __neg__(self):
         return self.tape.temp(f"-{self.ref}")
 
     def __pos__(self):
-        return self
+        # +a of an array is a new array: PAR(i) itself no more (its stride, _power)
+        return self.tape.temp(self.ref) if self.ref.startswith("par[") else self
 
     def __abs__(self):
         return self.tape.temp(f"fabs({self.ref})")
@@ -206,6 +245,11 @@ class Value:
             raise TraceError(f"np.{ufunc.__name__}.{method} with {sorted(kwargs)}")
         if ufunc.nout != 1 or ufunc.nin not in (1, 2) or len(inputs) != ufunc.nin:
             raise TraceError(f"np.{ufunc.__name__}: not a function of one or two doubles")
+        if any(isinstance(x, np.ndarray) for x in inputs):
+            # a value with an array (of values, or of numbers): the same ufunc element by
+            # element, each element's operation traced
+            each = np.frompyfunc(lambda *a: ufunc(*a), ufunc.nin, 1)
+            return each(*(_object_array(x) for x in inputs))
         tape = self.tape
         args = [_operand(tape, x) for x in inputs]
         name = ufunc.__name__
@@ -213,6 +257,8 @@ class Value:
             return tape.temp(f"{args[0]} {_C_BINARY[name]} {args[1]}")
         if ufunc.nin == 1 and name in _C_UNARY:
             return tape.temp(_C_UNARY[name].format(args[0]))
+        if ufunc is np.power:
+            return _power(tape, inputs[0], inputs[1], operator=False)
         numpy_loop(ufunc)           # a double loop exists (else TraceError)
         i = tape.loop_index(ufunc)
         if ufunc.nin == 1:
@@ -238,6 +284,35 @@ class Value:
     __floordiv__ = __rfloordiv__ = _refuse("//")
     __mod__ = __rmod__ = _refuse("%")
     __divmod__ = __rdivmod__ = _refuse("divmod")
+
+
+def _power(tape: Tape, base, exp, operator: bool) -> Value:
+    """base ** exp (`operator`) or np.power(base, exp) as numpy computes it in each mode
+    (the module's docstring): one C expression where the modes agree, else
+    `washer_mode ? <arrays> : <numpy scalars>`."""
+    b, e = _operand(tape, base), _operand(tape, exp)
+    i = tape.loop_index(np.power)
+    numpy_loop(np.power)
+    if isinstance(exp, Value):
+        # its stride on arrays: zero only for PAR(i) itself with par's rows broadcast
+        stride = "washer_mode == 2" if exp.ref.startswith("par[") else "0"
+        arrays = f"np_pow({i}, {b}, {e}, {stride})"
+    else:
+        value = float(exp)
+        kind = type(exp) if type(exp) in (int, float) else None
+        fast = _FAST_OPERATOR.get((kind, value)) if operator else None
+        if fast is None:
+            fast = _FAST_LOOP.get(value, f"np_pow({i}, {b}, {e}, 1)")
+        arrays = fast.format(b)
+    # numpy scalars: np.float64's power is libm's pow; np.power of 0-d operands is the
+    # loop with a zero exponent stride
+    scalars = f"c_pow({b}, {e})" if operator else (
+        f"np_pow({i}, {b}, {e}, 1)" if isinstance(exp, Value)
+        else _FAST_LOOP.get(float(exp), f"np_pow({i}, {b}, {e}, 1)").format(b))
+    if scalars == arrays:
+        return tape.temp(arrays)
+    tape.two_ways = True
+    return tape.temp(f"washer_mode ? {arrays} : {scalars}")
 
 
 class Vector:
@@ -425,6 +500,38 @@ static double np_loop2(int i, double a, double b)
     const ptrdiff_t n = 1, steps[3] = {{sizeof(double), sizeof(double), sizeof(double)}};
     np_loops[i](args, &n, steps, np_data[i]);
     return out;
+}}
+
+/* How numpy was called (washer.cont.trace): 0 numpy scalars, 1 arrays, 2 arrays with
+ * par's rows one broadcast vector (stride 0). */
+static int washer_mode;
+
+void washer_traced_mode(int mode)
+{{
+    washer_mode = mode;
+}}
+
+/* numpy's power loop for doubles at one point, the exponent's stride zero or not: with
+ * a zero stride the loop takes its fast paths (exponent -1, 0, 0.5, 1, 2), else its
+ * SIMD pow */
+static double np_pow(int i, double a, double b, int zero_stride)
+{{
+    double out;
+    char *args[3] = {{(char *)&a, (char *)&b, (char *)&out}};
+    const ptrdiff_t n = 1;
+    const ptrdiff_t steps[3] = {{sizeof(double), zero_stride ? 0 : sizeof(double),
+                                sizeof(double)}};
+    np_loops[i](args, &n, steps, np_data[i]);
+    return out;
+}}
+
+/* libm's pow through a pointer: the compiler may not rewrite pow(x, 2.0) as x * x
+ * (numpy's scalar power is libm's pow, which rounds otherwise at some x) */
+static double (*volatile c_pow_fn)(double, double) = pow;
+
+static double c_pow(double a, double b)
+{{
+    return c_pow_fn(a, b);
 }}
 """
 

@@ -10,6 +10,16 @@ writes AUTO's C user file of the same operations; it is compiled with washer's b
 compiled correctors of equilibria, the fold and Hopf loci and periodic orbits call FUNC
 directly. STPNT, PVLS, BCND, ICND and FOPT stay the Python file's.
 
+A func with a power that numpy computes otherwise on numpy scalars than on arrays
+(washer.cont.trace: `x ** 2` is libm's pow on a np.float64, x * x on an array) is
+called in the mode the Python problem would have called it with: its `func_many` makes
+Problem.func_many's choices (one point at a time; one call on arrays for a batch of
+VECTORISE_MIN points and more, checked once against separate calls; one call on arrays
+for a small stencil while washer.cont.pointwise's bitwise comparison with separate calls
+holds), with the two modes of the compiled FUNC standing for the two kinds of calls, on
+the same state objects. The compiled correctors then call back (compiled_newton's
+PythonEquations, compiled_po's call back) instead of calling FUNC directly.
+
 Trusted only where verified, byte for byte (the rule of washer.cont.pointwise: IEEE
 arithmetic is the same whichever code runs it, so equal values are expected everywhere
 and a single difference means the trace is not the function):
@@ -37,8 +47,10 @@ import numpy as np
 
 from washer.cont.compile import CompileError, build_library, declarations, source_text
 from washer.cont.compiled import SHIM, INCLUDE, CompiledProblem, CompiledUser
+from washer.cont.linalg import all_finite
 from washer.cont.pointwise import same_bits
-from washer.cont.problem import Problem, ProblemError, VECTORISE_MIN
+from washer.cont.problem import (Problem, ProblemError, STENCIL_MIN, VECTORISE_CHECK,
+                                 VECTORISE_MIN, broadcast_rows)
 from washer.cont.trace import TraceError, emit_user_file, numpy_loop, trace_function
 
 #: The length of PAR the functions are traced with (AUTO's NPARX): a func reading
@@ -52,11 +64,19 @@ RUN_POINTS = 32
 #: Python computes it).
 FLAGS = ("-ffp-contract=off",)
 #: What the bridge's cffi declarations lack: washer_traced_bind of the generated C.
-_BIND_CDEF = "int washer_traced_bind(int k, void *const *loops, void *const *data);"
+_BIND_CDEF = """int washer_traced_bind(int k, void *const *loops, void *const *data);
+void washer_traced_mode(int mode);"""
+#: washer_traced_mode's modes (washer.cont.trace): func on numpy scalars (one point), on
+#: arrays, on arrays whose par rows are one broadcast vector (row stride 0)
+SCALARS, ARRAYS, ARRAYS_PAR_BROADCAST = 0, 1, 2
 
 _FFI: list = []
 #: library path -> its handle by _FFI (kept open: the loops bound stay bound)
 _BOUND: dict = {}
+
+
+class _Refused(Exception):
+    """A compared call of a two-way FUNC differed: the call is made again in Python."""
 
 
 class TraceState:
@@ -81,6 +101,16 @@ class TracedUser(CompiledUser):
         super().__init__(path, ndim, lib_path=lib_path)
         self.state = state
         self._pvls_seen = True         # the generated file's PVLS is empty
+        self._modes = _BOUND[str(lib_path)]
+
+    def func_in_mode(self, us, pars, mode: int) -> np.ndarray:
+        """func_batch with FUNC's powers computed as numpy does in `mode` (SCALARS,
+        ARRAYS, ARRAYS_PAR_BROADCAST); the mode is SCALARS again after the call."""
+        self._modes.washer_traced_mode(mode)
+        try:
+            return self.func_batch(us, pars)
+        finally:
+            self._modes.washer_traced_mode(SCALARS)
 
     @property
     def func_ready(self) -> bool:
@@ -103,9 +133,16 @@ class TracedProblem(CompiledProblem):
     icnd = Problem.icnd
     icnd_many = Problem.icnd_many
 
-    def __init__(self, user: TracedUser, python: Problem, npar_used: int):
+    def __init__(self, user: TracedUser, python: Problem, npar_used: int,
+                 two_ways: bool = False, arrays: bool = True, dfdp_traced: bool = True):
         self.user, self.python, self.state = user, python, user.state
+        #: the file's dfdp is compiled (else the Python function)
+        self.dfdp_traced = dfdp_traced
         self.npar_used = npar_used
+        #: FUNC computes a power otherwise on numpy scalars and on arrays
+        self.two_ways = two_ways
+        #: the Python func can be called on arrays (else Problem.func_many never does)
+        self.arrays = arrays
         py = python
         Problem.__init__(self, py.ndim, None, py._stpnt, name=py.name, npar=py.npar,
                          dfdu_batch=user.dfdu_batch if py._dfdu is not None else None,
@@ -119,7 +156,8 @@ class TracedProblem(CompiledProblem):
         py = self.python
         self._func, self._func_batch = self._checked_func, self._checked_batch
         self._dfdu = self._checked_dfdu if py._dfdu is not None else None
-        self._dfdp = self._checked_dfdp if py._dfdp is not None else None
+        self._dfdp = self._checked_dfdp if py._dfdp is not None and self.dfdp_traced \
+            else py._dfdp
 
     @property
     def route(self) -> str:
@@ -139,6 +177,76 @@ class TracedProblem(CompiledProblem):
         p._left = RUN_POINTS
         p._bind_checked()
         return p
+
+    # ------------------------------------------------- the Python problem's choices
+    def func_many(self, us, pars) -> np.ndarray:
+        """f at k points as Problem.func_many computes it; for a `two_ways` FUNC each call
+        in the mode of the call Problem.func_many would make (the module's docstring)."""
+        if self.two_ways and not self.state.off and not self._short_par(np.asarray(pars)):
+            try:
+                return self._as_python_calls(np.asarray(us, dtype=float),
+                                             np.asarray(pars, dtype=float))
+            except _Refused:
+                pass                 # now the Python problem's: the call again by it
+        return Problem.func_many(self, us, pars)
+
+    def _as_python_calls(self, us, pars) -> np.ndarray:
+        """Problem.func_many's choices (on this problem's `_vectorised` and `_pointwise`,
+        as the Python problem keeps them) with the compiled FUNC in their modes."""
+        k = len(us)
+        if pars.ndim == 1:
+            pars = broadcast_rows(pars, k)
+        mode = ARRAYS_PAR_BROADCAST if k and pars.strides[0] == 0 else ARRAYS
+        if self.arrays and k >= VECTORISE_MIN and self._vectorised is not False:
+            # Problem._call_vectorised: its first call checked against separate calls
+            out = self._in_mode(us, pars, mode)
+            if self._vectorised is None:
+                m = min(k, VECTORISE_CHECK)
+                ref = self._in_mode(us[:m], pars[:m], SCALARS)
+                if not all_finite(ref):
+                    raise ProblemError(f"{self.name}: func(u, par) returned non-finite "
+                                       "values")
+                self._vectorised = bool(np.array_equal(ref, out[:m]) or np.allclose(
+                    ref, out[:m], rtol=1e-14, atol=0))
+            if self._vectorised:
+                return out
+        elif self.arrays and STENCIL_MIN <= k < VECTORISE_MIN and not self._pointwise.off:
+            # Problem._call_stencil: compared with separate calls at check.rows(k)
+            check = self._pointwise
+            rows = check.rows(k)
+            out = self._in_mode(us, pars, mode)
+            if (rows is None or check.agree(self._in_mode(us[rows], pars[rows], SCALARS),
+                                            out[rows], k)) and all_finite(out):
+                return out
+        out = self._in_mode(us, pars, SCALARS)
+        if not np.isfinite(out).all():
+            raise ProblemError(f"{self.name}: func(u, par) returned non-finite values")
+        return out
+
+    def _in_mode(self, us, pars, mode: int) -> np.ndarray:
+        """The compiled FUNC at the rows us, pars in `mode`, the first points of a run
+        compared with the Python func called as the mode says (separate calls, or one
+        call on arrays with par's rows as given)."""
+        out = self.user.func_in_mode(us, np.ascontiguousarray(pars), mode)
+        m = min(self._left, len(us))
+        if m <= 0:
+            return out
+        self._left -= m
+        fn = self.python.user_func
+        try:
+            with np.errstate(all="ignore"):
+                if mode == SCALARS:
+                    ref = np.array(self._python_rows(fn, us[:m], pars[:m]), dtype=float)
+                else:
+                    ref = np.asarray(fn(us.T, pars.T), dtype=float).T[:m]
+        except Exception:
+            ref = None
+        if ref is not None and same_bits(np.ascontiguousarray(ref), out[:m]):
+            return out
+        self.state.refuse("its compiled trace gave other values than func(u, par) at a "
+                          "point of the run (compared bit for bit)")
+        self._switch_to_python()
+        raise _Refused()
 
     # ---------------------------------------------------------------- compared calls
     def _python_rows(self, fn, us, pars):
@@ -311,9 +419,16 @@ def _build(python: Problem, path: Path) -> TracedProblem:
     if python._dfdu is not None:
         traced_j = trace_function(python._dfdu, n, TRACE_NPAR, (n, n), loops=loops,
                                   prefix="a")
+    python_dfdp = ""
     if python._dfdp is not None:
-        traced_p = trace_function(python._dfdp, n, TRACE_NPAR, (n, None), loops=loops,
-                                  prefix="b")
+        try:
+            traced_p = trace_function(python._dfdp, n, TRACE_NPAR, (n, None), loops=loops,
+                                      prefix="b")
+        except TraceError as exc:
+            # (typically np.zeros((n, len(par))) filled in): dfdp stays the Python
+            # function, called as the Python problem calls it (one point at a time; no
+            # compiled path reads FUNC's DFDP of a traced file but TracedProblem's own)
+            python_dfdp = f"; dfdp(u, par) in Python: {exc}"
     npar_used = max(t[0].npar_used for t in (traced_f, traced_j, traced_p) if t is not None)
     text = emit_user_file(path.name, n, traced_f, traced_j, traced_p)
     shim = SHIM.read_bytes()
@@ -323,15 +438,44 @@ def _build(python: Problem, path: Path) -> TracedProblem:
                         includes=[INCLUDE], defines={"WASHER_FORTRAN": 0}, flags=FLAGS)
     _bind(lib, loops)
     state = TraceState("func(u, par) traced into C (compared with the Python func bit for "
-                       "bit at the start and at the first points of each run)")
+                       "bit at the start and at the first points of each run)" + python_dfdp)
     user = TracedUser(path, n, lib, state)
     # verified where the file starts before it is trusted
     us, ps = _start_points(python, random.Random(20261202))
+    two_ways, arrays = traced_f[0].two_ways, True
     with np.errstate(all="ignore"):
         _agree(user.func_batch(us, ps), python._func, us, ps, "func(u, par)")
+        if two_ways:
+            arrays = _agree_on_arrays(user, python._func, us, ps)
         if traced_j is not None:
             _agree(user.dfdu_batch(us, ps), python._dfdu, us, ps, "dfdu(u, par)")
         if traced_p is not None:
             P = np.array([user.dfdp(u, p) for u, p in zip(us, ps)])
             _agree(P, python._dfdp, us, ps, "dfdp(u, par)")
-    return TracedProblem(user, python, npar_used)
+    return TracedProblem(user, python, npar_used, two_ways, arrays,
+                         dfdp_traced=traced_p is not None)
+
+
+def _agree_on_arrays(user: TracedUser, fn, us, ps) -> bool:
+    """Whether fn can be called on arrays (as Problem.func_many calls it): False where
+    it raises or gives another shape; else TraceError unless the compiled FUNC in the
+    modes ARRAYS and ARRAYS_PAR_BROADCAST gives its values bit for bit at every point
+    where they are finite (par's rows strided, then one broadcast vector, the start's)."""
+    k, n = us.shape
+    for pars, mode in ((ps, ARRAYS), (broadcast_rows(ps[0], k), ARRAYS_PAR_BROADCAST)):
+        try:
+            ref = np.asarray(fn(us.T, pars.T), dtype=float)
+        except Exception:
+            return False
+        if ref.shape != (n, k):
+            return False
+        ref = np.ascontiguousarray(ref.T)
+        got = user.func_in_mode(us, np.ascontiguousarray(pars), mode)
+        finite = np.isfinite(ref).all(axis=1)
+        if not finite.any():
+            raise TraceError("func(u, par) on arrays gave no finite values at the points "
+                             "near the start it is compared at: nothing verified")
+        if not same_bits(ref[finite], got[finite]):
+            raise TraceError("the compiled trace of func(u, par) on arrays differs from "
+                             "it at a point near the start (compared bit for bit)")
+    return True
