@@ -72,8 +72,19 @@ def split_code(code: int) -> tuple[int, int]:
 _CURVE_NAMES = {23: "LTR", 83: "LTR", 77: "PTR", 87: "PTR", 28: "LPD", 78: "LPD", 88: "TTR"}
 
 
+#: type_name's answers by code (every point's b-row and screen line asks for one of a few)
+_TYPE_NAMES: dict = {}
+
+
 def type_name(code: int) -> str:
     """'HB', 'UZ', 'GH', 'BT', 'LPD', ... for any written code, including curve codes."""
+    name = _TYPE_NAMES.get(code)
+    if name is None:
+        name = _TYPE_NAMES[int(code)] = _type_name(code)
+    return name
+
+
+def _type_name(code: int) -> str:
     if int(code) in _CURVE_NAMES:
         return _CURVE_NAMES[int(code)]
     base, curve = split_code(code)

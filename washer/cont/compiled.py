@@ -57,6 +57,7 @@ void washer_po_func(int k, const double *us, const double *pars, int pstride, do
 void washer_po_jac(int k, const double *us, const double *pars, int pstride, double *J,
                    double *Jp);
 void washer_pvls(int ndim, const double *u, double *par);
+int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int npar);
 void washer_set_homcont(const int *values);
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
                  const double *u1, int ijac, double *fb, double *dbc);
@@ -167,6 +168,7 @@ class CompiledUser:
         self._pvls_seen = not self.has["pvls"]
         self.nbc = self.nint = 0
         self.pvls_wants_eigenvalues = False     # learnt on the first PVLS that asks GETP
+        self._pvls_first = None                 # PAR before PVLS (`pvls_plain`)
 
     def reload(self) -> None:
         """Unload and load the library again: the user file's SAVEd and module variables
@@ -335,6 +337,26 @@ class CompiledUser:
                                         _ffi.NULL)
             self.lib.washer_pvls(self.ndim, _dptr(u), _dptr(par))
 
+    def pvls_plain(self, u, par) -> np.ndarray | None:
+        """AUTO's PVLS on an algebraic problem's u (NDIM,) without eigenvalues for GETP,
+        par (NPAR,) set in place, in one foreign call (washer_pvls_ae): None, or where
+        GETP asked for eigenvalues, a copy of par from before the call (then
+        `set_multipliers` and `pvls` repeat it). A library built without that entry
+        makes the calls one by one."""
+        first = self._pvls_first
+        if first is None or len(first) != len(par):
+            first = self._pvls_first = np.empty(len(par))
+        if not hasattr(self.lib, "washer_pvls_ae"):         # pragma: no cover - older build
+            self.set_multipliers(None)
+            first[:] = par
+            self.pvls(u, par)
+            return first.copy() if self.eig_wanted() else None
+        self._eig = None
+        u = np.ascontiguousarray(u, dtype=float)
+        if self.lib.washer_pvls_ae(self.ndim, _dptr(u), _dptr(par), _dptr(first), len(par)):
+            return first.copy()
+        return None
+
     def eig_wanted(self) -> bool:
         """Whether the last PVLS asked GETP for 'EIG' or 'STA' that were not set."""
         return bool(self.lib.washer_eig_wanted())
@@ -472,12 +494,10 @@ class CompiledProblem(Problem):
         # d-file's), computed only for a PVLS that asks for them (learnt on its first call).
         if self.user.pvls_wants_eigenvalues:
             self._set_eigenvalues(u, par)
-        else:
-            self.user.set_multipliers(None)
-        learnt = self.user.pvls_wants_eigenvalues
-        first = None if learnt else np.array(par)
-        self.user.pvls(u, par)
-        if not learnt and self.user.eig_wanted():
+            self.user.pvls(u, par)
+            return par
+        first = self.user.pvls_plain(u, par)
+        if first is not None:
             self.user.pvls_wants_eigenvalues = True
             par[:] = first
             self._set_eigenvalues(u, par)

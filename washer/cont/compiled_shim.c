@@ -363,6 +363,20 @@ void washer_pvls(int ndim, const double *u, double *par)
 #endif
 }
 
+/* PVLS of an algebraic problem (IPS 0, 1 and their loci) as one call: GETP's context of
+ * equilibria without eigenvalues, PAR(1..npar) copied to `first` (the caller's to call
+ * again with eigenvalues where GETP asked for them), PVLS, and whether GETP asked for
+ * eigenvalues (washer_eig_wanted: read and reset). The same calls washer.cont.compiled
+ * makes one by one. */
+int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int npar)
+{
+    washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, 0, NULL);
+    washer_set_context(1, ndim, 0, 0, 0, 0, NULL);
+    memcpy(first, par, (size_t)npar * sizeof(double));
+    washer_pvls(ndim, u, par);
+    return washer_eig_wanted();
+}
+
 /* BCND: fb (nbc,), dbc column-major (nbc, 2 ndim + npar) when ijac > 0. */
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
                  const double *u1, int ijac, double *fb, double *dbc)

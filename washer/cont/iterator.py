@@ -110,6 +110,22 @@ class State:
     counters: Counters = field(default_factory=Counters)
 
 
+#: (n,) read-only vectors (0, ..., 0, 1) by n: the right-hand side of every tangent's
+#: solve, made once per size instead of at every point.
+_LAST_UNIT: dict = {}
+
+
+def last_unit(n: int) -> np.ndarray:
+    """The read-only (n,) vector (0, ..., 0, 1)."""
+    e = _LAST_UNIT.get(n)
+    if e is None:
+        e = np.zeros(n)
+        e[-1] = 1.0
+        e.flags.writeable = False
+        _LAST_UNIT[n] = e
+    return e
+
+
 def _failing_as(what: str, fn):
     """fn with the equations' failures (ProblemError) raised as ConvergenceError(what)."""
     def call(*args, **kw):
@@ -307,9 +323,7 @@ class Continuation:
         determinant is AUTO's BP test."""
         sysm = self.sys
         factor = self._factor(J, sysm.border(ref))
-        e = np.zeros(len(ref))
-        e[-1] = 1.0
-        z = quietly(factor.solve, e)
+        z = quietly(factor.solve, last_unit(len(ref)))
         nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
             else math.inf
         if not math.isfinite(nz) or nz == 0 or nz > SINGULAR_TANGENT:     # nz: a float

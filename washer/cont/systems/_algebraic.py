@@ -58,7 +58,7 @@ class AlgebraicSystem:
         p[self.free[0] - 1] = x[-1]
         return p
 
-    #: (x's bytes, PAR, PVLS's PAR) of the last point PVLS was called at (`params`)
+    #: (x's bytes, PAR's bytes, PVLS's PAR) of the last point PVLS was called at (`params`)
     _pvls_memo = None
 
     def params(self, x) -> np.ndarray:
@@ -68,7 +68,9 @@ class AlgebraicSystem:
         same x one after the other."""
         p = self._p(x)
         if self.problem.has_pvls:
-            key, pl = x.tobytes(), p.tolist()
+            # the same bytes of x and PAR: the same call (bytes compare without making
+            # NPAR Python floats)
+            key, pl = x.tobytes(), p.tobytes()
             memo = self._pvls_memo
             if memo is not None and memo[0] == key and memo[1] == pl:
                 return memo[2].copy()

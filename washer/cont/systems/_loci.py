@@ -92,8 +92,3 @@ class LocusSystem(AlgebraicSystem):
     def stability(self, x, J):
         """No stability on ISW = 2 curves (AUTO writes PT > 0 there)."""
         return None
-
-    def solution(self, x, tangent):
-        sol = super().solution(x, tangent)
-        sol.par = self.params(x)
-        return sol

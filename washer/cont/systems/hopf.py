@@ -15,6 +15,8 @@ of the equilibria on the locus); MXBF switching there follows the other branch.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from washer.cont.codes import Code
@@ -119,7 +121,9 @@ class HopfSystem(LocusSystem):
 
     def update(self, x, tangent):
         v = x[self.ndim:2 * self.ndim]
-        self.v_old = v / np.linalg.norm(v)
+        # np.linalg.norm's own formula for a real vector (the square root of v.dot(v)),
+        # without its Python dispatch: the same double
+        self.v_old = v / math.sqrt(v.dot(v))
 
     # ---------------------------------------------------------------- tests
     def active_tests(self) -> list:
