@@ -30,13 +30,11 @@ from washer.auto.constants import Constants, ConstantsError, read_constants
 from washer.auto import diagram
 from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
                                         AutoError)
-from washer.auto.diagram import (Diagram, Solution, SolutionList, label_selector, read_solutions,
-                                  type_name)
+from washer.auto.diagram import (NONE_KEYS, Diagram, Solution, SolutionList, label_selector,
+                                  read_solutions, type_name)
 from washer.atomic import save_figure
 from washer.named_problems import named_problem
 
-#: Constants a solution taken from a run does not carry to the next run (bifDiag.nonekeys).
-NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
 #: File name of the unsaved output of a run (AUTO's units 7, 8, 9).
 FORT = ("fort.7", "fort.8", "fort.9")
 #: Engine messages that mean "this kind of run is not done here" (not a user error).

@@ -466,11 +466,12 @@ class Diagram(list):
         if not branches and sols:
             return cls([_branch_of_solutions(sols, c)])
         k = 0
+        sol_c = solution_constants(branches) if c is None else None
         for b in branches:
             for i, r in b.labelled():
                 if k < len(sols):
                     if sols[k].c is None:
-                        sols[k].c = b.c
+                        sols[k].c = sol_c.copy() if sol_c is not None else b.c
                     b.solutions[i] = sols[k]
                     k += 1
         if branches and d_path and Path(d_path).exists():
@@ -641,30 +642,81 @@ def _titles(line: str) -> list[str]:
     return [rest[i:i + 19].strip() for i in range(0, len(rest), 19) if rest[i:i + 19].strip()]
 
 
-def header_constants(header: list[str]) -> dict:
-    """The names a b-file header states (e, parnames, unames) and its DS: AUTO's constants
-    of a diagram loaded from files, so that solutions are indexed by name as after a run
-    and merge() sees which way each branch ran (forward and backward runs from one
-    start, written with DS and DS = '-', are joined)."""
-    import ast
-    out = {}
-    for line in header:
-        m = re.match(r"\s*0\s+DS\s*=\s*([-+0-9.EeDd]+)", line)
-        if m:
-            try:
-                out["DS"] = float(m.group(1).replace("D", "E").replace("d", "e"))
-            except ValueError:
-                pass
-        m = re.match(r"\s*0\s+(parnames|unames)\s*=\s*(\{.*\})\s*$", line)
-        if m:
-            try:
-                out[m.group(1)] = {int(k): v for k, v in ast.literal_eval(m.group(2)).items()}
-            except (ValueError, SyntaxError):
-                pass
-        m = re.search(r"\be\s*=\s*'([^']*)'", line)
-        if m and line.split()[1:2] == ["e"]:
-            out["e"] = m.group(1)
+#: Constants a solution of a loaded diagram does not carry to a run from it (AUTO's
+#: bifDiag.nonekeys): they describe the run that wrote the files, not the next one.
+NONE_KEYS = ("IRS", "PAR", "U", "sv", "s", "dat", "TY", "LAB", "IBR")
+
+
+def has_constants(header: list[str]) -> bool:
+    """Whether a b-file header block states a run's constants (its first line holds RL0,
+    RL1, A0, A1), not only the column titles of a branch the run switched to."""
+    return bool(header) and len(header[0].split()) >= 5
+
+
+def _fortran_real(word: str) -> float:
+    """A real as Fortran writes it: 1.0D-03, and 1.7976+308 (ES11.4 of a three-digit
+    exponent drops the E)."""
+    w = word.replace("D", "E").replace("d", "e")
+    return float(re.sub(r"(?<=\d)([+-]\d+)$", r"e\1", w))
+
+
+def _header_icp(line: str) -> list:
+    """ICP of '   0   User-specified parameters:   11   17' (numbers or 'names')."""
+    out = []
+    for w in line.split(":", 1)[1].split():
+        try:
+            out.append(int(w))
+        except ValueError:
+            out.append(w.strip("'\""))
     return out
+
+
+def header_constants(header: list[str]) -> dict:
+    """The constants a b-file header states (io.f90:STHD's block), as AUTO-07p's parseB
+    reads them back: RL0, RL1, A0, A1 from the first line, every KEY = value after it
+    (HomCont's NUNSTAB ... ISTART, IREV, IFIXED, IPSI included), ICP from 'User-specified
+    parameter(s)'. Below 'User-specified constants, where different from above' the
+    user's values replace the run's own (an extended system's NDIM, NBC, NINT; NPAR;
+    HomCont's NUNSTAB, NSTAB where computed): the constants are the user's. Not
+    constants, and left out: the active parameters, NUZR (a count), the branch type.
+    A header without the constants line (a switched-to branch) gives {}."""
+    from washer.auto.constants import DEFAULTS, ConstantsError, parse_text
+    if not has_constants(header):
+        return {}
+    out = {}
+    try:
+        for key, word in zip(("RL0", "RL1", "A0", "A1"), header[0].split()[1:5]):
+            out[key] = _fortran_real(word)
+    except ValueError:
+        out = {}
+    for line in header[1:]:
+        body = line.split(None, 1)[1].strip() if len(line.split()) > 1 else ""
+        if not body or body.startswith(("PT ", "Branch type", "User-specified constants",
+                                        "Active continuation")):
+            continue
+        if body.startswith("User-specified parameter"):
+            out["ICP"] = _header_icp(body)
+            continue
+        try:
+            stmts = parse_text(re.sub(r"(?<=\d)([+-]\d{3})\b", r"e\1", body), "b-file header")
+        except ConstantsError:
+            continue            # a line that is not KEY = value statements
+        for key, value, _ in stmts:
+            if key in DEFAULTS:
+                out[key] = value
+    return out
+
+
+def solution_constants(branches) -> AutoConstants | None:
+    """The constants the solutions of a diagram read from files carry (AUTO's bifDiag):
+    the first header's that states them, without NONE_KEYS; None without such a header."""
+    for b in branches:
+        if has_constants(b.header) and b.c is not None:
+            c = AutoConstants(b.c)
+            for k in NONE_KEYS:
+                c[k] = None
+            return c
+    return None
 
 
 def read_branches(path, c=None) -> list[Branch]:
