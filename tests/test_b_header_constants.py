@@ -137,3 +137,29 @@ def test_a_constants_file_comes_after_the_header(ab_folder, monkeypatch):
     sol = clui.load(clui.loadbd("1")("UZ1"), c="x")
     assert (sol.c["NMX"], sol.c["DS"], sol.c["NPAR"], sol.c["UZSTOP"]) == (4, 0.05, None, None)
     assert sol.c["e"] == "ab" and sol.c["IRS"] == sol.rec.lab
+
+
+def _homcont_lines(block):
+    return [ln for ln in block if re.match(r"   0 +(NUNSTAB=| IREV=| IFIXED=| IPSI=)", ln)]
+
+
+@pytest.mark.slow
+def test_homcont_header_lines_are_autos_on_fhh(tmp_path, monkeypatch):
+    """fhh's 8 runs (homotopy start ISTART = 3, ITWIST = 1, IPSI and IFIXED lists): the
+    HomCont lines of every header block are AUTO-07p's byte for byte (the NUNSTAB, NSTAB,
+    ISTART the run uses, IEQUIB, ITWIST; IREV, IFIXED, IPSI; the user's below)."""
+    from b_rows import header_blocks
+    from washer.auto.script import run_script
+    work = tmp_path / "fhh"
+    shutil.copytree(DEMOS / "fhh", work, ignore=shutil.ignore_patterns("autoref"))
+    monkeypatch.chdir(work)
+    monkeypatch.setattr(clui, "_runner", clui.Runner())
+    run_script("fhn.auto")
+    n = 0
+    for ref in sorted((DEMOS / "fhh" / "autoref").glob("b.*")):
+        theirs, ours = header_blocks(ref), header_blocks(work / ref.name)
+        assert len(ours) == len(theirs), ref.name
+        for a, b in zip(theirs, ours):
+            assert _homcont_lines(b) == _homcont_lines(a), ref.name
+            n += bool(_homcont_lines(a))
+    assert n >= 8

@@ -294,7 +294,8 @@ def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     assert eval(b_labels) == expect and eval(s_labels) == expect
 
 
-@pytest.mark.parametrize("demo, names", [("lor", ["b.lor"]), ("ffn", ["b.1", "b.2", "b.3"])])
+@pytest.mark.parametrize("demo, names", [("lor", ["b.lor"]), ("ffn", ["b.1", "b.2", "b.3"]),
+                                         ("she", ["b.1", "b.2"])])
 def test_cluis_headers_are_autos(tmp_path, monkeypatch, demo, names):
     """Every header block of the demo's b-files is AUTO's byte for byte (autoref). lor: a
     start from lor.dat, then restarts from its labels (sv='lor'): the data start as
@@ -302,10 +303,15 @@ def test_cluis_headers_are_autos(tmp_path, monkeypatch, demo, names):
     constants and data read from one stream), the restarts with IRS = the label and
     e = 'lor' only. ffn: restarts with LAB=1 from r1('UZ1') (label 2), which AUTO's
     CLUI relabels 1 (a data keyword of its solutions): IRS = 1; and the IPLT column
-    'L2-NORM x' by unames."""
+    'L2-NORM x' by unames. she (IPS = 9, IEQUIB = -2, then -1): HomCont's line with the
+    NUNSTAB, NSTAB the run counted and ISTART = 5 resolved to 1, the user's -1, -1, 5
+    below."""
     work = tmp_path / demo
     shutil.copytree(DEMOS / demo, work, ignore=shutil.ignore_patterns("autoref"))
     monkeypatch.chdir(work)
+    # a script starts with nothing remembered, as AUTO's in its own process (ffn's
+    # parnames would otherwise name she's columns)
+    monkeypatch.setattr(clui, "_runner", clui.Runner())
     run_script(f"{demo}.auto")
     for name in names:
         ours = header_blocks(work / name)

@@ -23,8 +23,8 @@ import numpy as np
 
 from washer.atomic import write_text
 from washer.cont.codes import split_code, type_name as _type_name
-from washer.auto.files import (AutoFileError, Record, Row, _read_record, _read_text, fmt_e,
-                               record_text)
+from washer.auto.files import (AutoFileError, Record, Row, _fortran_float, _read_record,
+                               _read_text, fmt_e, record_text)
 from washer.auto.autoconstants import AutoConstants
 
 
@@ -653,13 +653,6 @@ def has_constants(header: list[str]) -> bool:
     return bool(header) and len(header[0].split()) >= 5
 
 
-def _fortran_real(word: str) -> float:
-    """A real as Fortran writes it: 1.0D-03, and 1.7976+308 (ES11.4 of a three-digit
-    exponent drops the E)."""
-    w = word.replace("D", "E").replace("d", "e")
-    return float(re.sub(r"(?<=\d)([+-]\d+)$", r"e\1", w))
-
-
 def _header_icp(line: str) -> list:
     """ICP of '   0   User-specified parameters:   11   17' (numbers or 'names')."""
     out = []
@@ -686,7 +679,7 @@ def header_constants(header: list[str]) -> dict:
     out = {}
     try:
         for key, word in zip(("RL0", "RL1", "A0", "A1"), header[0].split()[1:5]):
-            out[key] = _fortran_real(word)
+            out[key] = _fortran_float(word)
     except ValueError:
         out = {}
     for line in header[1:]:

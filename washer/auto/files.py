@@ -342,7 +342,8 @@ class OutputFiles:
                curve_type: int = 0, curve_name: str = "", *, irs: int | None = None,
                nfpr: int | None = None, ds: float | None = None, dsmin: float | None = None,
                dsmax: float | None = None, active: list | None = None,
-               internal: dict | None = None, s_name: str | None = None) -> None:
+               internal: dict | None = None, s_name: str | None = None,
+               homcont: tuple | None = None) -> None:
         """The run's header block (io.f90:STHD), in AUTO-07p's exact layout.
 
         c: the user's constants; ndim_internal, npar: NDIM and NPAR as the
@@ -357,6 +358,9 @@ class OutputFiles:
         value differs from the user's, AUTO lists the user's under 'User-specified
         constants, where different from above' (AUTO-07p's parseB reads those back).
         s_name: the s the header names where it is not c's (AUTO's CLUI: '/').
+        homcont: (NUNSTAB, NSTAB, ISTART) as an IPS = 9 run uses them (default the user's);
+        IPS = 9 headers state them with IEQUIB, ITWIST (and IREV, IFIXED, IPSI where set),
+        the user's NUNSTAB, NSTAB, ISTART below where they differ.
         The block is written with the first point (`row`), never alone.
         """
         user_irs = c["IRS"] if isinstance(c["IRS"], int) else None
@@ -396,6 +400,8 @@ class OutputFiles:
         for key in ("UZR", "UZSTOP"):
             if c[key]:
                 lines.append(f"   0   {key} = {_dict_str(c[key])}")
+        if c["IPS"] == 9:
+            lines += self._homcont(c, homcont)
         names = {k: c[k] for k in ("e", "s", "dat", "sv")}
         if s_name is not None:
             names["s"] = s_name
@@ -414,6 +420,8 @@ class OutputFiles:
             if c[key]:
                 lines.append(f"   0   {label}[" + ", ".join(f"'{s}'" for s in c[key]) + "]")
         lines += self._user_specified(c, ndim_internal, npar, irs, user_irs, steps, run)
+        if c["IPS"] == 9:
+            lines += self._homcont_user(c, homcont)
         icp_user = c["ICP"]
         names = {int(k): v for k, v in c["parnames"].items()}
         lines.append("   0   User-specified parameter" + (":       " if len(icp_user) == 1 else
@@ -426,6 +434,33 @@ class OutputFiles:
             lines.append(f"   0   Branch type: {curve_type:2d}    TY = '{curve_name:<3}'")
         self._pending_b += "\n".join(lines) + "\n"
         self.column_titles = column_titles
+
+    @staticmethod
+    def _homcont(c, internal) -> list[str]:
+        """STHD's HomCont lines of an IPS = 9 run: NUNSTAB, NSTAB, ISTART as the run uses
+        them, the user's IEQUIB, ITWIST ('(2(A,I4),2(A8,I2),(A8,I4))'); IREV, IFIXED, IPSI
+        where one is set."""
+        nunstab, nstab, istart = internal or (c["NUNSTAB"], c["NSTAB"], c["ISTART"])
+        lines = [f"   0   NUNSTAB={nunstab:4d} NSTAB={nstab:4d}{'IEQUIB=':>8}{c['IEQUIB']:2d}"
+                 f"{'ITWIST=':>8}{c['ITWIST']:2d}{'ISTART=':>8}{istart:4d}"]
+        lists = "".join(f" {k}=[" + ", ".join(str(int(i)) for i in c[k]) + "]"
+                        for k in ("IREV", "IFIXED", "IPSI") if c[k])
+        if lists:
+            lines.append("   0  " + lists)
+        return lines
+
+    @staticmethod
+    def _homcont_user(c, internal) -> list[str]:
+        """The user's NUNSTAB, NSTAB, ISTART where the run's differ (STHD, after the
+        'User-specified constants' lines)."""
+        if internal is None:
+            return []
+        user = (c["NUNSTAB"], c["NSTAB"], c["ISTART"])
+        if user == tuple(internal):
+            return []
+        fmts = ("NUNSTAB={:4d}", " NSTAB={:4d}", " ISTART={:4d}")
+        return ["   0   " + "".join(f.format(u) for f, u, a in zip(fmts, user, internal)
+                                    if u != a)]
 
     @staticmethod
     def _user_specified(c, ndim, npar, irs, user_irs, steps, run) -> list[str]:

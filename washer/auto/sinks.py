@@ -72,7 +72,8 @@ class FileSink:
         self.files.header(c, ndim, getattr(sysm, "header_npar", s.NPAR), run.titles, curve,
                           LBTYPE.get(curve, ""), irs=run.irs_label, nfpr=len(active), ds=s.DS,
                           dsmin=s.DSMIN, dsmax=s.DSMAX, active=active, internal=internal,
-                          s_name=self.fresh_s if self.fresh_s and not run.irs_label else None)
+                          s_name=self.fresh_s if self.fresh_s and not run.irs_label else None,
+                          homcont=getattr(sysm, "homcont_internal", None))
 
     def branch_start(self, br: int) -> None:
         self.files.branch_start()

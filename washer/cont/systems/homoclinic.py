@@ -320,6 +320,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
             par = user.pvls(self._start_u0(rec, par, data), par)
         self.nstab, self.nunstab = _counts(
             s, np.linalg.eigvals(self._A(par[EQUILIBRIUM - 1:EQUILIBRIUM - 1 + ndm], par)))
+        #: (NUNSTAB, NSTAB, ISTART) as the run uses them (counted where -1, ISTART = 5
+        #: resolved): what AUTO's b-file header states above the user's values
+        self.homcont_internal = (self.nunstab, self.nstab, istart)
         nright = len(self.rev) if self.rev is not None else self.nunstab
         nbc = (self.nstab + nright + len(self.fixed) + (self.iequib == 2) + n_eq)
         nint = 0 if self.rev is not None else 1

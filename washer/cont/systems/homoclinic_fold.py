@@ -44,6 +44,7 @@ class HomoclinicFoldLocus(BVPFoldLocus):
         s2 = hs.with_(ISW=2, ICP=free + rest, IPS=9)
         super().__init__(StartData(orbit.problem, s2, data.u, par, data.record, data.kind,
                                    data.unames))
+        self.homcont_internal = orbit.homcont_internal
 
 
 __all__ = ["HomoclinicFoldLocus"]
