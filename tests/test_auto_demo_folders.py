@@ -64,7 +64,9 @@ EXPECTED_FAIL = {
     "fhh": "AUTO's UZ for PAR(2) = 0 in run 5 is written at -7.53e-4 (its "
            "location stopped on step size off the zero); run 8 (IFIXED = [13]) ends MX in "
            "ours where PSI 2 = 0, AUTO's steps pass it to EP at NMX",
-    "fnb": "run 6 is homoclinic branch switching (ISTART = -2), not done",
+    "fnb": "run 6's UZ for Lin's gap PAR(22) = 0 (3-homoclinic orbits) lie "
+           "0.002-0.7 apart in the pieces' time PAR(21), where the gap is exponentially "
+           "small in it (which engine's are nearer the exact zeros is not found out yet)",
     "kdv": "AUTO's UZ for PAR(1) = 3 over run 3's Newton jump is at 2.7295 (ours "
            "none), so r3('UZ2') is not found; runs 4-7 are homoclinic branch switching "
            "(ISTART = -3)",

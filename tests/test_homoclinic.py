@@ -331,3 +331,27 @@ def test_users_boundary_and_integral_conditions_with_ipsi_9():
         # the truncated orbit's deviation from the exact one, O(e^(-sqrt(a) T / 2)) = 2e-9
         # (measured 7e-10)
         assert par[3] == pytest.approx(exact(a), abs=1e-6)
+
+
+@pytest.mark.slow
+def test_a_free_parameter_in_no_equation_is_the_start_direction(tmp_path, monkeypatch):
+    # kdv's second run (AUTO's demo, tests/data/auto_demos/kdv) adds the adjoint to run 1's
+    # orbit with ICP = [3, 9]: PAR(9) is in no equation, so the Jacobian's null vector is
+    # PAR(9)'s unit vector, and the run's one step moves PAR(9) by DS = -0.01 and nothing
+    # else (AUTO's d.2: starting direction PAR(9) 1, PAR(3) 0, PAR(10) 0). The border of
+    # PAR(ICP(1)) = PAR(3) is singular there, and the reduced matrix of the long orbit
+    # (T = 20, eigenvalues +-4.4) gives a "null vector" with |J z| = 3 |J| |z|: before,
+    # the start took it and PAR(9) went to -4.93.
+    from washer.auto.files import read_b
+    src = Path(__file__).parent / "data" / "auto_demos" / "kdv"
+    work = tmp_path / "kdv"
+    shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref"))
+    (work / "two.auto").write_text("r1=run('kdv',sv='1')\nr2=run(r1,c='kdv.2',sv='2')\n")
+    monkeypatch.chdir(work)
+    run_script("two.auto")
+    rows = [r for b in read_b(work / "b.2") for r in b]
+    start, end = rows[0].values, rows[-1].values
+    # the b-file's columns: PAR(3), L2-NORM, MAX U(1..4), PAR(9)
+    assert abs(end[-1] - (-0.01)) < 1e-9          # DS (AUTO: -1.0000001e-2, its perturbed DS)
+    assert abs(end[0]) < 1e-12                    # PAR(3) = 0: the Hamiltonian orbit
+    assert abs(end[1] - start[1]) < 1e-8          # the orbit has not moved

@@ -301,26 +301,48 @@ class BoundaryValueProblem(CollocationBVP):
         # 1, as the iterator's own start), which stays well conditioned on stiff
         # problems (spb at eps = 1e-3, where the reduced matrix's smallest singular
         # vector is rounding); at a fold in PAR(ICP(1)) that border is singular and the
-        # reduced matrix's null vector is taken.
+        # reduced matrix's null vector is taken. Where that is no null vector of J either
+        # (its interior nodes, back-substituted, carry the rounding of a badly
+        # conditioned reduction: kdv's second run, an orbit over T = 20 with eigenvalues
+        # +-4.4, |J z| = 3 |J| |z|), the borders of the other free parameters are tried in
+        # ICP's order: kdv's run moves PAR(9), in no equation, alone, and the border of
+        # PAR(9) gives its unit vector exactly (AUTO's starting direction there).
+        z = self._bordered_null_vector(J, self.n_x - 1)
+        if z is None:
+            z = self.null_vector(J, np.zeros(self.n_x))
+            if not self._is_null_vector(J, z):
+                for slot in range(self.coll.n_u, self.n_x - 1):
+                    zb = self._bordered_null_vector(J, slot)
+                    if zb is not None:
+                        z = zb
+                        break
+        return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
+
+    def _bordered_null_vector(self, J, slot: int):
+        """The solution z of J z = 0 with z[slot] = 1 (a free parameter's rate), or None
+        where that border is singular: a null vector of J, not the rounding of a singular
+        border (where the branch's direction has no such component, c2c's third run:
+        the trivial eigenfunction branch moves PAR(12) alone, PAR(11) = ICP(1) stays, the
+        bordered solve returns a vector with |J z| ~ 1e-4 |J| |z|)."""
         e = np.zeros(self.n_x)
-        e[-1] = 1.0
+        e[slot] = 1.0
+        rhs = np.zeros(self.n_x)
+        rhs[-1] = 1.0                       # the border's row: z[slot] = 1
         try:
             with np.errstate(all="ignore"):
-                z = self.factor(J, e).solve(e)
-            good = np.all(np.isfinite(z)) and np.max(np.abs(z)) < 1e12
-            if good:
-                # A null vector of J, not the rounding of a singular border: where the
-                # branch's direction has no PAR(ICP(1)) component (c2c's third run: the
-                # trivial eigenfunction branch moves PAR(12) alone, PAR(11) = ICP(1)
-                # stays), the bordered solve returns a vector with |J z| ~ 1e-4 |J| |z|.
-                scale = float(abs(J).max()) if J.shape[0] else 1.0
-                good = float(np.linalg.norm(J @ z)) <= \
-                    math.sqrt(np.finfo(float).eps) * max(scale, 1.0) * float(np.linalg.norm(z))
+                z = self.factor(J, e).solve(rhs)
         except (RuntimeError, np.linalg.LinAlgError, ValueError):
-            good = False
-        if not good:
-            z = self.null_vector(J, np.zeros(self.n_x))
-        return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
+            return None
+        if not (np.all(np.isfinite(z)) and np.max(np.abs(z)) < 1e12):
+            return None
+        return z if self._is_null_vector(J, z) else None
+
+    @staticmethod
+    def _is_null_vector(J, z) -> bool:
+        """|J z| <= sqrt(eps) max(|J|_max, 1) |z|."""
+        scale = float(abs(J).max()) if J.shape[0] else 1.0
+        return float(np.linalg.norm(J @ z)) <= \
+            math.sqrt(np.finfo(float).eps) * max(scale, 1.0) * float(np.linalg.norm(z))
 
     def stability(self, x, J=None):
         return None

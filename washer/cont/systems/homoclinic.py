@@ -301,6 +301,13 @@ class HomoclinicOrbits(BoundaryValueProblem):
         self.pieces = sw.n_pieces(istart) if istart < 0 else 0
         stored = np.shape(rec.U)[1] if rec is not None and np.ndim(rec.U) == 2 else 0
         if istart >= 0 and stored > 2 * ndm:
+            if len(p) > npar:
+                # CPBKHO reads the pieces' times from the record's PAR(21), PAR(23), ..,
+                # past this run's NPAR (fnb's run 7, NPAR = 14, from run 6's 3-homoclinic
+                # orbit): the run keeps the record's parameters, as AUTO keeps the
+                # restart's NPAR (its s-files: NPAR 22 after a restart from NPAR 22)
+                npar = len(p)
+                par = np.r_[par, p[len(par):]]
             rec = sw.orbit_from_pieces(rec, ndm, par)
         if istart == 4 and rec is not None:
             rec = self._shifted(rec, par)
