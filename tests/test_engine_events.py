@@ -179,34 +179,6 @@ def test_when_itmx_runs_out_autos_rule_decides():
         locate(trial, "PD", q0, q1, S, SimpleNamespace(**{**vars(settings), "ITMX": 2}))
 
 
-@pytest.mark.parametrize("from_last", [False, True])
-def test_a_first_trial_that_fails_from_the_previous_point_is_taken_from_the_steps_end(
-        from_last):
-    """AUTO's LCSPAE / LCSPBV take their first trial back from the step's end. Here a
-    trial converges only as a step shorter than 0.3 from the point it starts from, and
-    q(s) = tanh(3 (s - 0.9)) over a step of 1 has its zero near the end: the first trial
-    from the previous point fails, and is taken from the step's end; the location then
-    ends within the tolerance EPSS (1 + sqrt|DS DSMAX|) of the zero in ITMX = 4 (before:
-    the step from the previous point halved towards the end down to DSMIN, 'trial step
-    failed'). Without the step's end it still fails so."""
-    from types import SimpleNamespace
-    from washer.cont.events import LocationFailed, locate
-    settings = SimpleNamespace(EPSS=1e-7, DS=0.01, DSMAX=0.1, ITMX=4, DSMIN=1e-12)
-    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
-
-    def trial(s, base=None):
-        if abs(s - (0.0 if base is None else base[1])) > 0.3:
-            raise RuntimeError("no convergence in ITNW iterations")
-        return ("point", s), math.tanh(3 * (s - 0.9))
-    q0, q1 = math.tanh(-2.7), math.tanh(0.3)
-    pt, s = locate(trial, "LP", q0, q1, 1.0, settings, from_last=from_last,
-                   position=lambda p: p[1], end=(("point", 1.0), 1.0))
-    assert pt == ("point", s) and abs(s - 0.9) < tol
-    with pytest.raises(LocationFailed, match="trial step failed"):
-        locate(trial, "LP", q0, q1, 1.0, settings, from_last=from_last,
-               position=lambda p: p[1])
-
-
 def test_a_location_ends_at_the_last_trial_when_the_failing_correction_is_below_tolerance():
     """Next to a branch point of cycles the last, tiny trial step may not converge (the
     Newton matrix is nearly singular): AUTO's LCSPBV tests the correction before it

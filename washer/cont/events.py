@@ -212,22 +212,8 @@ def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
             s_new = half
 
 
-def _first_trial(trial, s_new: float, end, position):
-    """A location's first trial (point, q, s): the step from the previous point to s_new,
-    or, where that does not converge, the step back to it from the step's end
-    end = (point, s) (AUTO's first trial); None where both fail (the caller then halves
-    the step from the previous point, `_converged_trial`)."""
-    for base in (None, end):
-        try:
-            pt, q = trial(s_new) if base is None else trial(s_new, base)
-        except (RuntimeError, ArithmeticError, ValueError, np.linalg.LinAlgError):
-            continue
-        return pt, q, (s_new if base is None else position(pt))
-    return None
-
-
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
-           from_last: bool = False, position=None, end=None):
+           from_last: bool = False, position=None):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
@@ -241,11 +227,6 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     coordinate; with from_last the steps from the trial points do not end exactly at the
     s asked for, and q must stay a function of one coordinate for the secant, Muller
     and the bracket to make sense.
-    end: (point, s_cur), the step's end. Where the first trial, a step from the previous
-    point, does not converge, it is taken back from the step's end with trial(s, end)
-    (needs position): AUTO's LCSPAE and LCSPBV take every trial from their current
-    point, the first from the step's end, a short step back where the step from the
-    previous point is nearly the whole step's length again (a fold of cycles, ITNW = 5).
     Returns (point, s) or raises LocationFailed.
 
     AUTO stops as soon as a correction of s is below the tolerance; a
@@ -289,9 +270,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             else:
                 got = None
             base = (last[0], last[1]) if (from_last and last is not None) else None
-            if last is None and end is not None and position is not None:
-                got = _first_trial(trial, s_new, end, position)
-            if got is not None and (not from_last or last is None):
+            if got is not None and not from_last:
                 pt, q, s_new = got
             else:
                 pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
@@ -478,7 +457,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
-                              from_last=secant, end=(target, span),
+                              from_last=secant,
                               position=(lambda p: signed_distance(p.x - prev.x, span, inner))
                               if sphere else
                               (lambda p: inner(p.x - prev.x, prev.step_direction)))
