@@ -213,3 +213,137 @@ def test_mobius_tr_locus_with_a_third_parameter_keeps_the_angle(tr_locus, mobius
         assert r.par[11] == theta
         assert math.sqrt(-b) * r.par[10] == pytest.approx(math.pi - theta, abs=1e-8)
         assert r.par[10] * r.par[2] == pytest.approx(2 * math.pi, abs=1e-8)
+
+
+# ---------------------------------------------------------------- folds and recurring
+# resonances: tests/data/mobius/mobius_fold.py (its docstring derives the loci), with
+# AUTO-07p's runs of the same problem in tests/data/mobius_fold_auto.
+AUTO_FOLD = DATA / "mobius_fold_auto"
+
+
+def auto_labelled(name):
+    from tests.b_rows import branch_rows
+    return [(r.ty, r.values[0], r.values[-1]) for r in branch_rows(AUTO_FOLD / name) if r.lab]
+
+
+@pytest.fixture(scope="module")
+def fold_tr(mobius):
+    """TR1 at p1 = 0.25, its generating run, and the torus locus both ways from its EP
+    (DS = +0.05 first towards p2 = -1, the 1:2 resonance, as AUTO's)."""
+    one = run(mobius / "c.mobius_fold.tr", verbose=False, sv="ftr")
+    gen = run(mobius / "c.mobius_fold.trloc", verbose=False, sv="ftrgen", s="ftr")
+    up = run(mobius / "c.mobius_fold.trloc", verbose=False, sv="ftrup", s="ftrgen",
+             IRS=generated(gen))
+    down = run(mobius / "c.mobius_fold.trloc", verbose=False, sv="ftrdown", s="ftrgen",
+               IRS=generated(gen), DS=-0.05)
+    assert one.status == up.status == down.status == "ok"
+    return up, down
+
+
+def check_on_torus_locus(res):
+    """Every row: p1 = p2^2 and cos(theta) = cos(pi - sqrt(1 + p2)) (theta continued past
+    pi is the same torus as 2 pi - theta). At the R2 point the extended system is
+    singular (the PD locus, theta = pi, crosses it there: AUTO's BP): Newton converges
+    only linearly and stops on its increment test, EPSL (1 + |p|) (EPSL = 1e-7)."""
+    for r in res.rows:
+        p1, p2, theta = r.par[0], r.par[1], r.par[11]
+        tol = 2e-7 if r.code == -86 else COLLOCATION
+        assert p1 == pytest.approx(p2 * p2, abs=tol)
+        assert math.cos(theta) == pytest.approx(math.cos(math.pi - math.sqrt(1 + p2)),
+                                                abs=tol)
+
+
+def test_mobius_fold_tr_locus_folds_and_resonances(fold_tr, mobius):
+    """From TR1 away from the 1:2 resonance: the fold of the locus in p1 at (0, 0) (LP,
+    85), R3 (-87) at p2 = pi^2/9 - 1, R4 (-88) at pi^2/4 - 1, the UZSTOP p2 = 2 (-84): the
+    closed form to the location tolerance, AUTO-07p's labels (its LP 1.1e-7 off in p2,
+    within its looser location)."""
+    _, down = fold_tr
+    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    lab = [r for r in down.rows if r.lab]
+    assert [r.code for r in lab] == [85, -87, -88, -84]
+    want = [(0.0, 0.0), (None, math.pi ** 2 / 9 - 1), (None, math.pi ** 2 / 4 - 1), (4.0, 2.0)]
+    for r, (p1, p2) in zip(lab, want):
+        assert r.par[1] == pytest.approx(p2, abs=tol)
+        if p1 is not None:
+            assert r.par[0] == pytest.approx(p1, abs=tol)
+    assert lab[1].par[11] == pytest.approx(2 * math.pi / 3, abs=tol)
+    assert lab[2].par[11] == pytest.approx(math.pi / 2, abs=tol)
+    check_on_torus_locus(down)
+    auto = auto_labelled("b.trloc_down")
+    assert [t for t, *_ in auto] == [r.code for r in lab]
+    for (_, a1, a2), r in zip(auto, lab):
+        assert (r.par[0], r.par[1]) == pytest.approx((a1, a2), abs=2e-7)
+
+
+def test_mobius_fold_tr_locus_through_the_12_resonance(fold_tr, mobius):
+    """Towards p2 = -1 the angle reaches pi (R2, -86: both multipliers of the pair at -1)
+    and goes on to 2 pi - theta_0: the locus turns back in the parameters there (the fold
+    of the locus is the R2 point itself: one label, R2) and retraces p1 = p2^2 through
+    the fold at (0, 0) (LP) and the resonances again, now at theta = 4 pi/3 (R3) and
+    3 pi/2 (R4), to the UZSTOP p2 = 2. AUTO-07p labels the R2 point BP (86) and the LP,
+    and none of the two resonances past pi: its test theta (theta - pi/2) (theta - 2 pi/3)
+    (theta - pi) vanishes only at those angles, while the multipliers there are
+    exp(+-2 pi i/3) and +-i (the closed form, p2 = pi^2/9 - 1 and pi^2/4 - 1)."""
+    up, _ = fold_tr
+    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    lab = [r for r in up.rows if r.lab]
+    assert [r.code for r in lab] == [-86, 85, -87, -88, -84]
+    r2, lp, r3, r4, uz = lab
+    assert (r2.par[0], r2.par[1], r2.par[11]) == pytest.approx((1.0, -1.0, math.pi), abs=tol)
+    assert (lp.par[0], lp.par[1]) == pytest.approx((0.0, 0.0), abs=tol)
+    assert lp.par[11] == pytest.approx(math.pi + 1, abs=tol)
+    assert r3.par[1] == pytest.approx(math.pi ** 2 / 9 - 1, abs=tol)
+    assert r3.par[11] == pytest.approx(4 * math.pi / 3, abs=tol)
+    assert r4.par[1] == pytest.approx(math.pi ** 2 / 4 - 1, abs=tol)
+    assert r4.par[11] == pytest.approx(3 * math.pi / 2, abs=tol)
+    assert uz.par[1] == pytest.approx(2.0)
+    check_on_torus_locus(up)
+    auto = auto_labelled("b.trloc_up")
+    assert [t for t, *_ in auto] == [86, 85, -84]
+    for (_, a1, a2), r in zip(auto, (r2, lp, uz)):
+        assert (r.par[0], r.par[1]) == pytest.approx((a1, a2), abs=2e-7)
+
+
+def test_mobius_fold_pd_locus_fold(mobius):
+    """The PD locus p1 = p2^2 - 1/2 folds in p1 at (-1/2, 0): LP (75) there, then the
+    UZSTOP p2 = -0.6 (-74), as AUTO-07p's b.pdloc (its LP 7.7e-7 off in p2)."""
+    one = run(mobius / "c.mobius_fold.pd", verbose=False, sv="fpd")
+    (pd,) = labelled(one, "PD")
+    assert pd.par[0] == pytest.approx(-0.25, abs=located_tol(mobius / "c.mobius_fold.pd"))
+    gen = run(mobius / "c.mobius_fold.pdloc", verbose=False, sv="fpdgen", s="fpd")
+    loc = run(mobius / "c.mobius_fold.pdloc", verbose=False, sv="fpdloc", s="fpdgen",
+              IRS=generated(gen))
+    assert loc.status == "ok"
+    tol = located_tol(mobius / "c.mobius_fold.pdloc")
+    lab = [r for r in loc.rows if r.lab]
+    assert [r.code for r in lab] == [75, -74]
+    assert (lab[0].par[0], lab[0].par[1]) == pytest.approx((-0.5, 0.0), abs=tol)
+    for r in loc.rows:
+        assert r.par[0] == pytest.approx(r.par[1] ** 2 - 0.5, abs=COLLOCATION)
+    auto = auto_labelled("b.pdloc")
+    assert [t for t, *_ in auto] == [75, -74]
+    for (_, a1, a2), r in zip(auto, lab):
+        assert (r.par[0], r.par[1]) == pytest.approx((a1, a2), abs=1e-6)
+
+
+def test_mobius_fold_restarts_at_resonance_labels(fold_tr, mobius):
+    """Labels of the resonances name their points as AUTO's ('R31': the first R3, the type
+    name being two characters): ISW = 2 there goes on along the torus locus, ISW = 1
+    continues the cycles in p1 alone from the locus point (p2 held)."""
+    from washer.auto.diagram import SolutionList, read_solutions
+    sols = SolutionList(read_solutions(mobius / "s.ftrdown"))
+    assert sols("R31").rec.code == -87
+    assert [s.rec.code for s in sols("R4")] == [-88]
+    loc = run(mobius / "c.mobius_fold.trloc", verbose=False, files=False, s="ftrdown",
+              IRS="R31", NMX=20, UZSTOP={})
+    assert loc.status == "ok"
+    assert loc.rows[0].par[1] == pytest.approx(math.pi ** 2 / 9 - 1, abs=1e-6)
+    check_on_torus_locus(loc)
+    cyc = run(mobius / "c.mobius_fold.trloc", verbose=False, files=False, s="ftrdown",
+              IRS="R41", ISW=1, ICP=[1, 11], NMX=10, UZSTOP={})
+    assert cyc.status == "ok"
+    p2 = math.pi ** 2 / 4 - 1
+    for r in cyc.rows:
+        assert r.par[1] == pytest.approx(p2, abs=1e-6)      # the record's p2, held
+        assert r.par[10] == pytest.approx(1.0, abs=1e-9)    # the cycle's period T = 1

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from washer.atomic import write_text
-from washer.cont.codes import split_code, type_name as _type_name
+from washer.cont.codes import split_code, split_label, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _fortran_float, _read_record,
                                _read_text, fmt_e, record_text)
 from washer.auto.autoconstants import AutoConstants
@@ -47,13 +47,13 @@ def _match_type(name: str, code: int) -> bool:
 
 
 def _parse_key(label):
-    """'HB2' -> ('HB', 2); 'HB' -> ('HB', None); 3 -> 3."""
+    """'HB2' -> ('HB', 2); 'HB' -> ('HB', None); 'R31' -> ('R3', 1); 3 -> 3."""
     if isinstance(label, (int, np.integer)):
         return int(label)
-    m = re.fullmatch(r"([A-Za-z]{2,3}?)(\d*)", str(label).strip())
-    if not m:
-        raise KeyError(f"bad label {label!r}: expected a number or a type such as 'HB' or 'HB2'")
-    return m.group(1).upper(), (int(m.group(2)) if m.group(2) else None)
+    try:
+        return split_label(label)
+    except ValueError as exc:
+        raise KeyError(str(exc)) from None
 
 
 class Parameters:

@@ -93,6 +93,27 @@ def _type_name(code: int) -> str:
     return _NAMES.get(base, "")
 
 
+#: The type names a restart label may name: the base codes', the curve codes' own
+#: (LPD, LTR, PTR, TTR) and RG (an NPR point).
+LABEL_NAMES = frozenset(BASE_OF_NAME) | frozenset(_CURVE_NAMES.values()) | {"RG"}
+
+
+def split_label(key) -> tuple[str, int | None]:
+    """'HB2' -> ('HB', 2), 'R31' -> ('R3', 1), 'LPD1' -> ('LPD', 1), 'HB' -> ('HB', None).
+
+    AUTO's rule (parseS.getLabel): the type name is the first two characters, or three
+    where the third is no digit, so the resonances' names (R1..R4) end in a digit and
+    'R31' is the first R3. Raises ValueError for anything else."""
+    text = str(key).strip().upper()
+    size = 2 if len(text) < 3 or text[2].isdigit() else 3
+    name, rest = text[:size], text[size:]
+    count = int(rest) if rest.isdigit() else None
+    if name not in LABEL_NAMES or (rest and not count):
+        raise ValueError(f"bad label {key!r}: expected a number or a type name such as 'HB2' "
+                         f"or 'R31' (types: {', '.join(sorted(LABEL_NAMES))})")
+    return name, count
+
+
 def parse_label(key) -> tuple[str, int] | int:
     """A restart key: an integer label, -n (the n-th record), or 'HB2' (type, count).
 
@@ -104,12 +125,8 @@ def parse_label(key) -> tuple[str, int] | int:
     text = str(key).strip()
     if text.lstrip("+-").isdigit():
         return int(text)
-    name = text.rstrip("0123456789").upper()
-    count = int(text[len(name):] or 1)
-    if name not in BASE_OF_NAME and name != "RG":
-        raise ValueError(f"bad label {key!r}: expected a number or a type name such as 'HB2' "
-                         f"(types: {', '.join(sorted(BASE_OF_NAME))})")
-    return name, count
+    name, count = split_label(text)
+    return name, (1 if count is None else count)
 
 
 def has_type(code: int, name: str) -> bool:

@@ -60,6 +60,16 @@ PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.LPC, Code
             Code.PD, Code.TR)
 
 
+#: Resonances at which a torus locus (curve type 8: the TR locus of cycles, the
+#: Neimark-Sacker locus of maps) folds in every parameter: the angles theta and
+#: 2 pi - theta (and -theta) state the same torus condition, so the parameters are even
+#: functions of theta about 0 and pi, and the locus passes R1 and R2 turning back along
+#: itself. LP and the resonance are one point there, typed by the resonance; its test,
+#: a function of theta alone, is located, not the tangent's component (the extended
+#: system meets the PD locus there, where the tangent is ill-determined).
+TORUS_FOLDS = {8: (Code.R1, Code.R2)}
+
+
 def _key_name(key, curve_type: int = 0) -> str:
     """'HB', 'GH', 'UZ2', ... for a test key (notes)."""
     if isinstance(key, tuple):
@@ -425,6 +435,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         keys = [k for k in sign_changes(prev.tests, target.tests)
                 if (found is None or k != found[1]) and k not in failed
                 and not (k in located and abs(located[k] - span) < tol)
+                and not (found is not None and k in (Code.LP, Code.LPC)
+                         and found[1] in TORUS_FOLDS.get(curve_type, ()))
                 and accepted(k, prev, target)
                 and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
                 < (1 - SIMULTANEOUS if found is not None else 2)]
@@ -440,6 +452,10 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             folds = [k for k in keys if k in (Code.LP, Code.LPC)]
             if folds:
                 key = folds[0]
+        if found is None and key in (Code.LP, Code.LPC):
+            turns = [k for k in keys if k in TORUS_FOLDS.get(curve_type, ())]
+            if turns:
+                key = turns[0]
         # The trial points' predictor runs along the chord from prev to the interval's far
         # end (AUTO's LCSPAE steps back from the far point along its secant, the same
         # line): an interpolation between two points of the branch. Prev's tangent
@@ -492,7 +508,12 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         slope = abs(cur.tests[k] - prev.tests[k]) / abs(ds)
         if slope > 0 and abs(sp.tests[k]) / slope < tol and accepted(k, prev, cur):
             same.append(k)
-    best = min([key] + same, key=_priority)
+    folds = [k for k in sign_changes(prev.tests, cur.tests) if k in (Code.LP, Code.LPC)]
+    if key in TORUS_FOLDS.get(curve_type, ()) and folds:
+        same = [k for k in same if k not in folds] + folds
+        best = key
+    else:
+        best = min([key] + same, key=_priority)
     if best != key:
         same = [k for k in same if k != best] + [key]
     if best in (Code.BP, Code.BPC) or secant:

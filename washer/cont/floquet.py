@@ -304,8 +304,8 @@ def accept(code: int, prev, cur, ndim: int, trivial: bool = True) -> bool:
 # ---------------------------------------------------------------- tests on the loci
 #: The torus angles of the strong resonances on a TR locus: (base code, angle). AUTO's
 #: FNSPBV tests theta (theta - pi/2) (theta - 2 pi/3) (theta - pi) and types the located
-#: zero by NINT(6 theta / pi) (TPSPBV); here each factor is its own test, so each zero is
-#: located and typed by the factor that vanishes.
+#: zero by NINT(6 theta / pi) (TPSPBV); here each resonance is its own test, so each zero
+#: is located and typed by the test that vanishes.
 RESONANCES = ((int(Code.R1), 0.0), (int(Code.R4), math.pi / 2), (int(Code.R3), 2 * math.pi / 3),
               (int(Code.R2), math.pi))
 #: FNSPBV's window for the 1:2 resonance on PD loci: mu_2 within this of -1.
@@ -313,8 +313,26 @@ R2_WINDOW = 5e-2
 
 
 def torus_resonance_tests(theta: float, codes) -> dict:
-    """{R1, R4, R3, R2: theta - angle} for the requested codes (TR loci)."""
-    return {code: float(theta - angle) for code, angle in RESONANCES if code in codes}
+    """{R1, R4, R3, R2: test} for the requested codes (TR loci).
+
+    The 1:q resonance is exp(i theta)^q = 1: theta = +-2 pi/q modulo 2 pi. For theta in
+    [0, pi] the tests are AUTO's factors theta - a (a = 0, pi/2, 2 pi/3, pi); beyond, they
+    go on periodically, so that each vanishes, with a sign change, wherever the angle
+    passes a resonance:
+
+        R1: 2 asin(sin(theta / 2))           (theta on [-pi, pi])
+        R2: 2 asin(sin((theta - pi) / 2))    (theta - pi on [0, 2 pi])
+        R4, R3: arccos(cos(theta)) - a       (the angle folded onto [0, pi])
+
+    The angle a locus carries is continued through pi (the locus passes the R2 point
+    turning back along itself in the parameters, theta going on to 2 pi - a) and through
+    0: there each resonance recurs at 2 pi - a or -a, where AUTO's product, zero only at
+    0, pi/2, 2 pi/3, pi themselves, misses it."""
+    folded = math.acos(max(-1.0, min(1.0, math.cos(theta))))
+    values = {int(Code.R1): 2 * math.asin(math.sin(theta / 2)),
+              int(Code.R2): 2 * math.asin(math.sin((theta - math.pi) / 2)),
+              int(Code.R4): folded - math.pi / 2, int(Code.R3): folded - 2 * math.pi / 3}
+    return {code: values[code] for code, _ in RESONANCES if code in codes}
 
 
 def sort_on_pd_locus(mu) -> np.ndarray:

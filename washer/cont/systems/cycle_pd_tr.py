@@ -45,7 +45,11 @@ Special points, base codes (written with the tens digit 7 or 8: 75, -76, -87, ..
   (R4, -8), 2 pi/3 (R3, -7) and pi (R2, -6): AUTO's single test
   theta (theta - pi/2) (theta - 2 pi/3) (theta - pi), typed at the located point by
   the nearest of those angles, is the product of these four; each factor is its own
-  test here, so each zero is located and typed by the factor that vanishes.
+  test here, so each zero is located and typed by the factor that vanishes, and each
+  goes on periodically past [0, pi] (floquet.torus_resonance_tests): theta continues
+  through pi, where the locus turns back along itself in the parameters (R2 and the
+  locus's fold are one point, typed R2: events.TORUS_FOLDS), and the resonances recur
+  at 2 pi - a.
 """
 from __future__ import annotations
 

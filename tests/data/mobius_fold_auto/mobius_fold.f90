@@ -1,0 +1,42 @@
+! mobius_fold.py for AUTO-07p (tests/data/mobius: its docstring derives the loci).
+SUBROUTINE FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)
+  IMPLICIT NONE
+  INTEGER, INTENT(IN) :: NDIM, ICP(*), IJAC
+  DOUBLE PRECISION, INTENT(IN) :: U(NDIM), PAR(*)
+  DOUBLE PRECISION, INTENT(OUT) :: F(NDIM)
+  DOUBLE PRECISION, INTENT(INOUT) :: DFDU(NDIM,NDIM), DFDP(NDIM,*)
+  DOUBLE PRECISION a,b,w,x,y,z1,z2,r2,q,s,k
+  a = PAR(1) - PAR(2)**2
+  b = PAR(4) + PAR(5)*PAR(2)
+  w = PAR(3)
+  x=U(1); y=U(2); z1=U(3); z2=U(4)
+  r2 = x*x+y*y
+  q = z1*z1+z2*z2
+  s = 0.5d0*(1+b)
+  k = 0.5d0*(1-b) - 0.5d0*w
+  F(1) = x*(1-r2) - w*y
+  F(2) = y*(1-r2) + w*x
+  F(3) = a*z1 + k*z2 + s*(-y*z1 + x*z2) - q*z1
+  F(4) = a*z2 - k*z1 + s*(x*z1 + y*z2) - q*z2
+END SUBROUTINE FUNC
+
+SUBROUTINE STPNT(NDIM,U,PAR,T)
+  IMPLICIT NONE
+  INTEGER, INTENT(IN) :: NDIM
+  DOUBLE PRECISION, INTENT(INOUT) :: U(NDIM),PAR(*)
+  DOUBLE PRECISION, INTENT(IN) :: T
+  DOUBLE PRECISION PI
+  PI = 4*ATAN(1d0)
+  PAR(1) = -0.18d0; PAR(2) = -0.5d0; PAR(3) = 2*PI; PAR(4) = -1d0; PAR(5) = -1d0
+  PAR(11) = 1d0
+  U(1) = COS(2*PI*T); U(2) = SIN(2*PI*T); U(3) = 0; U(4) = 0
+END SUBROUTINE STPNT
+
+SUBROUTINE BCND
+END SUBROUTINE BCND
+SUBROUTINE ICND
+END SUBROUTINE ICND
+SUBROUTINE FOPT
+END SUBROUTINE FOPT
+SUBROUTINE PVLS
+END SUBROUTINE PVLS
