@@ -347,3 +347,28 @@ def test_mobius_fold_restarts_at_resonance_labels(fold_tr, mobius):
     for r in cyc.rows:
         assert r.par[1] == pytest.approx(p2, abs=1e-6)      # the record's p2, held
         assert r.par[10] == pytest.approx(1.0, abs=1e-9)    # the cycle's period T = 1
+
+
+def test_mobius_fold_tr_locus_past_the_12_resonance_from_autos_record(mobius):
+    """AUTO-07p's own R3 record (s.trloc_down, label 6) restarted here towards p2 = -1:
+    the fold (0, 0), R2 at (1, -1), where the PD locus (theta = pi) crosses; the way on
+    is the torus locus's own (theta moving, the orbit and the parameters stationary), not
+    the secant, whose steps went onto the crossing locus (theta = pi, p1 - p2^2 growing
+    to 3.2, R2 'located' on it again and again): LP at theta = pi + 1, R3 and R4 at
+    4 pi/3 and 3 pi/2, the UZSTOP p2 = 2. AUTO's record is located more loosely (its R3
+    7e-9 off in p2), so the R2 point here carries the start's error through a singular
+    Newton (p1 - p2^2 = 5.6e-7, EPSL = 1e-7 relative increments over linear
+    convergence): 1e-6 allowed there."""
+    shutil.copy(AUTO_FOLD / "s.trloc_down", mobius / "s.autotrloc")
+    res = run(mobius / "c.mobius_fold.trloc", verbose=False, files=False, s="autotrloc",
+              IRS=6, NMX=100)
+    assert res.status == "ok"
+    assert [r.code for r in res.rows if r.lab] == [85, -86, 85, -87, -88, -84]
+    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    r3, r4 = [r for r in res.rows if r.code in (-87, -88)]
+    assert (r3.par[1], r3.par[11]) == pytest.approx((math.pi ** 2 / 9 - 1, 4 * math.pi / 3),
+                                                    abs=tol)
+    assert (r4.par[1], r4.par[11]) == pytest.approx((math.pi ** 2 / 4 - 1, 3 * math.pi / 2),
+                                                    abs=tol)
+    for r in res.rows:
+        assert r.par[0] == pytest.approx(r.par[1] ** 2, abs=1e-6)

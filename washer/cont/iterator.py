@@ -669,6 +669,12 @@ class Continuation:
             sp, key, same = hit
             if sysm.arclength == "plane" and sp is not nxt:
                 self._orient_located(sp, current, nxt)
+            # a system may know the way on at a point where its locus meets another
+            # (ContinuedSystem.leaving_direction: the torus locus at R1 / R2)
+            leave = getattr(sysm, "leaving_direction", None)
+            d = None if leave is None else leave(sp.x, sp.step_direction, key)
+            if d is not None:
+                sp.direction = d
             sysm.update(sp.x, sp.tangent)
             st.point = sp
             st.n_points += 1

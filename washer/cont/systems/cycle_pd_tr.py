@@ -59,6 +59,7 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont import collocation as col
+from washer.cont import events
 from washer.cont import floquet
 from washer.cont.settings import SettingsError
 from washer.cont.system import Solution, fold_test, register
@@ -370,6 +371,23 @@ class TorusLocus(_CycleLocus):
     copies = 3
     curve_type = 8
     has_theta = True
+
+    def leaving_direction(self, x, direction, key):
+        """The direction a point located on key leaves along, or None for the iterator's
+        own (the secant of the step into it). At R1 and R2 (events.TORUS_FOLDS) the locus
+        turns back in every parameter and meets the PD locus (theta = pi) or the fold
+        locus (theta = 0); the secant into the point carries the incoming parameters'
+        motion, which there points along the locus it meets, and steps went onto that
+        one. The torus locus goes on with the orbit, its period and the parameters
+        stationary (they are even in theta - pi and in theta), theta moving on as the
+        secant moves it: the direction is theta's alone, so that the step's arclength
+        plane is theta = const, which the other locus (theta fixed) does not cross."""
+        if key not in events.TORUS_FOLDS.get(self.curve_type, ()) or 12 not in self.xpar:
+            return None
+        slot = self.coll.n_u + self.xpar.index(12)
+        d = np.zeros_like(direction, dtype=float)
+        d[slot] = 1.0 if direction[slot] >= 0 else -1.0
+        return d / math.sqrt(self.inner(d, d))
 
     def _eigenfunction(self, Phi, mu, vec):
         up = np.nonzero(mu.imag > 0)[0]
