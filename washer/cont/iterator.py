@@ -672,7 +672,7 @@ class Continuation:
             # a system may know the way on at a point where its locus meets another
             # (ContinuedSystem.leaving_direction: the torus locus at R1 / R2)
             leave = getattr(sysm, "leaving_direction", None)
-            d = None if leave is None else leave(sp.x, sp.step_direction, key)
+            d = None if leave is None else leave(sp.x, sp.step_direction, key, same)
             if d is not None:
                 sp.direction = d
             sysm.update(sp.x, sp.tangent)

@@ -372,17 +372,21 @@ class TorusLocus(_CycleLocus):
     curve_type = 8
     has_theta = True
 
-    def leaving_direction(self, x, direction, key):
+    def leaving_direction(self, x, direction, key, same=()):
         """The direction a point located on key leaves along, or None for the iterator's
-        own (the secant of the step into it). At R1 and R2 (events.TORUS_FOLDS) the locus
-        turns back in every parameter and meets the PD locus (theta = pi) or the fold
-        locus (theta = 0); the secant into the point carries the incoming parameters'
-        motion, which there points along the locus it meets, and steps went onto that
-        one. The torus locus goes on with the orbit, its period and the parameters
-        stationary (they are even in theta - pi and in theta), theta moving on as the
-        secant moves it: the direction is theta's alone, so that the step's arclength
-        plane is theta = const, which the other locus (theta fixed) does not cross."""
-        if key not in events.TORUS_FOLDS.get(self.curve_type, ()) or 12 not in self.xpar:
+        own (the secant of the step into it). At R1 and R2 (events.TORUS_FOLDS) where the
+        locus folds (LP among `same`: the generic case, the pair splitting into real
+        multipliers beyond) it turns back in every parameter and meets the PD locus
+        (theta = pi) or the fold locus (theta = 0); the secant into the point carries the
+        incoming parameters' motion, which there points along the locus it meets, and
+        steps went onto that one. The torus locus goes on with the orbit, its period and
+        the parameters stationary (they are even in theta - pi and in theta), theta moving
+        on as the secant moves it: the direction is theta's alone, so that the step's
+        arclength plane is theta = const, which the other locus (theta fixed) does not
+        cross. (Where the pair only touches -1 or 1 and goes back, the locus does not
+        fold, and the secant goes on along it.)"""
+        if key not in events.TORUS_FOLDS.get(self.curve_type, ()) or 12 not in self.xpar \
+                or not any(k in (Code.LP, Code.LPC) for k in same):
             return None
         slot = self.coll.n_u + self.xpar.index(12)
         d = np.zeros_like(direction, dtype=float)
