@@ -144,6 +144,55 @@ def test_autos_parsers_read_the_demos_files(demo, tmp_path_factory):
     assert not problems, f"{demo}:\n" + "\n".join(problems[:20])
 
 
+#: HomCont's demo folders (IPS = 9 runs), whose b-file headers carry HomCont's constants.
+HOMCONT = ("cir", "fhh", "fnb", "kdv", "kpr", "mtn", "rev", "san", "she", "sib", "snh")
+#: Header lines of HomCont's runs that differ from AUTO's for a known reason, by (demo,
+#: b-file): the restart label where an earlier run's labels differ (README's table).
+HEADER_DIFFERS = {("fnb", "b.7"): "IRS ="}
+
+
+def _header_blocks(path):
+    """The header blocks (lines starting '   0 ') of a b-file, in order."""
+    import gzip
+    opener = gzip.open if path.suffix == ".gz" else open
+    blocks, cur = [], []
+    with opener(path, "rt") as f:
+        for line in f:
+            if line.startswith("   0 "):
+                cur.append(line.rstrip("\n"))
+            elif cur:
+                blocks.append(cur)
+                cur = []
+    return blocks + ([cur] if cur else [])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("demo", [d for d in HOMCONT if d in all_demos()])
+def test_homcont_b_file_headers_are_autos(demo, tmp_path_factory):
+    """Every header block washer writes in a HomCont demo's b-files is AUTO's byte for
+    byte (NPAR as AUTO's: the constants', the restart's without its internal parameters,
+    20 + the largest IPSI, NPARI after them for ISTART < 0; HomCont's constants line),
+    for every block both engines wrote."""
+    from auto_demo_compare import reference_files
+    folder, _ = _run(demo, tmp_path_factory)
+    problems = []
+    for ref in reference_files(demo):
+        if not ref.name.startswith("b."):
+            continue
+        name = ref.name.removesuffix(".gz")
+        ours = folder / ref.relative_to(DEMOS / demo / "autoref").with_name(name)
+        if not ours.exists():
+            continue
+        skip = HEADER_DIFFERS.get((demo, name))
+        for i, (a, w) in enumerate(zip(_header_blocks(ref), _header_blocks(ours))):
+            if skip:
+                a, w = ([ln for ln in x if skip not in ln] for x in (a, w))
+            if a != w:
+                problems.append(f"{name} block {i}: AUTO\n" + "\n".join(a)
+                                + "\nours\n" + "\n".join(w))
+    assert not problems, f"{demo}:\n" + "\n".join(problems[:3])
+
+
 def _readme_table():
     """README's per-demo table: {demo: (matched, AUTO's)} and the total row's pair."""
     import re

@@ -77,6 +77,42 @@ def test_pieces_of_an_exact_orbit_and_back():
     assert np.allclose(back.U, _orbit((2 * back.t) % 1.0), atol=1e-13)
 
 
+def _turning_orbit(t):
+    """An orbit whose first component, an angle, turns once: -pi + 2 pi t from x0 =
+    (-pi, 0, 0) to x0 + (2 pi, 0, 0), the others `_orbit`'s (polynomials of degree <= 4,
+    exact in the collocation). Its farthest point from both ends in the angle is t = 0.5."""
+    t = np.asarray(t, float)
+    U = _orbit(t)
+    U[:, 0] = -np.pi + 2 * np.pi * t
+    return U
+
+
+def test_pieces_of_an_orbit_whose_angle_turns_and_back():
+    # TRANHO with rotations: each loop turns the angle once more, so the pieces join and
+    # the last ends at x0 + 2 pi N (N = 3 here); joined back (CPBKHO) the orbit turns 3 times
+    rec = _record()
+    rec.U[:, :NDM] = _turning_orbit(rec.t)
+    T, npar = 7.0, 36 + 2 * NDM
+    par = np.zeros(npar)
+    par[10], par[11] = T, -np.pi
+    out = sw.pieces_from_orbit(rec, NDM, 4, par, True, lambda u, p: u)
+    assert (par[9], par[20], par[22], par[10]) == (3.5, 7.0, 7.0, 3.5)
+    s, two_pi = out.t, np.array([2 * np.pi, 0.0, 0.0])
+    assert np.allclose(out.U[:, :3], _turning_orbit(s / 2), atol=1e-13)
+    lap = _turning_orbit((s + 0.5) % 1.0) + np.outer(s + 0.5 >= 1.0, two_pi)
+    assert np.allclose(out.U[:, 3:6], lap, atol=1e-13)
+    assert np.allclose(out.U[:, 6:9], lap + two_pi, atol=1e-13)
+    assert np.allclose(out.U[:, 9:], _turning_orbit(0.5 + s / 2) + 2 * two_pi, atol=1e-13)
+    assert np.allclose(out.U[-1, :9], out.U[0, 3:], atol=1e-13)
+    assert out.U[-1, 9] == pytest.approx(-np.pi + 3 * 2 * np.pi, abs=1e-13)
+    assert np.array_equal(sw.rotations(out.U[0, :3], out.U[-1, 9:]), [3, 0, 0])
+    back = sw.orbit_from_pieces(out, NDM, par)
+    assert par[10] == 3 * T
+    t = back.t
+    assert np.allclose(back.U[:, 0], -np.pi + 6 * np.pi * t, atol=1e-12)
+    assert np.allclose(back.U[:, 1:], _orbit((3 * t) % 1.0)[:, 1:], atol=1e-12)
+
+
 def test_piece_times_and_gaps_are_autos_parameters():
     # FFHO's IT and FBHO's gaps: PAR(10), PAR(21), PAR(23), .., PAR(11); PAR(20), PAR(22), ..
     assert [sw.time_index(k, 4) for k in range(4)] == [10, 21, 23, 11]
@@ -195,3 +231,58 @@ def test_sib_all_fourteen_runs_match_auto_with_jac_0(tmp_path, monkeypatch):
         missed += [(ref.name, p.ty, round(p.par, 5)) for i, p in enumerate(a)
                    if i not in matched]
     assert missed == [("b.6", "UZ", -0.07118)], missed
+
+
+def test_switching_on_an_orbit_whose_angle_turns_keeps_the_exact_family():
+    # The pendulum theta'' = -a sin(theta) + mu theta' (tests/test_homoclinic_homotopy.py:
+    # at mu = 0 its orbit leaves the saddle (-pi, 0) and reaches (pi, 0), NRTN = 1). Cut at
+    # its farthest point from both ends in the angle (ISTART = -1: two pieces, ITWIST = 0)
+    # and continued in a, the pieces keep the family's mu = 0 and end at x0 + 2 pi; the
+    # 2-homoclinic cut (ISTART = -2) starts with its last piece at x0 + 4 pi and joins back
+    # (ISTART = 1) into one orbit that turns twice (only the start and the join: a planar
+    # flow has no 2-homoclinic orbits to continue).
+    from washer.cont import runner
+    from washer.cont.constants import Constants
+    from washer.cont.problem import Problem
+    T = 24.0
+
+    def func(u, par):
+        return np.array([u[1], -par[0] * np.sin(u[0]) + par[1] * u[1]])
+
+    def dfdu(u, par):
+        return np.array([[0.0, 1.0], [-par[0] * np.cos(u[0]), par[1]]])
+
+    def stpnt(u, par, s):
+        par[0], par[1], par[10], par[11], par[12] = 1.0, 0.0, T, -np.pi, 0.0
+        z = (s - 0.5) * T
+        u[0], u[1] = 4 * np.arctan(np.exp(z)) - np.pi, 2 / np.cosh(z)
+    prob = Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="pendulum", jac=-1)
+    base = dict(NDIM=2, IPS=9, IEQUIB=1, NTST=40, NCOL=4, JAC=-1, ISP=0, ILP=0, NPR=4,
+                DS=0.05, DSMAX=0.2)
+    one = runner.run(Constants(dict(base, ICP=[1, 2], NMX=3)), prob)
+    lab = one.specials[-1].lab
+    two = runner.run(Constants(dict(base, ICP=[1, 2], NMX=12, IRS=lab, ISTART=-1,
+                                    NTST=80)), prob, restart=one)
+    assert two.status == "ok" and two.specials[-1].par[0] > 1.8
+    for rec in two.specials:
+        par, U = np.asarray(rec.par, float), np.asarray(rec.U, float)
+        # the pieces' times T t_max and T (1 - t_max): the cut at the orbit's middle
+        assert (par[9], par[10]) == pytest.approx((T / 2, T / 2), abs=1e-9)
+        # mu of the exact family (the truncation and collocation errors, as the orbit's
+        # own continuation: measured 3e-13)
+        assert abs(par[1]) < 1e-10
+        # x0 to x0 + 2 pi, joined at x_max (to the collocation's error, ends 6e-6 from
+        # the saddles)
+        assert np.allclose(U[-1, :2], U[0, 2:], atol=1e-10)
+        assert U[-1, 2] == pytest.approx(np.pi, abs=1e-4)
+    three = runner.run(Constants(dict(base, ICP=[1, 2, 21], NMX=1, IRS=lab, ISTART=-2,
+                                      NTST=80)), prob, restart=one)
+    U = np.asarray(three.specials[0].U, float)
+    assert U[-1, 4] == pytest.approx(-np.pi + 4 * np.pi, abs=1e-4)
+    assert np.allclose(U[-1, :4], U[0, 2:], atol=1e-12)
+    joined = runner.run(Constants(dict(base, ICP=[1, 2], NMX=1, IRS=three.specials[0].lab,
+                                       ISTART=1, NTST=240)), prob, restart=three)
+    U = np.asarray(joined.specials[0].U, float)
+    assert joined.specials[0].par[10] == pytest.approx(2 * T)
+    assert U[0, 0] == pytest.approx(-np.pi, abs=1e-4)
+    assert U[-1, 0] == pytest.approx(3 * np.pi, abs=1e-4)

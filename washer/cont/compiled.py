@@ -38,6 +38,24 @@ INCLUDE = HERE / "include"
 SUFFIXES = (".f90", ".f", ".c")
 #: Length of the ICP array passed to user routines (AUTO passes its NPARX-long ICP).
 ICP_LENGTH = 200
+#: The least length of the PAR a user routine that writes PAR (STPNT, PVLS) receives:
+#: AUTO's NPARX. AUTO's PAR is that long whatever NPAR, and user files write past NPAR
+#: (kdv's PVLS sets PAR(12 .. 11 + NDIM) for the NDIM it is called with: 8 with HomCont's
+#: adjoint, past its NPAR = 15).
+PAR_LENGTH = 36
+
+
+def _writable_par(par: np.ndarray):
+    """(buffer, copy_back): `par` where it is PAR_LENGTH long or more, else a zero-padded
+    copy; copy_back() puts the copy's first len(par) values into `par`."""
+    if len(par) >= PAR_LENGTH:
+        return par, lambda: None
+    buf = np.zeros(PAR_LENGTH)
+    buf[:len(par)] = par
+
+    def copy_back():
+        par[:] = buf[:len(par)]
+    return buf, copy_back
 
 CDEF = """
 void washer_set_context(int ips, int ndim, int ntst, int ncol, int nbc, int nint,
@@ -306,12 +324,15 @@ class CompiledUser:
         """AUTO's STPNT into u (NDIM,) and par (NPAR,) in place."""
         if not self.has["stpnt"]:
             raise ProblemError(f"{self.path}: defines no STPNT (needed to start with IRS = 0)")
-        self.lib.washer_stpnt(self.ndim, float(t), _dptr(u), _dptr(par))
+        buf, copy_back = _writable_par(par)
+        self.lib.washer_stpnt(self.ndim, float(t), _dptr(u), _dptr(buf))
+        copy_back()
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0, ips: int | None = None) -> None:
         """AUTO's PVLS on u: (NDIM,) for algebraic problems, (NTPL, NDIM) mesh values of
         a BVP (t: the NTPL mesh times, or uniform). Sets par in place."""
         u = np.ascontiguousarray(u, dtype=float)
+        par, copy_back = _writable_par(par)     # copy_back writes into the caller's
         keep = []
         if u.ndim == 2:
             ntpl = u.shape[0]
@@ -336,6 +357,7 @@ class CompiledUser:
             self.lib.washer_set_context(1 if ips is None else ips, self.ndim, 0, 0, 0, 0,
                                         _ffi.NULL)
             self.lib.washer_pvls(self.ndim, _dptr(u), _dptr(par))
+        copy_back()
 
     def pvls_plain(self, u, par) -> np.ndarray | None:
         """AUTO's PVLS on an algebraic problem's u (NDIM,) without eigenvalues for GETP,

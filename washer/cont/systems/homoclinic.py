@@ -285,15 +285,32 @@ class HomoclinicOrbits(BoundaryValueProblem):
         self.rev = [i for i, r in enumerate(s.IREV) if r > 0] if s.IREV else None
         self.fixed = tuple(s.IFIXED)
         n_eq = _solved_equilibria(self.iequib) * ndm
-        npar = max(s.NPAR, EQUILIBRIUM - 1 + (2 if self.iequib < 0 else 1) * ndm,
-                   PSI + max(tuple(s.IPSI) + self.fixed, default=0))
+        rec = data.record
+        p = np.asarray(data.par, float)
+        # NPAR as AUTO's: the constants' (raised to ICP's and UZR's indices), the
+        # restart's own without its internal parameters (AUTO keeps a restart's NPAR:
+        # fhh's run 6, NPAR = 14, from run 3's record of 17 states 17), INHO's 20 + the
+        # largest IPSI where IPSI is given, and for ISTART < 0 its NPARI after them
+        rec_npari = int(getattr(rec, "npari", 0) or 0) if rec is not None else 0
+        rec_npar = len(rec.par) - rec_npari if getattr(rec, "par", None) is not None else 0
+        npar = max(s.NPAR, rec_npar, EQUILIBRIUM - 1 + (2 if self.iequib < 0 else 1) * ndm)
+        if s.IPSI:
+            npar = max(npar, PSI + max(s.IPSI))
         if s.ISTART < 0:
             # INHO's NPARI: Lin's direction and f(x_max) after the constants' NPAR
-            npar = max(s.NPAR, sw.gap_index(-s.ISTART - 1)) + 2 * ndm
+            npar = max(npar, sw.gap_index(-s.ISTART - 1)) + 2 * ndm
+        internal = None
+        if rec_npari:
+            p, k = p.copy(), len(rec.par)
+            internal, p[k - rec_npari:k] = p[k - rec_npari:k].copy(), 0.0
         par = np.zeros(npar)
-        p = np.asarray(data.par, float)
         par[:min(len(p), npar)] = p[:npar]
-        rec = data.record
+        if internal is not None and s.ISTART < 0 and rec_npari == 2 * ndm:
+            # a record of the pieces: Lin's direction and f(x_max), its NPARI, stay the
+            # last of this run's parameters (kdv's run 5 widens NPAR from 32 to 36)
+            par[-rec_npari:] = internal
+        #: AUTO's NPARI (the s-records' field 13): ISTART < 0's Lin direction and f(x_max)
+        self.npari = 2 * ndm if s.ISTART < 0 else 0
         istart = s.ISTART
         if istart == 5:
             istart = 4 if rec is not None and getattr(rec, "ips", 9) not in (9, 0) else 1
@@ -301,13 +318,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
         self.pieces = sw.n_pieces(istart) if istart < 0 else 0
         stored = np.shape(rec.U)[1] if rec is not None and np.ndim(rec.U) == 2 else 0
         if istart >= 0 and stored > 2 * ndm:
-            if len(p) > npar:
-                # CPBKHO reads the pieces' times from the record's PAR(21), PAR(23), ..,
-                # past this run's NPAR (fnb's run 7, NPAR = 14, from run 6's 3-homoclinic
-                # orbit): the run keeps the record's parameters, as AUTO keeps the
-                # restart's NPAR (its s-files: NPAR 22 after a restart from NPAR 22)
-                npar = len(p)
-                par = np.r_[par, p[len(par):]]
+            # CPBKHO reads the pieces' times from the record's PAR(21), PAR(23), ..,
+            # within the record's NPAR, which the run keeps (fnb's run 7, NPAR = 14, from
+            # run 6's 3-homoclinic orbit: NPAR 22, its NPARI 6 dropped, as AUTO's)
             rec = sw.orbit_from_pieces(rec, ndm, par)
         if istart == 4 and rec is not None:
             rec = self._shifted(rec, par)
@@ -400,12 +413,10 @@ class HomoclinicOrbits(BoundaryValueProblem):
         ends at the start (FBHO's UMAX, ISTART < 0), then the base's."""
         U = np.asarray(U, float)
         if self.iequib >= 0:
-            k = np.rint((U[-1, self._last] - U[0, :self.ndm]) / (2 * math.pi))
+            # N + 1 pieces of an orbit turning 2 pi NRTN per loop end at x0 + 2 pi N NRTN
+            # (TRANHO's shifts): the count from the first piece's start to the last's end
+            k = sw.rotations(U[0, :self.ndm], U[-1, self._last])
             self._rotations = k if np.any(k) else None
-            if self.pieces and self._rotations is not None:
-                raise SettingsError("IPS = 9 with ISTART < 0: not supported yet: an orbit "
-                                    "whose angles turn (NRTN, TRANHO's rotations)",
-                                    keys=("ISTART",))
         self._umax = U[-1].copy()
         super()._begin(U, old)
 

@@ -124,7 +124,15 @@ def pieces_from_orbit(rec, ndm: int, n_piece: int, par: np.ndarray, lin: bool, f
                          "run with ITWIST = 1)")
     x0 = par[11:11 + ndm]
     tm = np.asarray(t[::ncol], float)
-    jmax = int(np.argmax(np.sum((U[::ncol, :ndm] - x0) ** 2, axis=1)))
+    turn = 2 * np.pi * rotations(U[0, :ndm], U[-1, :ndm])
+    if np.any(turn):
+        # an orbit whose angle turns (x0 to x0 + 2 pi NRTN): its farthest point from
+        # both ends in the first turning angle (TRANHO's "point in the middle")
+        i = int(np.flatnonzero(turn)[0])
+        ui = U[::ncol, i]
+        jmax = int(np.argmax(np.minimum(np.abs(ui - x0[i]), np.abs(ui - x0[i] - turn[i]))))
+    else:
+        jmax = int(np.argmax(np.sum((U[::ncol, :ndm] - x0) ** 2, axis=1)))
     if jmax in (0, ntst):
         raise ValueError("ISTART < 0: the stored orbit is farthest from the equilibrium "
                          "at an end; it is not a homoclinic orbit to PAR(12 ..)")
@@ -144,8 +152,9 @@ def pieces_from_orbit(rec, ndm: int, n_piece: int, par: np.ndarray, lin: bool, f
         par[d_sl] = v / np.linalg.norm(v)
     mesh = col.Mesh(tm, ncol)
     # the orbit from x_max round to x_max: the node at t = 0 follows the one at t = 1
+    # (an angle turned on by 2 pi NRTN, so that the loop is continuous)
     rot = col.Mesh(np.r_[tm[jmax:-1] - tmax, tm[:jmax + 1] + 1 - tmax], ncol)
-    U_rot = np.vstack([U[k:-1, :ndm], U[:k + 1, :ndm]])
+    U_rot = np.vstack([U[k:-1, :ndm], U[:k + 1, :ndm] + turn])
     inner = np.r_[tm[1:jmax] / tmax, rot.tm[1:-1], (tm[jmax + 1:-1] - tmax) / (1 - tmax)]
     tm_new = np.r_[0.0, np.unique(inner), 1.0]
     new = col.Mesh(tm_new, ncol)
@@ -153,9 +162,18 @@ def pieces_from_orbit(rec, ndm: int, n_piece: int, par: np.ndarray, lin: bool, f
     first = col.evaluate(mesh, U[:, :ndm], s * tmax)
     last = col.evaluate(mesh, U[:, :ndm], tmax + s * (1 - tmax))
     middle = col.evaluate(rot, U_rot, s)
-    W = np.hstack([first] + [middle] * (n_piece - 2) + [last])
+    # each loop turns the angles once more: middle piece j starts 2 pi NRTN (j - 1) on,
+    # the last 2 pi NRTN (N - 1), and ends at x0 + 2 pi N NRTN
+    W = np.hstack([first] + [middle + j * turn for j in range(n_piece - 2)]
+                  + [last + (n_piece - 2) * turn])
     return SimpleNamespace(U=W, t=s, ntst=new.ntst, ncol=ncol, udot=None, rldot=[], icp=[],
                            lab=getattr(rec, "lab", 0))
+
+
+def rotations(u0, u1) -> np.ndarray:
+    """NRTN (NDIM,): the whole turns 2 pi NRTN of each component from u0 to u1, the ends
+    of an orbit whose angles turn (SETRTN's count); zeros where none turns."""
+    return np.rint((np.asarray(u1, float) - np.asarray(u0, float)) / (2 * np.pi))
 
 
 def orbit_from_pieces(rec, ndm: int, par: np.ndarray):
@@ -179,4 +197,4 @@ def orbit_from_pieces(rec, ndm: int, par: np.ndarray):
 
 
 __all__ = ["boundary_rows", "field", "n_pieces", "orbit_from_pieces", "pieces_from_orbit",
-           "time_index", "gap_index", "lin_slices"]
+           "rotations", "time_index", "gap_index", "lin_slices"]
