@@ -113,6 +113,33 @@ def test_pieces_of_an_orbit_whose_angle_turns_and_back():
     assert np.allclose(back.U[:, 1:], _orbit((3 * t) % 1.0)[:, 1:], atol=1e-12)
 
 
+@pytest.mark.parametrize("orbit", [_orbit, _turning_orbit], ids=["plain", "turning"])
+def test_an_m_homoclinic_orbits_pieces_grow_to_n_greater_than_m(orbit):
+    # PREHO's copy of the forelast piece: the 2-homoclinic cut's three pieces grown to
+    # four and to five are the 3- and 4-homoclinic cuts of the same orbit (exact
+    # polynomials: to rounding), times, gaps and the angle's turns included
+    rec = _record()
+    rec.U[:, :NDM] = orbit(rec.t)
+    npar = 36 + 2 * NDM
+
+    def start(n_piece):
+        par = np.zeros(npar)
+        par[10], par[11] = 7.0, rec.U[0, 0]
+        return par, sw.pieces_from_orbit(rec, NDM, n_piece, par, True, lambda u, p: u)
+    par3, three = start(3)
+    for n_piece in (4, 5):
+        par, direct = start(n_piece)
+        grown = sw.more_pieces(three, NDM, n_piece, par3.copy(), True)
+        assert np.allclose(grown.U, direct.U, atol=1e-12)
+        assert np.array_equal(grown.t, direct.t)
+        p = par3.copy()
+        sw.more_pieces(three, NDM, n_piece, p, True)
+        times = [sw.time_index(k, n_piece) - 1 for k in range(n_piece)]
+        gaps = [sw.gap_index(k) - 1 for k in range(n_piece - 1)]
+        assert np.allclose(p[times], par[times], atol=1e-14)
+        assert np.allclose(p[gaps], 0.0, atol=1e-13)
+
+
 def test_piece_times_and_gaps_are_autos_parameters():
     # FFHO's IT and FBHO's gaps: PAR(10), PAR(21), PAR(23), .., PAR(11); PAR(20), PAR(22), ..
     assert [sw.time_index(k, 4) for k in range(4)] == [10, 21, 23, 11]
@@ -286,3 +313,52 @@ def test_switching_on_an_orbit_whose_angle_turns_keeps_the_exact_family():
     assert joined.specials[0].par[10] == pytest.approx(2 * T)
     assert U[0, 0] == pytest.approx(-np.pi, abs=1e-4)
     assert U[-1, 0] == pytest.approx(3 * np.pi, abs=1e-4)
+
+
+def test_pieces_from_stpnt_follow_the_exact_family():
+    # ISTART < 0 from STPNT (AUTO's STPNHO calls STPNT with the pieces' NDIM): the
+    # user's stpnt gives x'' = a x - x^2 + mu x''s orbit (3a/2) sech^2(sqrt(a) t / 2)
+    # (mu = 0; sympy below) cut at its peak into two pieces (ISTART = -1, ITWIST = 0),
+    # their times PAR(10) = PAR(11) = T/2 and f(x_max) in PAR(NPAR - 1 .. NPAR). Continued
+    # in a, the pieces keep the family's mu = 0 and join at its peak (3a/2, 0), the
+    # Poincare section x' = 0 through the start's x_max.
+    import sympy as sp
+    from washer.cont import runner
+    from washer.cont.constants import Constants
+    from washer.cont.problem import Problem
+    ts, av = sp.symbols("t a", positive=True)
+    x = 3 * av / 2 * sp.sech(sp.sqrt(av) * ts / 2) ** 2
+    assert sp.simplify((sp.diff(x, ts, 2) - av * x + x ** 2).rewrite(sp.exp)) == 0
+    T, npar = 30.0, 22 + 2 * 2          # the constants' NPAR = 22 (the gap PAR(22)), NPARI
+
+    def func(u, par):
+        return np.array([u[1], par[0] * u[0] - u[0] ** 2 + par[1] * u[1]])
+
+    def dfdu(u, par):
+        return np.array([[0.0, 1.0], [par[0] - 2 * u[0], par[1]]])
+
+    def stpnt(u, par, s):
+        a = 1.0
+        par[0], par[1], par[9], par[10] = a, 0.0, T / 2, T / 2
+        par[npar - 2:] = [0.0, -0.75 * a ** 2]              # f(x_max), x_max = (3a/2, 0)
+        for k, z in enumerate(((s - 1) * T / 2, s * T / 2)):   # the peak at t = 0
+            c = 1 / np.cosh(np.sqrt(a) * z / 2)
+            u[2 * k] = 1.5 * a * c ** 2
+            u[2 * k + 1] = -1.5 * a ** 1.5 * c ** 2 * np.tanh(np.sqrt(a) * z / 2)
+    prob = Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="sech2", jac=-1)
+    br = runner.run(Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ISTART=-1, ICP=[1, 2], NPAR=22,
+                                   NTST=60, NCOL=4, JAC=-1, ISP=0, ILP=0, NMX=12, NPR=4,
+                                   DS=0.05, DSMAX=0.2)), prob)
+    assert br.status == "ok" and br.specials[-1].par[0] > 1.6
+    for rec in br.specials:
+        par, U = np.asarray(rec.par, float), np.asarray(rec.U, float)
+        a = par[0]
+        assert U.shape[1] == 4 and len(par) == npar
+        # mu and the equilibrium of the exact family (measured: mu 7e-13; the ends
+        # e^(-sqrt(a) T / 2) ~ 3e-7 from the saddle and the projection conditions' error
+        # quadratic in that, 1e-13, with the collocation's error)
+        assert abs(par[1]) < 1e-10
+        assert np.allclose(par[11:13], 0.0, atol=1e-12)
+        # the join at the peak: x' = 0 (the section), x = 3a/2 (measured 3.5e-12)
+        assert np.allclose(U[-1, :2], U[0, 2:], atol=1e-12)
+        assert U[-1, :2] == pytest.approx([1.5 * a, 0.0], abs=1e-10)

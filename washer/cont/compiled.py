@@ -325,7 +325,8 @@ class CompiledUser:
         if not self.has["stpnt"]:
             raise ProblemError(f"{self.path}: defines no STPNT (needed to start with IRS = 0)")
         buf, copy_back = _writable_par(par)
-        self.lib.washer_stpnt(self.ndim, float(t), _dptr(u), _dptr(buf))
+        # NDIM as AUTO passes it: u's length (HomCont's pieces fill (N + 1) NDIM)
+        self.lib.washer_stpnt(len(u), float(t), _dptr(u), _dptr(buf))
         copy_back()
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0, ips: int | None = None) -> None:

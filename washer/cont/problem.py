@@ -759,16 +759,17 @@ class Problem:
                                                       p.POSITIONAL_OR_KEYWORD)]
         return len(positional) >= 3 or any(p.kind == p.VAR_POSITIONAL for p in params)
 
-    def start_profile(self, par, times) -> np.ndarray:
+    def start_profile(self, par, times, ndim: int | None = None) -> np.ndarray:
         """AUTO's STPNUB: stpnt(u, par, t) at every time of `times` in turn, with one
         PAR array throughout (an stpnt that sets PAR at t = 0 and reads it later, as
         fsh's, sees its own values). Returns the states, shape (len(times), ndim);
-        `par` is changed in place."""
+        `par` is changed in place. ndim: the length of u where a system's start fills
+        more than the user's NDIM (HomCont's N + 1 pieces, ISTART < 0)."""
         if self._stpnt is None:
             raise ProblemError(f"{self.name}: no stpnt(u, par) to start from (IRS = 0)")
         rows = []
         for t in times:
-            u = np.zeros(self.ndim)
+            u = np.zeros(ndim or self.ndim)
             self._stpnt_at(u, par, t, "")
             rows.append(u)
         U = np.array(rows)
@@ -812,12 +813,13 @@ class Problem:
                                "extending the restart")
         return out
 
-    def start(self, npar: int, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    def start(self, npar: int, t: float = 0.0,
+              ndim: int | None = None) -> tuple[np.ndarray, np.ndarray]:
         """AUTO's STPNT: the starting state (ndim,) and parameters (npar,); a stpnt
-        with the time argument is called at `t` (in [0, 1])."""
+        with the time argument is called at `t` (in [0, 1]). ndim: as `start_profile`'s."""
         if self._stpnt is None:
             raise ProblemError(f"{self.name}: no stpnt(u, par) to start from (IRS = 0)")
-        u, par = np.zeros(self.ndim), np.zeros(npar)
+        u, par = np.zeros(ndim or self.ndim), np.zeros(npar)
         args = (u, par, float(t)) if self.stpnt_has_time else (u, par)
         what = "stpnt(u, par, t)" if self.stpnt_has_time else "stpnt(u, par)"
         try:

@@ -106,6 +106,12 @@ def start_values(c, s: Settings, problem, rec, data=None) -> tuple[np.ndarray, n
         u = np.array(rec.u, dtype=float)
         par = np.zeros(max(s.NPAR, len(rec.par)))
         par[:len(rec.par)] = rec.par
+    elif s.IPS == 9 and s.ISTART < 0:
+        # HomCont's N + 1 pieces from STPNT: AUTO's STPNT fills the (N + 1) NDIM
+        # components and the NPAR + NPARI parameters (Lin's direction, f(x_max))
+        from washer.cont.systems import homoclinic_switching as sw
+        ndim, npar = sw.start_dimensions(s.NDIM, s.ISTART, s.NPAR)
+        u, par = problem.start(npar, ndim=ndim)
     else:
         u, par = problem.start(s.NPAR)
     if len(par) < s.NPAR:

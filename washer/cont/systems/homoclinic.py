@@ -298,7 +298,7 @@ class HomoclinicOrbits(BoundaryValueProblem):
             npar = max(npar, PSI + max(s.IPSI))
         if s.ISTART < 0:
             # INHO's NPARI: Lin's direction and f(x_max) after the constants' NPAR
-            npar = max(npar, sw.gap_index(-s.ISTART - 1)) + 2 * ndm
+            npar = sw.start_dimensions(ndm, s.ISTART, npar)[1]
         internal = None
         if rec_npari:
             p, k = p.copy(), len(rec.par)
@@ -425,19 +425,12 @@ class HomoclinicOrbits(BoundaryValueProblem):
         of the N + 1 pieces as it is, a 1-homoclinic orbit cut into them (TRANHO)."""
         ndm, n = self.ndm, self.pieces
         if rec is None or stored == 0:
-            raise SettingsError(f"IPS = 9 with ISTART = {1 - n} (n-homoclinic branch "
-                                "switching): not supported yet: a start from STPNT (AUTO "
-                                "calls STPNT for the N + 1 pieces' NDIM components); "
-                                "restart (IRS) from a stored homoclinic orbit",
-                                keys=("ISTART", "IRS"))
+            return rec                      # STPNT's pieces (`_from_stpnt`)
         if stored >= n * ndm:
             return rec
         if stored >= 3 * ndm:
-            raise SettingsError(f"IPS = 9 with ISTART = {1 - n} (n-homoclinic branch "
-                                f"switching): not supported yet: from a stored "
-                                f"{stored // ndm - 1}-homoclinic orbit (PREHO's copy of "
-                                "the forelast piece); restart from a 1-homoclinic orbit",
-                                keys=("ISTART",))
+            # an m-homoclinic orbit's pieces to N > m: its last loop repeated
+            return sw.more_pieces(rec, ndm, n, par, self.lin)
         try:
             return sw.pieces_from_orbit(rec, ndm, n, par, self.lin,
                                         lambda u, p: self.user.func(np.asarray(u, float), p))
@@ -565,7 +558,9 @@ class HomoclinicOrbits(BoundaryValueProblem):
         """STPNBV: the user's stpnt(u, par, t) at every node of the uniform mesh."""
         s = self.settings
         self._set_mesh(col.Mesh.uniform(s.NTST, s.NCOL))
-        U = self.user.start_profile(self.par.copy(), self.mesh.node_times())
+        # the N + 1 pieces of ISTART < 0 (AUTO's STPNT with their NDIM), else the orbit
+        U = self.user.start_profile(self.par.copy(), self.mesh.node_times(),
+                                    ndim=self.ndm * max(self.pieces, 1))
         if self.istart == 3:
             x1, x2, self.par = self._equilibria(U[0], self.par)
             lam, V, W = spectrum(self._A(x1, self.par))
@@ -605,6 +600,14 @@ class HomoclinicOrbits(BoundaryValueProblem):
                                icp=[], lab=getattr(rec, "lab", 0))
 
     # ------------------------------------------------------------------ per point
+    def pvls_params(self, U, par, period, multipliers=None, problem=None) -> np.ndarray:
+        """The user's PVLS on the orbit's NDIM components alone (AUTO's PVLSBV calls
+        PVLS with NDM, HomCont's user NDIM: the first piece's with ISTART < 0, the orbit's
+        beside its adjoint): a PVLS that sets PAR(12 .. 11 + NDIM) from its NDIM leaves
+        the pieces' times PAR(21), PAR(23), .. and the gaps alone (kdv's)."""
+        return super().pvls_params(np.asarray(U, float)[:, :self.ndm], par, period,
+                                   multipliers, problem)
+
     def update(self, x, tangent) -> None:
         """The accepted point: the integral condition's reference (the base's) and the
         projections' reference bases."""

@@ -72,6 +72,13 @@ def gap_index(k: int) -> int:
     return 20 + 2 * k
 
 
+def start_dimensions(ndm: int, istart: int, npar: int) -> tuple[int, int]:
+    """(NDIM, NPAR) of ISTART = -N's pieces: (N + 1) NDM components, and INHO's NPARI =
+    2 NDM after the constants' NPAR (at least the last gap's index)."""
+    n_piece = n_pieces(istart)
+    return n_piece * ndm, max(npar, gap_index(n_piece - 2)) + 2 * ndm
+
+
 def field(user, ndm: int, n_piece: int):
     """(func_batch, dfdu_batch) of the pieces W (k, n_piece NDM), pars (k, NPAR) ->
     (k, n_piece NDM) and its block-diagonal Jacobian, each piece scaled by its time."""
@@ -170,6 +177,37 @@ def pieces_from_orbit(rec, ndm: int, n_piece: int, par: np.ndarray, lin: bool, f
                            lab=getattr(rec, "lab", 0))
 
 
+def more_pieces(rec, ndm: int, n_piece: int, par: np.ndarray, lin: bool):
+    """PREHO's copy of the forelast piece: the record of an m-homoclinic orbit's m + 1
+    pieces as the start of n_piece = N + 1 > m + 1 pieces. The pieces before the last
+    stay, the last loop (piece m - 1, x_max round to x_max) is repeated N - m times, each
+    copy with its time PAR(19 + 2 (m - 1)) and turned on by the loop's own 2 pi NRTN, the
+    last piece after them. The gaps (in `par`, in place, with Lin's direction, ITWIST = 1)
+    are the last gap before for the join into the last piece and, between the loops, the
+    loop's own mismatch u(0) - u(1) along Lin's direction (Newton closes what lies
+    across it). AUTO copies pieces 2m - N .. m - 1 (for N > m + 1 not each a loop; the
+    forelast alone here) and takes a gap from the first components alone. Returns the
+    record."""
+    from washer.cont.systems.bvp import record_profile
+    m_piece = np.shape(rec.U)[1] // ndm
+    t, U, ntst, ncol = record_profile(rec, m_piece * ndm)
+    m, extra = m_piece - 1, n_piece - m_piece
+    loop = U[:, (m - 1) * ndm:m * ndm]
+    turn = 2 * np.pi * rotations(U[0, :ndm], U[-1, m * ndm:]) / m
+    copies = [loop + j * turn for j in range(1, extra + 1)]
+    W = np.hstack([U[:, :m * ndm]] + copies + [U[:, m * ndm:] + extra * turn])
+    d_sl, _ = lin_slices(len(par), ndm)
+    mismatch = float((loop[0] - loop[-1] + turn) @ par[d_sl]) if lin else 0.0
+    last_gap, loop_time = par[gap_index(m - 1) - 1], par[time_index(m - 1, m_piece) - 1]
+    for j in range(m, n_piece - 1):
+        par[time_index(j, n_piece) - 1] = loop_time
+    for j in range(m - 1, n_piece - 2):
+        par[gap_index(j) - 1] = mismatch
+    par[gap_index(n_piece - 2) - 1] = last_gap
+    return SimpleNamespace(U=W, t=np.asarray(t, float), ntst=ntst, ncol=ncol, udot=None,
+                           rldot=[], icp=[], lab=getattr(rec, "lab", 0))
+
+
 def rotations(u0, u1) -> np.ndarray:
     """NRTN (NDIM,): the whole turns 2 pi NRTN of each component from u0 to u1, the ends
     of an orbit whose angles turn (SETRTN's count); zeros where none turns."""
@@ -196,5 +234,6 @@ def orbit_from_pieces(rec, ndm: int, par: np.ndarray):
                            rldot=[], icp=[], lab=getattr(rec, "lab", 0))
 
 
-__all__ = ["boundary_rows", "field", "n_pieces", "orbit_from_pieces", "pieces_from_orbit",
+__all__ = ["boundary_rows", "field", "more_pieces", "n_pieces", "orbit_from_pieces",
+           "pieces_from_orbit", "start_dimensions",
            "rotations", "time_index", "gap_index", "lin_slices"]
