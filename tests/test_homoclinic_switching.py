@@ -362,3 +362,60 @@ def test_pieces_from_stpnt_follow_the_exact_family():
         # the join at the peak: x' = 0 (the section), x = 3a/2 (measured 3.5e-12)
         assert np.allclose(U[-1, :2], U[0, 2:], atol=1e-12)
         assert U[-1, :2] == pytest.approx([1.5 * a, 0.0], abs=1e-10)
+
+
+KDV = Path(__file__).parent / "data" / "homcont" / "kdv"
+
+
+@pytest.mark.slow
+def test_kdv_switch_to_3_homoclinic_orbits_matches_auto(tmp_path, monkeypatch):
+    # AUTO's demo kdv, runs 4 and 5 (ISTART = -3: four pieces, Lin's gaps PAR(22), PAR(24))
+    # from AUTO's own run 3 (its s.3: washer's run 3 labels one UZ fewer, README's table).
+    # Run 4 continues the pieces in (PAR(3), PAR(21), PAR(22), PAR(24)) to PAR(21) = 3.5,
+    # run 5 restarts from its pieces' record with NPAR 32 widened to 36 (Lin's direction
+    # and f(x_max) stay the last parameters) and closes the gaps in PAR(2).
+    work = tmp_path / "kdv"
+    work.mkdir()
+    for f in ("kdv.c", "c.kdv.4", "c.kdv.5"):
+        shutil.copy(DEMO.parent / "kdv" / f, work)
+    shutil.copy(KDV / "kdv_switch.auto", work)
+    (work / "s.3").write_bytes(gzip.decompress((KDV / "s.3.gz").read_bytes()))
+    monkeypatch.chdir(work)
+    run_script("kdv_switch.auto")
+    ref = DEMO.parent / "kdv" / "autoref"
+    for n in (4, 5):
+        ours, auto = _rows(work / f"b.{n}"), _rows(ref / f"b.{n}")
+        assert [(r.pt, r.ty, r.lab) for r in ours if r.ty] == \
+            [(r.pt, r.ty, r.lab) for r in auto if r.ty]
+    # run 4 up to the first zero of the gap PAR(22) (PT 23): PAR(3), the L2 norm and
+    # PAR(21) AUTO's to Newton's tolerance EPSL = EPSU = 1e-6 (measured: 6e-11, 2.6e-8
+    # and 1.4e-6 in PAR(21) ~ 10-20), the gaps (of order 1e-7 to 3e-6, below that
+    # tolerance) to 5e-8 (measured 7e-9 and 1.9e-8)
+    ours, auto = _rows(work / "b.4"), _rows(ref / "b.4")
+    o = np.array([r.values for r in ours if r.pt <= 22])
+    a = np.array([r.values for r in auto if r.pt <= 22])
+    assert np.allclose(o[:, [0, 1, 5]], a[:, [0, 1, 5]], rtol=1e-6, atol=1e-7)
+    assert np.allclose(o[:, 6:], a[:, 6:], atol=5e-8)
+    uz = {r.lab: np.array(r.values) for r in ours if r.ty == -4}
+    uz_auto = {r.lab: np.array(r.values) for r in auto if r.ty == -4}
+    # UZ9, PAR(22) = 0: a zero of a gap that stays below Newton's tolerance along the
+    # branch (its values 1e-8 to 1e-7 near it: not linear there, the rows' secant puts
+    # it at PAR(21) = 10.19), so both engines' zeros are where their iterates cross it:
+    # PAR(21) = 9.8564 (ours), 9.8460 (AUTO's); PAR(3) and the norm agree to 1e-7
+    assert abs(uz[9][6]) < 1e-10 and abs(uz_auto[9][6]) < 1e-10
+    assert uz[9][5] == pytest.approx(uz_auto[9][5], abs=0.02)
+    assert np.allclose(uz[9][:2], uz_auto[9][:2], atol=1e-7)
+    # UZ11, PAR(21) = 3.5: ours to Newton's tolerance, AUTO's to its location tolerance
+    # EPSS (3.4999936); the gaps there AUTO's to 1e-4 relative (they change by 2e-4 per
+    # unit of PAR(21) there)
+    assert uz[11][5] == pytest.approx(3.5, abs=1e-8)
+    assert uz[11][6:] == pytest.approx(uz_auto[11][6:], rel=1e-4)
+    # run 5: PAR(2), the norm AUTO's to 1e-6 up to the gap's zero UZ13 (PAR(22) = 0), at
+    # PAR(2) = 2.3204492 (AUTO 2.3204432: the gaps are 1e-10 to 1e-8 there, below
+    # Newton's tolerance)
+    ours, auto = _rows(work / "b.5"), _rows(ref / "b.5")
+    o = np.array([r.values for r in ours if r.pt <= 12])
+    a = np.array([r.values for r in auto if r.pt <= 12])
+    assert np.allclose(o[:, :2], a[:, :2], rtol=1e-6)
+    uz, uz_auto = [r for r in ours if r.ty == -4][0], [r for r in auto if r.ty == -4][0]
+    assert uz.values[0] == pytest.approx(uz_auto.values[0], rel=1e-5)

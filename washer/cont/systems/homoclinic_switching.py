@@ -36,6 +36,13 @@ PAR(10) = T t_max, PAR(11) = T (1 - t_max), PAR(19 + 2k) = T, the gaps 0. All pi
 onto one mesh, the merge of their own meshes (2 NTST - 2 intervals), which the restart
 then adapts to NTST (ADAPT2).
 
+Orbits whose angles turn (NRTN, the stored orbit from x0 to x0 + 2 pi NRTN): the cut is at
+the point farthest from both ends in the first turning angle, each middle piece starts
+2 pi NRTN further than the one before, and the last piece ends at x0 + 2 pi N NRTN
+(TRANHO's shifts). From STPNT: the user's stpnt fills the N + 1 pieces and PAR's times,
+gaps, Lin's direction and f(x_max) (`start_dimensions`). From a stored m-homoclinic
+orbit's pieces to N > m: the last loop repeated (`more_pieces`).
+
 Back (CPBKHO): a restart with ISTART >= 0 from a record of more than 2 NDM components
 puts the pieces one after the other into one orbit with PAR(11) = PAR(10) + PAR(11) +
 sum PAR(19 + 2k), PAR(10) = 0.
