@@ -116,21 +116,8 @@ def test_an_orbit_whose_angle_turns_once_ends_at_the_equilibrium_plus_2_pi():
     residual = sp.diff(th, t, 2) + a * sp.sin(th)
     for tv, av in ((sp.Rational(-3, 2), 1), (sp.Rational(1, 3), 2), (2, sp.Rational(1, 2))):
         assert abs(sp.N(residual.subs({t: tv, a: av}), 40)) < 1e-35
-    T = 24.0
-
-    def func(u, par):
-        return np.array([u[1], -par[0] * np.sin(u[0]) + par[1] * u[1]])
-
-    def dfdu(u, par):
-        return np.array([[0.0, 1.0], [-par[0] * np.cos(u[0]), par[1]]])
-
-    def stpnt(u, par, s):
-        par[0], par[1], par[10] = 1.0, 0.0, T
-        par[11], par[12] = -np.pi, 0.0
-        z = (s - 0.5) * T
-        u[0] = 4 * np.arctan(np.exp(z)) - np.pi
-        u[1] = 2 / np.cosh(z)
-    prob = Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="pendulum", jac=-1)
+    from pendulum_orbit import pendulum
+    prob = pendulum(24.0)
     br = runner.run(Constants(dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=40, NCOL=4,
                                    JAC=-1, ISP=0, ILP=0, NMX=12, NPR=4, DS=0.05, DSMAX=0.2)),
                     prob)

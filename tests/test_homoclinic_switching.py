@@ -270,20 +270,9 @@ def test_switching_on_an_orbit_whose_angle_turns_keeps_the_exact_family():
     # flow has no 2-homoclinic orbits to continue).
     from washer.cont import runner
     from washer.cont.constants import Constants
-    from washer.cont.problem import Problem
+    from pendulum_orbit import pendulum
     T = 24.0
-
-    def func(u, par):
-        return np.array([u[1], -par[0] * np.sin(u[0]) + par[1] * u[1]])
-
-    def dfdu(u, par):
-        return np.array([[0.0, 1.0], [-par[0] * np.cos(u[0]), par[1]]])
-
-    def stpnt(u, par, s):
-        par[0], par[1], par[10], par[11], par[12] = 1.0, 0.0, T, -np.pi, 0.0
-        z = (s - 0.5) * T
-        u[0], u[1] = 4 * np.arctan(np.exp(z)) - np.pi, 2 / np.cosh(z)
-    prob = Problem(2, func, stpnt=stpnt, dfdu=dfdu, name="pendulum", jac=-1)
+    prob = pendulum(T)
     base = dict(NDIM=2, IPS=9, IEQUIB=1, NTST=40, NCOL=4, JAC=-1, ISP=0, ILP=0, NPR=4,
                 DS=0.05, DSMAX=0.2)
     one = runner.run(Constants(dict(base, ICP=[1, 2], NMX=3)), prob)
