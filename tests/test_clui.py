@@ -146,9 +146,18 @@ def test_a_bad_value_of_a_constants_file_names_its_line_and_a_keywords_the_comma
 
 
 def test_a_run_not_done_says_why_in_its_d_file_and_the_script_goes_on(tmp_path, monkeypatch):
-    # A run of a kind the engine does not do (HomCont's n-homoclinic branch switching,
-    # ISTART < 0) is reported on the screen and in the d-file its output would have had;
-    # later commands still run.
+    # A run of a kind the engine does not do (its build refuses it as "not supported";
+    # every such kind of AUTO's is done now, so the refusal is put in the build's place)
+    # is reported on the screen and in the d-file its output would have had; later
+    # commands still run.
+    import washer.cont.runner as runner_module
+    real_build = runner_module.build
+
+    def build(c, *args, **kw):
+        if c["IPS"] == 9 and c["ISTART"] == -1:
+            raise runner_module.RunError("IPS = 9 with ISTART = -1: not supported yet")
+        return real_build(c, *args, **kw)
+    monkeypatch.setattr(runner_module, "build", build)
     monkeypatch.chdir(tmp_path)
     for f in ("ab.f90", "c.ab.1"):
         shutil.copy(DEMOS / "ab" / f, tmp_path)

@@ -103,8 +103,7 @@ def test_exact_homoclinic_family_with_the_equilibrium_solved_for():
 
 
 def test_homcont_values_refused_by_name(tmp_path):
-    """A value that is none of HomCont's is said to be so; an option of HomCont that is
-    not computed here is said to be not supported yet; each names the constant."""
+    """A value that is none of HomCont's is said to be so, naming the constant."""
     xi, _ = _exact_orbit()
     base = dict(NDIM=2, IPS=9, IEQUIB=1, ICP=[1, 2], NTST=20, JAC=-1, NMX=2)
     for extra, words in ((dict(ITWIST=2), "ITWIST = 2"), (dict(IEQUIB=3), "IEQUIB = 3"),
@@ -119,9 +118,6 @@ def test_homcont_values_refused_by_name(tmp_path):
             runner.run(Constants({**base, **extra}), _problem(xi))
         assert words in str(err.value)
         assert "not supported yet" not in str(err.value)
-    with pytest.raises(RunError, match="not supported yet") as err:
-        runner.run(Constants({**base, "ISTART": -2}), _problem(xi))
-    assert "n-homoclinic" in str(err.value)
 
 
 def test_san_runs_match_auto(tmp_path, monkeypatch):
