@@ -145,7 +145,7 @@ def test_autos_parsers_read_the_demos_files(demo, tmp_path_factory):
 
 
 #: HomCont's demo folders (IPS = 9 runs), whose b-file headers carry HomCont's constants.
-HOMCONT = ("cir", "fhh", "fnb", "kdv", "kpr", "mtn", "rev", "san", "she", "sib", "snh")
+HOMCONT = ("fhh", "fnb", "kdv", "kpr", "mtn", "rev", "she", "sib", "snh")
 #: Header lines of HomCont's runs that differ from AUTO's for a known reason, by (demo,
 #: b-file): the restart label where an earlier run's labels differ (README's table).
 HEADER_DIFFERS = {("fnb", "b.7"): "IRS ="}
