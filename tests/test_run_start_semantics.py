@@ -136,3 +136,47 @@ def test_time_integration_integrates_in_par14_whatever_icp_names(tmp_path):
     pred = u[1:-1] / (1 + 2.0 * np.diff(t[1:]))
     assert np.max(np.abs(u[2:] - pred) / np.abs(pred)) < 1e-7
     assert u[1] < 1 / (1 + 2.0 * t[1]) < 1.0    # two Euler steps lose more than one
+
+
+FHN_WAVES = """import numpy as np
+def func(u, par):
+    v, d, w = u[0], u[1], u[2]
+    p, s, delta, alpha, gamma, eps = par[0], par[1], par[2], par[3], par[4], par[5]
+    f = v * (v - 1) * (alpha - v)
+    return np.array([d, (s * d + w - p - f) / delta, eps * (v - gamma * w) / s])
+def stpnt(u, par):
+    u[:] = 0.0
+    par[:6] = [0.0, 1.0, 5.0, 0.1, 1.0, 0.01]
+"""
+
+
+def test_hopf_locus_start_takes_autos_vector_of_the_eigenplane(tmp_path, monkeypatch):
+    """FitzHugh-Nagumo travelling waves (v' = d, d' = (s d + w - p - f(v)) / delta,
+    w' = eps (v - gamma w) / s, f = v (v - 1)(alpha - v)) have a Hopf point in p at
+    s = 1. The Hopf locus starts with v, a null vector of A^2 + kappa I, whose null space
+    is a plane; NLVC's pivot picks which one, and here the first row of A^2 + kappa I
+    holds s / delta and 1 / delta, equal (0.2) in exact arithmetic: the rounding of the
+    differenced f_u decides. AUTO-07p 0.9.2 on these equations (Fortran FUNC, JAC = 0)
+    starts from v = (0.5792664, -0.5734987, 0.5792664); the other vector NLVC can give
+    is (0.579, 0.579, -0.573), which ours took while f_u was differenced with a step per
+    component instead of AUTO's FUNI's one step HMACH (1 + max |u|), and the locus's
+    steps (measured with v's components) then fell one point later than AUTO's. The
+    tolerance 1e-4: the two HB points are located to EPSS, ours and AUTO's u 3e-5 apart,
+    and v moves with u; the wrong vector is 1.15 away."""
+    from washer.auto import clui
+    from washer.auto.files import read_s
+    from washer.auto.script import run_script
+    monkeypatch.chdir(tmp_path)
+    clui._runner.refused.clear()
+    (tmp_path / "fhn.py").write_text(FHN_WAVES)
+    (tmp_path / "c.fhn").write_text(
+        "e = 'fhn'\nNDIM = 3, IPS = 1, IRS = 0, ILP = 0, ISP = 2\nICP = [1]\n"
+        "NMX = 50, NPR = 100, ITMX = 8, ITNW = 7, NWTN = 3\n"
+        "EPSL = 1e-7, EPSU = 1e-7, EPSS = 1e-4\nDS = 0.1, DSMIN = 0.01, DSMAX = 5.0\n")
+    (tmp_path / "x.auto").write_text(
+        "a = run('fhn')\nrun(a('HB1'), ISW=2, ICP=[1, 2], NMX=2, NPR=1, sv='hb')\n")
+    run_script("x.auto")
+    start = read_s(tmp_path / "s.hb")[0]
+    v = np.asarray(start.u, float)[3:6]           # (u, v, kappa, PAR(ICP(2)))
+    auto = np.array([0.5792664334, -0.5734987344, 0.5792664334])
+    assert np.max(np.abs(v - auto)) < 1e-4, v

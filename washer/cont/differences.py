@@ -1,6 +1,8 @@
-"""Central differences, the engine's one definition of them: AUTO's step h = rel (1 + |x|)
-(rel = HMACH in ae.f90:FUNI and bvp.f90:FUNI, BCNI, ICNI), the points x + h e_j and
-x - h e_j, and the quotient (f(x + h e_j) - f(x - h e_j)) / (2 h).
+"""Central differences, the engine's one definition of them: the step h = rel (1 + |x_j|)
+per component (rel = HMACH, AUTO's; AUTO-07p 0.9.2's FUNI, BCNI, ICNI take one step rel
+(1 + max_i |x_i|) for all components of x: `shared_step`, which the Hopf locus's start
+uses), the points x + h e_j and x - h e_j, and the quotient
+(f(x + h e_j) - f(x - h e_j)) / (2 h).
 
 Every finite-difference first derivative of the engine (f_u, f_PAR, the derivatives of
 bcnd, icnd and fopt, the Jacobians of the extended systems) is built from these, so that
@@ -28,6 +30,17 @@ FD_STEP = HMACH
 def step(x, rel: float = FD_STEP):
     """The step at x: rel (1 + |x|), for a float or elementwise for an array (same shape)."""
     return rel * (1 + abs(x))
+
+
+def shared_step(u, rel: float = FD_STEP) -> float:
+    """AUTO-07p 0.9.2's own step for f_u (FUNI of its INTERFACES module, JAC = 0): one
+    step rel (1 + max_i |u_i|) for every component of u (seen in the arguments its FUNC
+    is called with: u_2 = 0.01 beside u_1 = 10 is moved by 1.1e-6). The engine's
+    Jacobians take `step` per component (a small component keeps a step its own size);
+    the Hopf locus's start takes this one,
+    where the rounding of f_u picks one vector of a two-dimensional null space
+    (`washer.cont.systems.hopf`)."""
+    return rel * (1 + float(np.max(np.abs(u)))) if len(u) else rel
 
 
 def quotient(f_plus, f_minus, h):

@@ -55,7 +55,8 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.differences import par_points, quotient, step, u_points, u_quotient
+from washer.cont.differences import (par_points, quotient, shared_step, step, u_points,
+                                     u_quotient)
 from washer.cont.linalg import all_finite
 from washer.cont.pointwise import PointwiseCheck
 from washer.cont.pvls import Orbit
@@ -442,8 +443,9 @@ class Problem:
                 return None
         return out if all_finite(out) else None
 
-    def dfdu(self, u, par) -> np.ndarray:
-        """(ndim, ndim) Jacobian: the user's (JAC != 0) or central differences in one batch."""
+    def dfdu(self, u, par, shared: bool = False) -> np.ndarray:
+        """(ndim, ndim) Jacobian: the user's (JAC != 0) or central differences in one batch
+        (shared: every component moved by one step, AUTO's FUNI's, `differences.shared_step`)."""
         if self._dfdu is not None and self.jac != 0:
             J = self._call(self._dfdu, "dfdu", u, par)
             if J.shape != (self.ndim, self.ndim):
@@ -453,9 +455,12 @@ class Problem:
                 raise ProblemError(f"{self.name}: dfdu(u, par) returned non-finite values")
             return J
         u = np.asarray(u, dtype=float)
-        if self.stencil_by_calls(0):
+        if shared:
+            h = np.full(len(u), shared_step(u))
+        elif self.stencil_by_calls(0):
             return self._jacobian_by_calls(u, np.asarray(par, dtype=float), [])
-        h = step(u)
+        else:
+            h = step(u)
         E = np.diag(h)
         F = self.func_many(np.vstack([u + E, u - E]), par)
         n = self.ndim

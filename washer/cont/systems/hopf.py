@@ -52,7 +52,13 @@ class HopfSystem(LocusSystem):
                 raise ValueError("the HB record has no period PAR(11) > 0 to start the Hopf "
                                  "curve from")
             kappa = (2 * np.pi / period) ** 2
-            A = self.problem.dfdu(u, self.par)
+            # f_u differenced as AUTO's FUNI does, one step for all components: where
+            # A^2 + kappa I has equal entries in exact arithmetic, its rounding decides
+            # NLVC's pivot and so which v (fhn's travelling waves: 0.2 and 0.2 in its
+            # first row; with per-component steps v came out the other vector of the
+            # plane, the locus's steps, measured with v's components, fell one point
+            # later than AUTO's, and a later restart from label 20 found no label 20).
+            A = self.problem.dfdu(u, self.par, shared=True)
             # STPNHBF: which vector of the two-dimensional null space is AUTO's
             # NLVC's (the last two pivoted unknowns set to 1); the phase condition then
             # keeps v near it, so the locus's v, and every tangent with components in
