@@ -55,9 +55,10 @@ PERIOD_RTOL = 1e-3
 #: Demos run script by script: the scripts of the folder, in order (snh.auto runs h1b.auto,
 #: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep),
 #: and demos whose script is not named after the folder (fhh and fnb are AUTO's two folders
-#: of the FitzHugh-Nagumo model's homoclinic orbits, each with its own fhn.auto).
+#: of the FitzHugh-Nagumo model's homoclinic orbits, each with its own fhn.auto); man's
+#: folder has AUTO's man1.auto and man2.auto beside man.auto (man2 starts from man1's s.start).
 SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto"), "fhh": ("fhn.auto",),
-           "fnb": ("fhn.auto",)}
+           "fnb": ("fhn.auto",), "man": ("man.auto", "man1.auto", "man2.auto")}
 
 
 
