@@ -178,6 +178,14 @@ class BoundaryValueProblem(CollocationBVP):
                 old = np.r_[ud.ravel(), [dpar[i] for i in self._order]]
         same = old is not None and icp_r[:self.nfpr] == self.free
         self._begin(U, old if (same or self.settings.ISW == -1) else None)
+        # READBV reads the record's NFPR parameter rates into RLDOT(1..) in order, the
+        # rest 0, whatever the run's ICP: the border of AUTO's IPERP = 1 start where the
+        # free parameters changed (r3b's Floquet eigenfunction run from a halo orbit
+        # stored with ICP = [1, 11] continues in [lambda, fm, rho]).
+        self._stored_rows = None
+        if ud is not None and self.settings.ISW == -1:
+            rates = {i: (rldot[k] if k < len(rldot) else 0.0) for k, i in enumerate(self.free)}
+            self._stored_rows = np.r_[ud.ravel(), [rates[i] for i in self._order]]
 
     def _begin(self, U, old) -> None:
         # RSPTBV: PVLS on the start "so the parameters can be initialized": its PAR is
@@ -316,7 +324,31 @@ class BoundaryValueProblem(CollocationBVP):
                     if zb is not None:
                         z = zb
                         break
+        if switch and getattr(self, "_stored_rows", None) is not None:
+            z = self._orthogonal_to_stored(J, z)
         return x0, self.orient_stdrbv(z / math.sqrt(self.inner(z, z)), x0)
+
+    def _orthogonal_to_stored(self, J, z):
+        """ISW = -1 away from a BP label: AUTO's start (CNRLBV's IPERP = 1 at any
+        restart with ISW < 0) is the null vector of J bordered by the stored direction,
+        the direction of the (near) null space of J orthogonal to it. Where J has one
+        null vector z that is z itself; where a second direction is (nearly) null too,
+        as on a trivial branch next to where it meets another (r3b's Floquet
+        eigenfunction v = 0 with fm free, fm from PVLS 0.13 % off the multiplier), the
+        stored direction picks the other branch. The second direction is taken only
+        where it fits [J; border] a hundred times better than z fits the border."""
+        border = self.weights * self._stored_rows
+        nb = float(np.linalg.norm(border))
+        if nb == 0.0:
+            return z
+        unit = lambda v: v / math.sqrt(self.inner(v, v))        # noqa: E731
+        z1 = unit(z)
+        r1 = abs(float(border @ z1)) / nb
+        z2 = unit(self.null_vector(J, border))
+        scale = float(abs(J).max()) if J.shape[0] else 1.0
+        r2 = max(abs(float(border @ z2)) / nb,
+                 float(np.linalg.norm(J @ z2)) / max(scale, 1.0))
+        return z2 if r2 < 0.01 * r1 else z
 
     def _bordered_null_vector(self, J, slot: int):
         """The solution z of J z = 0 with z[slot] = 1 (a free parameter's rate), or None
