@@ -97,3 +97,20 @@ def test_floquet_eigenfunction_branch_from_a_stored_orbit(tmp_path, monkeypatch)
     # Every row AUTO's within its Newton tolerances (EPSU = EPSL = 1e-6, relative):
     # measured 1.4e-7 in rho, 5e-8 in the L2 norm.
     np.testing.assert_allclose(ours[:, 2:], autos[:, 2:], rtol=1e-6, atol=1e-6)
+
+
+def test_a_solution_called_at_a_mesh_time_is_the_state_there(tmp_path):
+    """AUTO's `solution(t)` (Pointset's call), which r3b's data.py uses to build the
+    manifold's start (`s0 = solution(0)`, `s0[i]`): the state U(1..NDIM) at that mesh time;
+    a time between mesh times is refused, as AUTO's."""
+    from washer.auto.diagram import read_solutions
+    path = tmp_path / "s.H1"
+    path.write_text(gzip.decompress((HERE / "s.H1.gz").read_bytes()).decode())
+    (s,) = read_solutions(path)
+    U, t = np.asarray(s.U), np.asarray(s.t)
+    np.testing.assert_array_equal(s(0), U[0])
+    np.testing.assert_array_equal(s(t[5]), U[5])
+    np.testing.assert_array_equal(s(1.0), U[-1])
+    assert s(0)[1] == s["U(2)"][0]
+    with pytest.raises(ValueError):
+        s((t[5] + t[6]) / 2)

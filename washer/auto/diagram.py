@@ -207,6 +207,23 @@ class Solution:
                            "PAR(i), U(i), a parameter or state name)")
         return self.U[key]
 
+    def __call__(self, t: float) -> np.ndarray:
+        """The state at the orbit's mesh time t (AUTO's Pointset call, `s(0)`: the first
+        point), U(1..NDIM) as a vector indexed from 0: r3b's data.py builds a manifold's
+        start from `s0 = solution(0)`, `s0[i] + eps * s0[i + 6]`. As AUTO's, t must be
+        one of the record's times (to 1e-10, Pointset's tolerance)."""
+        rec = self._need()
+        U = np.asarray(rec.u, float)
+        if U.ndim == 1:
+            if t == 0:
+                return U.copy()
+            raise ValueError(f"a point has no time {t}: only solution(0) is its state")
+        times = np.asarray(rec.t, float)
+        k = int(np.argmin(np.abs(times - t)))
+        if abs(times[k] - t) > 1e-10:
+            raise ValueError(f"independent variable value not valid: {t} (not a mesh time)")
+        return U[k].copy()
+
     def __contains__(self, key) -> bool:
         try:
             self[key]
@@ -281,7 +298,7 @@ class SolutionList(list):
     def __call__(self, label=None):
         if label is None:
             return self
-        if callable(label) and not isinstance(label, str):
+        if callable(label) and not isinstance(label, (str, Solution)):
             return SolutionList(s for s in self if label(s))
         if isinstance(label, (list, tuple)):
             out = SolutionList()
@@ -366,7 +383,7 @@ def label_selector(typenames):
     label number, a type name ('UZ'), a list of those, or a predicate itself."""
     if typenames is None:
         typenames = list(SPECIAL_TYPES)
-    if callable(typenames) and not isinstance(typenames, str):
+    if callable(typenames) and not isinstance(typenames, (str, Solution)):
         return typenames
     items = list(typenames) if isinstance(typenames, (list, tuple)) else [typenames]
     return lambda sol: any(_selects(sol, k, None) for k in items)
