@@ -70,7 +70,8 @@ struct PoJacobian {
     int fp_index[2], slot_index[2];
     const double *WT, *WP, *dtm;
     double fd_step, hp[2] = {0.0, 0.0};
-    std::vector<double> ug, fg, parsT, pts, fst, h, A, parcols, Jp;
+    // work arrays, each written in full by a call before it is read
+    RawBuffer<double> ug, fg, parsT, pts, fst, h, A, parcols, Jp;
 
     PoJacobian(cont_po_feval feval_, cont_po_sym_func sfunc_, cont_po_sym_jac sjac_,
                int npar_jp, int ntst, int ncol, int ndim, int npar_, int ipa, int ipb,
@@ -92,15 +93,15 @@ struct PoJacobian {
             if (slot_index[s] != 10) fp_index[nfp++] = slot_index[s];
         kst = 2 * n * k + 2 * nfp * k;                  // points of a Jacobian's call
         m0 = 2 * n * k;
-        ug.resize((size_t)k * n);
-        fg.resize((size_t)k * n);
-        parsT.resize(!sfunc && k <= one_call_max ? (size_t)npar * kst : 0);
-        pts.resize((size_t)kst * n);
-        fst.resize((size_t)kst * n);
-        h.resize((size_t)k * n);
-        A.resize((size_t)k * n * n);
-        parcols.resize((size_t)N * mn * 2);
-        Jp.resize(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
+        ug.allocate((size_t)k * n);
+        fg.allocate((size_t)k * n);
+        parsT.allocate(!sfunc && k <= one_call_max ? (size_t)npar * kst : 0);
+        pts.allocate((size_t)kst * n);
+        fst.allocate((size_t)kst * n);
+        h.allocate((size_t)k * n);
+        A.allocate((size_t)k * n * n);
+        parcols.allocate((size_t)N * mn * 2);
+        Jp.allocate(sjac ? (size_t)k * n * std::max(npar_jp, 1) : 0);
     }
 
     // u at the Gauss points (Collocation.at_gauss)
@@ -265,9 +266,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
                   fd_step, one_call_max);
     const int nodes = N * m + 1;
     const int nu = nodes * n, nc = pj.nc, nx = nu + 2, ne = n + 2;
-    std::vector<double> par(par0, par0 + npar), extra((size_t)ne * nx, 0.0), G(nc + n + 1),
-        rhs(nx), dx(nx), xo(nx), prod(n), vsum(nodes);
-    const std::vector<double> &fg = pj.fg;
+    std::vector<double> par(par0, par0 + npar), extra((size_t)ne * nx, 0.0);
+    RawBuffer<double> G(nc + n + 1), rhs(nx), dx(nx), xo(nx), prod(n), vsum(nodes);
+    const RawBuffer<double> &fg = pj.fg;
     std::copy(x_pred, x_pred + nx, x);
     // the dense rows' constant parts: periodicity (+1 on u(0), -1 on u(1)), the border
     const int last = (nodes - 1) * n;

@@ -90,8 +90,8 @@ struct cont_bvp {
     // nothing per interval).
     int cw = 0, tw = 0;
     bool factored = false;
-    std::vector<double> Wb, E1b, Tb, E2b;
-    std::vector<int> piv1b, piv2b;
+    RawBuffer<double> Wb, E1b, Tb, E2b;
+    RawBuffer<int> piv1b, piv2b;
     Eigen::Map<Mat> W(int j) { return Eigen::Map<Mat>(Wb.data() + (size_t)j * m * n * cw, m * n, cw); }
     Eigen::Map<const Mat> W(int j) const {
         return Eigen::Map<const Mat>(Wb.data() + (size_t)j * m * n * cw, m * n, cw);
@@ -186,12 +186,12 @@ cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
     f->cw = (ncol + 1) * ndim + npar;
     f->tw = 3 * ndim + npar;
     try {
-        f->Wb.resize((size_t)ntst * ncol * ndim * f->cw);
-        f->E1b.resize((size_t)ntst * f->ne * f->K);
-        f->Tb.resize((size_t)ntst * 2 * ndim * f->tw);
-        f->E2b.resize((size_t)ntst * f->ne * ndim);
-        f->piv1b.resize((size_t)ntst * f->K);
-        f->piv2b.resize((size_t)ntst * ndim);
+        f->Wb.allocate((size_t)ntst * ncol * ndim * f->cw);
+        f->E1b.allocate((size_t)ntst * f->ne * f->K);
+        f->Tb.allocate((size_t)ntst * 2 * ndim * f->tw);
+        f->E2b.allocate((size_t)ntst * f->ne * ndim);
+        f->piv1b.allocate((size_t)ntst * f->K);
+        f->piv2b.allocate((size_t)ntst * ndim);
     } catch (const std::bad_alloc &) {
         delete f;
         return nullptr;
@@ -201,9 +201,17 @@ cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
 
 void cont_bvp_free(cont_bvp *f) { delete f; }
 
-int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
-                    const double *extra, double *sign_logdet, double *P0, double *P1) {
-    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+namespace {
+
+// cont_bvp_factor with NDIM = NN and NPAR = NP where they are positive / not negative,
+// else f's: with the sizes known to the compiler, the row updates of NDIM and NPAR
+// terms (most of them, at NDIM 2 to 4) are straight-line code without a loop's set-up;
+// the same operations on the same values.
+template <int NN, int NP>
+int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
+                 const double *extra, double *sign_logdet, double *P0, double *P1) {
+    const int N = f->N, m = f->m, K = f->K, nx = f->nx;
+    const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np, ne = n + np;
     const int mn = m * n, cw = (m + 1) * n + np;
     Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
     f->blocks0.assign(blocks, blocks + (size_t)N * mn * (m + 1) * n);
@@ -234,7 +242,6 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
         W.leftCols((m + 1) * n) = Eigen::Map<const Mat>(blocks + (size_t)j * mn * (m + 1) * n, mn, (m + 1) * n);
         if (np) W.rightCols(np) = Eigen::Map<const Mat>(parcols + (size_t)j * mn * np, mn, np);
         Eigen::Map<Mat> E = f->E1(j);
-        E.setZero();
         int *piv = f->piv1(j);
         for (int r = 0; r < mn; ++r) ids[r] = j * mn + r;
         for (int t = 0; t < K; ++t) {
@@ -251,7 +258,10 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             pivot_step(d);
             rows.push_back(ids[t]);
             cols.push_back(j * mn + c);
-            if (d == 0.0) continue;
+            if (d == 0.0) {             // no elimination: the dense rows' multipliers 0
+                E.col(t).setZero();
+                continue;
+            }
             // the columns still to eliminate: U_j (0..n-1) and everything right of c
             const int tail = (m + 1) * n - c - 1;
             const double *wt = &W(t, 0);
@@ -277,7 +287,8 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
         }
         // ---- reduction: eliminate U_j from R (U_0, U_j, par) and interval j's rows
         Eigen::Map<Mat> T = f->T(j);
-        T.setZero();
+        T.block(0, 2 * n, n, n).setZero();                      // what is not copied in
+        T.block(n, n, n, n).setZero();
         T.block(0, 0, n, n) = R.middleCols(n, n);               // U_j
         T.block(0, n, n, n) = R.leftCols(n);                    // U_0
         if (np) T.block(0, 3 * n, n, np) = R.rightCols(np);
@@ -289,7 +300,6 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             tids[n + r] = ids[K + r];
         }
         Eigen::Map<Mat> E2 = f->E2(j);
-        E2.setZero();
         int *piv2 = f->piv2(j);
         for (int t = 0; t < n; ++t) {
             int p = t;
@@ -304,7 +314,10 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
             pivot_step(d);
             rows.push_back(tids[t]);
             cols.push_back(j * mn + t);
-            if (d == 0.0) continue;
+            if (d == 0.0) {
+                E2.col(t).setZero();
+                continue;
+            }
             const int tw = 3 * n + np - t - 1;
             const double *tt = &T(t, 0);
             for (int r = t + 1; r < 2 * n; ++r) {
@@ -342,6 +355,21 @@ int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
     factor_final(f);
     if (sign_logdet) cont_bvp_sign_logdet(f, sign_logdet);
     return f->singular ? 1 : 0;
+}
+
+}  // namespace
+
+int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
+                    const double *extra, double *sign_logdet, double *P0, double *P1) {
+    if (f->np == 2) {               // periodic orbits: (PERIOD, a parameter)
+        switch (f->n) {
+        case 2: return factor_sized<2, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 3: return factor_sized<3, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 4: return factor_sized<4, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        default: break;
+        }
+    }
+    return factor_sized<0, -1>(f, blocks, parcols, extra, sign_logdet, P0, P1);
 }
 
 int cont_bvp_reborder(cont_bvp *f, const double *row) {
@@ -442,11 +470,14 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
 
 namespace {
 
-void solve_once(const cont_bvp *f, const double *rhs, double *x) {
-    const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, K = f->K, nx = f->nx;
+// One solve with the factorisation; NN, NP as in factor_sized.
+template <int NN, int NP>
+void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
+    const int N = f->N, m = f->m, K = f->K, nx = f->nx;
+    const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np, ne = n + np;
     const int mn = m * n;
     std::vector<double> rc(rhs, rhs + f->nc), re(rhs + f->nc, rhs + nx);
-    std::vector<double> t2all((size_t)N * 2 * n);   // the reduction's right-hand sides
+    RawBuffer<double> t2all((size_t)N * 2 * n);     // the reduction's right-hand sides
     // forward: condensation
     for (int j = 0; j < N; ++j) {
         const Eigen::Map<const Mat> W = f->W(j);
@@ -541,6 +572,18 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     }
 }
 
+void solve_once(const cont_bvp *f, const double *rhs, double *x) {
+    if (f->np == 2) {
+        switch (f->n) {
+        case 2: return solve_sized<2, 2>(f, rhs, x);
+        case 3: return solve_sized<3, 2>(f, rhs, x);
+        case 4: return solve_sized<4, 2>(f, rhs, x);
+        default: break;
+        }
+    }
+    solve_sized<0, -1>(f, rhs, x);
+}
+
 // r = rhs - M x with the matrix as given to cont_bvp_factor.
 void residual(const cont_bvp *f, const double *rhs, const double *x, double *r) {
     const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, nx = f->nx;
@@ -573,7 +616,7 @@ void residual(const cont_bvp *f, const double *rhs, const double *x, double *r) 
 // (near homoclinic orbits the corrector needs it: ab's seventh family stalled otherwise).
 int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x) {
     solve_once(f, rhs, x);
-    std::vector<double> r(f->nx), d(f->nx);
+    RawBuffer<double> r(f->nx), d(f->nx);
     residual(f, rhs, x, r.data());
     solve_once(f, r.data(), d.data());
     for (int i = 0; i < f->nx; ++i) x[i] += d[i];
