@@ -47,3 +47,67 @@ def test_singular_and_non_finite_matrices():
     with np.errstate(invalid="ignore"):
         x = f.solve(np.array([1.0, 2.0]))
     assert np.allclose(x, np.linalg.lstsq(f.M, [1.0, 2.0], rcond=None)[0])
+
+
+# ------------------------------------------------ numpy's LAPACK called from C
+# (csrc/cont/dense_lapack.cpp through washer.cont.lapack: the bordered factorisations and
+# the sorted spectra of the algebraic systems)
+
+compiled = pytest.mark.skipif(linalg._C is None,
+                              reason="numpy links no bundled scipy-openblas here")
+
+
+def _numpy_sorted(M):
+    w = np.linalg.eigvals(M)
+    w = w.real if (w.imag == 0).all() else w
+    return w[np.argsort(-w.real, kind="stable")]
+
+
+@compiled
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 7, 13, 25])
+def test_compiled_factor_and_spectrum_are_numpys_bit_for_bit(n):
+    rng = np.random.default_rng(100 + n)
+    for k in range(300):
+        M = rng.standard_normal((n, n)) * 10.0 ** rng.integers(-4, 5)
+        if k % 5 == 0 and n > 1:
+            M[:, -1] = M[:, 0]                     # singular: GETRF's zero pivot or not
+        if k % 7 == 0:
+            M = np.round(M)                        # ties in the pivots' and real parts' order
+        f = linalg.DenseFactor(M)
+        assert f._c is not None                   # the compiled path was taken
+        sign, logdet = np.linalg.slogdet(M)
+        assert f.sign_logdet() == (float(sign), float(logdet))
+        b = rng.standard_normal(n)
+        with np.errstate(invalid="ignore"):
+            ref = np.linalg.solve(M, b) if sign != 0 else None
+            x = f.solve(b)
+        if ref is not None and np.isfinite(ref).all():
+            assert np.array_equal(x, ref)
+        if n > 1:                                  # [J; border] as the engine borders J
+            g = linalg.dense_factor(M[:-1].copy(), M[-1].copy())
+            assert g._c is not None and g.sign_logdet() == f.sign_logdet()
+            assert np.array_equal(g.M, M)
+            with np.errstate(invalid="ignore"):
+                assert np.array_equal(g.solve(b), x, equal_nan=True)
+        J = np.c_[M, rng.standard_normal(n)]
+        for A in (M, J[:, :n]):                    # contiguous, and strided as f_u in J
+            w, ref = linalg.eigenvalues_sorted(A), _numpy_sorted(M)
+            assert w.dtype == ref.dtype and np.array_equal(w, ref)
+
+
+@compiled
+def test_compiled_spectrum_errors_and_ties():
+    # equal real parts keep GEEV's order (the stable sort numpy's path applies)
+    A = np.diag([1.0, 3.0, 1.0, -2.0, 3.0])
+    assert np.array_equal(linalg.eigenvalues_sorted(A), _numpy_sorted(A))
+    rot = np.array([[0.0, -2.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 0.5]])
+    w = linalg.eigenvalues_sorted(rot)
+    assert w.dtype == complex and np.array_equal(w, _numpy_sorted(rot))
+    with pytest.raises(np.linalg.LinAlgError, match="infs or NaNs"):
+        linalg.eigenvalues_sorted(np.array([[1.0, np.inf], [0.0, 1.0]]))
+    # an exactly singular bordered matrix: numpy's determinant and least-squares step
+    f = linalg.dense_factor(np.array([[1.0, 2.0]]), np.array([2.0, 4.0]))
+    assert f._c is not None and f.sign_logdet() == (0.0, -np.inf)
+    with np.errstate(invalid="ignore"):
+        x = f.solve(np.array([1.0, 2.0]))
+    assert np.allclose(x, np.linalg.lstsq(f.M, [1.0, 2.0], rcond=None)[0], rtol=1e-15, atol=0)

@@ -1,5 +1,7 @@
 #ifndef WASHER_CONT_H
 #define WASHER_CONT_H
+#include <stddef.h>
+#include <stdint.h>
 #ifdef __cplusplus
 extern "C" {
 #endif

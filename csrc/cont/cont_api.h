@@ -143,3 +143,25 @@ int cont_format_es(const double *v, int k, int m, int per_line, int indent, int 
 int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const double *v, int n,
                     const char *dhead, int ebr, int ept, const double *eig, int neig, int cplx,
                     char *out, int *blen);
+
+/* A small dense matrix's LU and eigenvalues by numpy's own LAPACK (csrc/cont/dense_lapack.cpp;
+ * the routines' addresses from washer.cont.lapack: numpy's bundled OpenBLAS, 64-bit integers),
+ * the values numpy.linalg's solve, slogdet and eigvals give, bit for bit.
+ * cont_dense_lu: GETRF of M (n x n, row stride ldm; with `last` not NULL, M's first n - 1
+ * rows and then the row `last` (n)) copied into lu (n * n, Fortran order);
+ * ipiv (n) its pivots; sign_logdet (2) numpy's slogdet of M ((0, -inf) where GETRF finds an
+ * exact zero pivot). Returns GETRF's info (-1 bad sizes).
+ * cont_dense_lu_solve: x (n) = M^-1 b by GETRS on cont_dense_lu's factors (GESV's values).
+ * Returns GETRS's info, or 1 where x is not finite.
+ * cont_eigenvalues_sorted: GEEV's eigenvalues of A (n x n, row stride lda) with numpy's
+ * workspace (GEEV's own answer to a query, made where *lwork <= 0 and kept in *lwork), as
+ * (re, im) pairs in w (2 n) by decreasing real part (equal real parts in GEEV's order); work
+ * holds n * n + 2 n + lwork_max doubles. Returns 0 (some complex), 4 (all
+ * real), 1 (A not finite), 2 (GEEV failed or a value not finite), 3 (lwork_max too small),
+ * -1 bad sizes. */
+int cont_dense_lu(void *getrf, int n, const double *M, int ldm, const double *last, double *lu,
+                  int64_t *ipiv, double *sign_logdet);
+int cont_dense_lu_solve(void *getrs, int n, const double *lu, const int64_t *ipiv,
+                        const double *b, double *x);
+int cont_eigenvalues_sorted(void *geev, int n, const double *A, int lda, double *w,
+                            double *work, int lwork_max, int *lwork);

@@ -126,16 +126,86 @@ def eigvals(A: np.ndarray) -> np.ndarray:
     return w.real if (w.imag == 0).all() else w
 
 
-def eigenvalues_sorted(A: np.ndarray) -> np.ndarray:
-    """`eigvals` of A by decreasing real part (a stable sort: equal real parts keep
+def eigenvalues_sorted(A: np.ndarray, leading: bool = False) -> np.ndarray:
+    """`eigvals` of A (n, n) by decreasing real part (a stable sort: equal real parts keep
     LAPACK's order): the order of an equilibrium's eigenvalues in the engine's stability
-    (systems.equilibrium) and in a compiled user file's PVLS."""
+    (systems.equilibrium) and in a compiled user file's PVLS. leading: A is (n, m), m >= n,
+    and the eigenvalues are those of its leading block A[:, :n] (f_u of [f_u, f_PAR]).
+    Up to EIG_MAX rows in one compiled call (csrc/cont/dense_lapack.cpp: numpy's own GEEV
+    as numpy.linalg.eigvals calls it, the same values, the same errors)."""
+    n = len(A)
+    if n <= EIG_MAX and _C is not None and type(A) is np.ndarray and A.dtype == np.float64 \
+            and A.ndim == 2 and (A.shape[1] == n or leading and A.shape[1] > n):
+        if not A.flags.c_contiguous:
+            A = np.ascontiguousarray(A)
+        buf, work, wptr, lwork = _EIG_BUFFERS.get(n) or _eig_buffers(n)
+        status = _C.lib.cont_eigenvalues_sorted(_C.geev, n, _C.ffi.from_buffer("double[]", A),
+                                                A.shape[1], wptr, work, EIG_WORK * n, lwork)
+        if status == 4:                     # all real: the real parts, as eigvals' w.real
+            return buf[0::2].copy()
+        if status == 0:
+            return buf.view(np.complex128).copy()
+        if status == 1:
+            raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+        if status == 2:
+            raise np.linalg.LinAlgError("Eigenvalues did not converge")
+        # (3: a workspace beyond the buffer's: numpy's call below)
+    if leading:
+        A = A[:, :n]
     lam = eigvals(A)
     re = lam.real.tolist()
     # Python's sort is stable as argsort(kind="stable") is, and stays so reversed (equal
     # real parts keep their order): the order of a stable sort by -Re, without numpy's
     # per-call overhead at the sizes of equilibria
     return lam[sorted(range(len(re)), key=re.__getitem__, reverse=True)]
+
+
+#: Sizes up to which eigenvalues_sorted and DenseFactor call LAPACK from C (beyond, the
+#: LAPACK work outweighs numpy's per-call overhead).
+EIG_MAX = 60
+
+
+class _Compiled:
+    """washer._cont's ffi and lib with the addresses of numpy's GETRF, GETRS and GEEV
+    (washer.cont.lapack)."""
+
+    def __init__(self, ffi, lib, routines):
+        self.ffi, self.lib = ffi, lib
+        self.getrf, self.getrs, self.geev = routines
+
+
+_EIG_BUFFERS: dict = {}
+
+
+def _dense() -> _Compiled | None:
+    """The compiled dense LAPACK calls where washer._cont and numpy's bundled OpenBLAS
+    are both there, else None: numpy.linalg's gufuncs serve."""
+    from washer.cont.lapack import routines
+    found = routines()
+    if found is None:
+        return None
+    from washer._cont import ffi, lib
+    return _Compiled(ffi, lib, found)
+
+
+#: the compiled calls of this process (`_dense`), or None
+_C: _Compiled | None = _dense()
+
+
+#: GEEV's workspace in eigenvalues_sorted's buffers: EIG_WORK n doubles (its optimum
+#: is 34 n at these sizes: 2 n + n times DGEHRD's block size 32)
+EIG_WORK = 64
+
+
+def _eig_buffers(n: int):
+    """(out (2 n,), work, out's pointer, GEEV's lwork) of cont_eigenvalues_sorted for size
+    n, made once per size; lwork starts at 0: the first call asks GEEV (as numpy asks it at
+    every call) and keeps its answer."""
+    ffi = _C.ffi
+    buf = np.empty(2 * n)
+    work = ffi.new("double[]", n * n + 2 * n + EIG_WORK * n)
+    got = _EIG_BUFFERS[n] = (buf, work, ffi.from_buffer("double[]", buf), ffi.new("int *", 0))
+    return got
 
 
 def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -160,24 +230,69 @@ class Factor(Protocol):
 
 class DenseFactor:
     """A dense square system [J; border] (AUTO's GEL: Gaussian elimination with
-    pivoting). Small systems are solved directly by LAPACK's gesv on each call
-    (cheaper than keeping a factorisation through scipy's wrappers at these
-    sizes); larger ones are LU-factorised once for Newton-chord reuse."""
+    pivoting). Small systems are LU-factorised once by numpy's own GETRF called from C
+    (csrc/cont/dense_lapack.cpp), whose GETRS solves then give numpy.linalg.solve's
+    (GESV's) values and whose diagonal numpy.linalg.slogdet's determinant, bit for bit,
+    without numpy's per-call overhead; without that call (another numpy's LAPACK), by
+    numpy's GESV on each solve. Larger ones are LU-factorised through scipy for
+    Newton-chord reuse."""
 
     #: Above this size the LU factors are kept for repeated solves.
     LU_SIZE = 60
 
-    def __init__(self, M: np.ndarray):
-        self.M = M
+    def __init__(self, M: np.ndarray | None, J: np.ndarray | None = None,
+                 border: np.ndarray | None = None):
+        """M (n, n), or M = None with J (n - 1, n) and border (n,): M = [J; border]
+        (made only where a numpy call needs it: `M`)."""
+        self._M, self._J, self._border = M, J, border
         self.lu = None
-        if len(M) > self.LU_SIZE:
+        self._c = None        # the compiled LU: (lu, pivots, (sign, log|det|), GETRF's info)
+        n = len(M) if M is not None else len(border)
+        if n > self.LU_SIZE:
             import scipy.linalg
             with warnings.catch_warnings():
                 # An exactly singular matrix (at a branch point) is handled in solve().
                 warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                self.lu = scipy.linalg.lu_factor(M, check_finite=False)
+                self.lu = scipy.linalg.lu_factor(self.M, check_finite=False)
+            return
+        if _C is None:
+            return
+        rows, last = (M, _C.ffi.NULL) if M is not None else (J, border)
+        if type(rows) is np.ndarray and rows.dtype == np.float64 and rows.flags.c_contiguous \
+                and rows.shape == (n - (M is None), n) and (M is not None or (
+                    type(border) is np.ndarray and border.dtype == np.float64
+                    and border.shape == (n,))):
+            ffi = _C.ffi
+            lu, ipiv, sl = ffi.new("double[]", n * n), ffi.new("int64_t[]", n), \
+                ffi.new("double[2]")
+            info = _C.lib.cont_dense_lu(
+                _C.getrf, n, ffi.from_buffer("double[]", rows), n,
+                last if M is not None else ffi.from_buffer("double[]", border), lu, ipiv, sl)
+            # a singular M (GETRF's info > 0) leaves its solves to numpy's GESV: NaN and
+            # the floating-point flag as before
+            self._c = (lu, ipiv, (sl[0], sl[1]), info)
+
+    @property
+    def M(self) -> np.ndarray:
+        """The matrix (n, n)."""
+        if self._M is None:
+            J = np.asarray(self._J)
+            M = np.empty((len(J) + 1, J.shape[1]))
+            M[:-1] = J
+            M[-1] = self._border
+            self._M = M
+        return self._M
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
+        c = self._c
+        if c is not None and c[3] == 0 and type(rhs) is np.ndarray \
+                and rhs.dtype == np.float64 and rhs.flags.c_contiguous:
+            ffi = _C.ffi
+            x = np.empty(len(rhs))
+            if _C.lib.cont_dense_lu_solve(_C.getrs, len(x), c[0], c[1],
+                                          ffi.from_buffer("double[]", rhs),
+                                          ffi.from_buffer("double[]", x)) == 0:
+                return x
         try:
             if self.lu is not None:
                 import scipy.linalg
@@ -193,11 +308,15 @@ class DenseFactor:
         return x
 
     def sign_logdet(self) -> tuple[float, float]:
+        if self._c is not None:
+            return self._c[2]
         return slogdet(self.M)
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:
     """Default `factor`: LU of [J; border] for dense J."""
+    if _C is not None and type(J) is np.ndarray:
+        return DenseFactor(None, J, border)
     J = np.asarray(J)
     M = np.empty((len(J) + 1, J.shape[1]))
     M[:-1] = J

@@ -130,7 +130,7 @@ class EquilibriumSystem(AlgebraicSystem):
     def stability(self, x, J) -> Stability | None:
         if self.settings.IPS not in (1, 11):
             return None
-        lam = eigenvalues_sorted(np.asarray(J)[:, :self.ndim])
+        lam = eigenvalues_sorted(np.asarray(J), leading=True)     # of f_u
         self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
         return spectrum(lam)
 
