@@ -111,3 +111,19 @@ def test_compiled_spectrum_errors_and_ties():
     with np.errstate(invalid="ignore"):
         x = f.solve(np.array([1.0, 2.0]))
     assert np.allclose(x, np.linalg.lstsq(f.M, [1.0, 2.0], rcond=None)[0], rtol=1e-15, atol=0)
+
+
+@compiled
+def test_compiled_spectra_in_threads_are_each_their_own():
+    # the compiled call runs without the GIL: threads computing spectra of the same size
+    # at once must not share the result's buffer
+    from concurrent.futures import ThreadPoolExecutor
+    rng = np.random.default_rng(7)
+    mats = [rng.standard_normal((4, 4)) for _ in range(8)]
+    refs = [_numpy_sorted(M) for M in mats]
+
+    def work(k):
+        return all(np.array_equal(linalg.eigenvalues_sorted(mats[k]), refs[k])
+                   for _ in range(400))
+    with ThreadPoolExecutor(4) as pool:
+        assert all(pool.map(work, range(8)))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import cmath
 import math
+import threading
 import warnings
 from typing import TYPE_CHECKING, Protocol
 
@@ -138,7 +139,7 @@ def eigenvalues_sorted(A: np.ndarray, leading: bool = False) -> np.ndarray:
             and A.ndim == 2 and (A.shape[1] == n or leading and A.shape[1] > n):
         if not A.flags.c_contiguous:
             A = np.ascontiguousarray(A)
-        buf, work, wptr, lwork = _EIG_BUFFERS.get(n) or _eig_buffers(n)
+        buf, work, wptr, lwork = _EIG_BUFFERS.__dict__.get(n) or _eig_buffers(n)
         status = _C.lib.cont_eigenvalues_sorted(_C.geev, n, _C.ffi.from_buffer("double[]", A),
                                                 A.shape[1], wptr, work, EIG_WORK * n, lwork)
         if status == 4:                     # all real: the real parts, as eigvals' w.real
@@ -174,7 +175,8 @@ class _Compiled:
         self.getrf, self.getrs, self.geev = routines
 
 
-_EIG_BUFFERS: dict = {}
+#: eigenvalues_sorted's buffers by size, one set a thread (cffi's call releases the GIL)
+_EIG_BUFFERS = threading.local()
 
 
 def _dense() -> _Compiled | None:
@@ -199,12 +201,13 @@ EIG_WORK = 64
 
 def _eig_buffers(n: int):
     """(out (2 n,), work, out's pointer, GEEV's lwork) of cont_eigenvalues_sorted for size
-    n, made once per size; lwork starts at 0: the first call asks GEEV (as numpy asks it at
-    every call) and keeps its answer."""
+    n, made once per size and thread; lwork starts at 0: the first call asks GEEV (as
+    numpy asks it at every call) and keeps its answer."""
     ffi = _C.ffi
     buf = np.empty(2 * n)
     work = ffi.new("double[]", n * n + 2 * n + EIG_WORK * n)
-    got = _EIG_BUFFERS[n] = (buf, work, ffi.from_buffer("double[]", buf), ffi.new("int *", 0))
+    got = _EIG_BUFFERS.__dict__[n] = (buf, work, ffi.from_buffer("double[]", buf),
+                                      ffi.new("int *", 0))
     return got
 
 
