@@ -4,10 +4,14 @@
 // washer.cont.collocation.Collocation.local_blocks, so the values are identical.
 #include "cont.h"
 
-int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const double *WP,
-                     const double *dtm, double T, const double *A, double *blocks) {
-    if (ntst < 1 || ncol < 1 || ndim < 1) return 2;
-    const int m = ncol, n = ndim;
+namespace {
+
+// NDIM = NN where it is positive, else ndim: with the size known to the compiler the
+// innermost loop is straight-line code (the same operations).
+template <int NN>
+void blocks_sized(int ntst, int ncol, int ndim, const double *WT, const double *WP,
+                  const double *dtm, double T, const double *A, double *blocks) {
+    const int m = ncol, n = NN > 0 ? NN : ndim;
     const long w = (long)(m + 1) * n;               // a block's row length
     for (int j = 0; j < ntst; ++j) {
         const double s = dtm[j] * T;
@@ -23,6 +27,19 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
                 }
             }
         }
+    }
+}
+
+}  // namespace
+
+int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const double *WP,
+                     const double *dtm, double T, const double *A, double *blocks) {
+    if (ntst < 1 || ncol < 1 || ndim < 1) return 2;
+    switch (ndim) {
+    case 2: blocks_sized<2>(ntst, ncol, ndim, WT, WP, dtm, T, A, blocks); break;
+    case 3: blocks_sized<3>(ntst, ncol, ndim, WT, WP, dtm, T, A, blocks); break;
+    case 4: blocks_sized<4>(ntst, ncol, ndim, WT, WP, dtm, T, A, blocks); break;
+    default: blocks_sized<0>(ntst, ncol, ndim, WT, WP, dtm, T, A, blocks); break;
     }
     return 0;
 }
