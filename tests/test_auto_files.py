@@ -52,6 +52,16 @@ def test_list_of_pairs_keeps_every_user_value_of_an_index(tmp_path):
     assert c["THL"] == {11: 0.0}
 
 
+def test_braces_are_a_flat_token_list_to_list_valued_constants(tmp_path):
+    """AUTO's parseC reads braces as a flat list of tokens (':' and ',' alike separate):
+    STOP = {'UZ1'} (a Python set, written by a user's script generator) is STOP = ['UZ1'],
+    and an even number of tokens, {'LP0', 'HB1'}, is the list of both, not a dict."""
+    c = read_constants(_c(tmp_path, "NDIM = 3\nSTOP = {'UZ1'}\nSP = {'LP0', 'HB1'}\n"
+                                    "UZR = {1, [0.5, 1.5]}\n"))
+    assert c["STOP"] == ["UZ1"] and c["SP"] == ["LP0", "HB1"]
+    assert c["UZR"] == {1: [0.5, 1.5]}
+
+
 @pytest.mark.parametrize("text,message", [
     ("NDIM = 2\nFOO = 3", "c.x:2: unknown AUTO constant FOO"),
     ("NDIM = 2\nNMX = 1.5", "c.x:2: NMX expects an integer"),

@@ -108,6 +108,13 @@ class _Scanner:
                 else:
                     key = self.value()
                 self.skip(commas=False)
+                if self.peek() == "}":
+                    # a key without a value: the braces held an odd number of tokens.
+                    # AUTO's parseC reads braces as a flat list of tokens, which
+                    # list-valued constants take as the list: STOP={'UZ1'} (a Python
+                    # set in a user's script) is STOP=['UZ1'].
+                    self.advance()
+                    return [t for kv in items.items() for t in kv] + [key]
                 # AUTO's parseC (scanvalue) reads a dictionary as a flat list of tokens
                 # in which ':' and ',' alike separate: {'theta', [0, 1]} is
                 # {'theta': [0, 1]} to AUTO-07p, so a ',' stands for the ':' here too.

@@ -325,8 +325,16 @@ class CompiledUser:
         if not self.has["stpnt"]:
             raise ProblemError(f"{self.path}: defines no STPNT (needed to start with IRS = 0)")
         buf, copy_back = _writable_par(par)
-        # NDIM as AUTO passes it: u's length (HomCont's pieces fill (N + 1) NDIM)
-        self.lib.washer_stpnt(len(u), float(t), _dptr(u), _dptr(buf))
+        # NDIM as AUTO passes it: u's length (HomCont's pieces fill (N + 1) NDIM).
+        # A user's STPNT may set more components than that (a script's NDIM=3 on a file
+        # written for 4 sets U(4)): AUTO's U there has room for them (NDIM + 1 for
+        # algebraic problems, the extended systems' NDIM beyond), so they are lost
+        # without harm. Written into u itself they would land past its end in the heap.
+        n = len(u)
+        room = np.zeros(2 * n + 1)
+        room[:n] = u
+        self.lib.washer_stpnt(n, float(t), _dptr(room), _dptr(buf))
+        u[:] = room[:n]
         copy_back()
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0, ips: int | None = None) -> None:

@@ -100,6 +100,11 @@ def check_value(key: str, value, where: str):
                                      f"(PAR(1), PAR(2), ...) or names (or, with IPS = 15, "
                                      f"-21..-31: optimality conditions), got {i!r}")
     elif key in ("SP", "STOP", "IREV", "IFIXED", "IPSI"):
+        if isinstance(value, (dict, set, tuple)):
+            # braces are a flat list of tokens to AUTO's parseC ({'LP1', 'HB2'}), and
+            # a Python set or tuple in a script is a list of entries
+            value = [t for kv in value.items() for t in kv] if isinstance(value, dict) \
+                else sorted(value, key=str) if isinstance(value, set) else list(value)
         if not isinstance(value, list):
             raise ConstantsError(f"{named}: {key} expects a list")
         if key in ("SP", "STOP"):
