@@ -36,3 +36,53 @@ def fast_and_slow(monkeypatch, corrector, method: str, run, counts=None):
         slow = run("slow")
     assert len(used) == n_fast                     # the reference never went through C
     return fast, slow, used
+
+
+#: Point types whose rows are not located by iterating on a test function.
+UNLOCATED = ("", "EP", "MX", "RG")
+
+
+def location_tolerance(constants, **ov) -> float:
+    """A location's stopping tolerance on the arclength, EPSS (1 + sqrt|DS DSMAX|)
+    (washer.cont.events), for the constants file `constants` with the overrides ov."""
+    from washer.auto.constants import read_constants
+    c = dict(read_constants(constants), **ov)
+    eps, ds, dsmax = c["EPSS"], c["DS"], c["DSMAX"]
+    return float(eps) * (1 + abs(float(ds) * float(dsmax)) ** 0.5)
+
+
+def assert_rows_agree(fast, slow, location_tol: float, rtol: float = 1e-9):
+    """The two runs' b-rows: the same points, to rtol up to the first located special
+    point (both loops make the same corrections; only the eliminations' rounding
+    differs), and from it on within twice the location's tolerance in each value. Each
+    run stops a location within location_tol of the test function's zero in arclength,
+    and a value moves by at most the arclength; the test function near its zero is a
+    difference of O(1) terms whose rounding (which depends on the machine's BLAS and
+    libm) moves the iterates by its error over its slope, and the branch goes on from
+    the located point, so the later points are shifted along it as much."""
+    import numpy as np
+    assert [r.pt for r in fast.rows] == [r.pt for r in slow.rows]
+    assert [r.ty for r in fast.rows] == [r.ty for r in slow.rows]
+    located = False
+    for f, s in zip(fast.rows, slow.rows):
+        located = located or f.ty not in UNLOCATED
+        if located:
+            np.testing.assert_allclose(f.values, s.values, rtol=0, atol=2 * location_tol,
+                                       err_msg=f"{f.ty} PT {f.pt}")
+        else:
+            np.testing.assert_allclose(f.values, s.values, rtol=rtol, atol=1e-12,
+                                       err_msg=f"PT {f.pt}")
+
+
+def assert_counts_agree(fast, slow, constants, what=("residuals", "jacobians",
+                                                     "factorisations"), **ov):
+    """The evaluations of the two runs: the same steps, and where a location iterates on
+    a test function that rounds otherwise (see assert_rows_agree) other trials: up to
+    ITMX + 1 of them a located point, each up to ITNW corrections and its own Jacobian
+    and factorisation. Equal counts where nothing is located."""
+    from washer.auto.constants import read_constants
+    c = dict(read_constants(constants), **ov)
+    located = sum(r.ty not in UNLOCATED for r in fast.rows)
+    for w in what:
+        assert abs(getattr(fast.counters, w) - getattr(slow.counters, w)) \
+            <= located * (c["ITMX"] + 1) * (c["ITNW"] + 1), w
