@@ -163,7 +163,10 @@ def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
 #: PAR(1), the size of the discretisation error there (NTST = 70 instead of 35 moves ours by
 #: 4e-5). After UZ8 both branches go on to their EP at NMX (the located point's direction
 #: is kept pointing along the branch: `iterator.Continuation._orient_located`).
+#: UZ6's difference is at the location tolerance: it matches on an AVX-512 AMD EPYC and
+#: not on the machine the README's count was made on.
 CIR_DIFFER = {("b.2", "UZ", 6), ("b.2", "UZ", 7), ("b.2", "UZ", 8)}
+CIR_AT_TOLERANCE = {("b.2", "UZ", 6)}
 
 
 @pytest.mark.slow
@@ -180,7 +183,7 @@ def test_cir_runs_match_auto_away_from_the_hopf_point(tmp_path, monkeypatch):
         # no point of ours without AUTO's counterpart (the branch that turned back after
         # UZ8 added two UZ before its EP)
         assert not [w for w in why if " vs ours " in w], why
-    assert unmatched == CIR_DIFFER
+    assert CIR_DIFFER - CIR_AT_TOLERANCE <= unmatched <= CIR_DIFFER
 
 
 def test_start_from_a_periodic_orbit_shifted_to_the_equilibrium():

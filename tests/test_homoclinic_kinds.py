@@ -284,4 +284,6 @@ def test_rev_demo_orbits_are_symmetric_homoclinic_orbits(tmp_path, monkeypatch):
             assert np.max(np.abs(U[-1, zero])) < 1e-12
     run3 = [r for r in read_s(work / "s.3") if r.lab <= 8]
     assert [round(r.par[0], 7) for r in run3 if r.lab == 4] == [1.7]
-    assert min(r.par[0] for r in run3) < -0.91
+    # run 3 ends at NMX; where depends on its steps, which move with the machine's
+    # rounding: PAR(1) = -0.91358 on one machine, -0.90151 on an AVX-512 AMD EPYC
+    assert min(r.par[0] for r in run3) < -0.90
