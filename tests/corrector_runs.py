@@ -43,12 +43,13 @@ UNLOCATED = ("", "EP", "MX", "RG")
 
 
 def location_tolerance(constants, **ov) -> float:
-    """A location's stopping tolerance on the arclength, EPSS (1 + sqrt|DS DSMAX|)
-    (washer.cont.events), for the constants file `constants` with the overrides ov."""
+    """The location's stopping tolerance (washer.cont.events.location_tolerance) for the
+    constants file `constants` with the overrides ov."""
+    from types import SimpleNamespace
     from washer.auto.constants import read_constants
+    from washer.cont.events import location_tolerance as tolerance
     c = dict(read_constants(constants), **ov)
-    eps, ds, dsmax = c["EPSS"], c["DS"], c["DSMAX"]
-    return float(eps) * (1 + abs(float(ds) * float(dsmax)) ** 0.5)
+    return tolerance(SimpleNamespace(**{k: float(c[k]) for k in ("EPSS", "DS", "DSMAX")}))
 
 
 def assert_rows_agree(fast, slow, location_tol: float, rtol: float = 1e-9):

@@ -104,6 +104,12 @@ class LocationFailed(RuntimeError):
     """The location did not converge (ITMX) or a trial step failed."""
 
 
+def location_tolerance(settings) -> float:
+    """A location's stopping tolerance on the arclength, EPSS (1 + sqrt|DS DSMAX|), as
+    AUTO's LCSPAE / LCSPBV scale it; settings has EPSS, DS, DSMAX."""
+    return settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+
+
 def sign_changes(prev_tests: dict, cur_tests: dict) -> list:
     """Keys of tests whose values have strictly opposite signs."""
     out = []
@@ -251,7 +257,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     point it has (next to a branch point of cycles, where the Newton matrix is nearly
     singular, that last tiny step is the one that fails: brc's BP).
     """
-    tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    tol = location_tolerance(settings)
     lo, qlo, hi, qhi = 0.0, q_prev, s_cur, q_cur          # the bracket (as s values)
     raw = {"lo": q_prev, "hi": q_cur}                      # its ends' values, unscaled
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
@@ -391,7 +397,7 @@ def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:
     EPSS (1 + sqrt|DS DSMAX|). The point is then where the continuation step put it, on
     the far side of the zero (phs's UZ at PAR(1) = 1 = RL1: the step lands 1e-7 beyond
     it, which AUTO writes as the end point EP)."""
-    tol = settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    tol = location_tolerance(settings)
     return abs((1 + HMACH) * q_cur * s_cur) < tol * abs(q_prev - q_cur)
 
 
@@ -424,7 +430,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     is then the object cur."""
     target, span, found = cur, ds, None
     failed: set = set()
-    tol = 10 * settings.EPSS * (1 + math.sqrt(abs(settings.DS * settings.DSMAX)))
+    tol = 10 * location_tolerance(settings)
     # Zeros located in this step: key -> s. One located within the tolerance of the
     # interval's far end lies there (a fold located first, then a branch point between
     # prev and it, at a symmetric pitchfork where both vanish at one point): its test is
