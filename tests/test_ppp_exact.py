@@ -36,6 +36,7 @@ import gzip
 import math
 import shutil
 from pathlib import Path
+from types import SimpleNamespace
 
 import mpmath as mp
 import numpy as np
@@ -46,6 +47,7 @@ from scipy.integrate import solve_ivp
 from washer.auto.constants import read_constants
 from washer.auto.diagram import type_name
 from washer.auto.files import read_b
+from washer.cont.events import location_tolerance
 from washer.cont.normal_form import first_lyapunov
 from washer.cont.user_files import load_user_problem
 from washer.run import run
@@ -86,7 +88,8 @@ HOPF_RUN = dict(ICP=[1, 4], ILP=0, ISW=2, NMX=100, RL1=0.58, DSMAX=0.1)
 #: Where both engines locate a special point of the Hopf loci: within EPSS (1 + sqrt(|DS
 #: DSMAX|)) = 1.03e-4 in arclength, which bounds PAR(1) and PAR(4) (weight 1: each moves
 #: at most as fast as the arclength).
-LOCATED_HB = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CONSTANTS["DS"] * HOPF_RUN["DSMAX"])))
+LOCATED_HB = location_tolerance(
+    SimpleNamespace(EPSS=CONSTANTS["EPSS"], DS=CONSTANTS["DS"], DSMAX=HOPF_RUN["DSMAX"]))
 
 
 def corrected_hb(row) -> float:
@@ -375,7 +378,8 @@ def test_the_cycles_from_hb8_end_at_hb7_where_washer_places_the_bp(runs):
     bp = [r for r in cycles.rows if r.ty == "BP"]
     assert len(bp) == 1
     # located to EPSS (1 + sqrt(DS DSMAX)) = 1.22e-4 in arclength (PAR(1) weight 1)
-    located = CONSTANTS["EPSS"] * (1 + math.sqrt(abs(CYCLES_RUN["DS"] * CYCLES_RUN["DSMAX"])))
+    located = location_tolerance(
+        SimpleNamespace(EPSS=CONSTANTS["EPSS"], DS=CYCLES_RUN["DS"], DSMAX=CYCLES_RUN["DSMAX"]))
     assert bp[0].par[0] == pytest.approx(q1, abs=located)
     assert bp[0].par[10] == pytest.approx(period, rel=1e-4)
     assert bp[0].values[2] == pytest.approx(x1, abs=1e-4)        # MAX U(1): amplitude ~0
