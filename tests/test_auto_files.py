@@ -62,6 +62,20 @@ def test_braces_are_a_flat_token_list_to_list_valued_constants(tmp_path):
     assert c["UZR"] == {1: [0.5, 1.5]}
 
 
+def test_unquoted_words_are_strings(tmp_path):
+    """AUTO's parseC reads every value as a token, quoted or not, and converts it by its
+    key: AUTO's own demo constants (fnc/attr's c.attr.2) restart with IRS = UZ1, a label
+    name. A word followed by '=' is the next statement, not a value."""
+    c = read_constants(_c(tmp_path, "NDIM = 3, IPS = 4, IRS = UZ1, ILP = 0\n"
+                                    "STOP = [UZ1, 'HB2']\ne = attr\n"))
+    assert c["IRS"] == "UZ1" and c["ILP"] == 0 and c["STOP"] == ["UZ1", "HB2"]
+    assert c["e"] == "attr"
+    with pytest.raises(ConstantsError, match="IRS: expected a value"):
+        read_constants(_c(tmp_path, "IRS = \nNMX = 5"))
+    with pytest.raises(ConstantsError, match="NMX expects an integer"):
+        read_constants(_c(tmp_path, "NMX = many"))
+
+
 @pytest.mark.parametrize("text,message", [
     ("NDIM = 2\nFOO = 3", "c.x:2: unknown AUTO constant FOO"),
     ("NDIM = 2\nNMX = 1.5", "c.x:2: NMX expects an integer"),

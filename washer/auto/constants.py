@@ -132,6 +132,12 @@ class _Scanner:
         if m and m.group() in ("None", "True", "False"):
             self.i = m.end()
             return {"None": None, "True": True, "False": False}[m.group()]
+        m = re.compile(r"[A-Za-z_][\w.]*").match(self.text, self.i)
+        if m and not re.compile(r"\s*=").match(self.text, m.end()):
+            # an unquoted word (IRS = UZ1, STOP = [UZ1]): AUTO's parseC reads every value
+            # as a token, quoted or not, and converts it by its key (IRS a label name)
+            self.i = m.end()
+            return m.group()
         raise self.error(f"expected a value (number, 'string', [list] or {{dict}}), found "
                          f"{self.text[self.i:self.i + 12]!r}")
 
