@@ -28,7 +28,7 @@ while the orbit hardly moves (vhb: AUTO's UZ at PERIOD = 1e5 is written at 10039
 in L2 norm beyond the row before it whose period is 87613: a tolerance of 2.3e-5 in
 arclength leaves the period free by 8e4 there).
 
-    python tests/auto_demo_compare.py [DEMO ...]     # run and print the README table
+    python tests/auto_demo_compare.py [DEMO ...]     # print docs/auto_compatibility.md's table
 """
 from __future__ import annotations
 

@@ -4,10 +4,10 @@ Each folder of tests/data/auto_demos (AUTO's own files as shipped, and AUTO's ou
 in autoref/) is copied to a temporary folder and its script run there; every special
 point of every b-file AUTO wrote is compared with ours: type, label order, branch
 number, the continuation parameter within AUTO's location tolerance and the period
-(tests/auto_demo_compare.py says how). README's table lists the counts per demo and
-why any point differs.
+(tests/auto_demo_compare.py says how). The demo table (docs/auto_compatibility.md, DEMO_TABLE)
+lists the counts per demo and why any point differs.
 
-Every demo must match exactly the count of AUTO's points README's table states for it
+Every demo must match exactly the count of AUTO's points the demo table states for it
 (matched and AUTO's): a demo short of AUTO's is then an expected failure with the reason
 for the rest, and fails outright if it matches fewer, or more, than the table says (the
 table is the one record of the counts: a change in either direction is written there).
@@ -17,6 +17,8 @@ and d-file the demo's script wrote in that folder and must find what washer's re
 find there (tests/auto07p_parsers.py says what is compared); skipped with a message
 where AUTO-07p is not installed.
 """
+from pathlib import Path
+
 import pytest
 
 from auto07p_parsers import auto_python, check_folder
@@ -26,7 +28,10 @@ from auto_demo_compare import DEMOS, all_demos, auto_point_count, run_demo
 #: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
 FAST = {"frc", "lrz", "lor", "chu", "opt"}
 
-#: Why a demo does not match all of AUTO's points (README's table has the count and the
+#: The documentation file whose demo table holds every demo's counts (read by _demo_table).
+DEMO_TABLE = Path(__file__).resolve().parents[1] / "docs" / "auto_compatibility.md"
+
+#: Why a demo does not match all of AUTO's points (the demo table has the count and the
 #: detail; the reason is said after that count).
 EXPECTED_FAIL = {
     "pci": "AUTO's backward run 8 turns to NaN after its BP and ends with an EP of "
@@ -60,7 +65,7 @@ EXPECTED_FAIL = {
     "snh": "tb.auto's 8th run, away from the Hopf point, goes on where AUTO's steps "
            "collapse (its MX at nu1 = 1.2910) to an LP at nu1 = 1.417015, where the "
            "other tangency locus comes too; a point of ours past AUTO's MX is a fold of "
-           "the connection's branch (README)",
+           "the connection's branch (docs/auto_compatibility.md)",
     "fhh": "AUTO's UZ for PAR(2) = 0 in run 5 is written at -7.53e-4 (its "
            "location stopped on step size off the zero); run 8 (IFIXED = [13]) ends MX in "
            "ours where PSI 2 = 0, AUTO's steps pass it to EP at NMX",
@@ -84,7 +89,7 @@ STOPS_AT_LABEL = {"mtn": "Restart label IRS=15 not found", "kdv": "Label UZ2 not
 
 #: Demos whose count moves with rounding that depends on the machine (its BLAS kernels and
 #: libm): the other count measured, and why. Measured on an AVX-512 AMD EPYC against the
-#: README's counts (made on another machine); the cause of r3b's is not found yet.
+#: demo table's counts (made on another machine); the cause of r3b's is not found yet.
 ROUNDING_DEPENDENT = {
     "lcbp": (7, "run 3 continues a non-generic BP (lcbp's 'BP cont non-generic'): its "
                 "end, MX or no convergence at DSMIN, and whether the BP is labelled there "
@@ -123,22 +128,22 @@ def _run(demo, tmp_path_factory):
 
 @pytest.mark.parametrize("demo", _params())
 def test_demo_folder_matches_auto(demo, tmp_path_factory):
-    matched, auto_points = _readme_table()[0][demo]
+    matched, auto_points = _demo_table()[0][demo]
     _, r = _run(demo, tmp_path_factory)
     if demo in ROUNDING_DEPENDENT and r.matched == ROUNDING_DEPENDENT[demo][0] != matched:
-        pytest.xfail(f"{r.matched} of {r.auto_points} here, {matched} in README's table: "
+        pytest.xfail(f"{r.matched} of {r.auto_points} here, {matched} in the demo table: "
                      f"{ROUNDING_DEPENDENT[demo][1]}")
     assert (r.matched, r.auto_points) == (matched, auto_points), (
-        f"{demo}: {r.matched} of AUTO's {r.auto_points} special points matched, README's "
+        f"{demo}: {r.matched} of AUTO's {r.auto_points} special points matched, the demo "
         f"table says {matched} / {auto_points}:\n" + "\n".join(r.problems[:20])
         + f"\n{r.log[-3000:]}")
     if demo in STOPS_AT_LABEL:
         assert r.returncode != 0 and STOPS_AT_LABEL[demo] in r.log, \
-            f"{demo}: the script did not stop where README says:\n{r.log[-3000:]}"
+            f"{demo}: the script did not stop where the demo table says:\n{r.log[-3000:]}"
     else:
         assert r.returncode == 0, f"{demo}: the script failed:\n{r.log[-3000:]}"
     if demo in EXPECTED_FAIL:
-        # the counts are README's: what is left is the known difference
+        # the counts are the demo table's: what is left is the known difference
         pytest.xfail(f"{matched} of {auto_points}: {EXPECTED_FAIL[demo]}")
 
 
@@ -164,7 +169,7 @@ def test_autos_parsers_read_the_demos_files(demo, tmp_path_factory):
 #: HomCont's demo folders (IPS = 9 runs), whose b-file headers carry HomCont's constants.
 HOMCONT = ("fhh", "fnb", "kdv", "kpr", "mtn", "rev", "she", "sib", "snh")
 #: Header lines of HomCont's runs that differ from AUTO's for a known reason, by (demo,
-#: b-file): the restart label where an earlier run's labels differ (README's table).
+#: b-file): the restart label where an earlier run's labels differ (the demo table).
 HEADER_DIFFERS = {("fnb", "b.7"): "IRS ="}
 
 
@@ -210,11 +215,10 @@ def test_homcont_b_file_headers_are_autos(demo, tmp_path_factory):
     assert not problems, f"{demo}:\n" + "\n".join(problems[:3])
 
 
-def _readme_table():
-    """README's per-demo table: {demo: (matched, AUTO's)} and the total row's pair."""
+def _demo_table():
+    """The per-demo table of DEMO_TABLE: {demo: (matched, AUTO's)} and the total row's pair."""
     import re
-    from pathlib import Path
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    text = DEMO_TABLE.read_text()
     rows, total = {}, None
     for line in text.splitlines():
         m = re.match(r"\| (\*\*total\*\*|[a-z0-9]+) \|[^|]*\| (?:\*\*)?(\d+) / (\d+)", line)
@@ -225,11 +229,11 @@ def _readme_table():
     return rows, total
 
 
-def test_readme_demo_table_agrees_with_folders_and_expected_failures():
+def test_demo_table_agrees_with_folders_and_expected_failures():
     """The table has a row per demo folder, each row's count of AUTO's points is that of
     the folder's AUTO files, its total is the sum of its rows, and the demos it shows
     short of AUTO's count are exactly the expected failures."""
-    rows, total = _readme_table()
+    rows, total = _demo_table()
     assert sorted(rows) == all_demos()
     assert {d: a for d, (_, a) in rows.items()} == {d: auto_point_count(d) for d in rows}
     assert all(a > 0 for _, a in rows.values())

@@ -13,7 +13,7 @@ from test_auto_formats import check_parseB_rules
 
 DATA = Path(__file__).parent / "data"
 S_EQ = DATA / "auto_reference" / "ab2p" / "s.eq"
-#: The built-in washer's parameter names (auto_washer.PAR_NAMES), typed from the README.
+#: The built-in washer's parameter names (auto_washer.PAR_NAMES), typed from docs/continuation.md.
 WASHER_NAMES = {1: "C_p", 2: "Omega", 3: "m_u", 4: "R_u", 5: "h_u", 6: "C_a", 7: "K_s",
                 8: "C_ox", 9: "C_oz", 10: "l0", 13: "J_bz", 14: "J_bt", 15: "m_b", 16: "h_b",
                 17: "m_t"}

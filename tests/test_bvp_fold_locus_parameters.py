@@ -201,7 +201,8 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
     takes from a rate at rounding level); the locus then follows AUTO's rows of b.tb both ways:
     12 rows towards the Hopf point of the orbit (where AUTO's LP ends the run; its
     location is singular there, the orbit's amplitude going to 0) and 36 rows the other
-    way, before AUTO's steps collapse (its MX at nu1 = 1.2910; ours goes on: README).
+    way, before AUTO's steps collapse (its MX at nu1 = 1.2910; ours goes on:
+    docs/auto_compatibility.md).
     Every parameter and the L2 norm within 1e-6 relative (1 + |x|): each engine's points
     are Newton's to EPSL = EPSU = 1e-7 of the discretised locus, and the steps are the
     same (measured: 1.8e-8 in nu1, 1.3e-7 in T-). MAX xgamma is a maximum over the mesh's

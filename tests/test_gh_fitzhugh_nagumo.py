@@ -7,7 +7,8 @@ c^2 = b / (1 - x0^2). The first Lyapunov coefficient along it, from the planar f
 (Guckenheimer & Holmes (3.4.11)) in coordinates where the linear part is a rotation,
 vanishes exactly at x0 = 1/2 (sympy below): the GH point is (a, c) = (2/15,
 sqrt(16/15)), x = 1/2. AUTO-07p's own run notes "Possible special point" there (its
-location of the GH fails, see README's table); washer's Hopf locus must carry a GH at that
+location of the GH fails, see the demo table of docs/auto_compatibility.md); washer's Hopf
+locus must carry a GH at that
 point, to within the location tolerance EPSS (1 + sqrt|DS DSMAX|) in arclength (the tangent
 is unit in a norm where PAR(1) has weight 1, so each coordinate is within that).
 """

@@ -157,14 +157,16 @@ def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
         assert hom.psi(11, U, par) == pytest.approx(expected, rel=1e-10)
 
 
-#: cir's special points of run 2 that differ from AUTO's (README "Homoclinic orbits"): near
+#: cir's special points of run 2 that differ from AUTO's (docs/continuation.md, "Homoclinic
+#: orbits"): near
 #: PAR(2) = 0 the equilibrium's stable pair crosses the imaginary axis (a Hopf point: the
 #: truncated problem is ill-conditioned there), and UZ6-UZ8 differ from AUTO's by 5e-5 in
 #: PAR(1), the size of the discretisation error there (NTST = 70 instead of 35 moves ours by
 #: 4e-5). After UZ8 both branches go on to their EP at NMX (the located point's direction
 #: is kept pointing along the branch: `iterator.Continuation._orient_located`).
 #: UZ6's difference is at the location tolerance: it matches on an AVX-512 AMD EPYC and
-#: not on the machine the README's count was made on.
+#: not on the machine the demo table's count was made on
+#: (docs/auto_compatibility.md).
 CIR_DIFFER = {("b.2", "UZ", 6), ("b.2", "UZ", 7), ("b.2", "UZ", 8)}
 CIR_AT_TOLERANCE = {("b.2", "UZ", 6)}
 

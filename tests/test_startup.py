@@ -3,7 +3,7 @@ washer.run c.ab` (an equilibrium branch of a Python user file, traced into C) im
 neither scipy nor the plotting, symbolic, table or cluster libraries, nor cffi's C parser
 (the bridge's declarations come from the compile cache), nor the collocation code of the
 other systems. Each of those, imported at module level somewhere on the path, costs such
-a run a large part of its time (README, "Speed")."""
+a run a large part of its time (docs/speed.md)."""
 import json
 import os
 import shutil

@@ -20,7 +20,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 #: What a source distribution is built from (MANIFEST.in picks the files inside).
 SOURCES = ("setup.py", "pyproject.toml", "build.py", "MANIFEST.in", "README.md",
-           "washer", "csrc", "auto_constants", "examples", "tests")
+           "washer", "csrc", "auto_constants", "examples", "tests", "docs")
 #: The stripped kernel is ~0.5 MB; unstripped it was ~30 MB.
 MAX_KERNEL_BYTES = 5_000_000
 
@@ -61,7 +61,7 @@ def test_sdist_has_the_tests_and_their_data(built):
     with tarfile.open(sdist) as tf:
         names = {n.split("/", 1)[1] for n in tf.getnames() if "/" in n}
     expected = {"build.py", "tests/conftest.py", "tests/ab_exact.py",
-                "csrc/washer_api.h", "auto_constants/c.washer"}
+                "csrc/washer_api.h", "auto_constants/c.washer", "docs/auto_compatibility.md"}
     expected |= {str(p.relative_to(src)) for p in (src / "tests" / "data").rglob("*") if p.is_file()}
     assert not expected - names, f"missing from the sdist: {sorted(expected - names)[:10]}"
 

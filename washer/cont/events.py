@@ -353,7 +353,8 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
         # ITMX ran out before the bracket closed: AUTO's rule decides, which stops at
         # the first trial whose next correction is below the tolerance (the iteration
         # converging just as ITMX runs out: the base hepatocyte model's PD of cycles in
-        # README's problems of AUTO users, its next correction 5.7e-10 after a step of
+        # docs/auto_compatibility.md's problems of AUTO users, its next correction 5.7e-10
+        # after a step of
         # 9.3e-8, ITMX = 4).
         best = auto_stop
     if best is None:

@@ -3,7 +3,8 @@
     problem = load_user_problem("ab", folder, ndim=2)
 
 NAME.py wins when it exists: Python functions (func, stpnt, dfdu, dfdp, pvls, bcnd, icnd;
-README "Your own equations") or sympy expressions u, par, f (generated into C and compiled:
+docs/continuation.md, "Your own equations") or sympy expressions u, par, f (generated into C
+and compiled:
 washer.cont.symbolic). Otherwise AUTO's own user file NAME.f90, NAME.f or NAME.c, compiled on
 first use (washer.cont.compiled). Names are plain: a file is looked up beside the constants
 file, never elsewhere on disk.
