@@ -130,8 +130,15 @@ def test_bad_data_files_are_named_with_line_and_expectation(tmp_path):
     """dat='NAME' errors name the file, the line and what was expected there."""
     from washer.cont.runner import RunError
     d = folder(tmp_path, "lor")
-    with pytest.raises(RunError, match=r"nothere\.dat"):
+    with pytest.raises(RunError, match=r"dat='nothere': no data file nothere or nothere\.dat"):
         run(d / "c.lor.1", verbose=False, e="lor", dat="nothere", sv="x")
+    # dat='NAME.dat' (a user's constants file: sandstede-lab's c.auto_SH_half) is the file
+    # NAME.dat, as AUTO opens NAME first; missing, the message names what was looked for
+    # (it said nothere.dat.dat)
+    res = run(d / "c.lor.1", verbose=False, e="lor", dat="lor.dat", sv="y", NMX=3)
+    assert res.status == "ok" and len(res.rows) == 3
+    with pytest.raises(RunError, match=r"no data file nothere\.dat or nothere\.dat\.dat"):
+        run(d / "c.lor.1", verbose=False, e="lor", dat="nothere.dat", sv="x")
     lines = (d / "lor.dat").read_text().splitlines()
     lines[4] = "0.1 2.0 x"
     (d / "bad.dat").write_text("\n".join(lines) + "\n")

@@ -33,7 +33,7 @@ from pathlib import Path
 
 from washer.auto.constants import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
                                    parse_override, read_constants)
-from washer.auto.files import AutoFileError, read_dat, read_s
+from washer.auto.files import AutoFileError, read_named_dat, read_s
 from washer.cont.branch import Branch
 from washer.cont.compile import CompileError
 from washer.cont.problem import Problem, ProblemError
@@ -131,9 +131,10 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
         source = str(restart)
     data = None
     if c["dat"] and c["IRS"] in (0, "0"):
-        # AUTO's dat='NAME': the start orbit from NAME.dat beside the constants file.
+        # AUTO's dat='NAME': the start orbit from NAME (or NAME.dat) beside the
+        # constants file.
         try:
-            data = read_dat(folder / f"{c['dat']}.dat", problem.ndim)
+            data = read_named_dat(c["dat"], problem.ndim, folder)
         except AutoFileError as exc:
             raise RunError(f"{c.source}: dat='{c['dat']}': {exc}") from None
     r, br, mode = build(c, problem, records, name=c["e"] or problem.name,

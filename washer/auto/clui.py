@@ -187,12 +187,10 @@ def _check_equation(e) -> None:
 
 def _read_data(name: str, ndim: int):
     """(t, U) of AUTO's dat= file in the current folder (rows 't U(1) ... U(NDIM)'), the
-    start the engine takes from it as `washer.run` hands it over: the file NAME where it
-    exists (dat='rev.dat.1' in demo rev), else NAME.dat, the order AUTO opens them in."""
-    from washer.auto.files import AutoFileError, read_dat
-    path = Path(name) if Path(name).is_file() else Path(f"{name}.dat")
+    start the engine takes from it as `washer.run` hands it over."""
+    from washer.auto.files import AutoFileError, read_named_dat
     try:
-        return read_dat(path, ndim)
+        return read_named_dat(name, ndim)
     except AutoFileError as exc:
         raise AutoError(str(exc)) from None
 

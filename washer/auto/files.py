@@ -683,6 +683,20 @@ def _read_record(path: Path, lines: list[str], i: int) -> tuple[Record, int]:
                   t=t, ntst=ntst, ncol=ncol, npari=npari), nrowpr
 
 
+def read_named_dat(name: str, ndim: int, folder: Path = Path(".")
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """read_dat of AUTO's dat='NAME' in `folder`: the file NAME where it exists
+    (dat='rev.dat.1' in demo rev, dat='x.dat' in a user's constants), else NAME.dat,
+    the order AUTO opens them in. Neither there raises AutoFileError naming both (AUTO:
+    "Datafile NAME not found")."""
+    folder = Path(folder)
+    path = folder / name if (folder / name).is_file() else folder / f"{name}.dat"
+    if not path.is_file():
+        raise AutoFileError(f"dat='{name}': no data file {name} or {name}.dat in "
+                            f"{folder.resolve()}")
+    return read_dat(path, ndim)
+
+
 def read_dat(path: Path, ndim: int) -> tuple[np.ndarray, np.ndarray]:
     """A data file of AUTO's `dat='NAME'` (NAME.dat, copied by AUTO's CLUI to fort.3 and
     read by STPNUB): one row per time point, `t u(1) ... u(NDIM)`, blank-separated, in
