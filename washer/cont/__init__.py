@@ -22,6 +22,8 @@ linalg, reduction, collocation, floquet, normal_form
               the numerics the systems share: bordered factorisations, AUTO's condensation
               of collocation matrices (compiled), collocation, Floquet multipliers and their
               tests, the first Lyapunov coefficient
+lapack        the addresses of numpy's own LAPACK routines, for the compiled engine's
+              dense solves and eigenvalues (csrc/cont/dense_lapack.cpp)
 newton, compiled_newton, compiled_po, iterator, events
               the one Newton loop and its compiled forms for equilibria and the fold and
               Hopf loci (C written once in include/ae_correct.h) and for periodic orbits
@@ -35,4 +37,12 @@ start, runner, branch
 invariant_circle, circle_runs, pvls
               invariant circles of maps (the circle's equations; the runs of a family of
               them: its first circle, its continuation); what a periodic run's pvls receives
+
+A new continued system (an IPS, an ISW, a locus) is a module of systems/ registering its
+class (`system.register(IPS, ISW, start kind)`), named in `systems.MODULES` under its IPS
+(tests/test_engine_contract.py checks both) and in systems/'s list; the contract it
+implements is `system.ContinuedSystem`. A new test function is a code of `codes.Code`,
+evaluated by the system's `test_functions` and accepted by its `accept`; `events`
+locates it. Documentation: docs/continuation.md (its table maps each module onto
+AUTO-07p's routines).
 """

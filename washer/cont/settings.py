@@ -5,6 +5,11 @@ Constants) onto this frozen record once, so that the engine never
 parses names or applies AUTO's internal redefinitions again (main.f90:INIT1,
 support.f90:INIT2: DS = 0 -> 0.1, DSMIN = 0 -> 1e-4 |DS|, the 1 + 1e-7
 perturbations, NPAR raised to 11 or 12, THL's default {11: 0} for IPS = 2).
+
+A constant AUTO-07p knows and washer did not: its default in DEFAULTS (the constants
+files, AUTO's command language and the b-file headers' readers take their keys from it),
+its type in washer.cont.constants (INT_KEYS, REAL_KEYS, ...: check_value checks by them),
+and a field of Settings where the engine reads it.
 """
 from __future__ import annotations
 

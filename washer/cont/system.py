@@ -137,6 +137,10 @@ npari : int
 n_comp, coll, nbc, nint
     A collocation system's own NDIM, its Collocation, NBC and NINT, which the b-file
     header states (washer.auto.sinks).
+leaving_direction(x, direction, key, same) -> ndarray or None
+    The unit direction on from a point located on test `key` (with the tests `same`
+    vanishing there too) where the default, the secant, is no guide (the torus locus at
+    R1 / R2); None: the secant.
 """
 from __future__ import annotations
 
@@ -223,9 +227,6 @@ class ContinuedSystem(Protocol):
     def column_titles(self) -> list: ...
     def directions(self, x: np.ndarray, tangent: np.ndarray, code: int) -> list: ...
     def located_code(self, key, point) -> int: ...
-    # Optional: leaving_direction(x, direction, key, same) -> unit direction or None, the
-    # way on from a point located on key (with the tests `same` vanishing there too)
-    # where the default, the secant, is no guide.
     def info(self, x: np.ndarray, code: int) -> dict: ...
     def wants_remesh(self, n_points: int) -> bool: ...
     def remesh(self, x: np.ndarray, *vectors: np.ndarray) -> tuple: ...

@@ -19,13 +19,18 @@ bvp          the collocation base of periodic orbits and their loci (registers n
 general_bvp  general boundary value problems (IPS = 4; BCND, ICND), BP switching, and
              their fold locus (ISW = 2 from LP; FNBL)
 homoclinic   homoclinic orbits on the general BVP (IPS = 9, HomCont; FNHO, BCHO, ICHO)
-homoclinic_adjoint, homoclinic_homotopy
-             HomCont's adjoint (ITWIST = 1) and homotopy start (ISTART = 3) (register
-             nothing: parts of homoclinic's system)
+homoclinic_adjoint, homoclinic_homotopy, homoclinic_switching
+             HomCont's adjoint (ITWIST = 1), homotopy start (ISTART = 3) and n-homoclinic
+             branch switching (ISTART = -N) (register nothing: parts of homoclinic's system)
 homoclinic_fold
              the fold locus of homoclinic orbits (IPS = 9, ISW = 2 from LP; FNHOL)
 bvp_branch_point
              the branch-point locus of general BVPs (IPS = 4, ISW = 2 or 3; FNBBP)
+bvp_floquet  general BVPs whose points carry Floquet multipliers (IPS = 7)
+waves        travelling waves of a parabolic PDE (IPS = 11, 12; FNWS, FNWL, FNHW, FNWP)
+parabolic_bvp
+             stationary states and time evolution of a parabolic PDE (IPS = 17, 14, 16;
+             FNSP, FNPE)
 periodic_optimisation
              optimisation of periodic orbits (IPS = 15; FNPO, BCPS, ICPO)
 shooting     periodic orbits of a problem that supplies its period map (IPS = 2)
