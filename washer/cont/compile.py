@@ -71,6 +71,8 @@ def source_text(name: str, text: str | bytes) -> Source:
 
 
 def cache_dir() -> Path:
+    """Where compiled libraries are cached: $WASHER_CACHE, else
+    $XDG_CACHE_HOME/washer/compiled (default ~/.cache/washer/compiled)."""
     env = os.environ.get("WASHER_CACHE")
     if env:
         return Path(env)

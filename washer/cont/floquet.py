@@ -226,6 +226,7 @@ def newton_jacobian_serves(st: Stability | None, trivial: bool = True) -> bool:
 
 
 def inaccurate(st: Stability | None) -> bool:
+    """Whether the stability `st` carries AUTO's "Multiplier inaccurate" note."""
     return st is not None and INACCURATE_NOTE in st.notes
 
 

@@ -227,6 +227,8 @@ def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Factor(Protocol):
+    """A factorisation of a square (N + 1) x (N + 1) matrix [J; border]: `solve(rhs)` with
+    rhs (N + 1,) -> (N + 1,), `sign_logdet()` -> (sign, log|det|) (the BP test)."""
     def solve(self, rhs: np.ndarray) -> np.ndarray: ...
     def sign_logdet(self) -> tuple[float, float]: ...
 

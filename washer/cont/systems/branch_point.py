@@ -47,6 +47,7 @@ def adjoint_null_vector(A: np.ndarray, fp: np.ndarray) -> np.ndarray:
 @register(1, 2, "BP-curve")
 @register(0, 2, "BP-curve")
 class BranchPointLocus(LocusSystem):
+    """The branch-point locus as a continued system (the module's equations and tests)."""
     curve_type = 1
 
     def __init__(self, start: StartData):

@@ -25,6 +25,8 @@ IMAG_TOL = 1e-8
 
 
 def is_complex(lam: np.ndarray) -> np.ndarray:
+    """Which of the eigenvalues `lam` are complex (bool, lam's shape): |Im| above
+    IMAG_TOL (1 + |lambda|)."""
     return np.abs(lam.imag) > IMAG_TOL * (1 + np.abs(lam))
 
 
@@ -56,6 +58,8 @@ def hopf_period(lam: np.ndarray) -> float | None:
 
 
 def spectrum(lam: np.ndarray) -> Stability:
+    """The Stability of eigenvalues `lam` (NDIM,): AUTO's NINS counts Re <= 0, stable when
+    every one does."""
     n_stable = sum(1 for v in lam.real.tolist() if v <= 0.0)
     return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam))
 

@@ -28,6 +28,7 @@ from washer.cont.systems.equilibrium import eigenvalues_sorted, is_complex
 @register(1, 2, "LP-curve")
 @register(0, 2, "LP-curve")
 class FoldSystem(LocusSystem):
+    """The fold locus as a continued system (the module's equations and tests)."""
     curve_type = 2
     #: residual and jacobian are these equations of the problem's f and nothing more: the
     #: compiled corrector (washer.cont.compiled_newton, AE_FOLD) may stand in for the

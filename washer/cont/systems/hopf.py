@@ -30,6 +30,7 @@ from washer.cont.systems.equilibrium import eigenvalues_sorted
 @register(1, 2, "HB")
 @register(1, 2, "HB-curve")
 class HopfSystem(LocusSystem):
+    """The Hopf locus as a continued system (the module's equations and tests)."""
     curve_type = 3
     #: residual and jacobian are these equations of the problem's f and nothing more, with
     #: v_old: the compiled corrector (washer.cont.compiled_newton, AE_HOPF) may stand in
