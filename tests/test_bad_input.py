@@ -368,7 +368,8 @@ def test_forced_washer_refuses_omega_not_positive():
     """Continuing the forced response in Omega stops at Omega = 0 with a reason instead
     of continuing into a drum turning backwards."""
     from washer.cont.problem import ProblemError
-    from washer.problems.washer import PAR_NAMES, forced_problem
+    from washer.problems.oscillator import forced_problem
+    from washer.problems.washer import PAR_NAMES
     P = forced_problem()
     par = np.zeros(17)
     par[[i - 1 for i, n in PAR_NAMES.items() if n == "Omega"][0]] = -1.0

@@ -39,7 +39,7 @@ eps6 (gamma) swings by 4e-4 rad: the steady response is almost a rigid whirl, an
 2 Omega harmonic of the eps coordinates is nearly all coordinate effect.
 
 The collocation way (the engine with IPS = 2 and an appended oscillator, AUTO's `frc`
-demo) is e='washer:forced' (washer.problems.washer.forced_problem, whose stpnt is this module's
+demo) is e='washer:forced' (washer.problems.oscillator.forced_problem, whose stpnt is this module's
 orbit; auto_constants/c.washer.forced); tests/test_forced.py compares the two ways'
 TR point and multipliers (agreement ~5e-12).
 """

@@ -2,8 +2,9 @@
 
 resolve      the family e='washer...' of washer.named_problems: the problem a constants
              file names, with its parameter set
-washer       e='washer' (averaged rotating frame), 'washer:frozen', 'washer:forced' by name
+washer       the washer problem e names ('washer', 'washer:frozen', 'washer:forced', ...)
 rotating     the rotating-frame problem itself and its Hopf search
+oscillator   e='washer:forced': the forced response with an appended oscillator (collocation)
 forced       e='washer:shooting': the forced response by shooting, and its studies
 torus        the exact whirl: invariant circles of the half-period map
 parameters   the PAR map and the reference set they share
