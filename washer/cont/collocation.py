@@ -78,20 +78,26 @@ def _lagrange_nodes(nodes: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return _frozen(others), _frozen(denom), _frozen(nodes[others.T][:, :, None])
 
 
-def _lagrange(nodes: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _lagrange(nodes: np.ndarray, z: np.ndarray,
+              derivative: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
     """Values and derivatives of the Lagrange basis on `nodes` at points `z`:
     both of shape (len(nodes), len(z)). Every basis function b is the product over the
     other nodes k in increasing order, and its derivative the sum over l of those
-    products without l; all b at once (a factor 1.0 where k = l: the same products)."""
+    products without l; all b at once (a factor 1.0 where k = l: the same products).
+    derivative=False: the values alone (None for the derivatives; interpolation asks
+    for no more, and ADAPT interpolates every IAD points)."""
     nodes = np.asarray(nodes, float)
     z = np.atleast_1d(np.asarray(z, float))
     n = len(nodes)
     others, denom, nodes_others = _lagrange_nodes(tuple(nodes.tolist()))
     dz = z[None, :] - nodes_others                           # (n - 1, n, len(z)): z - x_k
     L = np.ones((n, len(z)))
-    D = np.zeros((n, len(z)))
     for s in range(n - 1):
         L *= dz[s]
+    if not derivative:
+        L /= denom[:, None]
+        return L, None
+    D = np.zeros((n, len(z)))
     for li in range(n - 1):
         term = np.ones((n, len(z)))
         for s in range(n - 1):
@@ -125,14 +131,14 @@ def integration_weights(ncol: int) -> np.ndarray:
     per NCOL (read-only)."""
     nodes = np.arange(ncol + 1) / ncol
     xg, wg = np.polynomial.legendre.leggauss(ncol + 2)       # exact for degree 2 ncol + 3
-    L, _ = _lagrange(nodes, 0.5 * (xg + 1))
+    L, _ = _lagrange(nodes, 0.5 * (xg + 1), derivative=False)
     return _frozen(L @ (0.5 * wg))
 
 
 def interpolation_weights(ncol: int, z) -> np.ndarray:
     """INTWTS: Lagrange weights on the nodes k / NCOL at local points z in [0, 1],
     shape (len(z), ncol + 1)."""
-    L, _ = _lagrange(np.arange(ncol + 1) / ncol, z)
+    L, _ = _lagrange(np.arange(ncol + 1) / ncol, z, derivative=False)
     return L.T
 
 

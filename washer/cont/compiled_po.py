@@ -107,6 +107,7 @@ class PeriodicCorrector:
         #: (x, J) of the last converged correction when its last iteration factorised
         #: (Continuation.correct's `_newton`), else None
         self.newton = None
+        self._mesh_kept = None
 
     def _onerror(self, exc, val, tb):
         # what escapes _evaluate is not a failure of f (those return 1, for the Python
@@ -148,6 +149,18 @@ class PeriodicCorrector:
         self.error = None
         return True
 
+    def _mesh_pointers(self, coll, mesh) -> tuple:
+        """The pointers of the mesh's arrays (WT, WP, dtm, w_node) for the compiled calls,
+        made once per mesh (every correction and Jacobian asks; ADAPT makes a new mesh
+        every IAD points): kept while the arrays are the same objects (the kept tuple
+        holds them, so an identity cannot be reused by another array)."""
+        arrays = (coll.WT, coll.WP, mesh.dtm, coll.w_node)
+        kept = self._mesh_kept
+        if kept is None or any(a is not b for a, b in zip(kept[0], arrays)):
+            held = tuple(np.ascontiguousarray(a, dtype=float) for a in arrays)
+            kept = self._mesh_kept = (arrays, tuple(reduction._ptr(a) for a in held), held)
+        return kept[1]
+
     def correct_plane(self, x_pred, x_ref, t_ref, ds: float, counters):
         """(x, iterations) of the corrector from x_pred on the plane <x - x_ref,
         border(t_ref)> = ds; None when the Python loop is to take over. ConvergenceError
@@ -169,10 +182,7 @@ class PeriodicCorrector:
         bc = sysm.bc_offset()
         bc = (ffi.NULL if bc is None
               else ffi.from_buffer("double[]", np.ascontiguousarray(bc, float)))
-        WT = np.ascontiguousarray(coll.WT, dtype=float)
-        WP = np.ascontiguousarray(coll.WP, dtype=float)
-        dtm = np.ascontiguousarray(mesh.dtm, dtype=float)
-        w_node = np.ascontiguousarray(coll.w_node, dtype=float)
+        WT, WP, dtm, w_node = self._mesh_pointers(coll, mesh)
         fac = ffi.gc(lib.cont_bvp_new(N, m, n, 2), lib.cont_bvp_free)
         x, x_J = np.empty(nx), np.empty(nx)
         vals = np.empty(coll.nnz)
@@ -182,7 +192,7 @@ class PeriodicCorrector:
         self.error = None
         status = lib.cont_po_correct(
             fac, self._cb, self._sfunc, self._sjac, self._npar_jp, numpy_ddot(), N, m, n,
-            len(par), sysm.free[1] - 1, sysm.free[0] - 1, p(WT), p(WP), p(dtm), p(w_node),
+            len(par), sysm.free[1] - 1, sysm.free[0] - 1, WT, WP, dtm, w_node,
             p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL,
             s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, bvp.FU_FP_ONE_CALL_MAX, p(x),
             p(x_J), p(vals), p(P0), p(P1), ffi.from_buffer("int[]", info))
@@ -233,11 +243,10 @@ class PeriodicCorrector:
         x = np.ascontiguousarray(x, dtype=float)
         vals = np.empty(coll.nnz)
         p = reduction._ptr
+        WT, WP, dtm, w_node = self._mesh_pointers(coll, mesh)
         status = lib.cont_po_jacobian(
             self._cb, self._sfunc, self._sjac, self._npar_jp, N, m, n, len(par),
-            sysm.free[1] - 1, sysm.free[0] - 1, p(np.ascontiguousarray(coll.WT, float)),
-            p(np.ascontiguousarray(coll.WP, float)), p(np.ascontiguousarray(mesh.dtm, float)),
-            p(np.ascontiguousarray(coll.w_node, float)),
+            sysm.free[1] - 1, sysm.free[0] - 1, WT, WP, dtm, w_node,
             p(np.ascontiguousarray(sysm.up_old, float)), p(par), p(x), FD_STEP,
             bvp.FU_FP_ONE_CALL_MAX, p(vals))
         if self.error is not None:
