@@ -333,7 +333,6 @@ class Collocation:
         """The sparse (N, N + 1) Jacobian with the values `vals` (nnz,) in
         `jacobian_general`'s assembly order (the collocation blocks, the parameter
         columns, the boundary conditions' values, the integral rows); vals is kept."""
-        import scipy.sparse as sp
         # Every Jacobian of these sizes has the same pattern: the first is built (and
         # checked) by scipy, later ones are its shallow copies with their own values
         # (scipy's constructor re-validates the pattern each time, ~10-60 us; Newton asks
@@ -344,6 +343,9 @@ class Collocation:
         pat = self._pat
         template = pat.__dict__.get("csc_template")
         if template is None:
+            # (imported here, not at every Jacobian: an import statement costs a lookup and
+            # a check of the module's state)
+            import scipy.sparse as sp
             template = pat.csc_template = sp.csc_matrix(
                 (vals[self._order], self._indices, self._indptr), shape=(self.n_eq, self.n_x))
             if (template.indptr.dtype == self._indptr.dtype

@@ -86,6 +86,13 @@ _GGEV = []
 _GGEV_LWORK: dict = {}
 
 
+def _scipy_linalg():
+    """scipy.linalg, imported on first use (its import outweighs a short run; the import
+    statement at every point costs a lookup and a check of the module's state)."""
+    import scipy.linalg
+    return scipy.linalg
+
+
 def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """scipy.linalg.eigvals(A, B) for finite real square A, B: the same LAPACK calls
     (dggev's workspace query, made once per order, then dggev without vectors) and the
@@ -94,15 +101,14 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     point).
     Anything else (non-finite entries, LAPACK's failure) goes to scipy.linalg.eigvals,
     which raises what it raises."""
-    import scipy.linalg      # here: scipy.linalg's import outweighs a short run
     A = np.asarray(A)
     B = np.asarray(B)
     if (A.dtype != np.float64 or B.dtype != np.float64 or A.ndim != 2 or A.shape != B.shape
             or A.shape[0] != A.shape[1] or A.size == 0
             or not (np.isfinite(A).all() and np.isfinite(B).all())):
-        return scipy.linalg.eigvals(A, B)
+        return _scipy_linalg().eigvals(A, B)
     if not _GGEV:
-        _GGEV.append(scipy.linalg.get_lapack_funcs(("ggev",), (A, B))[0])
+        _GGEV.append(_scipy_linalg().get_lapack_funcs(("ggev",), (A, B))[0])
     ggev = _GGEV[0]
     n = A.shape[0]
     lwork = _GGEV_LWORK.get(n)
@@ -110,7 +116,7 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
         lwork = _GGEV_LWORK[n] = ggev(A, B, lwork=-1)[-2][0].real.astype(np.int_)
     alphar, alphai, beta, _, _, _, info = ggev(A, B, 0, 0, lwork, False, False)
     if info != 0:
-        return scipy.linalg.eigvals(A, B)
+        return _scipy_linalg().eigvals(A, B)
     alpha = alphar + _I * alphai
     if beta.all():
         # no infinite eigenvalue (the common case): the quotients below, in one division
