@@ -38,6 +38,7 @@ of washer.run's verbose output).
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import os
 import random
@@ -355,23 +356,40 @@ def _bind(lib_path: Path, ufuncs: list) -> None:
         raise TraceError("the generated C's loop table has another size")
 
 
-def _start_points(python: Problem, rng: random.Random) -> tuple[np.ndarray, np.ndarray]:
+#: The seed of the offsets of the points compared on loading (`_start_points`).
+LOAD_SEED = 20261202
+
+
+@functools.lru_cache(maxsize=None)
+def _load_deviates(seed: int, n: int, npar: int) -> tuple[np.ndarray, np.ndarray]:
+    """The normal deviates of `_start_points`, read-only: LOAD_POINTS - 1 rows of n for
+    u, then as many rows of npar for PAR, drawn in that order from Python's generator
+    seeded with `seed` (importing numpy.random costs a short run more than drawing these
+    few hundred numbers one by one). The same numbers for every file of these sizes, so
+    drawn once in a process: every run loads its file again."""
+    rng = random.Random(seed)
+    k = LOAD_POINTS - 1
+    zu = np.array([[rng.gauss(0.0, 1.0) for _ in range(n)] for _ in range(k)]).reshape(k, n)
+    zp = np.array([[rng.gauss(0.0, 1.0) for _ in range(npar)]
+                   for _ in range(k)]).reshape(k, npar)
+    zu.setflags(write=False)
+    zp.setflags(write=False)
+    return zu, zp
+
+
+def _start_points(python: Problem, seed: int = LOAD_SEED) -> tuple[np.ndarray, np.ndarray]:
     """LOAD_POINTS points (u, par) around the file's starting point (stpnt, else u = 0
     and PAR = 0): offsets of relative sizes 1e-3 to 1 (and the point itself), normal
-    deviates of `rng` (Python's generator: importing numpy.random costs a short run more
-    than drawing these few hundred numbers one by one)."""
+    deviates of `_load_deviates`."""
     n = python.ndim
     try:
         u0, p0 = python.start(TRACE_NPAR)
     except Exception:
         u0, p0 = np.zeros(n), np.zeros(TRACE_NPAR)
-
-    def normal(k: int) -> np.ndarray:
-        return np.array([rng.gauss(0.0, 1.0) for _ in range(k)])
-
+    zu, zp = _load_deviates(seed, n, len(p0))
     scales = np.geomspace(1e-3, 1.0, LOAD_POINTS - 1)
-    us = [u0] + [u0 + s * (1 + np.abs(u0)) * normal(n) for s in scales]
-    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * normal(len(p0)) for s in scales]
+    us = [u0] + [u0 + s * (1 + np.abs(u0)) * z for s, z in zip(scales, zu)]
+    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * z for s, z in zip(scales, zp)]
     return np.array(us), np.array(ps)
 
 
@@ -441,7 +459,7 @@ def _build(python: Problem, path: Path) -> TracedProblem:
                        "bit at the start and at the first points of each run)" + python_dfdp)
     user = TracedUser(path, n, lib, state)
     # verified where the file starts before it is trusted
-    us, ps = _start_points(python, random.Random(20261202))
+    us, ps = _start_points(python)
     two_ways, arrays = traced_f[0].two_ways, True
     with np.errstate(all="ignore"):
         _agree(user.func_batch(us, ps), python._func, us, ps, "func(u, par)")
