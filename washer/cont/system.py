@@ -171,11 +171,14 @@ def determinant_test(factor: Factor) -> float:
 class Stability:
     """Spectrum at a point: `values` are eigenvalues (IPS = 1, sorted by
     decreasing real part) or Floquet multipliers (IPS = 2, the one closest to 1
-    first); `n_stable` is AUTO's NINS; `stable` is the sign of PT in the b-file."""
+    first); `n_stable` is AUTO's NINS; `stable` is the sign of PT in the b-file;
+    `neutral` the real part up to which an eigenvalue counted as stable in n_stable
+    (0, or AUTO's tolerance where f_u looks conservative: systems.equilibrium)."""
     values: np.ndarray
     n_stable: int
     stable: bool
     kind: str = "eigenvalues"           # or "multipliers"
+    neutral: float = 0.0
     notes: list[str] = field(default_factory=list)   # e.g. "Multiplier inaccurate"
 
 

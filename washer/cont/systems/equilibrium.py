@@ -2,11 +2,13 @@
 STPNAE; test functions FNLPAE, FNBPAE, FNHBEQ).
 
 Unknowns x = (u, PAR(ICP(1))), N = NDIM equations. Stability (IPS = 1): the
-eigenvalues of f_u sorted by decreasing real part; NINS counts Re <= 0.
+eigenvalues of f_u sorted by decreasing real part; NINS counts Re <= 0, or Re <= 1e-5
+where f_u looks conservative (AUTO's STABEQ: N even, |trace| < 1e-7 max |f_u[i, j]|).
 Test functions: LP the lambda-component of the unit tangent, BP the
 determinant of the Newton matrix, HB the real part of the complex pair
-closest to the imaginary axis, accepted only if NINS changed by >= 2 (a real
-pair crossing zero is no Hopf point).
+closest to the imaginary axis, accepted only if the stable count changed by >= 2
+(a real pair crossing zero is no Hopf point), counted with the tolerance only where
+both ends of the step look conservative (`hopf_accepted`).
 """
 from __future__ import annotations
 
@@ -57,11 +59,46 @@ def hopf_period(lam: np.ndarray) -> float | None:
     return None if mu is None else float(2 * np.pi / abs(mu.imag))
 
 
-def spectrum(lam: np.ndarray) -> Stability:
-    """The Stability of eigenvalues `lam` (NDIM,): AUTO's NINS counts Re <= 0, stable when
-    every one does."""
-    n_stable = sum(1 for v in lam.real.tolist() if v <= 0.0)
-    return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam))
+#: Re(lambda) up to which an eigenvalue counts as stable where f_u looks conservative
+#: (AUTO's STABEQ): a Hamiltonian or reversible system keeps pairs on the imaginary axis
+#: along whole branches, their computed real parts rounding (+-1e-16) of either sign.
+#: Counted with tolerance 0, the stable count changes by 2 at nearly every step there and
+#: each sign change is a false HB.
+CONSERVATIVE_TOL = 1e-5
+#: |trace f_u| below this fraction of max |f_u[i, j]| looks conservative (STABEQ's HMACH).
+TRACE_TOL = 1e-7
+
+
+def neutral_tolerance(A: np.ndarray) -> float:
+    """Re up to which an eigenvalue of f_u (A: (n, n)) counts as stable: CONSERVATIVE_TOL
+    where A looks conservative (n even, |trace A| < TRACE_TOL max |A[i, j]|), else 0."""
+    n = len(A)
+    if n == 0 or n % 2:
+        return 0.0
+    return CONSERVATIVE_TOL if abs(np.trace(A)) < TRACE_TOL * np.max(np.abs(A)) else 0.0
+
+
+def spectrum(lam: np.ndarray, neutral: float = 0.0) -> Stability:
+    """The Stability of eigenvalues `lam` (NDIM,): AUTO's NINS counts Re <= neutral (0, or
+    `neutral_tolerance` where f_u looks conservative), stable when every one does."""
+    n_stable = sum(1 for v in lam.real.tolist() if v <= neutral)
+    return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam),
+                     neutral=neutral)
+
+
+def hopf_accepted(prev: Stability, cur: Stability) -> bool:
+    """An HB test's sign change between two points is a Hopf point where the stable count
+    changed by >= 2, counted with the conservative tolerance only where both points look
+    conservative. A conservative system's trace vanishes along the whole branch, a
+    dissipative one's only at isolated points: in 2 equations at the Hopf point itself,
+    where a step that lands within 1e-7 of it would otherwise count the pair (Re ~ 1e-8)
+    as stable at that end, the sign change and the count's change fall on different
+    steps and the Hopf point is lost (AUTO-07p's STABEQ, which decides point by point,
+    loses it so: x' = mu x - y, y' = x + mu y from mu = -0.5 with DS = 0.05)."""
+    tol = min(prev.neutral, cur.neutral)
+    prev_n, cur_n = (sum(1 for v in np.real(st.values).tolist() if v <= tol)
+                     for st in (prev, cur))
+    return abs(prev_n - cur_n) >= 2
 
 
 @register(0, 1)
@@ -134,9 +171,10 @@ class EquilibriumSystem(AlgebraicSystem):
     def stability(self, x, J) -> Stability | None:
         if self.settings.IPS not in (1, 11):
             return None
-        lam = eigenvalues_sorted(np.asarray(J), leading=True)     # of f_u
+        J = np.asarray(J)
+        lam = eigenvalues_sorted(J, leading=True)     # of f_u
         self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
-        return spectrum(lam)
+        return spectrum(lam, neutral_tolerance(J[:, :len(J)]))
 
     def active_tests(self) -> list:
         return [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
@@ -152,7 +190,7 @@ class EquilibriumSystem(AlgebraicSystem):
         if code == Code.HB:
             if prev.stability is None or cur.stability is None:
                 return False
-            return abs(prev.stability.n_stable - cur.stability.n_stable) >= 2
+            return hopf_accepted(prev.stability, cur.stability)
         return True
 
     def solution(self, x, tangent):
@@ -181,4 +219,5 @@ class EquilibriumSystem(AlgebraicSystem):
         return {"omega": omega, "l1": first_lyapunov(self.problem, x[:-1], p, omega, A)}
 
 
-__all__ = ["EquilibriumSystem", "hopf_pair", "eigenvalues_sorted", "hopf_test", "hopf_period"]
+__all__ = ["EquilibriumSystem", "hopf_pair", "eigenvalues_sorted", "hopf_test", "hopf_period",
+           "neutral_tolerance", "hopf_accepted"]
