@@ -8,8 +8,10 @@ change of the HB test a false Hopf point (8 on this file's first branch at c8547
 Hopf point too, so where a step lands within 1e-7 of it that point's pair counts as
 stable, and a Hopf point decided point by point is lost (AUTO-07p 0.9.2 loses the one of
 the last test so). The engine counts with the tolerance only across a step whose ends
-both look conservative. Closed forms with sympy; AUTO-07p 0.9.2 run on both problems
-labels what is asserted here, except that Hopf point."""
+both look conservative, and across such steps a Hopf point is where a pair leaves the
+axis by colliding with another (Re(d^2) - 1e-10, smooth through the collision). Closed
+forms with sympy; AUTO-07p 0.9.2, run on these problems, labels what is asserted here
+except the two Hopf points (at the collision and at the step end)."""
 import math
 from types import SimpleNamespace
 
@@ -20,7 +22,8 @@ import sympy as sp
 from washer.auto.constants import read_constants
 from washer.cont.events import location_tolerance
 from washer.cont.system import Stability
-from washer.cont.systems.equilibrium import hopf_accepted, neutral_tolerance, spectrum
+from washer.cont.systems.equilibrium import (hopf_accepted, neutral_hopf_test,
+                                              neutral_tolerance, spectrum)
 from washer.run import run
 
 #: u'''' + a u'' + b u = u^2 as a first-order system (spatial dynamics of a
@@ -99,25 +102,33 @@ def test_reversible_trivial_branch_has_no_hopf_point(tmp_path):
             assert row.stability.n_stable == 3 and not row.stable
 
 
-def test_reversible_pairs_leaving_the_axis_count_as_unstable(tmp_path):
-    """The trivial state continued in a at b = 1: for a > 2 two imaginary pairs; at a = 2
-    they collide and for |a| < 2 leave the axis as +-sqrt(2 - a)/2 +- i sqrt(2 + a)/2
-    (sympy): the stable count is 4 down to a = 2 and 2 once sqrt(2 - a)/2 exceeds the
-    tolerance 1e-5 (a < 2 - 4e-10). Whether a Hopf point is labelled at the collision
-    depends on the sign its test's rounding takes on the axis (AUTO-07p 0.9.2 labels none
-    here, as ours): not asserted."""
+def test_reversible_pairs_colliding_on_the_axis_make_a_hopf_point(tmp_path):
+    """The trivial state continued in a at b = 1: for a > 2 two imaginary pairs i w1, i w2
+    with (w1 - w2)^2 = a - 2; at a = 2 they collide and for |a| < 2 leave the axis as
+    +-sqrt(2 - a)/2 +- i sqrt(2 + a)/2 (sympy). The stable count is 4 down to a = 2 and 2
+    once sqrt(2 - a)/2 exceeds the tolerance 1e-5 (a < 2 - 4e-10): one HB, at a = 2 within
+    the location's tolerance, located on Re(d^2) - 1e-10 (d half the distance between the
+    upper eigenvalues: (2 - a)/4 on both sides). AUTO-07p 0.9.2 labels none here: its test,
+    the signed real part of one eigenvalue of the quartet, rounds to +-1e-17 before the
+    collision and takes the sign of whichever of +-sqrt(2 - a)/2 it picks after it."""
     J, u, a, b = _reversible_jacobian()
     A = J.subs({s: 0 for s in u}).subs(b, 1)
     lam = sp.symbols("lam")
-    aa = sp.Rational(1, 2)
-    roots = sp.solve(A.subs(a, aa).charpoly(lam).as_expr(), lam)
-    assert sorted(sp.nsimplify(sp.re(z)) for z in roots) == \
-        sorted([sp.sqrt(2 - aa) / 2] * 2 + [-sp.sqrt(2 - aa) / 2] * 2)
+    for aa in (sp.Rational(1, 2), sp.Rational(-3, 2)):
+        roots = sp.solve(A.subs(a, aa).charpoly(lam).as_expr(), lam)
+        assert sorted(sp.nsimplify(sp.re(z)) for z in roots) == \
+            sorted([sp.sqrt(2 - aa) / 2] * 2 + [-sp.sqrt(2 - aa) / 2] * 2)
+    for aa in (sp.Rational(5, 2), 3):
+        roots = sp.solve(A.subs(a, aa).charpoly(lam).as_expr(), lam)
+        assert all(sp.re(z) == 0 for z in roots)
+        w = sorted(sp.im(z) for z in roots if sp.im(z) > 0)
+        assert sp.simplify((w[1] - w[0]) ** 2 - (aa - 2)) == 0
 
     r, tol = _run(tmp_path, "rv", REVERSIBLE, "NDIM=4, IPS=1, ICP=[2], ILP=1, ISP=1, NMX=200, "
                   "DS=-0.01, DSMAX=0.02, MXBF=0, UZSTOP={2: 1.0}\n")
-    assert [s.ty for s in r.specials if s.ty != "HB"] == ["EP", "UZ"]
-    for row in r.rows:
+    assert [s.ty for s in r.specials] == ["EP", "HB", "UZ"]
+    assert r.specials[1].par[1] == pytest.approx(2.0, abs=tol)
+    for row in (row for row in r.rows if not row.lab):         # the regular points
         if row.par[1] > 2:
             assert row.stability.n_stable == 4 and row.stable
         elif math.sqrt(2 - row.par[1]) / 2 > 2e-5:
@@ -148,6 +159,18 @@ def test_dissipative_hopf_point_at_a_step_end_is_kept(tmp_path):
     assert len(hb) == 1
     assert hb[0].par[0] == pytest.approx(0.0, abs=tol)
     assert hb[0].par[10] == pytest.approx(math.pi, rel=1e-6)
+
+
+def test_collision_test_is_smooth_through_the_collision():
+    """neutral_hopf_test on the spectra of l^4 + a l^2 + 1 at a = 2 +- h: (2 - a)/4 - 1e-10
+    on both sides (the closed form of Re(d^2), d half the distance between the upper
+    eigenvalues), to rounding of the eigenvalues (~1e-16 relative, squared distances)."""
+    for h in (1e-2, 1e-4, -1e-4, -1e-2):
+        aa = 2 - h
+        A = np.array([[0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1], [-1.0, 0, -aa, 0]])
+        st = spectrum(np.linalg.eigvals(A), neutral_tolerance(A))
+        assert st.neutral == 1e-5
+        assert neutral_hopf_test(st) == pytest.approx(h / 4 - 1e-10, abs=1e-12)
 
 
 def test_acceptance_counts_with_the_tolerance_only_across_conservative_steps():

@@ -86,6 +86,34 @@ def spectrum(lam: np.ndarray, neutral: float = 0.0) -> Stability:
                      neutral=neutral)
 
 
+#: The test key of Hopf points across conservative steps (located points are HB). In a
+#: conservative system the spectrum is symmetric about the imaginary axis, and a pair
+#: leaves the axis only by colliding with another: i w1 and i w2 meet and split into
+#: +-alpha + i beta, both signs of Re at once (l^4 + a l^2 + 1 at a = 2: Re = +-sqrt(2 - a)/2
+#: after it). The signed real part, rounding on the axis before, changes sign there or
+#: not by chance. With d half the distance from the eigenvalue closest to the axis to its
+#: nearest neighbour in the same half plane, Re(d^2) is -(w1 - w2)^2/4 before and alpha^2
+#: after, smooth through the collision (the unfolding (l - i w)^2 ~ c mu; (2 - a)/4 on
+#: both sides above); Re(d^2) - CONSERVATIVE_TOL^2 changes sign where alpha passes the
+#: tolerance, that is where the stable count changes.
+NEUTRAL_HB = 100 + Code.HB
+
+
+def neutral_hopf_test(st: Stability) -> float | None:
+    """NEUTRAL_HB's value, Re(d^2) - neutral^2, where f_u looks conservative (st.neutral
+    > 0); None elsewhere or without two complex eigenvalues in the upper half plane."""
+    mu = hopf_pair(st.values) if st.neutral > 0 else None
+    if mu is None:
+        return None
+    mu = complex(mu.real, abs(mu.imag))
+    upper = [z for z in np.asarray(st.values).tolist() if isinstance(z, complex)
+             and z.imag > IMAG_TOL * (1 + abs(z)) and z != mu]
+    if not upper:
+        return None
+    d = min(upper, key=lambda z: abs(z - mu)) - mu
+    return (d * d).real / 4 - st.neutral ** 2
+
+
 def hopf_accepted(prev: Stability, cur: Stability) -> bool:
     """An HB test's sign change between two points is a Hopf point where the stable count
     changed by >= 2, counted with the conservative tolerance only where both points look
@@ -177,18 +205,31 @@ class EquilibriumSystem(AlgebraicSystem):
         return spectrum(lam, neutral_tolerance(J[:, :len(J)]))
 
     def active_tests(self) -> list:
-        return [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
-                if self.settings.detects(name)]
+        out = [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
+               if self.settings.detects(name)]
+        if Code.HB in out and self.settings.IPS in (1, 11):
+            out.append(NEUTRAL_HB)
+        return out
+
+    def located_code(self, key, point) -> int:
+        """NEUTRAL_HB's zeros are Hopf points (HB); other keys are their own codes."""
+        return Code.HB if key == NEUTRAL_HB else key
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         out = self._lp_bp(tangent, factor, codes)
         if Code.HB in codes:
             out[Code.HB] = hopf_test(stability.values) if stability is not None else None
+        if NEUTRAL_HB in codes:
+            out[NEUTRAL_HB] = neutral_hopf_test(stability) if stability is not None else None
         return out
 
     def accept(self, code, prev, cur) -> bool:
-        if code == Code.HB:
+        if code in (Code.HB, NEUTRAL_HB):
             if prev.stability is None or cur.stability is None:
+                return False
+            # across a conservative step the HB test's sign is rounding: NEUTRAL_HB's there
+            conservative = min(prev.stability.neutral, cur.stability.neutral) > 0
+            if conservative != (code == NEUTRAL_HB):
                 return False
             return hopf_accepted(prev.stability, cur.stability)
         return True
@@ -220,4 +261,4 @@ class EquilibriumSystem(AlgebraicSystem):
 
 
 __all__ = ["EquilibriumSystem", "hopf_pair", "eigenvalues_sorted", "hopf_test", "hopf_period",
-           "neutral_tolerance", "hopf_accepted"]
+           "neutral_tolerance", "hopf_accepted", "neutral_hopf_test", "NEUTRAL_HB"]
