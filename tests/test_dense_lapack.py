@@ -127,3 +127,48 @@ def test_compiled_spectra_in_threads_are_each_their_own():
                    for _ in range(400))
     with ThreadPoolExecutor(4) as pool:
         assert all(pool.map(work, range(8)))
+
+
+@compiled
+@pytest.mark.parametrize("n", [1, 2, 3, 6, 7, 8, 9, 16, 17, 25, 60])
+def test_compiled_unit_tangent_is_numpys_bit_for_bit(n):
+    # z = [J; theta ref]^-1 e_n by numpy's solve, made unit by numpy's weighted sum
+    # (left to right below 8 terms, pairwise from 8 on) and division
+    rng = np.random.default_rng(200 + n)
+    e = np.zeros(n)
+    e[-1] = 1.0
+    for k in range(200):
+        J = rng.standard_normal((n - 1, n)) * 10.0 ** rng.integers(-4, 5)
+        ref = rng.standard_normal(n)
+        theta = rng.uniform(0.1, 2.0, n) if k % 2 else np.ones(n)
+        if k % 9 == 0:
+            J, ref = np.round(J), np.round(ref)
+        t, f, done = linalg.unit_tangent(J, theta, ref, 1e12)
+        M = np.r_[J, (theta * ref)[None, :]]
+        sign, logdet = np.linalg.slogdet(M)
+        assert f.sign_logdet() == (float(sign), float(logdet)) and np.array_equal(f.M, M)
+        if sign == 0:
+            assert not done
+            continue
+        z = np.linalg.solve(M, e)
+        nz = np.sqrt(abs((theta * z * z).sum()))
+        assert done == (0 < nz <= 1e12)
+        if done:
+            assert np.array_equal(t, z / nz)
+
+
+@compiled
+def test_compiled_unit_tangent_leaves_what_it_cannot_do_to_the_caller():
+    # an exactly singular [J; border]: GETRF's zero pivot, numpy's determinant
+    t, f, done = linalg.unit_tangent(np.array([[1.0, 2.0]]), np.ones(2), np.array([2.0, 4.0]),
+                                     1e12)
+    assert t is None and not done and f.sign_logdet() == (0.0, -np.inf)
+    # a solve far beyond `big` (a nearly singular matrix): not a tangent
+    J = np.array([[1.0, 1.0 + 1e-14]])
+    t, f, done = linalg.unit_tangent(J, np.ones(2), np.array([1.0, 1.0]), 1e12)
+    assert t is None and not done
+    # sizes and types it does not take: None (the caller's own way)
+    assert linalg.unit_tangent(np.ones((2, 2)), np.ones(3), np.ones(3), 1e12) is None
+    assert linalg.unit_tangent(np.ones((2, 3), dtype=np.float32), np.ones(3), np.ones(3),
+                               1e12) is None
+    assert linalg.unit_tangent(np.ones((2, 6))[:, :3], np.ones(3), np.ones(3), 1e12) is None

@@ -165,3 +165,14 @@ int cont_dense_lu_solve(void *getrs, int n, const double *lu, const int64_t *ipi
                         const double *b, double *x);
 int cont_eigenvalues_sorted(void *geev, int n, const double *A, int lda, double *w,
                             double *work, int lwork_max, int *lwork);
+
+/* The unit tangent of a dense algebraic point (washer.cont.linalg.unit_tangent): border (n) =
+ * theta * ref elementwise, cont_dense_lu of [J; border] (J (n - 1) x n, row stride ldj) into
+ * lu (n * n + n doubles: the factors, then room for the norm's terms), ipiv, sign_logdet and
+ * *info (GETRF's); z = [J; border]^-1 e_n by cont_dense_lu_solve; t (n) = z / sqrt|<z, z>|
+ * with <a, b> = sum(theta * a * b) summed as numpy sums it. Returns 0 (t the unit tangent),
+ * 1 (GETRF found an exact zero pivot), 2 (z not finite, or its norm 0, not finite or above
+ * big), -1 (bad sizes); on 1 and 2 t is not the tangent. */
+int cont_ae_tangent(void *getrf, void *getrs, int n, const double *J, int ldj,
+                    const double *ref, const double *theta, double big, double *border,
+                    double *lu, int64_t *ipiv, double *sign_logdet, int *info, double *t);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include "cont.h"
+#include "numpy_sum.h"
 
 namespace {
 typedef int64_t lapack_int;     // numpy's bundled OpenBLAS is ILP64 (scipy_openblas64_)
@@ -111,4 +112,25 @@ extern "C" int cont_eigenvalues_sorted(void *geev, int n, const double *A, int l
         w[2 * k + 1] = im;
     }
     return real ? 4 : 0;
+}
+
+extern "C" int cont_ae_tangent(void *getrf, void *getrs, int n, const double *J, int ldj,
+                               const double *ref, const double *theta, double big,
+                               double *border, double *lu, int64_t *ipiv, double *sign_logdet,
+                               int *info, double *t) {
+    if (n <= 0 || ldj < n) return -1;
+    for (int j = 0; j < n; ++j) border[j] = theta[j] * ref[j];
+    *info = cont_dense_lu(getrf, n, J, ldj, border, lu, ipiv, sign_logdet);
+    if (*info != 0) return 1;
+    // the solve of M z = e_n (GESV's values), then |z| in the weighted inner product
+    double *z = t;
+    for (int i = 0; i < n; ++i) z[i] = 0.0;
+    z[n - 1] = 1.0;
+    if (cont_dense_lu_solve(getrs, n, lu, ipiv, z, z) != 0) return 2;
+    double *terms = lu + (size_t)n * n;         // the caller's room after the factors
+    for (int i = 0; i < n; ++i) terms[i] = theta[i] * z[i] * z[i];
+    double nz = std::sqrt(std::fabs(pairwise_sum(terms, n)));
+    if (!std::isfinite(nz) || nz == 0.0 || nz > big) return 2;
+    for (int i = 0; i < n; ++i) t[i] = z[i] / nz;
+    return 0;
 }

@@ -18,35 +18,13 @@
 // A change to any of those Python functions must be made here too
 // (tests/test_compiled_po.py holds the two to the same points).
 #include "cont.h"
+#include "numpy_sum.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace {
-
-// numpy's pairwise summation (the inner loop of np.add.reduce over a contiguous axis):
-// sequential below 8 terms, 8 accumulators up to 128, halves beyond.
-double pairwise_sum(const double *a, long n) {
-    if (n < 8) {
-        double res = 0.;
-        for (long i = 0; i < n; ++i) res += a[i];
-        return res;
-    }
-    if (n <= 128) {
-        double r[8];
-        for (int j = 0; j < 8; ++j) r[j] = a[j];
-        long i = 8;
-        for (; i < n - (n % 8); i += 8)
-            for (int j = 0; j < 8; ++j) r[j] += a[i + j];
-        double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
-        for (; i < n; ++i) res += a[i];
-        return res;
-    }
-    long n2 = n / 2;
-    n2 -= n2 % 8;
-    return pairwise_sum(a, n2) + pairwise_sum(a + n2, n - n2);
-}
 
 // a . b: the BLAS ddot numpy's `@` calls when given (the same rounding), else in order
 double dot(cont_ddot ddot, const double *a, const double *b, int len) {

@@ -170,6 +170,8 @@ class Continuation:
         self._newton = None
         # The last point evaluated from the corrector's Newton matrix (`evaluate`).
         self._newton_point = None
+        # The system's compiled tangent (AlgebraicSystem.unit_tangent: `tangent`) or None.
+        self._unit_tangent = getattr(system, "unit_tangent", None)
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -322,7 +324,16 @@ class Continuation:
         secant just taken); also the factorisation of [J; border(ref)], whose
         determinant is AUTO's BP test."""
         sysm = self.sys
-        factor = self._factor(J, sysm.border(ref))
+        fast = self._unit_tangent
+        got = None if fast is None else fast(J, ref, SINGULAR_TANGENT)
+        if got is not None:
+            # the factorisation, the solve and the norm below in one compiled call
+            self.counters.factorisations += 1
+            t, factor, done = got
+            if done:
+                return t, factor
+        else:
+            factor = self._factor(J, sysm.border(ref))
         z = quietly(factor.solve, last_unit(len(ref)))
         nz = math.sqrt(abs(sysm.inner(z, z))) if all(map(math.isfinite, z.tolist())) \
             else math.inf

@@ -277,6 +277,14 @@ class DenseFactor:
             # the floating-point flag as before
             self._c = (lu, ipiv, (sl[0], sl[1]), info)
 
+    @classmethod
+    def factored(cls, J: np.ndarray, border: np.ndarray, c: tuple) -> "DenseFactor":
+        """[J; border] with its compiled LU c = (lu, pivots, (sign, log|det|), GETRF's info)
+        already made (`unit_tangent`)."""
+        f = cls.__new__(cls)
+        f._M, f._J, f._border, f.lu, f._c = None, J, border, None, c
+        return f
+
     @property
     def M(self) -> np.ndarray:
         """The matrix (n, n)."""
@@ -316,6 +324,35 @@ class DenseFactor:
         if self._c is not None:
             return self._c[2]
         return slogdet(self.M)
+
+
+def unit_tangent(J, theta: np.ndarray, ref: np.ndarray, big: float):
+    """The tangent of a dense algebraic point in one compiled call (cont_ae_tangent): the
+    DenseFactor of [J; theta * ref] (J (n - 1, n)) and z = [J; theta ref]^-1 e_n made unit
+    in the weighted inner product <a, b> = sum(theta * a * b): (t, factor, True), the same
+    values as factor.solve, the inner product summed as numpy sums it and the division;
+    (None, factor, False) where z is not that tangent (GETRF's exact zero pivot, z not
+    finite, its norm 0, not finite or above big): the caller's way on from factor. None
+    where the call does not apply (no compiled LAPACK, sizes, types)."""
+    n = len(ref)
+    if _C is None or n > DenseFactor.LU_SIZE or type(J) is not np.ndarray \
+            or J.dtype != np.float64 or J.shape != (n - 1, n) or not J.flags.c_contiguous \
+            or type(ref) is not np.ndarray or ref.dtype != np.float64 \
+            or not ref.flags.c_contiguous or theta.shape != (n,):
+        return None
+    ffi = _C.ffi
+    border, t = np.empty(n), np.empty(n)
+    lu, ipiv, sl, info = ffi.new("double[]", n * n + n), ffi.new("int64_t[]", n), \
+        ffi.new("double[2]"), ffi.new("int *")
+    buf = ffi.from_buffer
+    status = _C.lib.cont_ae_tangent(_C.getrf, _C.getrs, n, buf("double[]", J), n,
+                                    buf("double[]", ref), buf("double[]", theta), big,
+                                    buf("double[]", border), lu, ipiv, sl, info,
+                                    buf("double[]", t))
+    if status < 0:
+        return None
+    factor = DenseFactor.factored(J, border, (lu, ipiv, (sl[0], sl[1]), info[0]))
+    return (t, factor, True) if status == 0 else (None, factor, False)
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from washer.cont.codes import Code
-from washer.cont.linalg import dense_factor, null_vectors, orient
+from washer.cont.linalg import dense_factor, null_vectors, orient, unit_tangent
 from washer.cont.record import ColumnTitle
 from washer.cont.system import Solution, determinant_test, fold_test
 
@@ -106,6 +106,11 @@ class AlgebraicSystem:
 
     def factor(self, J, border):
         return dense_factor(J, border)
+
+    def unit_tangent(self, J, ref, big: float):
+        """linalg.unit_tangent with this system's border, factor and inner product (the
+        weights theta): (t, factor, done) or None."""
+        return unit_tangent(J, self.theta, ref, big)
 
     def update(self, x, tangent) -> None:
         """Nothing moves with the branch by default."""
