@@ -225,6 +225,29 @@ def test_a_jump_of_the_test_is_not_located_as_a_zero(steep):
     assert abs(s - 0.3) < tol
 
 
+def test_a_user_value_whose_change_newton_does_not_resolve_is_located_not_a_jump():
+    """A user value's test PAR(i) - v changes across a location's bracket by Newton's
+    noise where the parameter itself stays within Newton's tolerance of v along the step
+    (kdv's run 6: the gap PAR(24) goes from 1.8e-10 to -1.7e-9 over the step, 4.6e-10
+    across a bracket of 2.2e-8, EPSL = 1e-7; AUTO labels its zero). Here q = -2e-10 + 1e-10 s
+    up to s = 0.3 and 2e-10 + 1e-10 s beyond: it changes sign at s = 0.3 by a step of
+    4e-10, 800 times its change over the whole step per unit of arclength. With the
+    resolution of a parameter converged to EPSL = 1e-7 the bracket closes on s = 0.3 and
+    that is the zero; a test with no resolution (0) is a jump there, as before."""
+    from types import SimpleNamespace
+    from washer.cont.events import LocationFailed, locate, location_tolerance
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=60, DSMIN=1e-12)
+    tol = location_tolerance(settings)
+
+    def gap(s):
+        return ("point", s), (-2e-10 + 1e-10 * s) if s < 0.3 else (2e-10 + 1e-10 * s)
+    q0, q1 = gap(0.0)[1], gap(1.0)[1]
+    pt, s = locate(gap, ("UZ", 0), q0, q1, 1.0, settings, resolution=1e-7)
+    assert abs(s - 0.3) < 10 * tol and pt == ("point", s)
+    with pytest.raises(LocationFailed, match="jump"):
+        locate(gap, ("UZ", 0), q0, q1, 1.0, settings)
+
+
 def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     """AUTO's LCSPAE / LCSPBV take the fold test before the branch-point test: where both
     change sign over a step, the fold is located first, even if the BP test's linear

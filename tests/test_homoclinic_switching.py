@@ -440,3 +440,37 @@ def test_fnb_3_homoclinic_gaps_from_autos_orbit_are_autos(tmp_path, monkeypatch)
             if r.ty == -4 and r.values[0] < 430]
     assert len(ours) == len(auto) == 19
     assert np.allclose(ours, auto, atol=1e-3)
+
+
+@pytest.mark.slow
+def test_kdv_run_6_labels_the_gaps_zero_below_newtons_tolerance(tmp_path, monkeypatch):
+    # AUTO's demo kdv, run 6 (from run 5's UZ1, AUTO's own s.3 as above): Lin's gap
+    # PAR(24) stays of order 1e-10, below Newton's tolerance EPSL = 1e-7, and crosses 0 at
+    # PT 23, where AUTO labels UZ15 (PAR(23) = 14.875802). Its change across the
+    # location's last bracket (4.6e-10 over 2.2e-8 of arclength) is Newton's noise, not a
+    # jump of the test: before, the location was refused as a jump, and every later label
+    # of run 6 was one lower than AUTO's.
+    work = tmp_path / "kdv"
+    work.mkdir()
+    for f in ("kdv.c", "c.kdv.4", "c.kdv.5", "c.kdv.6"):
+        shutil.copy(DEMO.parent / "kdv" / f, work)
+    script = (KDV / "kdv_switch.auto").read_text() + \
+        "r6=run(r5('UZ1'),c='kdv.6',sv='6')\n"
+    (work / "six.auto").write_text(script)
+    (work / "s.3").write_bytes(gzip.decompress((KDV / "s.3.gz").read_bytes()))
+    monkeypatch.chdir(work)
+    run_script("six.auto")
+    ref = DEMO.parent / "kdv" / "autoref"
+    ours, auto = _rows(work / "b.6"), _rows(ref / "b.6")
+    # the special points up to the output point at PT 35: AUTO's PT, type and label
+    assert [(r.pt, r.ty, r.lab) for r in ours if r.ty and r.pt <= 35] == \
+        [(r.pt, r.ty, r.lab) for r in auto if r.ty and r.pt <= 35] == [(23, -4, 15), (35, 4, 16)]
+    uz, uz_auto = ([r.values for r in rows if r.lab == 15][0] for rows in (ours, auto))
+    # PAR(2) and the norm AUTO's to 1e-5 relative (measured 2.6e-6 and 1.2e-6: both engines'
+    # Newton stops at EPSL = 1e-7 in relative change, on different meshes); PAR(23) where the gap crosses 0 in each engine's iterates: the
+    # gap changes by 1.9e-9 over the step's 0.71 in PAR(23) against a noise of 4.6e-10,
+    # so its zero is fixed only to about 0.71 * 4.6e-10 / 1.9e-9 = 0.17 (measured: 14.876075
+    # ours, 14.875802 AUTO's)
+    assert np.allclose(uz[:2], uz_auto[:2], rtol=1e-5)
+    assert abs(uz[4] - uz_auto[4]) < 0.17
+    assert abs(uz[5]) < 1e-9 and abs(uz_auto[5]) < 1e-9

@@ -229,7 +229,7 @@ def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
 
 
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
-           from_last: bool = False, position=None):
+           from_last: bool = False, position=None, resolution: float = 0.0):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
@@ -243,6 +243,9 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     coordinate; with from_last the steps from the trial points do not end exactly at the
     s asked for, and q must stay a function of one coordinate for the secant, Muller
     and the bracket to make sense.
+    resolution: the smallest change of the test Newton's tolerance resolves between two
+    points (a user value's, `first_zero`); a bracket whose ends differ by no more is no
+    jump of the test, whatever its width.
     Returns (point, s) or raises LocationFailed.
 
     AUTO stops as soon as a correction of s is below the tolerance; a
@@ -368,6 +371,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
         raise LocationFailed("sign change through a pole, not a zero")
     width = abs(hi - lo)
     if not zero and 0 < width < 10 * tol and q_cur != q_prev and \
+            abs(raw["lo"] - raw["hi"]) > resolution and \
             abs(raw["lo"] - raw["hi"]) / width > \
             JUMP_FACTOR * abs(q_cur - q_prev) / abs(s_cur):
         # The bracket closed on a jump, not a zero: the test changes across it as over
@@ -403,7 +407,8 @@ def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:
 
 
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
-               curve_type: int = 0, secant: bool = False, sphere: bool = False):
+               curve_type: int = 0, secant: bool = False, sphere: bool = False,
+               resolution=None):
     """The earliest accepted zero between the points prev and cur (a step of arclength
     ds): (point, key, keys of other tests vanishing at the same point) or None. A zero
     that cannot be located is left (`note` says so, AUTO's "Possible special point")
@@ -423,6 +428,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         direction (the plane). The location's bracket holds trials from prev and trials
         from the last trial (`locate`'s position): both must be measured in the
         coordinate in which a step from prev of arclength s lands at s.
+    resolution(key) -> float: the smallest change of test key Newton's tolerance resolves
+        (`locate`); 0 where None.
 
     Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
     two Hopf loci crossing) are one special point: its type is the first in AUTO's
@@ -483,7 +490,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                               from_last=secant,
                               position=(lambda p: signed_distance(p.x - prev.x, span, inner))
                               if sphere else
-                              (lambda p: inner(p.x - prev.x, prev.step_direction)))
+                              (lambda p: inner(p.x - prev.x, prev.step_direction)),
+                              resolution=0.0 if resolution is None else resolution(key))
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other

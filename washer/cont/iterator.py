@@ -477,7 +477,21 @@ class Continuation:
                           note=lambda text: self._pending.append(Step("note", text=text)),
                           curve_type=self.sys.curve_type,
                           secant=self.sys.arclength == "plane",
-                          sphere=self.sys.arclength == "sphere")
+                          sphere=self.sys.arclength == "sphere",
+                          resolution=self._resolution)
+
+    def _resolution(self, key) -> float:
+        """The smallest change of test key that Newton's tolerance resolves between two
+        points (`events.locate`): for a user value PAR(i) - v, max(EPSL, EPSU) (1 + |v|),
+        the relative tolerance to which a point's parameters (EPSL) and the quantities
+        computed from its state (EPSU) are converged; below it a test's change across a
+        location's bracket is Newton's noise, not a jump (kdv's run 6: the gap PAR(24)
+        changes by 4.6e-10 across 2.2e-8 of arclength, EPSL = 1e-7, and AUTO labels its
+        zero). 0 for the other tests, whose scale is their own."""
+        if not isinstance(key, tuple):
+            return 0.0
+        v = self.uz[key[1]][1]
+        return max(self.s.EPSL, self.s.EPSU) * (1 + abs(v))
 
     def _refresh(self, sp: Point) -> None:
         """All test values at a located point, at its (possibly replaced) tangent; the
