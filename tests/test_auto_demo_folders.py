@@ -89,14 +89,14 @@ STOPS_AT_LABEL = {"mtn": "Restart label IRS=15 not found", "kdv": "Label UZ2 not
 
 #: Demos whose count moves with rounding that depends on the machine (its BLAS kernels and
 #: libm): the other count measured, and why. Measured on an AVX-512 AMD EPYC against the
-#: demo table's counts (made on another machine); the cause of r3b's is not found yet.
+#: demo table's counts (made on another machine).
 ROUNDING_DEPENDENT = {
-    "lcbp": (7, "run 3 continues a non-generic BP (lcbp's 'BP cont non-generic'): its "
-                "end, MX or no convergence at DSMIN, and whether the BP is labelled there "
-                "depend on the rounding of a singular system"),
-    "r3b": (0, "the same types and labels, on branches numbered one lower than AUTO's "
-               "(13, 12 for 14, 13): a branch switched earlier is not counted; not "
-               "explained yet"),
+    "lcbp": (7, "run 3's backward run (the generic BP locus, ISW = 3) ends at PAR(1) = 0, "
+                "its UZSTOP, where the circles shrink to the Hopf point: its BP test is at "
+                "its noise floor there (-3.6e-51 to +2.3e-58 over the last step here, "
+                "AUTO's 2.2e-61 to -5.8e-62) and changes sign in the UZ's step or the one "
+                "before as rounding falls; in the UZ's step the point is typed UZ here, BP "
+                "in AUTO (whose BP check, after the UZ's, retypes the step's end)"),
 }
 
 

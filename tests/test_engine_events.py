@@ -248,6 +248,35 @@ def test_a_user_value_whose_change_newton_does_not_resolve_is_located_not_a_jump
         locate(gap, ("UZ", 0), q0, q1, 1.0, settings)
 
 
+def test_a_zero_with_newton_noise_on_one_side_is_located():
+    """A test whose values at converged points carry an error of the Newton tolerance's
+    size (r3b's circle of L5 at mu = 1: 0.47 and -0.18 at the step's ends, -3.6e-10 at a
+    trial and +4.4e-6 at the next, 5.3e-11 beyond it): q = z - s + 1e-4 for s < z,
+    z - s - 1e-9 beyond (z = 1/pi). The bracket closes on the zero with its ends 1e-4
+    apart over 1.5e-8, which reads as a jump, but its right end is 1e-9, below ZERO_FACTOR
+    of the step's values: the zero, located (AUTO's BP there). Without that rule
+    (ZERO_FACTOR = 0) it is refused as a jump."""
+    from types import SimpleNamespace
+
+    import washer.cont.events as events
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=8, DSMIN=1e-12)
+    tol = settings.EPSS * (1 + (settings.DS * settings.DSMAX) ** 0.5)
+    z = 1 / math.pi
+
+    def noisy(s):
+        return ("point", s), (z - s) + (1e-4 if s < z else -1e-9)
+    q0, q1 = noisy(0.0)[1], noisy(1.0)[1]
+    _, s = events.locate(noisy, "BP", q0, q1, 1.0, settings)
+    assert abs(s - z) < tol
+    saved = events.ZERO_FACTOR
+    try:
+        events.ZERO_FACTOR = 0.0
+        with pytest.raises(events.LocationFailed, match="jump"):
+            events.locate(noisy, "BP", q0, q1, 1.0, settings)
+    finally:
+        events.ZERO_FACTOR = saved
+
+
 def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     """AUTO's LCSPAE / LCSPBV take the fold test before the branch-point test: where both
     change sign over a step, the fold is located first, even if the BP test's linear
