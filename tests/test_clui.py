@@ -454,3 +454,42 @@ def test_numpy_values_in_a_script_are_the_numbers_they_hold(tmp_path, monkeypatc
     run_script("s.auto")
     uz = clui.loadbd("out")("UZ")
     assert [round(float(r["PAR(1)"]), 6) for r in uz] == [0.25, 0.5, 0.75, 1.0, 1.2]
+
+
+def test_a_loaded_points_parameters_past_npar_stay_with_it_and_reach_the_equations(
+        tmp_path, monkeypatch):
+    """AUTO's r3b data.py builds a manifold's start as load(u, PAR={2, 3, 6, 12, 21..23,
+    25..36}) and runs it with c='man.H1a.0' (NPAR = 16): the PAR belong to the solution
+    (AUTO's AUTOSolution.update), not to constants the next c= replaces, and the run's NPAR
+    is at least the record's (AUTO's FINDLB_OR_STOP), so man.f90's BCND reads the start
+    u0 = PAR(25..30) + eps PAR(31..36). Here u0 is a point of the plane (mu = 0.063), v a
+    direction, T = PAR(11) = 0 at the start: three steps of the time integration keep
+    u(0) at u0 to Newton's tolerance (EPSU = 1e-6) and write NPAR = 36 (the constants'
+    16 in the header's 'User-specified constants' line, as AUTO's b.startH1a)."""
+    from washer.auto.files import read_s
+    for f in ("man.f90", "c.man.H1a.0"):
+        shutil.copy(DEMOS / "r3b" / f, tmp_path)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
+    mu, eps = 0.063, -1e-3
+    base = np.array([0.8, 0.0, 0.05, 0.0, 0.3, 0.0])
+    v = np.array([0.6, 0.8, 0.0, 0.0, 0.0, 0.0])
+    u = base + eps * v
+    x, y, z, xp, yp, zp = u
+    energy = (xp ** 2 + yp ** 2 + zp ** 2) / 2 - ((x ** 2 + y ** 2) / 2 + (1 - mu) / np.sqrt(
+        (x + mu) ** 2 + y ** 2 + z ** 2) + mu / np.sqrt((x - 1 + mu) ** 2 + y ** 2 + z ** 2)) \
+        - mu * (1 - mu) / 2
+    par = {2: mu, 3: energy, 6: eps, 12: 0, 21: x, 22: y, 23: z}
+    par.update({25 + i: base[i] for i in range(6)})
+    par.update({31 + i: v[i] for i in range(6)})
+    start = clui.COMMANDS["load"](list(u), PAR=par)
+    assert start.PAR(36) == 0.0 and start.PAR(25) == 0.8 and start.PAR(3) == energy
+    clui.COMMANDS["run"](start, e="man", c="man.H1a.0", NMX=3, NPR=1, sv="m")
+    recs = read_s("s.m")
+    assert len(recs) >= 2 and all(len(r.par) == 36 for r in recs)
+    for r in recs:
+        np.testing.assert_array_equal(r.par[24:36], np.r_[base, v])
+        np.testing.assert_allclose(np.asarray(r.u)[0], u, atol=1e-6)
+    assert float(recs[-1].par[10]) > 0          # the orbit grew: T = PAR(11) moved
+    header = Path("b.m").read_text()
+    assert "NPAR=  36" in header and "NPAR=  16" in header.split("User-specified")[1]

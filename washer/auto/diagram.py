@@ -100,6 +100,19 @@ class Parameters:
         return f"Parameters({self.values.tolist()})"
 
 
+def _with_parameters(par, changes, parnames=None) -> np.ndarray:
+    """PAR (a copy) with `changes` ({index or name: value} or its items) set, lengthened
+    to the highest index they name (AUTO's AUTOSolution.update)."""
+    items = changes.items() if isinstance(changes, dict) else changes
+    names = Parameters([], parnames)
+    at = [(names.index(k) if isinstance(k, str) else int(k) - 1, float(v)) for k, v in items]
+    out = np.zeros(max([len(par)] + [i + 1 for i, _ in at]))
+    out[:len(par)] = par
+    for i, v in at:
+        out[i] = v
+    return out
+
+
 class Solution:
     """One labelled solution (AUTO's AUTOSolution): an s-record with the constants `c`
     (an AutoConstants: what a run restarted from it uses) and the b-file row `b`.
@@ -271,6 +284,12 @@ class Solution:
         new = self._with(lab=lab) if lab and self.rec is not None else self._with()
         if new.rec is not None and new.rec.lab != 0:
             c["IRS"] = new.rec.lab
+        if new.rec is not None and c.get("PAR"):
+            # The constants' PAR become the solution's own (AUTO's AUTOSolution.update):
+            # they stay with it when a later run reads other constants (r3b's data.py
+            # builds a manifold's start with load(u, PAR={..., 25..36: ...}) and runs it
+            # with c='man.H1a.0', whose NPAR is 16).
+            new.rec.par = _with_parameters(new.rec.par, c["PAR"], c.get("parnames"))
         new.c = c
         return new
 

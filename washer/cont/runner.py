@@ -213,6 +213,7 @@ def build(c, problem, records=None, name: str = "", records_source: str = "the r
     start of a BVP with IRS = 0). Raises RunError."""
     s, problem = start.settings_for(c, problem)
     rec = start.restart_record(c, problem, records, records_source)
+    s = start.with_record_parameters(s, rec)
     u, par = start.start_values(c, s, problem, rec, data)
     system, s, kind = start.system_for(c, s, problem, u, par, rec, data)
     # Numbering continues the restart file's only when restarting from it.

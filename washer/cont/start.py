@@ -76,6 +76,16 @@ def _time_first(s: Settings) -> Settings:
     return s.with_(ICP=[TIME] + [i for i in s.ICP[1:] if i != TIME], NPAR=max(s.NPAR, TIME))
 
 
+def with_record_parameters(s: Settings, rec) -> Settings:
+    """s with NPAR at least the restart record's own parameters, its NPAR less its NPARI
+    (AUTO's FINDLB_OR_STOP): a record's PAR past the constants' NPAR reach the equations
+    and the run's records (r3b's manifold start holds the orbit's point and Floquet
+    vector in PAR(25..36) and runs with NPAR = 16)."""
+    if rec is None or len(rec.par) - rec.npari <= s.NPAR:
+        return s
+    return s.with_(NPAR=len(rec.par) - rec.npari)
+
+
 def restart_record(c, problem, records, records_source: str = "the restart file"):
     """The record IRS names (AUTO's FINDLB), or None for IRS = 0."""
     irs = c["IRS"]
