@@ -69,3 +69,35 @@ def test_sort_multipliers_is_autos_order(trivial):
     assert not np.signbit(got[1].imag) and np.signbit(got[2].imag)     # the tie's order
     with pytest.raises(ValueError):
         floquet.sort_multipliers(np.array([np.nan + 0j]))
+
+
+def test_the_trivial_multiplier_is_deflated_so_its_double_partner_stays_real():
+    """On a family of conservative orbits (AUTO's r3b halo and vertical families) the
+    trivial multiplier 1 is double with one eigenvector (a Jordan block). A monodromy
+    matrix M = S J S^-1 with that block, a real pair (10, 0.1) and a pair on the unit
+    circle, perturbed by 1e-10: QZ on the whole pencil (M, I) splits the double 1 into
+    1 +- 1e-5 or 1 +- i 1e-5 as the perturbation falls (both happen over the seeds);
+    the deflated pencil (AUTO's FLOWKM: Fairgrieve and Jepson's deflation) keeps both
+    real, as AUTO's d-files show them and as r3b's PVLS, which reads 'all four nontrivial
+    multipliers complex' as fm = 1, needs. The other multipliers are M's (numpy's
+    eigenvalues of M, the reference) to 1e-8 relative: the deflation's error is the
+    rounding of the null vector, not the perturbation's square root."""
+    rng = np.random.default_rng(7)
+    th = 0.7
+    J = np.zeros((6, 6))
+    J[:2, :2] = [[1, 1], [0, 1]]
+    J[2:4, 2:4] = [[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]]
+    J[4, 4], J[5, 5] = 10.0, 0.1
+    complex_whole = 0
+    for _ in range(40):
+        S = rng.standard_normal((6, 6))
+        M = S @ J @ np.linalg.inv(S) + 1e-10 * rng.standard_normal((6, 6))
+        whole = floquet.sort_multipliers(scipy.linalg.eigvals(M, np.eye(6)))
+        complex_whole += abs(whole[0].imag) > 0
+        mu = floquet.pencil_multipliers(M, -np.eye(6), deflate_trivial=True)
+        near_one = mu[np.abs(mu - 1) < 1e-3]
+        assert len(near_one) == 2 and np.all(near_one.imag == 0), mu
+        ref = np.linalg.eigvals(M)
+        for m in mu[np.abs(mu - 1) >= 1e-3]:
+            assert np.min(np.abs(ref - m)) < 1e-8 * abs(m), (m, ref)
+    assert 0 < complex_whole < 40

@@ -134,16 +134,63 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     return w
 
 
-def pencil_multipliers(P0: np.ndarray, P1: np.ndarray) -> np.ndarray:
+def pencil_multipliers(P0: np.ndarray, P1: np.ndarray,
+                       deflate_trivial: bool = False) -> np.ndarray:
     """Eigenvalues of the monodromy matrix -P1^-1 P0 (FLOWKM; P0, P1 from
     `washer.cont.collocation.condense_blocks`), as the generalized eigenvalues of the
     pencil (P0, -P1) by QZ, so that huge multipliers (long orbits near a homoclinic one)
     come out as large or infinite values instead of overflowing; infinite ones are inf.
+    deflate_trivial: the orbit has a trivial multiplier (an autonomous periodic orbit),
+    deflated first (`deflated_pencil`), as AUTO's FLOWKM does; a pencil without one (a
+    forced or general linear system) must not be deflated: the null vector of C0 - C1
+    is then no eigenvector and the deflation moves every multiplier.
     Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
+    C0, C1 = np.asarray(P0, float), -np.asarray(P1, float)
     with np.errstate(all="ignore"):
-        mu = _pencil_eigvals(P0, -P1)
+        mu = _deflated_eigvals(C0, C1) if deflate_trivial else _pencil_eigvals(C0, C1)
     mu = np.where(np.isfinite(mu), mu, np.inf + 0j)
     return sort_multipliers(mu)
+
+
+def deflated_pencil(C0: np.ndarray, C1: np.ndarray):
+    """The circuit pencil (C0, C1) (n, n) with its multiplier at +1 split off
+    (Fairgrieve and Jepson, SIAM J. Numer. Anal. 28 (1991), the method of AUTO's FLOWKM):
+    X, the right singular vector of C0 - C1's smallest singular value (the trivial
+    multiplier's eigenvector), is the last column of an orthogonal H1 = (X_perp | X); a
+    Householder reflection H2 takes (C0 X / |C0 X| + C1 X / |C1 X|) / 2 to a multiple of
+    e_1. Then H2 (C0, C1) H1 is block upper triangular up to the rounding of X, and the
+    multipliers are (H2 C0 H1)[0, -1] / (H2 C1 H1)[0, -1] (the trivial one, real) and the
+    eigenvalues of the pencil of rows 1.. and columns ..n-2. Why: on a family of
+    conservative orbits (r3b's halo orbits) the trivial multiplier is double, with one
+    eigenvector; the whole pencil's QZ splits such a pair into 1 +- i 1e-5 or 1 +- 1e-5 as
+    its rounding falls, the deflated pencil leaves the second one real. Returns (the
+    trivial multiplier, the deflated pencil's two (n - 1, n - 1) matrices)."""
+    n = len(C0)
+    _, _, vt = np.linalg.svd(C0 - C1)
+    H1 = vt.T                       # its columns: the singular vectors, X last
+    A = C0 @ H1
+    B = C1 @ H1
+    y = A[:, -1] / np.linalg.norm(A[:, -1]) + B[:, -1] / np.linalg.norm(B[:, -1])
+    v = y.copy()
+    v[0] += math.copysign(np.linalg.norm(y), y[0] if y[0] != 0 else 1.0)
+    beta = 2.0 / float(v @ v)
+    A -= beta * np.outer(v, v @ A)
+    B -= beta * np.outer(v, v @ B)
+    return A[0, -1] / B[0, -1], A[1:, :n - 1], B[1:, :n - 1]
+
+
+def _deflated_eigvals(C0: np.ndarray, C1: np.ndarray) -> np.ndarray:
+    """The pencil's eigenvalues with the trivial one deflated (`deflated_pencil`); the
+    whole pencil's where it has no finite entries to deflate or is 1 x 1."""
+    if len(C0) < 2 or not (np.isfinite(C0).all() and np.isfinite(C1).all()):
+        return _pencil_eigvals(C0, C1)
+    try:
+        one, A, B = deflated_pencil(C0, C1)
+    except np.linalg.LinAlgError:           # the SVD did not converge
+        return _pencil_eigvals(C0, C1)
+    if not (np.isfinite(one) and np.isfinite(A).all() and np.isfinite(B).all()):
+        return _pencil_eigvals(C0, C1)      # C0 X or C1 X zero: nothing to deflate by
+    return np.r_[complex(one), _pencil_eigvals(A, B)]
 
 
 def critical(mu: np.ndarray, trivial: bool = True) -> complex | None:

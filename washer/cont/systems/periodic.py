@@ -381,7 +381,7 @@ class PeriodicOrbits(CollocationBVP):
             P0, P1 = reduced[1].floquet_pair()
         else:
             P0, P1 = col.condense_blocks(blocks, self.ndim)
-        return floquet.pencil_multipliers(P0, P1)
+        return floquet.pencil_multipliers(P0, P1, deflate_trivial=True)
 
     def stability(self, x: np.ndarray, J=None) -> Stability | None:
         """Floquet multipliers and AUTO's NINS (`floquet.stability`). None when ISP = 0."""
