@@ -56,9 +56,13 @@ PERIOD_RTOL = 1e-3
 #: cb.auto and tb.auto, then merges their outputs into b.all, which AUTO's run did not keep),
 #: and demos whose script is not named after the folder (fhh and fnb are AUTO's two folders
 #: of the FitzHugh-Nagumo model's homoclinic orbits, each with its own fhn.auto); man's
-#: folder has AUTO's man1.auto and man2.auto beside man.auto (man2 starts from man1's s.start).
+#: folder has AUTO's man1.auto and man2.auto beside man.auto (man2 starts from man1's s.start);
+#: r3b's manifold scripts start from r3b.auto's families (each writes b.flq: the last one's
+#: is compared; V1a.auto's last run stops at a label that is not there, in AUTO too, so it
+#: comes last; L1a.auto stops so as well and is left out, H1b.auto and the X scripts too).
 SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto"), "fhh": ("fhn.auto",),
-           "fnb": ("fhn.auto",), "man": ("man.auto", "man1.auto", "man2.auto")}
+           "fnb": ("fhn.auto",), "man": ("man.auto", "man1.auto", "man2.auto"),
+           "r3b": ("r3b.auto", "H1a.auto", "H1c.auto", "V1b.auto", "V1a.auto")}
 
 
 
