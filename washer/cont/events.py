@@ -35,6 +35,13 @@ When several zeros lie in one step (`first_zero`), the earliest is located first
 the interval up to it searched again; zeros of several tests at one point are one
 special point whose type is the first in AUTO's order (PRIORITY); at a BP the
 branch's direction is the secant from the previous point.
+
+Where a change goes: the rules (which zero, when a location has converged, what counts as
+a jump) are here; the trial points themselves, continuation steps from the previous point
+at a given arclength, are made by the iterator (washer.cont.iterator.Continuation:
+`_first_zero` hands this module `_trial`; `_radial` is a trial's direction on a sphere
+of arclength), and which tests a system has and what accepts their zeros by the systems
+(`active_tests`, `test_functions`, `accept` in washer.cont.system).
 """
 from __future__ import annotations
 
