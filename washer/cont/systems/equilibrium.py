@@ -88,10 +88,15 @@ def neutral_tolerance(A: np.ndarray) -> float:
     return CONSERVATIVE_TOL if abs(trace) < TRACE_TOL * largest else 0.0
 
 
+def stable_count(lam, neutral: float) -> int:
+    """AUTO's NINS: how many of the eigenvalues `lam` (NDIM,) have Re <= neutral."""
+    return sum(1 for v in np.real(lam).tolist() if v <= neutral)
+
+
 def spectrum(lam: np.ndarray, neutral: float = 0.0) -> Stability:
     """The Stability of eigenvalues `lam` (NDIM,): AUTO's NINS counts Re <= neutral (0, or
     `neutral_tolerance` where f_u looks conservative), stable when every one does."""
-    n_stable = sum(1 for v in lam.real.tolist() if v <= neutral)
+    n_stable = stable_count(lam, neutral)
     return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam),
                      neutral=neutral)
 
@@ -134,9 +139,7 @@ def hopf_accepted(prev: Stability, cur: Stability) -> bool:
     steps and the Hopf point is lost (AUTO-07p's STABEQ, which decides point by point,
     loses it so: x' = mu x - y, y' = x + mu y from mu = -0.5 with DS = 0.05)."""
     tol = min(prev.neutral, cur.neutral)
-    prev_n, cur_n = (sum(1 for v in np.real(st.values).tolist() if v <= tol)
-                     for st in (prev, cur))
-    return abs(prev_n - cur_n) >= 2
+    return abs(stable_count(prev.values, tol) - stable_count(cur.values, tol)) >= 2
 
 
 @register(0, 1)
