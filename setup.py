@@ -27,7 +27,7 @@ class build_py_with_constants(build_py):
         dst.mkdir(parents=True, exist_ok=True)
         for f in sorted((HERE / "auto_constants").glob("c.*")):
             shutil.copy2(f, dst / f.name)
-        # The sweep specs and AUTO's ab demo, for `--copy-examples` (washer.auto.constants.
+        # The sweep specs and AUTO's ab demo, for `--copy-examples` (washer.auto.constants_file.
         # shipped_examples reads them from washer/examples/ in an installed copy).
         ex = Path(self.build_lib) / "washer" / "examples"
         ex.mkdir(parents=True, exist_ok=True)

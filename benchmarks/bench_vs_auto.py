@@ -24,11 +24,11 @@ tests/data/auto_reference):
   ab_po       ab's seven periodic families from every HB of the p1-branches (ab.auto)
   ab_eq_f90, lrz_eq_f90   ab_eq and lrz_eq with AUTO's Fortran user files on both sides
               (washer compiles ab.f90 / lrz.f90: the corrector of equilibria in one
-              foreign call per point, washer.cont.compiled_newton)
+              foreign call per point, washer.cont.corrector_algebraic)
   ab_hopf_f90, ab_fold_f90, lrz_hopf_f90   the loci the same way (the compiled
               corrector of the fold and Hopf systems calling FUNC directly)
   lrz_po35_f90, chu_po_f90   lrz_po35 and chu_po the same way (the corrector of
-              periodic orbits calling FUNC directly, washer.cont.compiled_po)
+              periodic orbits calling FUNC directly, washer.cont.corrector_periodic)
   lrz_eq_sympy, lrz_po35_sympy   lrz_eq and lrz_po35 with washer's lrz given as sympy
               expressions (tests/data/lrz_sym: generated C, exact f_u and f_p, JAC = 1)
 the washer's own model (skipped with --quick), AUTO-07p running the same compiled

@@ -1,6 +1,6 @@
 """One continuation run twice, with a compiled corrector and with the Python loop alone,
-for the tests that hold the two to the same result (tests/test_compiled_newton.py,
-tests/test_compiled_po.py)."""
+for the tests that hold the two to the same result (tests/test_corrector_algebraic.py,
+tests/test_corrector_periodic.py)."""
 from washer.cont import iterator
 from washer.cont.newton import ConvergenceError
 
@@ -46,7 +46,7 @@ def location_tolerance(constants, **ov) -> float:
     """The location's stopping tolerance (washer.cont.events.location_tolerance) for the
     constants file `constants` with the overrides ov."""
     from types import SimpleNamespace
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     from washer.cont.events import location_tolerance as tolerance
     c = dict(read_constants(constants), **ov)
     return tolerance(SimpleNamespace(**{k: float(c[k]) for k in ("EPSS", "DS", "DSMAX")}))
@@ -81,7 +81,7 @@ def assert_counts_agree(fast, slow, constants, what=("residuals", "jacobians",
     a test function that rounds otherwise (see assert_rows_agree) other trials: up to
     ITMX + 1 of them a located point, each up to ITNW corrections and its own Jacobian
     and factorisation. Equal counts where nothing is located."""
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     c = dict(read_constants(constants), **ov)
     located = sum(r.ty not in UNLOCATED for r in fast.rows)
     for w in what:

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.cont.runner import RunError
 from washer.run import run
 

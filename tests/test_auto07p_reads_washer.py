@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from b_rows import branch_rows, header_blocks
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.auto.files import read_s
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -94,7 +94,7 @@ def test_ab_matches_auto(ab_runs, name):
             # judges both: ours within the documented location guarantee and closer
             # to it than AUTO's (by a factor 40-400 on this machine: a margin that
             # no floating-point detail of another machine erases); AUTO's within 2e-5.
-            from washer.auto.constants import read_constants
+            from washer.auto.constants_file import read_constants
             c = read_constants(DATA / "ab" / "c.ab")
             assert abs(o[2] - exact) <= location_tolerance(c)
             assert abs(o[2] - exact) < abs(r[2] - exact) / 10
@@ -114,7 +114,7 @@ def test_ab_equilibria_follow_auto_row_by_row(ab_runs):
     column, ours per component). The located rows and the rows after them: within
     the location guarantee, to which AUTO's location is loose too (its UZ at
     0.24999901)."""
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     c = read_constants(DATA / "ab" / "c.ab")
     ours = [r for b in read_b(ab_runs["dir"] / "b.eq") for r in b]
     ref = [r for b in read_b(REF / "ab2p" / "b.eq") for r in b]
@@ -174,7 +174,7 @@ def location_tolerance(c) -> float:
 
 
 def test_lorenz_closed_forms(lrz_runs):
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     c = read_constants(DATA / "lrz" / "c.lrz")
     hb = lrz_runs["eq"]("HB1")
     # The run uses JAC = 0: the Hopf test function is evaluated on central-difference

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.auto.constants import ConstantsError, parse_override, read_constants
+from washer.auto.constants_file import ConstantsError, parse_override, read_constants
 from washer.auto.files import fmt_e, read_b, read_s
 from washer.cont.record import find_record
 from washer.run import main, run

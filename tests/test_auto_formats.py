@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from auto_reference import AB2P_LOCUS
-from washer.auto.constants import Constants, read_constants
+from washer.auto.constants_file import Constants, read_constants
 from washer.auto.files import D_BAR, OutputFiles, Row, column_title, fmt_es
 
 DATA = Path(__file__).parent / "data"

@@ -29,7 +29,7 @@ import ab_exact
 from auto_reference import REF, demo_dir
 from b_rows import branch_rows, segments
 import closed_form_exact as exact
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.run import run
 

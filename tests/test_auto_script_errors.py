@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from washer.auto import clui
-from washer.auto.constants import ConstantsWarning
+from washer.auto.constants_file import ConstantsWarning
 from washer.auto.script import ScriptError, run_script
 
 DATA = Path(__file__).parent / "data"
@@ -172,7 +172,7 @@ def test_old_format_nicp_smaller_than_the_indices_listed_warns(tmp_path, monkeyp
     so does washer, saying so (file, line, what it took)."""
     monkeypatch.chdir(tmp_path)
     _old_format(tmp_path, "1 1 2    NICP,(ICP(I),I=1,NICP)")
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     with pytest.warns(ConstantsWarning, match=r"c.enz:2: NICP = 1 but the row lists 2 "
                                               r"parameter indices \(1 2\): ICP = \[1\]"):
         c = read_constants(tmp_path / "c.enz")
@@ -279,7 +279,7 @@ def test_a_broken_constants_file_read_by_name_is_the_error(ab):
 def test_a_comma_after_a_dictionary_key_is_read_as_auto_reads_it(ab):
     """AUTO's parseC scans {'p', [0, 1]} as {'p': [0, 1]} (':' and ',' both separate its
     tokens): a constants file written so runs in AUTO-07p, and is read the same here."""
-    from washer.auto.constants import read_constants
+    from washer.auto.constants_file import read_constants
     Path("c.d").write_text("NDIM = 2\nUZSTOP = {1, [0, 1.0]}\nUZR = {2: 0.5, 3, -1}\n")
     c = read_constants("c.d")
     assert c["UZSTOP"] == {1: [0, 1.0]} and c["UZR"] == {2: 0.5, 3: -1}

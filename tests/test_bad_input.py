@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.auto.constants import Constants, ConstantsError, parse_override, read_constants
+from washer.auto.constants_file import Constants, ConstantsError, parse_override, read_constants
 from washer.auto.files import AutoFileError, OutputFiles, read_b, read_s
 
 from test_auto_formats import check_parseB_rules

@@ -1,6 +1,6 @@
 """The C interfaces declared twice say the same in both places.
 
-The C the engine compiles at run time (the user files' bridge compiled_shim.c, the
+The C the engine compiles at run time (the user files' bridge user_files_bridge.c, the
 compiled corrector's ae_callback.c and ae_generated.c, the generated C of sympy problems)
 is loaded through cffi with its declarations written again as cdef strings in Python, and
 the generated sympy functions are called from C through function-pointer types declared
@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 import sympy
 
-from washer.cont import compiled, compiled_newton, symbolic
+from washer.cont import user_files_native, corrector_algebraic, user_files_sympy
 
 ROOT = Path(__file__).resolve().parent.parent
 CONT = ROOT / "washer" / "cont"
@@ -84,10 +84,10 @@ def named(decls: set, name: str) -> str:
 
 
 @pytest.mark.parametrize("cdef, source", [
-    (compiled.CDEF, CONT / "compiled_shim.c"),
-    (compiled_newton._CALLBACK_CDEF, CONT / "ae_callback.c"),
-    (compiled_newton._GENERATED_CDEF, CONT / "ae_generated.c"),
-], ids=["compiled_shim", "ae_callback", "ae_generated"])
+    (user_files_native.CDEF, CONT / "user_files_bridge.c"),
+    (corrector_algebraic._CALLBACK_CDEF, CONT / "ae_callback.c"),
+    (corrector_algebraic._GENERATED_CDEF, CONT / "ae_generated.c"),
+], ids=["user_files_bridge", "ae_callback", "ae_generated"])
 def test_every_cdef_declaration_is_the_c_sources(cdef, source):
     want = declarations(cdef)
     assert len(want) >= 4
@@ -95,15 +95,15 @@ def test_every_cdef_declaration_is_the_c_sources(cdef, source):
 
 
 def test_the_generated_sympy_functions_fit_the_pointers_that_call_them():
-    """washer_sym_func and washer_sym_jac as symbolic.generate_c writes them, as
-    symbolic.CDEF declares them, and the pointer types the compiled correctors call
+    """washer_sym_func and washer_sym_jac as user_files_sympy.generate_c writes them, as
+    user_files_sympy.CDEF declares them, and the pointer types the compiled correctors call
     them through (ae_generated.c and its cdef; cont_api.h's cont_po_sym_*) take the same
     parameters."""
     u1, u2, p1 = sympy.symbols("u1 u2 p1")
-    generated = declarations(symbolic.generate_c([u1, u2], {1: p1}, [p1 * u1 - u2, u1 * u2]))
-    assert symbolic.CDEF and declarations(symbolic.CDEF) <= generated
+    generated = declarations(user_files_sympy.generate_c([u1, u2], {1: p1}, [p1 * u1 - u2, u1 * u2]))
+    assert user_files_sympy.CDEF and declarations(user_files_sympy.CDEF) <= generated
     pointers = [declarations((CONT / "ae_generated.c").read_text()),
-                declarations(compiled_newton._GENERATED_CDEF),
+                declarations(corrector_algebraic._GENERATED_CDEF),
                 declarations((ROOT / "csrc" / "cont" / "cont_api.h").read_text())]
     for fn, types in (("washer_sym_func", ("ae_sym_func", "cont_po_sym_func")),
                       ("washer_sym_jac", ("ae_sym_jac", "cont_po_sym_jac"))):
@@ -116,7 +116,7 @@ def test_the_generated_sympy_functions_fit_the_pointers_that_call_them():
 def test_a_changed_declaration_is_seen():
     """The comparison sees a retyped parameter and a dropped one (so the tests above can
     fail)."""
-    decls = declarations(compiled_newton._CALLBACK_CDEF)
+    decls = declarations(corrector_algebraic._CALLBACK_CDEF)
     source = declarations((CONT / "ae_callback.c").read_text())
     retyped = {d.replace("double h2", "int h2") for d in decls}
     dropped = {d.replace(",double*work)", ")") for d in decls}

@@ -28,7 +28,7 @@ import pytest
 
 import closed_form_exact as exact
 from b_rows import branch_rows, labelled, segments
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.run import run
 

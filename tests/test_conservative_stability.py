@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.cont.events import location_tolerance
 from washer.cont.system import Stability
 from washer.cont.systems.equilibrium import (hopf_accepted, neutral_hopf_test,

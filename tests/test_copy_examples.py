@@ -4,7 +4,7 @@ there; the ab demo runs from it."""
 import re
 from pathlib import Path
 
-from washer.auto.constants import shipped_constants, shipped_examples
+from washer.auto.constants_file import shipped_constants, shipped_examples
 from washer.run import main, run
 
 ROOT = Path(__file__).resolve().parents[1]

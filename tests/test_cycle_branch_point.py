@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.cont.start import RunError
 from washer.run import run
 

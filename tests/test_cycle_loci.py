@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"

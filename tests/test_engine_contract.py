@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from washer.cont import systems
-from washer.auto.constants import Constants, read_constants
+from washer.auto.constants_file import Constants, read_constants
 from washer.auto.files import read_s
 from washer.cont.user_files import load_python_problem
 from washer.cont.runner import RunError, build, execute

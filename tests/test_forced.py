@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, linear_sum_assignment
 
 from washer import Model
-from washer.auto.constants import Constants
+from washer.auto.constants_file import Constants
 from washer.cont import floquet
 from washer.cont.problem import Problem
 from washer.cont.runner import run as run_in_memory, solve

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from b_rows import branch_rows
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.cont.runner import RunError
 from washer.run import run

@@ -15,7 +15,7 @@ iterator:
 """
 import numpy as np
 
-from washer.cont import compiled_po, floquet
+from washer.cont import corrector_periodic, floquet
 from washer.cont.codes import Code
 from washer.cont.iterator import Continuation
 
@@ -65,7 +65,7 @@ def _run(it, n):
 
 def _spy(sysm, monkeypatch):
     """Record the unknowns at which the Jacobian is evaluated (bytes of x): sysm.jacobian,
-    or the compiled corrector's form of it (compiled_po.PeriodicCorrector.jacobian_at)."""
+    or the compiled corrector's form of it (corrector_periodic.PeriodicCorrector.jacobian_at)."""
     seen = []
     jac = sysm.jacobian
 
@@ -73,14 +73,14 @@ def _spy(sysm, monkeypatch):
         seen.append(np.asarray(x, float).tobytes())
         return jac(x, *a, **kw)
     sysm.jacobian = spy
-    compiled_jac = compiled_po.PeriodicCorrector.jacobian_at
+    compiled_jac = corrector_periodic.PeriodicCorrector.jacobian_at
 
     def compiled_spy(self, x):
         J = compiled_jac(self, x)
         if J is not None:
             seen.append(np.asarray(x, float).tobytes())
         return J
-    monkeypatch.setattr(compiled_po.PeriodicCorrector, "jacobian_at", compiled_spy)
+    monkeypatch.setattr(corrector_periodic.PeriodicCorrector, "jacobian_at", compiled_spy)
     return seen
 
 

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import pytest
 
-from washer.auto.constants import ConstantsError, read_constants
+from washer.auto.constants_file import ConstantsError, read_constants
 from washer.cont.runner import RunError
 from washer.run import run
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"

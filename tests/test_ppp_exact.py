@@ -44,7 +44,7 @@ import pytest
 import sympy as sp
 from scipy.integrate import solve_ivp
 
-from washer.auto.constants import read_constants
+from washer.auto.constants_file import read_constants
 from washer.auto.diagram import type_name
 from washer.auto.files import read_b
 from washer.cont.events import location_tolerance

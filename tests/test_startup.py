@@ -18,7 +18,7 @@ DATA = Path(__file__).parent / "data"
 NOT_IMPORTED = ("scipy", "matplotlib", "sympy", "symengine", "pandas", "dask", "pycparser")
 #: Modules of the engine an equilibrium run must not import (collocation: BVPs only).
 NOT_IMPORTED_ENGINE = ("washer.cont.collocation", "washer.cont.systems.bvp",
-                       "washer.cont.systems.periodic", "washer.cont.compiled_po")
+                       "washer.cont.systems.periodic", "washer.cont.corrector_periodic")
 
 #: `python -m washer.run ARGS` (runpy, as -m runs it), then the names in sys.modules and
 #: the exit status into modules.json.
@@ -51,7 +51,7 @@ def test_a_short_equilibrium_run_imports_only_what_it_uses(tmp_path):
     report = _run(tmp_path, "c.ab")
     assert report["status"] == 0 and (tmp_path / "b.ab").stat().st_size > 0
     modules = set(report["modules"])
-    assert "washer.cont.traced" in modules and "washer.cont.systems.equilibrium" in modules
+    assert "washer.cont.user_files_traced" in modules and "washer.cont.systems.equilibrium" in modules
     loaded = sorted(m for m in modules
                     if m.split(".")[0] in NOT_IMPORTED or m in NOT_IMPORTED_ENGINE)
     assert loaded == []

@@ -63,7 +63,7 @@ int cont_coll_blocks(int ntst, int ncol, int ndim, const double *WT, const doubl
  *   failed; pars: one parameter vector (NPAR) for all points (prow 0), or the parameters
  *   point by point, (NPAR, prow = rows) (a Jacobian's difference points in one call, up
  *   to one_call_max Gauss points: VectorField.fu_fp's FU_FP_ONE_CALL_MAX); or, instead of feval, the generated C of a sympy problem
- *   (washer.cont.symbolic: washer_sym_func, washer_sym_jac, U (k, NDIM), P with
+ *   (washer.cont.user_files_sympy: washer_sym_func, washer_sym_jac, U (k, NDIM), P with
  *   pstride 0, Jp (k, NDIM, npar_jp)) or a compiled user file's FUNC and DFDU (its
  *   bridge's washer_po_func, washer_po_jac, which leaves Jp alone) called directly: sfunc
  *   for f, sjac (or NULL: f_u by differences) for the exact f_u;

@@ -5,7 +5,7 @@ save, ...`; `python -m washer.auto NAME.auto`)."""
 import importlib
 
 _OBJECTS = {"Diagram": "diagram", "Solution": "diagram", "SolutionList": "diagram",
-            "AutoError": "autoconstants", "AutoConstants": "autoconstants", "auto": "script"}
+            "AutoError": "script_constants", "AutoConstants": "script_constants", "auto": "script"}
 
 
 def __getattr__(name):

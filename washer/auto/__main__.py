@@ -7,7 +7,7 @@ import sys
 
 
 def main(argv: list[str] | None = None) -> int:
-    from washer.auto.autoconstants import AutoError
+    from washer.auto.script_constants import AutoError
     from washer.auto.script import ScriptError, interact, run_script
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] in ("-h", "--help"):

@@ -26,9 +26,9 @@ import shutil
 import sys
 from pathlib import Path
 
-from washer.auto.constants import Constants, ConstantsError, read_constants
+from washer.auto.constants_file import Constants, ConstantsError, read_constants
 from washer.auto import diagram
-from washer.auto.autoconstants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
+from washer.auto.script_constants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
                                         AutoError)
 from washer.auto.diagram import (NONE_KEYS, Diagram, Solution, SolutionList, label_selector,
                                   read_solutions, type_name)
@@ -200,7 +200,7 @@ def _execute(sol: Solution) -> Diagram:
     from washer.cont.runner import RunError, build, execute
     from washer.cont.problem import ProblemError
     from washer.auto.sinks import FileSink, ScreenSink
-    from washer.cont.compile import CompileError
+    from washer.cont.c_library import CompileError
     c = sol.c
     e = c.get("e") or ""
     if c.get("IRS") and sol.empty:

@@ -25,7 +25,7 @@ from washer.atomic import write_text
 from washer.cont.codes import split_code, split_label, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _fortran_float, _read_record,
                                _read_text, fmt_e, record_text)
-from washer.auto.autoconstants import AutoConstants
+from washer.auto.script_constants import AutoConstants
 
 
 def _run_command(data, **kw):
@@ -709,7 +709,7 @@ def header_constants(header: list[str]) -> dict:
     HomCont's NUNSTAB, NSTAB where computed): the constants are the user's. Not
     constants, and left out: the active parameters, NUZR (a count), the branch type.
     A header without the constants line (a switched-to branch) gives {}."""
-    from washer.auto.constants import DEFAULTS, ConstantsError, parse_text
+    from washer.auto.constants_file import DEFAULTS, ConstantsError, parse_text
     if not has_constants(header):
         return {}
     out = {}

@@ -3,11 +3,13 @@ knows nothing of washing machines and reads and writes no b-, s- or d-files (was
 does: a run's files are sinks attached to it). Its modules:
 
 problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
-              finite-difference derivatives; user_files, compile, compiled, symbolic load
-              them from NAME.py, Fortran/C user files or sympy expressions; pointwise:
-              when a Python func is called once on the arrays of a small stencil;
-              trace, traced: a Python func recorded into C, compiled and trusted where
-              it is the Python func bit for bit;
+              finite-difference derivatives; user_files finds them beside the constants
+              file: NAME.py, or user_files_native (AUTO's Fortran/C user files, with
+              user_files_bridge.c), user_files_sympy (sympy expressions generated into C);
+              c_library compiles C and Fortran into a shared library, cached by content;
+              tracer records a Python func into C and user_files_traced trusts that C
+              where it is the Python func bit for bit; pointwise: when a Python func is
+              called once on the arrays of a small stencil;
               parabolic: a parabolic PDE's user problem as the first-order system in x
               that the systems of IPS 11-17 continue
 differences   central differences: AUTO's step, the points and the quotient, the one
@@ -24,10 +26,10 @@ linalg, reduction, collocation, floquet, normal_form
               tests, the first Lyapunov coefficient
 lapack        the addresses of numpy's own LAPACK routines, for the compiled engine's
               dense solves and eigenvalues (csrc/cont/dense_lapack.cpp)
-newton, compiled_newton, compiled_po, iterator, events
+newton, corrector_algebraic, corrector_periodic, iterator, events
               the one Newton loop and its compiled forms for equilibria and the fold and
               Hopf loci (C written once in include/ae_correct.h) and for periodic orbits
-              (C++ in csrc/cont/po_correct.cpp; compiled_newton.compiled_corrector
+              (C++ in csrc/cont/po_correct.cpp; corrector_algebraic.compiled_corrector
               chooses where they apply), the
               pseudo-arclength iterator (predictor, corrector, step control), test
               functions' sign changes and their location

@@ -1,9 +1,9 @@
 /* The corrector of algebraic continuation (include/ae_correct.h) for equations given in
- * Python (washer.cont.compiled_newton): f is evaluated by a call back into Python, which
+ * Python (washer.cont.corrector_algebraic): f is evaluated by a call back into Python, which
  * calls the user's func point by point (or in one batch) exactly as the Python loop
  * does; with the user's Jacobians (JAC = 1, -1) on equilibria, [f_u, f_PAR(ICP(1))] too
  * (stage 3: Problem.jacobian, as the Python loop calls it). Compiled on first use
- * (washer.cont.compile), as the bridge of user files is.
+ * (washer.cont.c_library), as the bridge of user files is.
  */
 #include <stddef.h>
 #include <string.h>
@@ -67,7 +67,7 @@ int washer_ae_correct_cb(ae_callback callback, int exact, int kind, int ndim, in
                       work, NULL);
 }
 
-/* ae_work_size, for compiled_newton.work_size's test. */
+/* ae_work_size, for corrector_algebraic.work_size's test. */
 size_t washer_ae_work_size(int kind, int ndim, int npar)
 {
     return ae_work_size(kind, ndim, npar);
@@ -82,7 +82,7 @@ int washer_ae_l1_cb(ae_callback callback, int ndim, int npar, const double *x,
     return ae_first_lyapunov(&ctx, ndim, npar, NULL, x, par, omega, A, l1, work, NULL);
 }
 
-/* ae_l1_work_size, for compiled_newton.l1_work_size's test. */
+/* ae_l1_work_size, for corrector_algebraic.l1_work_size's test. */
 size_t washer_ae_l1_work_size(int ndim, int npar)
 {
     return ae_l1_work_size(ndim, npar);

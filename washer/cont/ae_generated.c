@@ -1,9 +1,9 @@
 /* The corrector of algebraic continuation (include/ae_correct.h) for the generated C of
- * sympy problems (washer.cont.symbolic): its washer_sym_func and washer_sym_jac are
+ * sympy problems (washer.cont.user_files_sympy): its washer_sym_func and washer_sym_jac are
  * called through function pointers, f over all the rows of a difference stencil in one
  * call (as Problem.func_many calls the generated func_batch), and with JAC = 1 the exact
  * [f_u, f_PAR(ICP(1))] (as Problem.jacobian's dfdu and dfdp give them). Compiled on
- * first use (washer.cont.compile) by washer.cont.compiled_newton.
+ * first use (washer.cont.c_library) by washer.cont.corrector_algebraic.
  */
 #include <stddef.h>
 
@@ -41,7 +41,7 @@ static int ae_exact(void *ctx, int ndim, int npar, int ip, const double *u,
     g->jac(1, u, par, 0, fu, fp);
     for (int i = 0; i < n; i++) {
         for (int j = 0; j < n; j++) J[(size_t)i * stride + j] = fu[(size_t)i * n + j];
-        /* a parameter the expressions do not use: a zero column (symbolic.py's dfdp) */
+        /* a parameter the expressions do not use: a zero column (user_files_sympy.py's dfdp) */
         J[(size_t)i * stride + n] = ip < np ? fp[(size_t)i * np + ip] : 0.0;
     }
     return 0;

@@ -2,7 +2,7 @@
 knows with its default filled in (washer.cont.settings.DEFAULTS), each value checked as it
 is set (`check_value`), with the names resolved (parnames, unames, 'PERIOD') and the place
 each was given (`.given`, `.source`) for error messages. The engine's runs read them
-(`Settings.from_constants`, `washer.cont.start`); washer.auto.constants reads constants
+(`Settings.from_constants`, `washer.cont.start`); washer.auto.constants_file reads constants
 files into them. No file handling here.
 """
 from __future__ import annotations

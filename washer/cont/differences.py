@@ -14,7 +14,7 @@ Problem.second_derivatives have their own stencil.
 
 The compiled correctors repeat these differences in C: washer/cont/include/ae_correct.h
 (equilibria, fold and Hopf loci) and csrc/cont/po_correct.cpp (periodic orbits). A change
-here is made there too; tests/test_compiled_newton.py and tests/test_compiled_po.py hold
+here is made there too; tests/test_corrector_algebraic.py and tests/test_corrector_periodic.py hold
 the two forms to the same iterates.
 """
 from __future__ import annotations

@@ -37,7 +37,7 @@ import numpy as np
 
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
-from washer.cont.compiled_newton import compiled_corrector
+from washer.cont.corrector_algebraic import compiled_corrector
 from washer.cont.events import first_zero, sign_changes, signed_distance
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient, quietly
@@ -162,7 +162,7 @@ class Continuation:
         self.counters = Counters()
         self.failure = "No convergence with minimum step size"
         self._located_J = None
-        # The corrector's compiled form where it applies (washer.cont.compiled_newton),
+        # The corrector's compiled form where it applies (washer.cont.corrector_algebraic),
         # else None: the Python loop below.
         self._compiled = compiled_corrector(system, settings, DIVERGENCE_FACTOR)
         # (x, J): the converged point of the last corrector and the Jacobian of its last

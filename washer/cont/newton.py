@@ -12,18 +12,18 @@ halving the step while |F| grows).
 The continuation's corrector of equilibria and of the fold and Hopf loci (IPS 0, 1 with
 difference Jacobians) also has a compiled form, this loop as Continuation.correct runs
 it, written once in C: washer/cont/include/ae_correct.h, chosen and driven by
-washer.cont.compiled_newton. A change to this loop, to Continuation.correct's stopping
+washer.cont.corrector_algebraic. A change to this loop, to Continuation.correct's stopping
 or divergence test, to the central differences (washer.cont.differences: the step, the
 points, the quotient) or Problem.second_derivatives' stencils, or to the loci's
 equations (systems/fold.py, hopf.py) must be made in ae_correct.h too (the two are
-held to the same iterates by tests/test_compiled_newton.py). The corrector of periodic
+held to the same iterates by tests/test_corrector_algebraic.py). The corrector of periodic
 orbits (IPS 2, PeriodicOrbits with difference Jacobians) has one too, this loop with
 PeriodicOrbits' residual, Jacobian and compiled factorisation in C++:
-csrc/cont/po_correct.cpp, driven by washer.cont.compiled_po and chosen in the same place
-(compiled_newton.compiled_corrector); a change to this loop, to Continuation.correct's
+csrc/cont/po_correct.cpp, driven by washer.cont.corrector_periodic and chosen in the same place
+(corrector_algebraic.compiled_corrector); a change to this loop, to Continuation.correct's
 plane-arclength step or test, to PeriodicOrbits.residual / jacobian or to
 VectorField.fu_fp's differences (washer.cont.differences) must be made there too (the
-two give the same b- and s-files byte for byte: tests/test_compiled_po.py).
+two give the same b- and s-files byte for byte: tests/test_corrector_periodic.py).
 """
 from __future__ import annotations
 

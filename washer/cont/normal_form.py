@@ -15,7 +15,7 @@ and h20 from the first).
 
 washer/cont/include/ae_lyapunov.h is the compiled form of first_lyapunov (the GH test
 where the compiled corrector runs the Hopf locus): a change here is made there too
-(tests/test_compiled_newton.py compares the two at every point of ab's and lrz's Hopf
+(tests/test_corrector_algebraic.py compares the two at every point of ab's and lrz's Hopf
 curves).
 """
 from __future__ import annotations

@@ -140,7 +140,7 @@ class BorderedCollocation:
 
     @classmethod
     def adopt(cls, handle, shape, P0, P1, dense=None) -> "BorderedCollocation":
-        """A factorisation made elsewhere (washer.cont.compiled_po: the compiled corrector's
+        """A factorisation made elsewhere (washer.cont.corrector_periodic: the compiled corrector's
         last one, non-singular): the cont_bvp `handle` (owned by the object from now on),
         shape (NTST, NCOL, NDIM, NPAR) and its Floquet pair."""
         self = object.__new__(cls)

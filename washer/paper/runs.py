@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.constants import read_constants, shipped_constants_dir
+from washer.auto.constants_file import read_constants, shipped_constants_dir
 from washer.auto.files import read_b, type_name
 from washer.run import run
 

@@ -1,5 +1,5 @@
-/* The corrector of algebraic continuation (washer.cont.compiled_newton), included by the
- * two C files that call it: the bridge of compiled user files (compiled_shim.c: FUNC
+/* The corrector of algebraic continuation (washer.cont.corrector_algebraic), included by the
+ * two C files that call it: the bridge of compiled user files (user_files_bridge.c: FUNC
  * called directly) and ae_callback.c (the user's Python func called back). The includer
  * defines, before including this file,
  *
@@ -21,7 +21,7 @@
  *
  * [f_u, f_PAR(ip + 1)] at (u, par) into J (ndim rows of stride `stride`): -1 where this
  * run's Jacobians are differences (JAC = 0), 0 evaluated, else the evaluation failed
- * (equilibria only: compiled_newton does not give the loci such equations).
+ * (equilibria only: corrector_algebraic does not give the loci such equations).
  *
  * This is a second copy of one meaning, the package's one Newton loop
  * (washer/cont/newton.py's newton as washer.cont.iterator.Continuation.correct runs it,
@@ -29,7 +29,7 @@
  * second_derivatives' and the extended systems of washer/cont/systems/fold.py and
  * hopf.py): a change to either must be made in both (tests/test_compiled_newton.py holds
  * them to the same iterates). The layout of `work` (ae_work_size) is read by
- * compiled_newton.py's PythonEquations too, which checks the pointers it is passed
+ * corrector_algebraic.py's PythonEquations too, which checks the pointers it is passed
  * against it.
  */
 #ifndef WASHER_AE_CORRECT_H
@@ -53,7 +53,7 @@ static void ae_sizes(int kind, int n, int *nx, int *k1, int *m2)
     *m2 = kind == AE_HOPF ? 3 : kind == AE_FOLD ? 1 : 0;
 }
 
-/* Doubles of `work` (compiled_newton.work_size computes the same): stage 0's us, ps, fs
+/* Doubles of `work` (corrector_algebraic.work_size computes the same): stage 0's us, ps, fs
    (r1 = 2 k1 + 1 rows), stage 1's (r2 = 4 k1 m2 rows), then the Newton matrix and the
    vectors of ae_system. */
 static size_t ae_work_size(int kind, int n, int npar)
@@ -391,7 +391,7 @@ static int ae_system(ae_sys *S, const double *x, double *G, double *J, int strid
    package's one Newton loop (washer.cont.newton.newton) as iterator.Continuation.correct
    runs it on equilibria and on the fold and Hopf loci with the sphere arclength (AUTO's
    SOLVAE/STEPAE), for FUNC with difference Jacobians, or generated equations with their
-   exact Jacobians (AE_EXACT_JACOBIAN, equilibria) (washer.cont.compiled_newton chooses
+   exact Jacobians (AE_EXACT_JACOBIAN, equilibria) (washer.cont.corrector_algebraic chooses
    it; every other case is the Python loop):
 
      unknowns x (nx = ae_sizes' count; the last one PAR(ip + 1), on the loci the one

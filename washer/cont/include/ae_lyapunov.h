@@ -1,7 +1,7 @@
 /* The first Lyapunov coefficient at a Hopf point in C: the compiled form of
  * washer.cont.normal_form.first_lyapunov (Kuznetsov, 3rd ed., eq 3.20; AUTO's FNGHEQ),
  * for the test GH of the Hopf locus (systems/hopf.py) where the compiled corrector runs
- * it (washer.cont.compiled_newton). Included after ae_correct.h (ae_eval: f at a batch of
+ * it (washer.cont.corrector_algebraic). Included after ae_correct.h (ae_eval: f at a batch of
  * points, stage 2, as Problem.func_many evaluates normal_form._directional's stencil).
  *
  * This is a second copy of one meaning, first_lyapunov: a change to either must be made
@@ -25,7 +25,7 @@
 /* The rows of the larger of the two batches (1 + 12 directions x 4 offsets). */
 #define AE_L1_ROWS 49
 
-/* Doubles of ae_first_lyapunov's work (compiled_newton.l1_work_size the same). */
+/* Doubles of ae_first_lyapunov's work (corrector_algebraic.l1_work_size the same). */
 static size_t ae_l1_work_size(int n, int npar)
 {
     return (size_t)AE_L1_ROWS * (2 * (size_t)n + npar) + 2 * ((size_t)n * n + 6 * (size_t)n)

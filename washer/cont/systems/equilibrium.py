@@ -159,7 +159,7 @@ class EquilibriumSystem(AlgebraicSystem):
 
     #: residual(x) is the problem's f(u, PAR) at x = (u, PAR(ICP(1))) and jacobian(x)
     #: Problem.jacobian's [f_u, f_PAR(ICP(1))], nothing more: the compiled corrector of
-    #: equilibria (washer.cont.compiled_newton) may stand in for the Python loop.
+    #: equilibria (washer.cont.corrector_algebraic) may stand in for the Python loop.
     #: A subclass that changes the equations sets it False (FixedPoints).
     residual_is_func = True
 

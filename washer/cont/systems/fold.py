@@ -31,7 +31,7 @@ class FoldSystem(LocusSystem):
     """The fold locus as a continued system (the module's equations and tests)."""
     curve_type = 2
     #: residual and jacobian are these equations of the problem's f and nothing more: the
-    #: compiled corrector (washer.cont.compiled_newton, AE_FOLD) may stand in for the
+    #: compiled corrector (washer.cont.corrector_algebraic, AE_FOLD) may stand in for the
     #: Python loop; a subclass with other equations sets it None. Its C repeats these
     #: equations (include/ae_correct.h): a change here is made there too.
     compiled_system = "fold"

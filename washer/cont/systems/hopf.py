@@ -33,12 +33,12 @@ class HopfSystem(LocusSystem):
     """The Hopf locus as a continued system (the module's equations and tests)."""
     curve_type = 3
     #: residual and jacobian are these equations of the problem's f and nothing more, with
-    #: v_old: the compiled corrector (washer.cont.compiled_newton, AE_HOPF) may stand in
+    #: v_old: the compiled corrector (washer.cont.corrector_algebraic, AE_HOPF) may stand in
     #: for the Python loop; a subclass with other equations sets it None. Its C repeats
     #: these equations (include/ae_correct.h): a change here is made there too.
     compiled_system = "hopf"
     #: first_lyapunov(problem, x, p, omega, A): normal_form's, or its compiled form where
-    #: the compiled corrector runs this locus (compiled_newton.compiled_corrector sets it).
+    #: the compiled corrector runs this locus (corrector_algebraic.compiled_corrector sets it).
     lyapunov = staticmethod(first_lyapunov)
 
     def __init__(self, start: StartData):

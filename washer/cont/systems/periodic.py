@@ -276,7 +276,7 @@ class PeriodicOrbits(CollocationBVP):
         return ug
 
     # csrc/cont/po_correct.cpp repeats residual and jacobian in C++ (the compiled
-    # corrector, washer.cont.compiled_po): a change to either is made there too.
+    # corrector, washer.cont.corrector_periodic): a change to either is made there too.
     def residual(self, x: np.ndarray) -> np.ndarray:
         U, par = self.unpack(x)
         ug = self._at_gauss(x, U)

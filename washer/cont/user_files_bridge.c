@@ -366,7 +366,7 @@ void washer_pvls(int ndim, const double *u, double *par)
 /* PVLS of an algebraic problem (IPS 0, 1 and their loci) as one call: GETP's context of
  * equilibria without eigenvalues, PAR(1..npar) copied to `first` (the caller's to call
  * again with eigenvalues where GETP asked for them), PVLS, and whether GETP asked for
- * eigenvalues (washer_eig_wanted: read and reset). The same calls washer.cont.compiled
+ * eigenvalues (washer_eig_wanted: read and reset). The same calls washer.cont.user_files_native
  * makes one by one. */
 int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int npar)
 {
@@ -445,7 +445,7 @@ static int ae_eval(void *ctx, int stage, int ndim, int npar, const int *icp, int
 #include "ae_correct.h"
 #include "ae_lyapunov.h"
 
-/* washer.cont.compiled_newton's corrector with this file's FUNC (ae_correct.h). */
+/* washer.cont.corrector_algebraic's corrector with this file's FUNC (ae_correct.h). */
 int washer_ae_correct(int kind, int ndim, int npar, int ip, int ip2, const int *icp,
                       const double *par, const double *v_old, const double *x_pred,
                       const double *x_ref, const double *theta, double ds, double epsl,

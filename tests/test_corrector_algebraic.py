@@ -1,4 +1,4 @@
-"""The compiled corrector of algebraic continuation (washer.cont.compiled_newton, C in
+"""The compiled corrector of algebraic continuation (washer.cont.corrector_algebraic, C in
 washer/cont/include/ae_correct.h) against the Python Newton loop it is the compiled form
 of (washer.cont.newton through Continuation.correct): the same branches, special points,
 iteration counts and failures, on AUTO's ab and lrz user files (Fortran: FUNC called from
@@ -22,7 +22,7 @@ import pytest
 from auto_reference import AB2P_LOCUS as AB2, LRZ2P_LOCUS as LRZ2
 from corrector_runs import (assert_counts_agree, assert_rows_agree, fast_and_slow,
                             location_tolerance)
-from washer.cont import compiled_newton
+from washer.cont import corrector_algebraic
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -53,7 +53,7 @@ def _folder(tmp_path, name, sub, kind):
 def _both(tmp_path, monkeypatch, name, kind="f90", **ov):
     """The run with the compiled corrector (and how its corrections ended), then the same
     run with the Python loop only (corrector_runs.fast_and_slow)."""
-    return fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector, "correct",
+    return fast_and_slow(monkeypatch, corrector_algebraic.CompiledCorrector, "correct",
                          lambda sub: run(_folder(tmp_path, name, sub, kind) / f"c.{name}",
                                          verbose=False, **ov))
 
@@ -120,7 +120,7 @@ def test_failing_func_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache
     back from C): the Python loop takes the step over and reports the failure as it
     does without the compiled corrector; the runs end the same."""
     fast, slow, _ = fast_and_slow(
-        monkeypatch, compiled_newton.CompiledCorrector, "correct",
+        monkeypatch, corrector_algebraic.CompiledCorrector, "correct",
         lambda sub: run(_failing_ab(tmp_path / sub, "par[0] > 0.1") / "c.ab", verbose=False))
     assert "outside the model" in fast.status
     assert fast.status == slow.status.replace("/slow/", "/fast/")    # the file is named
@@ -148,7 +148,7 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, mon
     with the user's Jacobians (JAC = 1) a compiled user file keeps the Python loop and
     Python equations take the compiled one (their dfdu called back); sympy equations
     take it with differences or their generated exact Jacobians."""
-    from washer.cont.compiled import load_compiled_problem
+    from washer.cont.user_files_native import load_compiled_problem
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
     from washer.cont.system import StartData
@@ -169,20 +169,20 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, mon
                                   + "\n\ndef dfdu(u, par):\n    return np.eye(2)\n")
     with_dfdu = load_python_problem("ab", jac_py, 2)
     s = Settings(NDIM=2, ICP=[1], IPS=1)
-    assert compiled_newton.compiled_corrector(system(compiled, 0), s, 20.0) is not None
-    assert compiled_newton.compiled_corrector(system(compiled, 1), s, 20.0) is None
-    assert compiled_newton.compiled_corrector(system(python, 0), s, 20.0) is not None
-    assert compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
-    exact = compiled_newton.compiled_corrector(system(with_dfdu, 1), s, 20.0)
+    assert corrector_algebraic.compiled_corrector(system(compiled, 0), s, 20.0) is not None
+    assert corrector_algebraic.compiled_corrector(system(compiled, 1), s, 20.0) is None
+    assert corrector_algebraic.compiled_corrector(system(python, 0), s, 20.0) is not None
+    assert corrector_algebraic.compiled_corrector(system(with_dfdu, 0), s, 20.0) is not None
+    exact = corrector_algebraic.compiled_corrector(system(with_dfdu, 1), s, 20.0)
     assert exact is not None and exact.user.exact
-    assert not compiled_newton.compiled_corrector(system(with_dfdu, 0), s, 20.0).user.exact
-    # traced into C (washer.cont.traced): FUNC directly with differences, the call back
+    assert not corrector_algebraic.compiled_corrector(system(with_dfdu, 0), s, 20.0).user.exact
+    # traced into C (washer.cont.user_files_traced): FUNC directly with differences, the call back
     # (of the traced dfdu) with the user's Jacobians
     monkeypatch.setenv("WASHER_TRACE", "1")
     traced = load_python_problem("ab", jac_py, 2)
-    assert type(compiled_newton.compiled_corrector(system(traced, 0), s, 20.0).user) \
-        is not compiled_newton.PythonEquations
-    assert compiled_newton.compiled_corrector(system(traced, 1), s, 20.0).user.exact
+    assert type(corrector_algebraic.compiled_corrector(system(traced, 0), s, 20.0).user) \
+        is not corrector_algebraic.PythonEquations
+    assert corrector_algebraic.compiled_corrector(system(traced, 1), s, 20.0).user.exact
     monkeypatch.setenv("WASHER_TRACE", "0")
     # sympy equations: their generated f and exact Jacobians are C (JAC = 1; JAC = -1,
     # exact f_u with differenced f_p, keeps the Python loop)
@@ -196,7 +196,7 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, mon
         "def stpnt(u, par):\n    u[:] = 0.0\n    par[:3] = [0.0, 14.0, 2.0]\n")
     sym = load_python_problem("ab", sym_dir, 2)
     for jac, chosen in ((0, True), (1, True), (-1, False)):
-        c = compiled_newton.compiled_corrector(system(sym, jac), s, 20.0)
+        c = corrector_algebraic.compiled_corrector(system(sym, jac), s, 20.0)
         assert (c is not None) == chosen, jac
 
 
@@ -215,7 +215,7 @@ def test_python_jacobians_take_the_python_loops_steps(tmp_path, monkeypatch, cac
         shutil.copy(DEMOS / "plp" / "c.plp.ss", d)
         shutil.copy(DATA / "plp" / "plp.py", d)
         return run(d / "c.plp.ss", e="plp", sv="ss", verbose=False)
-    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+    fast, slow, used = fast_and_slow(monkeypatch, corrector_algebraic.CompiledCorrector,
                                      "correct", one)
     assert len(used) > 50 and all(used), used
     assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
@@ -238,7 +238,7 @@ def test_a_failing_python_jacobian_hands_over_to_the_python_loop(tmp_path, monke
             "\n_dfdu = dfdu\n\n\ndef dfdu(u, par):\n    if par[3] > 3.0:\n"
             "        raise ValueError('outside the model')\n    return _dfdu(u, par)\n"))
         return run(d / "c.plp.ss", e="plp", sv="ss", verbose=False)
-    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+    fast, slow, used = fast_and_slow(monkeypatch, corrector_algebraic.CompiledCorrector,
                                      "correct", one)
     assert "outside the model" in fast.status and not all(used)
     assert fast.status == slow.status.replace("/slow/", "/fast/")
@@ -258,32 +258,32 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     (CompileError: no compiler, a failed compile) the Python loop runs; any other error
     of the set-up is raised, not taken for a missing compiler. A failed build is
     remembered: the next run's start does not compile again."""
-    from washer.cont import compile as compile_module
-    from washer.cont.compile import CompileError
+    from washer.cont import c_library as compile_module
+    from washer.cont.c_library import CompileError
     from washer.cont.settings import Settings
     from washer.cont.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
-    monkeypatch.setattr(compiled_newton, "_libraries", {})
-    monkeypatch.setattr(compiled_newton, "_failures", {})
+    monkeypatch.setattr(corrector_algebraic, "_libraries", {})
+    monkeypatch.setattr(corrector_algebraic, "_failures", {})
     builds = []
 
     def no_compiler(*a, **k):
         builds.append(1)
         raise CompileError("no c compiler: 'cc' is not on PATH")
     monkeypatch.setattr(compile_module, "build_library", no_compiler)
-    assert compiled_newton.compiled_corrector(system, s, 20.0) is None
-    assert compiled_newton.compiled_corrector(system, s, 20.0) is None
+    assert corrector_algebraic.compiled_corrector(system, s, 20.0) is None
+    assert corrector_algebraic.compiled_corrector(system, s, 20.0) is None
     assert len(builds) == 1
 
-    monkeypatch.setattr(compiled_newton, "_failures", {})
+    monkeypatch.setattr(corrector_algebraic, "_failures", {})
 
     def broken(*a, **k):
         raise TypeError("a bug, not a missing compiler")
     monkeypatch.setattr(compile_module, "build_library", broken)
     with pytest.raises(TypeError, match="a bug"):
-        compiled_newton.compiled_corrector(system, s, 20.0)
+        corrector_algebraic.compiled_corrector(system, s, 20.0)
 
 
 def test_a_work_layout_out_of_step_with_c_fails_loudly(cache, monkeypatch):
@@ -296,7 +296,7 @@ def test_a_work_layout_out_of_step_with_c_fails_loudly(cache, monkeypatch):
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
-    corrector = compiled_newton.compiled_corrector(system, s, 20.0)
+    corrector = corrector_algebraic.compiled_corrector(system, s, 20.0)
     x0, _ = system.start()
     t = np.array([1.0, 14 / 3, 1.0])      # the branch's tangent at 0: u = PAR(1) (1, 14/3)
     x_pred = x0 + 0.01 * t / np.linalg.norm(t)
@@ -304,7 +304,7 @@ def test_a_work_layout_out_of_step_with_c_fails_loudly(cache, monkeypatch):
     eq = corrector.user
     us, ps, fs = eq._where[0]
     eq._where = [(ps, us, fs)]           # C's ps where the views read us
-    with pytest.raises(compiled_newton.WorkLayoutError):
+    with pytest.raises(corrector_algebraic.WorkLayoutError):
         corrector.correct(x_pred, x0, 0.01, Counters())
 
 
@@ -326,7 +326,7 @@ def test_an_error_of_the_call_back_itself_is_raised(cache, monkeypatch):
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
-    corrector = compiled_newton.compiled_corrector(system, s, 20.0)
+    corrector = corrector_algebraic.compiled_corrector(system, s, 20.0)
     x0, _ = system.start()
     t = np.array([1.0, 14 / 3, 1.0])
     corrector.user._views = None          # a bug of the bridge: no views to read
@@ -358,7 +358,7 @@ def test_compiled_corrector_follows_the_python_loop_on_loci(name, label, ov, kin
             shutil.copy(eq / f, d)
         return run(d / f"c.{name}", verbose=False, sv="locus", s="eq", IRS=label, **ov)
     # the locus's corrections only (kind 0 is the equilibria's run before it)
-    fast, slow, used = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector,
+    fast, slow, used = fast_and_slow(monkeypatch, corrector_algebraic.CompiledCorrector,
                                      "correct", locus, counts=lambda c: c.kind)
     assert len(used) > 80 and all(used)
     assert [(s.ty, s.lab) for s in fast.specials] == [(s.ty, s.lab) for s in slow.specials]
@@ -374,14 +374,14 @@ def test_compiled_corrector_follows_the_python_loop_on_loci(name, label, ov, kin
 
 
 def test_work_size_is_the_c_one(cache):
-    """compiled_newton.work_size allocates what ae_correct.h's ae_work_size uses, for
+    """corrector_algebraic.work_size allocates what ae_correct.h's ae_work_size uses, for
     every system (a smaller array would be written past its end)."""
-    _, lib = compiled_newton._library("ae_callback.c", compiled_newton._CALLBACK_CDEF)
+    _, lib = corrector_algebraic._library("ae_callback.c", corrector_algebraic._CALLBACK_CDEF)
     for kind in (0, 1, 2):
         for n in (1, 2, 3, 12):
             for npar in (3, 36):
                 assert lib.washer_ae_work_size(kind, n, npar) == \
-                    compiled_newton.work_size(kind, n, npar)
+                    corrector_algebraic.work_size(kind, n, npar)
 
 
 def test_map_loci_keep_the_python_loop():
@@ -406,13 +406,13 @@ def test_compiled_first_lyapunov_is_normal_forms(name, kind, tmp_path, monkeypat
     well below ab's |l1| away from its GH."""
     from washer.cont.normal_form import first_lyapunov
     pairs = []
-    real = compiled_newton.CompiledCorrector.first_lyapunov
+    real = corrector_algebraic.CompiledCorrector.first_lyapunov
 
     def spy(self, problem, x, p, omega, A=None):
         value = real(self, problem, x, p, omega, A)
         pairs.append((value, first_lyapunov(problem, x, p, omega, A)))
         return value
-    monkeypatch.setattr(compiled_newton.CompiledCorrector, "first_lyapunov", spy)
+    monkeypatch.setattr(corrector_algebraic.CompiledCorrector, "first_lyapunov", spy)
     d = _folder(tmp_path, name, "l1", kind)
     run(d / f"c.{name}", verbose=False, sv="eq")
     out = run(d / f"c.{name}", verbose=False, sv="hb", s="eq", IRS="HB1",
@@ -428,11 +428,11 @@ def test_compiled_first_lyapunov_is_normal_forms(name, kind, tmp_path, monkeypat
 
 
 def test_l1_work_size_is_the_c_one(cache):
-    """compiled_newton.l1_work_size allocates what ae_lyapunov.h's ae_l1_work_size uses."""
-    _, lib = compiled_newton._library("ae_callback.c", compiled_newton._CALLBACK_CDEF)
+    """corrector_algebraic.l1_work_size allocates what ae_lyapunov.h's ae_l1_work_size uses."""
+    _, lib = corrector_algebraic._library("ae_callback.c", corrector_algebraic._CALLBACK_CDEF)
     for n in (1, 2, 3, 12):
         for npar in (3, 36):
-            assert lib.washer_ae_l1_work_size(n, npar) == compiled_newton.l1_work_size(n, npar)
+            assert lib.washer_ae_l1_work_size(n, npar) == corrector_algebraic.l1_work_size(n, npar)
 
 
 def test_failing_func_on_a_locus_hands_over_to_the_python_loop(tmp_path, monkeypatch, cache):
@@ -443,7 +443,7 @@ def test_failing_func_on_a_locus_hands_over_to_the_python_loop(tmp_path, monkeyp
         d = _failing_ab(tmp_path / sub, "(par[0] > 0.2).any()")
         run(d / "c.ab", verbose=False, sv="eq")
         return run(d / "c.ab", verbose=False, sv="hb", s="eq", IRS="HB1", **AB2)
-    fast, slow, _ = fast_and_slow(monkeypatch, compiled_newton.CompiledCorrector, "correct",
+    fast, slow, _ = fast_and_slow(monkeypatch, corrector_algebraic.CompiledCorrector, "correct",
                                   hopf_curve)
     assert "outside the model" in fast.status
     assert fast.status == slow.status.replace("/slow/", "/fast/")

@@ -5,7 +5,7 @@ resets the keys it does not set, keywords change one, DS='-' reverses the direct
 """
 from __future__ import annotations
 
-from washer.auto.constants import DEFAULTS, Constants
+from washer.auto.constants_file import DEFAULTS, Constants
 
 #: Constants a constants file resets to "default" when it does not set them (parseC's
 #: list); the special keys e, unames, parnames survive a new constants file.

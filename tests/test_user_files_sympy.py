@@ -1,4 +1,4 @@
-"""User problems as sympy expressions (washer.cont.symbolic): the generated and compiled
+"""User problems as sympy expressions (washer.cont.user_files_sympy): the generated and compiled
 f, f_u, f_p against the hand-written Lorenz equations and their Jacobian written out
 by hand, and runs against the closed-form Hopf point and the Python file's run."""
 import shutil
@@ -158,11 +158,11 @@ def test_a_copy_in_another_folder_does_not_generate_again(folder, tmp_path_facto
     """sympy's differentiation and printing (most of a short run's set-up) run once for
     the same equations in a process: a chain of runs, each in its own folder, reuses
     the C."""
-    from washer.cont import symbolic
+    from washer.cont import user_files_sympy
     calls = []
-    real = symbolic.generate_c
-    monkeypatch.setattr(symbolic, "generate_c", lambda *a, **k: calls.append(1) or real(*a, **k))
-    monkeypatch.setattr(symbolic, "_GENERATED", {})
+    real = user_files_sympy.generate_c
+    monkeypatch.setattr(user_files_sympy, "generate_c", lambda *a, **k: calls.append(1) or real(*a, **k))
+    monkeypatch.setattr(user_files_sympy, "_GENERATED", {})
     other = tmp_path_factory.mktemp("copy")
     shutil.copy(folder / "lrz.py", other)
     load_python_problem("lrz", folder, 3)

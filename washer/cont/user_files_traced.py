@@ -3,22 +3,22 @@ Python functions compute, bit for bit.
 
     problem = traced_problem(python_problem, path)   # a TracedProblem, or python_problem
 
-washer.cont.trace records func (and dfdu, dfdp when the file has them) on stand-ins and
+washer.cont.tracer records func (and dfdu, dfdp when the file has them) on stand-ins and
 writes AUTO's C user file of the same operations; it is compiled with washer's bridge
-(compiled_shim.c: the path of NAME.c user files, cached by content, with
--ffp-contract=off) and loaded as a compiled user file (washer.cont.compiled), so the
+(user_files_bridge.c: the path of NAME.c user files, cached by content, with
+-ffp-contract=off) and loaded as a compiled user file (washer.cont.user_files_native), so the
 compiled correctors of equilibria, the fold and Hopf loci and periodic orbits call FUNC
 directly. STPNT, PVLS, BCND, ICND and FOPT stay the Python file's.
 
 A func with a power that numpy computes otherwise on numpy scalars than on arrays
-(washer.cont.trace: `x ** 2` is libm's pow on a np.float64, x * x on an array) is
+(washer.cont.tracer: `x ** 2` is libm's pow on a np.float64, x * x on an array) is
 called in the mode the Python problem would have called it with: its `func_many` makes
 Problem.func_many's choices (one point at a time; one call on arrays for a batch of
 VECTORISE_MIN points and more, checked once against separate calls; one call on arrays
 for a small stencil while washer.cont.pointwise's bitwise comparison with separate calls
 holds), with the two modes of the compiled FUNC standing for the two kinds of calls, on
-the same state objects. The compiled correctors then call back (compiled_newton's
-PythonEquations, compiled_po's call back) instead of calling FUNC directly.
+the same state objects. The compiled correctors then call back (corrector_algebraic's
+PythonEquations, corrector_periodic's call back) instead of calling FUNC directly.
 
 Trusted only where verified, byte for byte (the rule of washer.cont.pointwise: IEEE
 arithmetic is the same whichever code runs it, so equal values are expected everywhere
@@ -28,7 +28,7 @@ and a single difference means the trace is not the function):
   against the Python functions called one point at a time;
 * in every run, the first RUN_POINTS points whose f the run asks for through the
   problem (the start, the first Jacobians' stencils) and the first Jacobians.
-A difference, or a Python function that traces to nothing honest (washer.cont.trace:
+A difference, or a Python function that traces to nothing honest (washer.cont.tracer:
 a branch on a value, an unknown function), and the problem is the Python one for good:
 the call that showed the difference returns the Python values, the compiled correctors
 hand the rest of the run to the Python loop (`func_ready` False) and later runs take the
@@ -46,13 +46,13 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.compile import CompileError, build_library, declarations, source_text
-from washer.cont.compiled import SHIM, INCLUDE, CompiledProblem, CompiledUser
+from washer.cont.c_library import CompileError, build_library, declarations, source_text
+from washer.cont.user_files_native import SHIM, INCLUDE, CompiledProblem, CompiledUser
 from washer.cont.linalg import all_finite
 from washer.cont.pointwise import same_bits
 from washer.cont.problem import (Problem, ProblemError, STENCIL_MIN, VECTORISE_CHECK,
                                  VECTORISE_MIN, broadcast_rows)
-from washer.cont.trace import TraceError, emit_user_file, numpy_loop, trace_function
+from washer.cont.tracer import TraceError, emit_user_file, numpy_loop, trace_function
 
 #: The length of PAR the functions are traced with (AUTO's NPARX): a func reading
 #: PAR beyond it is not traced.
@@ -67,7 +67,7 @@ FLAGS = ("-ffp-contract=off",)
 #: What the bridge's cffi declarations lack: washer_traced_bind of the generated C.
 _BIND_CDEF = """int washer_traced_bind(int k, void *const *loops, void *const *data);
 void washer_traced_mode(int mode);"""
-#: washer_traced_mode's modes (washer.cont.trace): func on numpy scalars (one point), on
+#: washer_traced_mode's modes (washer.cont.tracer): func on numpy scalars (one point), on
 #: arrays, on arrays whose par rows are one broadcast vector (row stride 0)
 SCALARS, ARRAYS, ARRAYS_PAR_BROADCAST = 0, 1, 2
 
@@ -127,7 +127,7 @@ class TracedProblem(CompiledProblem):
     STPNT, PVLS, BCND, ICND and FOPT the Python file's. `python` is the Python problem
     it stands for."""
 
-    #: a Python file's functions traced (washer.cont.compiled_newton asks)
+    #: a Python file's functions traced (washer.cont.corrector_algebraic asks)
     traced = True
     pvls = Problem.pvls
     bcnd = Problem.bcnd

@@ -2,8 +2,8 @@
 
     problem = load_compiled_problem("ab.f90", ndim=2)     # or ab.f, ab.c
 
-compiles the user file with washer's bridge (compiled_shim.c) into a shared
-library (washer.cont.compile: once, cached by content hash, recompiled when the
+compiles the user file with washer's bridge (user_files_bridge.c) into a shared
+library (washer.cont.c_library: once, cached by content hash, recompiled when the
 file changes), loads it through cffi and returns a washer.cont.problem.Problem
 calling AUTO's user ABI:
 
@@ -26,13 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.compile import (CompileError, build_library, declarations, source_file,
+from washer.cont.c_library import (CompileError, build_library, declarations, source_file,
                                  source_text)
 from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
 HERE = Path(__file__).parent
-SHIM = HERE / "compiled_shim.c"
+SHIM = HERE / "user_files_bridge.c"
 INCLUDE = HERE / "include"
 #: User-file suffixes, in AUTO's order of lookup (runAUTO: .f90, .f, .c).
 SUFFIXES = (".f90", ".f", ".c")
@@ -168,7 +168,7 @@ class CompiledUser:
 
     def __init__(self, path: Path, ndim: int, lib_path: Path | None = None):
         """path: the user file; lib_path: its library when built otherwise (generated
-        C: washer.cont.traced), else compiled here with the bridge."""
+        C: washer.cont.user_files_traced), else compiled here with the bridge."""
         self.path, self.ndim = Path(path), ndim
         self._lib_path = compile_user_file(path) if lib_path is None else Path(lib_path)
         self.lib = _open(self._lib_path)
@@ -271,7 +271,7 @@ class CompiledUser:
         return self._pvls_seen
 
     def ae_binder(self, kind, ndim, npar, ip, ip2, arrays):
-        """washer_ae_correct (compiled_shim.c; washer.cont.compiled_newton) of system `kind`
+        """washer_ae_correct (user_files_bridge.c; washer.cont.corrector_algebraic) of system `kind`
         bound to the corrector's arrays (float64, C-contiguous; `iterations` int32): a
         function of (ds, epsl, epsu, itnw, divergence, hmach, h2) returning the status."""
         p = {k: (_ffi.from_buffer(_INTS, a) if k == "iterations" else _dptr(a))
@@ -302,7 +302,7 @@ class CompiledUser:
         return pointer("washer_po_func", func_kind), pointer("washer_po_jac", jac_kind)
 
     def l1_binder(self, ndim, npar, arrays):
-        """washer_ae_l1 (compiled_shim.c, ae_lyapunov.h) bound to the arrays x, par, A, l1,
+        """washer_ae_l1 (user_files_bridge.c, ae_lyapunov.h) bound to the arrays x, par, A, l1,
         work: a function of omega returning the status."""
         p = {k: _dptr(a) for k, a in arrays.items()}
 

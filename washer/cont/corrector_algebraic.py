@@ -21,15 +21,15 @@ differ from LAPACK's in the last bit, far inside EPSU), the small products of th
 plain sums (BLAS may round them otherwise).
 
 f is evaluated by
-* compiled AUTO user files (washer.cont.compiled): the C is part of the file's bridge
-  (compiled_shim.c) and calls FUNC directly;
+* compiled AUTO user files (washer.cont.user_files_native): the C is part of the file's bridge
+  (user_files_bridge.c) and calls FUNC directly;
 * equations in Python (NAME.py with func): washer/cont/ae_callback.c, compiled on first
   use, calls back into Python once per Newton iteration (twice on the loci: f_u first,
   then the second differences along vectors made of it), where the user's func is called
   point by point (or in one batch) exactly as the Python loop calls it: the same values;
   on equilibria with the user's Jacobians (JAC = 1: dfdu and dfdp; JAC = -1: dfdu and
   the differenced f_PAR), twice: Problem.jacobian, then func at the iterate;
-* equations as sympy expressions (washer.cont.symbolic): washer/cont/ae_generated.c,
+* equations as sympy expressions (washer.cont.user_files_sympy): washer/cont/ae_generated.c,
   compiled on first use, calls the generated C's f (a stencil's points in one call, as
   the Python loop's func_many) and, with JAC = 1, its exact f_u and f_p (as the Python
   loop's Problem.jacobian) through C function pointers.
@@ -52,7 +52,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.compile import CompileError
+from washer.cont.c_library import CompileError
 from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
 from washer.cont.linalg import all_finite
@@ -149,8 +149,8 @@ def _library(source: str, cdef: str):
     if source in _failures:
         raise _failures[source]
     if source not in _libraries:
-        from washer.cont.compile import build_library, declarations, source_file
-        from washer.cont.compiled import INCLUDE
+        from washer.cont.c_library import build_library, declarations, source_file
+        from washer.cont.user_files_native import INCLUDE
         ffi = declarations(cdef, Path(source).stem)
         try:
             path = build_library([source_file(HERE / source)], Path(source).stem,
@@ -163,7 +163,7 @@ def _library(source: str, cdef: str):
 
 
 class GeneratedEquations:
-    """The generated C of a sympy problem (washer.cont.symbolic) behind ae_generated.c:
+    """The generated C of a sympy problem (washer.cont.user_files_sympy) behind ae_generated.c:
     its washer_sym_func and (JAC = 1) washer_sym_jac passed as C function pointers, so
     the corrector calls them directly, as the Python loop calls them through
     Problem.func, func_many (the stencil in one call) and Problem.jacobian's dfdu and
@@ -246,7 +246,7 @@ class PythonEquations:
         if stage not in (0, 1, 2, 3) or stage == 1 and self.kind == 0 \
                 or stage == 2 and self.kind != 2 or stage == 3 and not self.exact:
             raise WorkLayoutError(f"ae_correct.h asked for stage {stage} of f, which "
-                                  "compiled_newton.PythonEquations does not know")
+                                  "corrector_algebraic.PythonEquations does not know")
         slot = 0 if stage == 3 else stage   # stage 3 writes into stage 0's views
         U, P, F = self._views[slot]
         where, n = self._where[slot], self.n
@@ -256,7 +256,7 @@ class PythonEquations:
                      or one and rows == 1 and first == 0):
             raise WorkLayoutError(
                 "ae_correct.h passed points outside the views of its work array that "
-                "compiled_newton.PythonEquations reads (the layouts differ)")
+                "corrector_algebraic.PythonEquations reads (the layouts differ)")
         problem = self.problem
         if one:
             # the user's Jacobian and f at the iterate, each by its own call as the
@@ -443,16 +443,16 @@ class CompiledCorrector:
 
 def compiled_corrector(system, settings, divergence: float):
     """The compiled corrector of `system`, or None where the Python loop runs: this one
-    for equilibria and the fold and Hopf loci (the sphere arclength), compiled_po's for periodic
+    for equilibria and the fold and Hopf loci (the sphere arclength), corrector_periodic's for periodic
     orbits (its `plane` attribute True: Continuation.correct hands it the plane
     arclength's corrections)."""
-    from washer.cont.compiled import CompiledProblem
+    from washer.cont.user_files_native import CompiledProblem
     from washer.cont.problem import Problem
-    from washer.cont.symbolic import SymbolicProblem
+    from washer.cont.user_files_sympy import SymbolicProblem
     problem = getattr(system, "problem", None)
     if getattr(system, "arclength", None) == "plane":
-        # here: compiled_po brings the collocation code, which equilibria never use
-        from washer.cont.compiled_po import periodic_corrector
+        # here: corrector_periodic brings the collocation code, which equilibria never use
+        from washer.cont.corrector_periodic import periodic_corrector
         return periodic_corrector(system, settings, divergence)
     name = "equilibrium" if getattr(system, "residual_is_func", False) else \
         getattr(system, "compiled_system", None)
@@ -464,7 +464,7 @@ def compiled_corrector(system, settings, divergence: float):
     traced = getattr(problem, "traced", False)
     if traced and (kind == 0 and not problem.differenced_jacobian
                    or problem.two_ways and problem.differenced_jacobian):
-        # a Python file traced into C (washer.cont.traced) with its own Jacobians on
+        # a Python file traced into C (washer.cont.user_files_traced) with its own Jacobians on
         # equilibria, or with a power numpy computes otherwise on a stencil's arrays
         # (with difference Jacobians: the Python file's loci with its own are the Python
         # loop): called back as the Python file's problem is (Problem.jacobian's traced

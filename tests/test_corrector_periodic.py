@@ -1,4 +1,4 @@
-"""The compiled corrector of periodic orbits (washer.cont.compiled_po, C++ in
+"""The compiled corrector of periodic orbits (washer.cont.corrector_periodic, C++ in
 csrc/cont/po_correct.cpp) against the Python Newton loop it is the compiled form of
 (washer.cont.newton through Continuation.correct with PeriodicOrbits' residual, difference
 Jacobian and compiled factorisation): the same b- and s-files byte for byte, the same
@@ -8,7 +8,7 @@ files, f called back from C++) and lrz's Fortran user file (FUNC through the bat
 Exact equality is what the compiled loop promises: the same function values, the same
 difference quotients and Jacobian values, the same factorisation and solve (the same C++
 code), the residual's sums in numpy's order and the inner products by numpy's BLAS ddot
-(compiled_po.numpy_ddot; where it cannot be had, test_inner_products_round_as_numpy says
+(corrector_periodic.numpy_ddot; where it cannot be had, test_inner_products_round_as_numpy says
 so by failing).
 """
 import shutil
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from corrector_runs import fast_and_slow
-from washer.cont import compiled_newton, compiled_po, iterator, reduction
+from washer.cont import corrector_algebraic, corrector_periodic, iterator, reduction
 from washer.cont.branch import Counters
 from washer.cont.newton import ConvergenceError
 from washer.run import run
@@ -59,7 +59,7 @@ def _both(tmp_path, monkeypatch, name, user, ov):
     """((run, folder) with the compiled corrector, (run, folder) with the Python loop only,
     how the compiled corrections ended) (corrector_runs.fast_and_slow). Both start from
     one and the same equilibria's run: its located HB1 depends on the rounding of the
-    algebraic corrector's elimination (tests/test_compiled_newton.py), which is not what
+    algebraic corrector's elimination (tests/test_corrector_algebraic.py), which is not what
     is compared here."""
     eq = _folder(tmp_path, name, "eq", user)
     stem = name.split("_")[0]
@@ -68,7 +68,7 @@ def _both(tmp_path, monkeypatch, name, user, ov):
     def po_run(sub):
         d = _folder(tmp_path, name, sub, user)
         return _po_run(d, name, ov, eq=eq), d
-    return fast_and_slow(monkeypatch, compiled_po.PeriodicCorrector, "correct_plane", po_run)
+    return fast_and_slow(monkeypatch, corrector_periodic.PeriodicCorrector, "correct_plane", po_run)
 
 
 @pytest.mark.parametrize("name, user, ov", [
@@ -130,12 +130,12 @@ def test_compiled_po_with_a_fortran_user_file(name, ov, min_used, tmp_path, monk
     same user file, which calls them through CompiledUser.func_batch and jac_batch."""
     monkeypatch.setenv("WASHER_CACHE", str(tmp_path / "cache"))
     called_back = []
-    real = compiled_po.PeriodicCorrector._evaluate
+    real = corrector_periodic.PeriodicCorrector._evaluate
 
     def spy(self, *a):
         called_back.append(a[0])
         return real(self, *a)
-    monkeypatch.setattr(compiled_po.PeriodicCorrector, "_evaluate", spy)
+    monkeypatch.setattr(corrector_periodic.PeriodicCorrector, "_evaluate", spy)
     (fast, fd), (slow, sd), used = _both(tmp_path, monkeypatch, name,
                                          DEMOS / name / f"{name}.f90", ov)
     assert len(used) >= min_used and all(used), used
@@ -149,7 +149,7 @@ def test_compiled_po_with_a_fortran_user_file(name, ov, min_used, tmp_path, monk
 def test_inner_products_round_as_numpy():
     """The ddot handed to the C++ loop is numpy's (bit-identical phase condition and
     arclength row); without it the loop still runs, equal to rounding."""
-    assert compiled_po.numpy_ddot() != compiled_po.ffi.NULL
+    assert corrector_periodic.numpy_ddot() != corrector_periodic.ffi.NULL
 
 
 def _system(tmp_path, monkeypatch):
@@ -162,7 +162,7 @@ def _system(tmp_path, monkeypatch):
     real = iterator.Continuation.correct
 
     def grab(self, x_pred, x_ref, t_ref, ds, plane=None):
-        if isinstance(self._compiled, compiled_po.PeriodicCorrector) and "c" not in grabbed:
+        if isinstance(self._compiled, corrector_periodic.PeriodicCorrector) and "c" not in grabbed:
             grabbed["c"] = (self, np.array(x_pred), np.array(x_ref), np.array(t_ref), ds)
         return real(self, x_pred, x_ref, t_ref, ds, plane)
     with monkeypatch.context() as m:
@@ -220,14 +220,14 @@ def test_where_it_applies(tmp_path, monkeypatch):
     on other collocation systems, nor with the Python factorisation."""
     cont, *_ = _system(tmp_path, monkeypatch)
     sysm, s = cont.sys, cont.s
-    assert compiled_newton.compiled_corrector(sysm, s, 20.0) is not None
+    assert corrector_algebraic.compiled_corrector(sysm, s, 20.0) is not None
     from washer.cont.systems import bvp
     with monkeypatch.context() as m:
         m.setattr(bvp, "COMPILED_FACTOR", False)
-        assert compiled_newton.compiled_corrector(sysm, s, 20.0) is None
+        assert corrector_algebraic.compiled_corrector(sysm, s, 20.0) is None
     with monkeypatch.context() as m:
         m.setattr(type(sysm.problem), "differenced_jacobian", property(lambda self: False))
-        assert compiled_newton.compiled_corrector(sysm, s, 20.0) is None
+        assert corrector_algebraic.compiled_corrector(sysm, s, 20.0) is None
 
 
 def test_jacobian_at_a_point_is_the_systems(tmp_path, monkeypatch):
