@@ -228,6 +228,8 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
         assert err.max() < 1e-6, (ds, err.max(axis=0))
 
 
+# 3.4 s against AUTO's b-file; the fast loop keeps the fold locus with two parameters
+@pytest.mark.slow
 def test_bvp_from_a_point_of_its_fold_locus(tmp_path):
     """ISW = 1 at a point of the fold locus (its UZ at p3 = 1) continues the BVP itself
     there, as AUTOBVP does for |ISW| < 2: the record's first NDIM components, PAR(ICP(1..2))

@@ -303,8 +303,9 @@ def test_autos_parsers_read_what_the_clui_saves(tmp_path):
     assert eval(b_labels) == expect and eval(s_labels) == expect
 
 
+# she (3.3 s) runs with -m slow
 @pytest.mark.parametrize("demo, names", [("lor", ["b.lor"]), ("ffn", ["b.1", "b.2", "b.3"]),
-                                         ("she", ["b.1", "b.2"])])
+                                         pytest.param("she", ["b.1", "b.2"], marks=pytest.mark.slow)])
 def test_cluis_headers_are_autos(tmp_path, monkeypatch, demo, names):
     """Every header block of the demo's b-files is AUTO's byte for byte (autoref). lor: a
     start from lor.dat, then restarts from its labels (sv='lor'): the data start as

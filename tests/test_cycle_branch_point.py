@@ -63,7 +63,9 @@ def test_bp_of_cycles(family, folder):
     assert bp.par[10] == pytest.approx(math.pi, abs=2 * math.pi * tol)
 
 
-@pytest.mark.parametrize("isw, icp", [(2, [1, 2, 11]), (3, [1, 2, 3, 11])])
+# ISW = 3 (2.9 s) runs with -m slow
+@pytest.mark.parametrize("isw, icp", [(2, [1, 2, 11]),
+                                      pytest.param(3, [1, 2, 3, 11], marks=pytest.mark.slow)])
 def test_bp_locus(family, folder, isw, icp):
     """From BP1: the generating run (5 points, ending with EP, written with the curve's
     codes 6x) puts the orbit on the exact BP; the locus from its EP, both ways, follows

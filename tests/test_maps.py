@@ -61,6 +61,8 @@ def logistic_pd(k: int) -> float:
     return float(mu)
 
 
+# 2.8 s: AUTO's log demo; the fast loop keeps the map closed forms
+@pytest.mark.slow
 def test_logistic_map_demo(tmp_path):
     """log.auto: the fixed points (BP at mu = 1, PD at mu = 3, UZSTOP 3.6), then five
     switches at PD (ISW = -1, SP = ['BP0']), each doubling PAR(11) and finding the

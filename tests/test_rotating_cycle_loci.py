@@ -59,6 +59,8 @@ def test_rotation_from_data_torus_bifurcation(rotor):
     assert tr.par[11] == pytest.approx(math.pi - T, abs=COLLOCATION)
 
 
+# 5 s: a torus locus of a rotating family; the fast loop keeps the rotating family's TR
+@pytest.mark.slow
 def test_rotation_torus_locus_resonances(rotor):
     """The torus locus in (I, a) from the generating run's EP, I growing: a = 0,
     T = 2 pi / sqrt(I^2 - 1) and theta = pi - T all along; R4 (-88) at I = sqrt(17),

@@ -48,6 +48,8 @@ def test_malformed_scheduler_address_is_one_line(tmp_path, capsys, address):
     assert err.count("\n") == 0 and err.startswith("error: --scheduler") and "Traceback" not in err
 
 
+# 5 s: Dask's connection timeout to a closed port is what it measures
+@pytest.mark.slow
 def test_unreachable_scheduler_is_one_line_within_seconds(tmp_path, capsys):
     t0 = time.monotonic()
     assert main([str(_spec(tmp_path)), "--scheduler", "tcp://127.0.0.1:9", "--out",
