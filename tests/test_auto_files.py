@@ -198,3 +198,39 @@ def test_plot_cli_draws_a_diagram(tmp_path):
     assert plot_main([str(tmp_path / "b.eq"), "--y", "2"]) == 0
     assert (tmp_path / "b_eq_diagram.png").stat().st_size > 10000
     assert plot_main([str(tmp_path / "b.missing")]) == 2
+
+
+@pytest.mark.parametrize("bvp", [False, True])
+def test_more_than_twenty_free_parameters_write_and_read_back(tmp_path, bvp):
+    """A record with 22 free parameters (a Lin's-method BVP frees that many) holds its ICP
+    as AUTO's WRTSP8/WRTBV8 write it, FORMAT (20I5): 20 indices a line, then 2. Written on
+    one line, the header's NROWPR (which counts (NFPR + 19) // 20 lines) disagreed with
+    the text and the record did not read back, so a restart from it was refused."""
+    from washer.auto.files import record_text
+    from washer.cont.record import Record
+    icp = [12, 106, 54, 55, 45, 46, 61, 62, 70, 71, 100, 73, 74, 75, 78, 79, 80, 82,
+           102, 103, 104, 105]
+    rng = np.random.default_rng(1)
+    par = rng.normal(size=200)
+    if bvp:
+        ntst, ncol = 3, 2
+        u = rng.normal(size=(ntst * ncol + 1, 8))
+        rec = Record(1, 7, 9, 2, len(icp), 1, 8, 4, u, par, icp, list(rng.normal(size=22)),
+                     rng.normal(size=u.size), t=np.linspace(0, 1, len(u)), ntst=ntst,
+                     ncol=ncol)
+    else:
+        u = rng.normal(size=8)
+        rec = Record(1, 7, 9, 2, len(icp), 1, 8, 1, u, par, icp, list(rng.normal(size=22)),
+                     rng.normal(size=8))
+    text = record_text(rec)
+    lines = text.splitlines()
+    assert int(lines[0].split()[8]) == len(lines) - 1          # NROWPR: the lines after it
+    first = next(k for k, line in enumerate(lines) if line.split()[:3] == ["12", "106", "54"])
+    assert lines[first] == "".join(f"{i:5d}" for i in icp[:20])
+    assert lines[first + 1] == "".join(f"{i:5d}" for i in icp[20:])
+    (tmp_path / "s.x").write_text(text)
+    back = read_s(tmp_path / "s.x")[0]
+    assert list(back.icp) == icp
+    assert np.allclose(back.rldot, rec.rldot, rtol=1e-9)
+    assert np.allclose(np.ravel(back.udot), np.ravel(rec.udot), rtol=1e-9)
+    assert np.allclose(back.par, par, rtol=1e-9)

@@ -183,7 +183,7 @@ def _record_text_algebraic(rec: Record) -> str:
     vals = [0.0] + list(rec.u)
     lines += _rows(vals[:7]) + _rows(vals[7:])
     if has_dir:
-        lines.append("".join(f"{i:5d}" for i in rec.icp[:rec.nfpr]))
+        lines += _icp_lines(rec.icp[:rec.nfpr])
         lines += _rows(rec.rldot)
         lines += _rows(list(rec.udot))
     lines += _rows(list(rec.par))
@@ -209,11 +209,18 @@ def _record_text_bvp(rec: Record) -> str:
     lines += _block_lines(np.column_stack([t, U]))     # t-blocks: t, U(1..NDIM)
     if has_dir:
         ud = np.asarray(rec.udot, float).reshape(ntpl, n)
-        lines.append("".join(f"{i:5d}" for i in rec.icp[:rec.nfpr]))
+        lines += _icp_lines(rec.icp[:rec.nfpr])
         lines += _rows(rec.rldot)
         lines += _block_lines(ud)
     lines += _rows(list(rec.par))
     return "\n".join(lines) + "\n"
+
+
+def _icp_lines(icp) -> list[str]:
+    """The free-parameter indices as AUTO's WRTSP8/WRTBV8 write them, FORMAT (20I5): 20 a
+    line, so that a record with more than 20 (NROWPR counts (NFPR + 19) // 20 lines) reads
+    back, by AUTO and by `read_solutions`."""
+    return ["".join(f"{i:5d}" for i in icp[k:k + 20]) for k in range(0, len(icp), 20)]
 
 
 def _rows(vals) -> list[str]:
