@@ -71,10 +71,10 @@ AB_FILES = [(DATA / "ab" / "ab.py", "ab.py"), (DATA / "ab" / "c.ab", "c.ab"),
             (DEMOS / "ab" / "ab.f90", "ab.f90")]
 LRZ_FILES = [(DATA / "lrz" / "lrz.py", "lrz.py"), (DATA / "lrz" / "c.lrz", "c.lrz"),
              (DEMOS / "lrz" / "lrz.f90", "lrz.f90")]
-CHU_FILES = [(DATA / "chu" / "chu.py", "chu.py"), (REF / "periodic" / "chu" / "c.chu", "c.chu"),
+CHU_FILES = [(DATA / "chu" / "chu.py", "chu.py"), (DEMOS / "chu" / "c.chu", "c.chu"),
              (DEMOS / "chu" / "chu.f90", "chu.f90")]
 ABPO_FILES = [(DATA / "ab_demo" / "ab.py", "ab.py"), (DEMOS / "ab" / "ab.f90", "ab.f90")] + [
-    (REF / "periodic" / "ab" / f"c.ab.{k}", f"c.ab.{k}") for k in (1, 2, 3)]
+    (DEMOS / "ab" / f"c.ab.{k}", f"c.ab.{k}") for k in (1, 2, 3)]
 WASHER_FILES = [(ROOT / "auto_constants" / f, f)
                 for f in ("c.washer", "c.washer.hopf.Omega", "c.washer.po")]
 
@@ -101,7 +101,7 @@ CASES = [
 ]
 AB_F90 = [(DATA / "ab" / "c.ab", "c.ab"), (DEMOS / "ab" / "ab.f90", "ab.f90")]
 LRZ_F90 = [(DATA / "lrz" / "c.lrz", "c.lrz"), (DEMOS / "lrz" / "lrz.f90", "lrz.f90")]
-CHU_F90 = [(REF / "periodic" / "chu" / "c.chu", "c.chu"), (DEMOS / "chu" / "chu.f90", "chu.f90")]
+CHU_F90 = [(DEMOS / "chu" / "c.chu", "c.chu"), (DEMOS / "chu" / "chu.f90", "chu.f90")]
 CASES += [
     # the same equilibria from the Fortran user files alone (no NAME.py beside them)
     Case("ab_eq_f90", [Step("eq", "ab", "ab")], AB_F90),

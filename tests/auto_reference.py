@@ -1,15 +1,17 @@
-"""AUTO-07p's reference runs: of its demo scripts ab, lrz, chu, plp and frc
-(tests/data/auto_reference/periodic/<demo>: the constants files the scripts use and the
-b-files AUTO wrote) and the Python transcriptions of their equations, with a scratch
-folder to run a demo in; and the locus runs of the scripts ab2p.auto and lrz2p.auto
-(tests/data/auto_reference/ab2p, lrz2p), which the tests and benchmarks/bench_vs_auto.py
-repeat."""
+"""AUTO-07p's reference runs: of its demo scripts ab, lrz, chu, plp and frc (their demo
+folders, tests/data/auto_demos/<demo>: the constants files the scripts use, the b-files
+AUTO wrote in autoref/) and the Python transcriptions of their equations, with a scratch
+folder to run a demo in; whole records of AUTO's s-files of those scripts
+(tests/data/auto_reference/records); and the locus runs of the scripts ab2p.auto and
+lrz2p.auto (tests/data/auto_reference/ab2p, lrz2p), which the tests and
+benchmarks/bench_vs_auto.py repeat."""
 import shutil
 from pathlib import Path
 
-DATA = Path(__file__).parent / "data"
-#: AUTO's constants and output of each demo
-REF = DATA / "auto_reference" / "periodic"
+from demo_files import DATA, DEMOS, autoref
+
+#: records of AUTO's s-files of the demos' scripts (records/README.md)
+RECORDS = DATA / "auto_reference" / "records"
 #: each demo's equations as a Python user file
 EQUATIONS = {"ab": DATA / "ab_demo" / "ab.py", "lrz": DATA / "lrz" / "lrz.py",
              "chu": DATA / "chu" / "chu.py", "plp": DATA / "plp" / "plp.py",
@@ -30,7 +32,7 @@ def demo_dir(tmp_path_factory, demo: str) -> Path:
     """A scratch folder with the demo's constants files (c.*) and its equations as
     DEMO.py."""
     d = tmp_path_factory.mktemp(demo)
-    for f in REF.joinpath(demo).glob("c.*"):
+    for f in DEMOS.joinpath(demo).glob("c.*"):
         shutil.copy(f, d)
     shutil.copy(EQUATIONS[demo], d / f"{demo}.py")
     return d

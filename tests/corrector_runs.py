@@ -42,16 +42,6 @@ def fast_and_slow(monkeypatch, corrector, method: str, run, counts=None):
 UNLOCATED = ("", "EP", "MX", "RG")
 
 
-def location_tolerance(constants, **ov) -> float:
-    """The location's stopping tolerance (washer.cont.events.location_tolerance) for the
-    constants file `constants` with the overrides ov."""
-    from types import SimpleNamespace
-    from washer.auto.constants_file import read_constants
-    from washer.cont.events import location_tolerance as tolerance
-    c = dict(read_constants(constants), **ov)
-    return tolerance(SimpleNamespace(**{k: float(c[k]) for k in ("EPSS", "DS", "DSMAX")}))
-
-
 def assert_rows_agree(fast, slow, location_tol: float, rtol: float = 1e-9):
     """The two runs' b-rows: the same points, to rtol up to the first located special
     point (both loops make the same corrections; only the eliminations' rounding

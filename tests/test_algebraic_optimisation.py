@@ -12,7 +12,6 @@ Tolerance: a located LP lies within AUTO's location tolerance EPSS (1 + sqrt|DS 
 in arclength of the exact fold, the tangent being unit in a norm in which every unknown
 has weight 1: each coordinate is within that distance.
 """
-import math
 import shutil
 from pathlib import Path
 
@@ -20,7 +19,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from washer.auto.constants_file import read_constants
+from tolerances import location_tolerance
 from washer.cont.runner import RunError
 from washer.run import run
 
@@ -45,8 +44,7 @@ def runs(folder):
 
 
 def tol(folder) -> float:
-    c = read_constants(folder / "c.optcusp")
-    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    return location_tolerance(folder / "c.optcusp")
 
 
 def real_roots(expr, u):
@@ -162,8 +160,7 @@ def test_branch_point_next_to_the_crossing_branch(tmp_path):
         "EPSL = 1e-08, EPSU = 1e-08, EPSS = 1e-06\n"
         "DS = -0.02, DSMIN = 0.0001, DSMAX = 0.05, IADS = 1, NPAR = 10\n")
     r = run(tmp_path / "c.pfk", verbose=False, sv="pfk")
-    c = read_constants(tmp_path / "c.pfk")
-    t = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    t = location_tolerance(tmp_path / "c.pfk")
     assert [s.ty for s in r.specials] == ["EP", "BP", "LP", "EP"]
     bp, lp = r.specials[1], r.specials[2]
     assert bp.u[0] == pytest.approx(0, abs=t) and bp.par[0] == pytest.approx(0, abs=t)

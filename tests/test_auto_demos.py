@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from auto_reference import AB2P_LOCUS, LRZ2P_LOCUS
+from tolerances import location_tolerance
 from washer.auto.files import read_b, type_name
 from washer.run import run
 
@@ -163,14 +164,6 @@ def test_lorenz_matches_auto(lrz_runs):
         assert [(t, b) for t, b, *_ in ours] == [(t, b) for t, b, *_ in ref], name
         for o, r in zip(ours, ref):
             assert o[2] == pytest.approx(r[2], rel=1e-6), (name, o, r)
-
-
-def location_tolerance(c) -> float:
-    """The engine's documented location guarantee (washer.cont.events), as AUTO's:
-    the last arclength correction is below EPSS (1 + sqrt(|DS DSMAX|)); the
-    tangent is unit in the THL/THU norm, so a parameter of weight 1 moves by at
-    most that much along the remaining arclength."""
-    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
 
 
 def test_lorenz_closed_forms(lrz_runs):

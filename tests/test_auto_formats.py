@@ -119,14 +119,14 @@ def _ab2p(sv: str, ds: float, irs: int) -> Constants:
 
 
 def _run2() -> Constants:
-    c = read_constants(REF / "ab_fortran" / "c.ab.2")
+    c = read_constants(DATA / "auto_demos" / "ab" / "c.ab.2")
     c.set("IRS", 2)                          # run(c='ab.2', IRS=2) in the ab demo
     return c
 
 
 CASES = {
     # file: (constants, internal NDIM, IRS used, curve type, titles, first data row)
-    "ab_fortran/b.run1": (lambda: read_constants(REF / "ab_fortran" / "c.ab.1"), 2, None, 0,
+    "ab_fortran/b.run1": (lambda: read_constants(DATA / "auto_demos" / "ab" / "c.ab.1"), 2, None, 0,
                           ["PAR(2)"] + TITLES[1:], Row(1, -1, 9, 1, [8.0, 0.0, 0.0, 0.0])),
     "ab_fortran/b.run2": (_run2, 2, None, 0, TITLES, Row(1, -1, 0, 0, [0.0, 0.0, 0.0, 0.0])),
     "ab2p/b.hb_fwd": (lambda: _ab2p("hb_fwd", 0.01, 2), 6, 2, 3, TITLES + ["PAR(2)"], None),

@@ -1,7 +1,7 @@
 """The periodic-orbit runs (IPS = 2) of AUTO-07p's demo scripts ab, lrz, chu, plp and
 frc against AUTO-07p's own output.
 
-Constants files are used unchanged (tests/data/auto_reference/periodic/<demo>/c.*),
+Constants files are used unchanged (tests/data/auto_demos/<demo>/c.*),
 with only the overrides each .auto script passes; restarts read our own equilibrium
 runs, as the scripts read theirs. Compared with AUTO's b-files: the labelled rows'
 types in order, and PAR(ICP(1)) and PERIOD of *located* points (UZ, LP, PD) at 1e-5
@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from auto_reference import DATA, REF, demo_dir
+from auto_reference import DATA, autoref, demo_dir
 from b_rows import branch_rows, segments
 from washer.auto.files import type_name
 from washer.run import run
@@ -66,7 +66,7 @@ def test_ab_periodic_families(tmp_path_factory):
     p1 = 0.25 or PERIOD = 1000, as in b.ab's periodic branches (in the same order)."""
     d = demo_dir(tmp_path_factory, "ab")
     start = run(d / "c.ab.1", verbose=False, e="ab", sv="start")
-    ref = segments(rows(REF / "ab" / "b.ab"))
+    ref = segments(rows(autoref("ab") / "b.ab.gz"))
     k = 0
     for s in start.specials:
         eq = run(d / "c.ab.2", verbose=False, e="ab", s="start", IRS=s.lab, sv=f"eq{s.lab}")
@@ -94,7 +94,7 @@ def test_lrz_periodic_families(tmp_path_factory, hb):
     run_periodic(d / "c.lrz", sv, e="lrz", s="lrz", IRS=hb, IPS=2, ICP=["rho", "PERIOD"],
                  NMX=35, NPR=2, DS=0.5)
     ours = rows(d / f"b.{sv}")
-    ref = segments(rows(REF / "lrz" / "b.lrz"))[0 if hb == "HB1" else 1]
+    ref = segments(rows(autoref("lrz") / "b.lrz"))[0 if hb == "HB1" else 1]
     compare(ours, ref)
     last = ours[-1]
     assert last.values[0] == pytest.approx(13.9266, rel=1e-4)
@@ -109,7 +109,7 @@ def test_chu_periodic_family_period_doubling(tmp_path_factory):
     d = demo_dir(tmp_path_factory, "chu")
     run(d / "c.chu", verbose=False, e="chu", sv="r1")
     run_periodic(d / "c.chu", "r2", e="chu", s="r1", IRS="HB1", IPS=2, ICP=[1, 11])
-    compare(rows(d / "b.r2"), rows(REF / "chu" / "b.chu"))
+    compare(rows(d / "b.r2"), rows(autoref("chu") / "b.chu"))
 
 
 # ---------------------------------------------------------------------------
@@ -127,7 +127,7 @@ def test_plp_periodic_families(plp, k, hb):
     """From HB1 (branch 2): LP of cycles (code 5) at PAR(4) = 2.75969, UZSTOP 4; from HB2
     (branch 3): LP at 5.00784, UZSTOP 4 (b.plp's periodic branches)."""
     run_periodic(plp / "c.plp.ps", f"ps{k + 1}", e="plp", s="ss", IRS=hb)
-    compare(rows(plp / f"b.ps{k + 1}"), segments(rows(REF / "plp" / "b.plp"))[k])
+    compare(rows(plp / f"b.ps{k + 1}"), segments(rows(autoref("plp") / "b.plp"))[k])
 
 
 @pytest.mark.slow
@@ -154,7 +154,7 @@ def test_plp_cycle_fold_locus(plp):
         for sv in ("lpstart", "lpb"):
             pts += [(r.values[0], r.values[-2]) for r in rows(plp / f"b.{sv}") if r.lab
                     and type_name(r.ty) == "UZ"]
-    ref = rows(REF / "plp" / "b.loci")                 # periodic rows: the cycle-fold locus
+    ref = rows(autoref("plp") / "b.loci")                 # periodic rows: the cycle-fold locus
     want = [(r.values[0], r.values[-2]) for r in ref if r.lab and type_name(r.ty) == "UZ"]
     assert len(pts) == len(want) == 4
     for p4, p1 in want:
@@ -171,7 +171,7 @@ def test_frc_forced_response(tmp_path_factory):
     exactly 2 pi / beta (the appended oscillator sets it): 1e-7 relative (Newton)."""
     d = demo_dir(tmp_path_factory, "frc")
     run_periodic(d / "c.frc", "r1", e="frc")
-    compare(rows(d / "b.r1"), rows(REF / "frc" / "b.0"))
+    compare(rows(d / "b.r1"), rows(autoref("frc") / "b.0"))
     run_periodic(d / "c.frc", "r2", e="frc", s="r1", IRS="UZ1", ICP=[5, 11], NMX=20, DS=-0.5,
                  DSMAX=5.0)
     r1 = branch_rows(d / "b.r1")
@@ -180,7 +180,7 @@ def test_frc_forced_response(tmp_path_factory):
         assert r.values[-1] == pytest.approx(2 * math.pi / 100, rel=1e-7)
     for r in r2:
         assert r.values[-1] == pytest.approx(2 * math.pi / r.values[0], rel=1e-7)
-    ref2 = branch_rows(REF / "frc" / "b.frc")
+    ref2 = branch_rows(autoref("frc") / "b.frc")
     assert [type_name(r.ty) for r in r2 if r.lab] == [type_name(r.ty) for r in ref2 if r.lab]
 
 
@@ -195,7 +195,7 @@ def test_plp_isola_from_a_fold_locus_point(tmp_path_factory):
     the location tolerance EPSS = 1e-6 with DS, DSMAX of c.plp.iso)."""
     d = demo_dir(tmp_path_factory, "plp")
     shutil.copy(DATA / "auto_demos" / "plp" / "autoref" / "s.loci", d / "s.aloci")
-    ref = [r for r in rows(REF / "plp" / "b.iso") if r.lab]
+    ref = [r for r in rows(autoref("plp") / "b.iso") if r.lab]
     got = []
     for ds, sv in ((None, "isof"), ("-", "isob")):
         extra = {} if ds is None else {"DS": ds}

@@ -1,9 +1,9 @@
 """The equilibrium runs (IPS = 1, ISW = 1 and 2) of AUTO-07p's demo scripts ab, lrz, chu
 and plp, against AUTO-07p's own output.
 
-tests/data/auto_reference/periodic/<demo>/ holds each demo's script (<demo>.auto),
-constants files (c.*, unchanged) and output b-files as AUTO-07p wrote them (see the
-README there); the equations are our own Python versions of <demo>.f90
+tests/data/auto_demos/<demo>/ holds each demo's script (<demo>.auto), constants files
+(c.*, unchanged) and in autoref/ the b-files AUTO-07p wrote (see the README of
+tests/data/auto_demos); the equations are our own Python versions of <demo>.f90
 (tests/data/<demo>/<demo>.py; ab's in tests/data/ab_demo/ because tests/data/ab/ab.py
 starts elsewhere). Each run passes only the overrides the .auto script passes (e=,
 IRS= through the restart solution, DS='-').
@@ -26,9 +26,10 @@ import numpy as np
 import pytest
 
 import ab_exact
-from auto_reference import REF, demo_dir
+from auto_reference import autoref, demo_dir
 from b_rows import branch_rows, segments
 import closed_form_exact as exact
+from tolerances import location_tolerance
 from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.run import run
@@ -47,9 +48,8 @@ def run_rows(cfile: Path, sv: str, **overrides) -> list:
 
 def located_tol(cfile: Path, value: float, **overrides) -> float:
     c = read_constants(cfile)
-    get = lambda k: overrides.get(k, c[k])
-    return (get("EPSS") * (1 + math.sqrt(abs(get("DS") * get("DSMAX"))))
-            + get("EPSL") * (1 + abs(value)))
+    return (location_tolerance(c, **overrides)
+            + overrides.get("EPSL", c["EPSL"]) * (1 + abs(value)))
 
 
 def compare(ours: list, ref: list, npar: int = 1) -> None:
@@ -97,7 +97,7 @@ def test_ab_start_run(ab):
 def test_ab_families_match_auto(ab, k):
     """The k-th run of the script's loop against the k-th equilibrium branch of b.ab
     (relabelled by the script, so labels are not compared)."""
-    ref = segments(rows(REF / "ab" / "b.ab"))
+    ref = segments(rows(autoref("ab") / "b.ab.gz"))
     assert len(ref) == 6
     lab = sorted(s.lab for s in ab["start"].specials)[k]
     compare(ab[lab], ref[k])
@@ -145,7 +145,7 @@ def lrz(tmp_path_factory):
 def test_lrz_matches_auto(lrz):
     """BR 1: EP, BP (rho = 1), UZ stop (30); MXBF = 10 switches at the BP: BR 2 in both
     directions (the two symmetric nontrivial branches), each with HB and the UZ stop."""
-    compare(lrz["rows"], rows(REF / "lrz" / "b.lrz"))
+    compare(lrz["rows"], rows(autoref("lrz") / "b.lrz"))
     assert [len(s) > 1 for s in segments(lrz["rows"])] == [True] * 3
 
 
@@ -174,7 +174,7 @@ def test_chu_matches_auto(chu):
     A1 = 5 window), then from that BP in alpha (BR 3: HB, EP at NMX); no third switch.
     AUTO's chu HB (6.8044337) is 1.4e-5 relative from the exact 6.8043401 (EPSS = 1e-4
     here), so that value is compared with the exact one (test_chu_exact) instead."""
-    ref = rows(REF / "chu" / "b.chu")
+    ref = rows(autoref("chu") / "b.chu")
     ours = chu["rows"]
     lab_o = [r for r in ours if r.lab]
     lab_r = [r for r in ref if r.lab]
@@ -191,7 +191,7 @@ def test_chu_exact(chu):
     and AUTO's within the location guarantee of the exact values."""
     ex = exact.chu_points()
     cfile = chu["dir"] / "c.chu"
-    for rs in (chu["rows"], rows(REF / "chu" / "b.chu")):
+    for rs in (chu["rows"], rows(autoref("chu") / "b.chu")):
         lab = [r for r in rs if r.lab and type_name(r.ty) in ("BP", "HB")]
         assert [type_name(r.ty) for r in lab] == ["BP", "BP", "HB"]
         assert lab[0].values[0] == pytest.approx(0.0, abs=located_tol(cfile, 0.0))
@@ -216,7 +216,7 @@ def plp(tmp_path_factory):
 
 def test_plp_equilibria_match_auto(plp):
     """EP, HB (3.49995), HB (4.65046), UZ stop at PAR(4) = 6, branch 1."""
-    ref = segments(rows(REF / "plp" / "b.plp"))[0]
+    ref = segments(rows(autoref("plp") / "b.plp"))[0]
     compare(plp["ss"], ref)
 
 
@@ -225,7 +225,7 @@ def test_plp_hopf_locus_matches_auto(plp):
     PAR(1) = 109 at PAR(4) = 5.10967, backward (DS='-') to PAR(1) = 109 at 3.10386; UZ on
     an HB curve is code -34. b.loci holds both halves merged by the script (the backward
     half reversed first), so each run is compared with its end of that branch."""
-    loci = segments(rows(REF / "plp" / "b.loci"))[0]
+    loci = segments(rows(autoref("plp") / "b.loci"))[0]
     uz = [r for r in loci if r.lab]
     assert [r.ty for r in uz] == [-34, -34]
     compare(plp["fwd"], [uz[1]], npar=2)
@@ -243,7 +243,7 @@ def test_plp_hopf_locus_steps_as_auto(plp):
     there, by 1.5 here), so the count may differ by two at the UZ stop. With the second
     derivatives frozen inside a step Newton needed 3 iterations, DS grew by 1.1 and the
     locus took 39 points."""
-    loci = segments(rows(REF / "plp" / "b.loci"))[0]
+    loci = segments(rows(autoref("plp") / "b.loci"))[0]
     hb = plp["fwd"][0].values[0]
     auto_fwd = [r for r in loci if r.values[0] >= hb - 1e-4]
     assert len(auto_fwd) == 24

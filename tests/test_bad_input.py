@@ -234,7 +234,7 @@ def test_restart_from_a_record_without_a_positive_period(tmp_path):
     """PAR(11) of a periodic record is its period: NaN, 0 or negative cannot start a run."""
     from washer.auto.files import record_text
     from washer.cont.record import find_record
-    src = DATA / "auto_reference" / "periodic" / "records" / "s.ab"
+    src = DATA / "auto_reference" / "records" / "s.ab"
     recs = read_s(src)
     rec = next(r for r in recs if r.lab == 18)
     assert rec.ntst > 0 and rec.par[10] > 0

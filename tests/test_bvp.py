@@ -7,9 +7,7 @@ engines promise, EPSS (1 + sqrt(|DS DSMAX|)) on the arclength (the tangent is un
 so a parameter moves by at most that much). End points depend on the step history and
 are compared by type only.
 """
-import gzip
 import math
-import shutil
 from pathlib import Path
 
 import mpmath
@@ -17,30 +15,25 @@ import numpy as np
 import pytest
 
 from b_rows import branch_rows
+from demo_files import autoref, copy_demo
+from tolerances import location_tolerance
 from washer.auto.constants_file import read_constants
 from washer.auto.files import read_s, type_name
 from washer.run import run
 
-DATA = Path(__file__).parent / "data" / "bvp"
+#: the Python transcriptions of the demos' equations (NAME/NAME.py), which the tests run
+#: in place of AUTO's NAME.f90
+PYTHON = Path(__file__).parent / "data" / "bvp"
 
 
 def demo(tmp_path: Path, name: str) -> Path:
-    for f in (DATA / name).iterdir():
-        if f.is_file():
-            shutil.copy(f, tmp_path)
-    return tmp_path
-
-
-def tolerance(c, **over) -> float:
-    ds = over.get("DS", c["DS"])
-    dsmax = over.get("DSMAX", c["DSMAX"])
-    return c["EPSS"] * (1 + math.sqrt(abs(ds * dsmax)))
+    return copy_demo(name, tmp_path, PYTHON / name)
 
 
 def auto_rows(name: str, bfile: str) -> list:
     """(type, branch, PAR(ICP(1))) of AUTO's labelled rows."""
     return [(type_name(r.ty), r.br, r.values[0])
-            for r in branch_rows(DATA / name / "autoref" / bfile) if r.lab]
+            for r in branch_rows(autoref(name) / bfile) if r.lab]
 
 
 def ours(*runs) -> list:
@@ -74,12 +67,12 @@ def test_bvp_demo_trivial_branch(tmp_path):
     r = run(d / "c.bvp", e="bvp", sv="bvp", verbose=False)
     assert r.status == "ok"
     ref = auto_rows("bvp", "b.bvp")
-    compare(ours((r, 1)), [x for x in ref if x[1] == 1], tolerance(c))
+    compare(ours((r, 1)), [x for x in ref if x[1] == 1], location_tolerance(c))
     auto_bps = [a for t, b, a in ref if t == "BP" and b == 1]
     bps = [s.par[0] for s in r.specials if s.ty == "BP"]
     assert len(bps) == len(auto_bps) == 5
     for k, (bp, a) in enumerate(zip(bps, auto_bps)):
-        assert bp == pytest.approx(k + 1, abs=tolerance(c))
+        assert bp == pytest.approx(k + 1, abs=location_tolerance(c))
         assert bp == pytest.approx(a, abs=1e-9)           # AUTO's step end, 10 digits
 
 
@@ -98,7 +91,7 @@ def test_bvp_demo_switched_branches(tmp_path):
                     sv="sw", verbose=False)
             assert q.status == "ok"
             runs.append((q, 1))
-    compare(ours(*runs), auto_rows("bvp", "b.bvp"), tolerance(c, DSMAX=10), uz_targets=(0.0,))
+    compare(ours(*runs), auto_rows("bvp", "b.bvp"), location_tolerance(c, DSMAX=10), uz_targets=(0.0,))
 
 
 def bratu_theta(lam: float, branch: int) -> float:
@@ -120,7 +113,7 @@ def test_pvl_demo_and_bratu_closed_form(tmp_path):
     c = read_constants(d / "c.pvl")
     r = run(d / "c.pvl", e="pvl", sv="pvl", verbose=False)
     assert r.status == "ok"
-    compare(ours((r, 1)), auto_rows("pvl", "b.pvl"), tolerance(c))
+    compare(ours((r, 1)), auto_rows("pvl", "b.pvl"), location_tolerance(c))
     mpmath.mp.dps = 30
     th_c = float(mpmath.findroot(lambda th: th * mpmath.tanh(th / 4) - 4, 4.8))
     lam_c = th_c ** 2 / (2 * math.cosh(th_c / 4) ** 2)
@@ -138,7 +131,7 @@ def test_non_demo(tmp_path):
     c = read_constants(d / "c.non")
     r = run(d / "c.non", e="non", sv="non", verbose=False)
     assert r.status == "ok"
-    compare(ours((r, 1)), auto_rows("non", "b.non"), tolerance(c))
+    compare(ours((r, 1)), auto_rows("non", "b.non"), location_tolerance(c))
 
 
 def test_ext_demo(tmp_path):
@@ -150,7 +143,7 @@ def test_ext_demo(tmp_path):
     r2 = run(d / "c.ext", e="ext", s="ext", IRS=r1("BP3").lab, ISW=-1, NCOL=3, sv="ext2",
              verbose=False)
     assert r1.status == r2.status == "ok"
-    compare(ours((r1, 1), (r2, 1)), auto_rows("ext", "b.ext"), tolerance(c))
+    compare(ours((r1, 1), (r2, 1)), auto_rows("ext", "b.ext"), location_tolerance(c))
 
 
 def test_lin_demo(tmp_path):
@@ -165,8 +158,8 @@ def test_lin_demo(tmp_path):
     r3 = run(d / "c.lin", e="lin", s="lin2", IRS=r2("UZ1").lab, ICP=[1, 2], NTST=5, ISW=1,
              DSMAX=0.5, A1=5.0, UZR={3: 1.0}, sv="lin3", verbose=False)
     assert r1.status == r2.status == r3.status == "ok"
-    compare(ours((r1, 1), (r2, 1)), auto_rows("lin", "b.lin"), tolerance(c, DSMAX=0.5))
-    compare(ours((r3, 1)), auto_rows("lin", "b.2p"), tolerance(c, DSMAX=0.5))
+    compare(ours((r1, 1), (r2, 1)), auto_rows("lin", "b.lin"), location_tolerance(c, DSMAX=0.5))
+    compare(ours((r3, 1)), auto_rows("lin", "b.2p"), location_tolerance(c, DSMAX=0.5))
     # On the eigenfunction branch p1 stays the first eigenvalue.
     assert r2("UZ1").par[0] == pytest.approx(1.0, abs=1e-6)
 
@@ -191,7 +184,7 @@ def test_nep_demo(tmp_path):
         runs.append((run(d / "c.nep.2", e="nep", s="nep", IRS=bp.lab, sv="nep2",
                          verbose=False), 1))
     assert all(q.status == "ok" for q, _ in runs)
-    compare(ours(*runs), auto_rows("nep", "b.nep"), tolerance(c))
+    compare(ours(*runs), auto_rows("nep", "b.nep"), location_tolerance(c))
     assert r("BP1").par[0] == pytest.approx(math.pi ** 2 / 2, abs=1e-8)
 
 
@@ -213,7 +206,7 @@ def test_obv_demo(tmp_path):
              ICP=[10, 1, 2, 3, 18, 13, 14, 15], ISW=1, NMX=25, sv="o3", verbose=False)
     for r, bfile in ((r1, "b.obv"), (r2, "b.1"), (r3, "b.2"), (r4, "b.3")):
         assert r.status == "ok"
-        compare(ours((r, 10)), auto_rows("obv", bfile), tolerance(c))
+        compare(ours((r, 10)), auto_rows("obv", bfile), location_tolerance(c))
 
 
 def test_tim_demo(tmp_path):
@@ -241,8 +234,8 @@ def test_fsh_demo(tmp_path):
              DS=-c["DS"], UZR={2: [1.0, 2.0, 3.0, 5.0, 10.0]}, UZSTOP={2: 0.0}, A0=-0.1,
              sv="fsh", verbose=False)
     assert r1.status == r2.status == "ok"
-    compare(ours((r1, 11)), auto_rows("fsh", "b.0"), tolerance(c), uz_targets=(200.0,))
-    compare(ours((r2, 2)), auto_rows("fsh", "b.fsh"), tolerance(c))
+    compare(ours((r1, 11)), auto_rows("fsh", "b.0"), location_tolerance(c), uz_targets=(200.0,))
+    compare(ours((r2, 2)), auto_rows("fsh", "b.fsh"), location_tolerance(c))
 
 
 def test_spb_demo_first_runs(tmp_path):
@@ -253,8 +246,8 @@ def test_spb_demo_first_runs(tmp_path):
     r0 = run(d / "c.spb.0", e="spb", sv="s0", verbose=False)
     r1 = run(d / "c.spb.1", e="spb", s="s0", IRS=r0.specials[-1].lab, sv="s1", verbose=False)
     assert r0.status == r1.status == "ok"
-    compare(ours((r0, 3)), auto_rows("spb", "b.0"), tolerance(c))
-    compare(ours((r1, 2)), auto_rows("spb", "b.1"), tolerance(c))
+    compare(ours((r0, 3)), auto_rows("spb", "b.0"), location_tolerance(c))
+    compare(ours((r1, 2)), auto_rows("spb", "b.1"), location_tolerance(c))
 
 
 @pytest.mark.slow
@@ -268,11 +261,11 @@ def test_spb_demo_continuation_in_gamma(tmp_path):
     r2 = run(d / "c.spb.2", e="spb", s="s1", IRS="UZ2", sv="s2", verbose=False)
     r3 = run(d / "c.spb.3", e="spb", s="s2", IRS=r2.specials[-1].lab, sv="s3", verbose=False)
     assert r2.status == r3.status == "ok"
-    ref = [r for r in branch_rows(DATA / "spb" / "autoref" / "b.2") if r.lab]
+    ref = [r for r in branch_rows(autoref("spb") / "b.2.gz") if r.lab]
     # Run 3: NPR = 1 labels every one of its 15 points, the first (the restart) included.
     assert [s.ty for s in r2.specials] == [type_name(r.ty) for r in ref[:15]]
     assert r3.specials[-1].ty == "UZ" and type_name(ref[-1].ty) == "UZ"
-    assert abs(r3.specials[-1].par[0] - ref[-1].values[0]) <= tolerance(c3)
+    assert abs(r3.specials[-1].par[0] - ref[-1].values[0]) <= location_tolerance(c3)
 
 
 def test_um2_demo(tmp_path):
@@ -288,12 +281,12 @@ def test_um2_demo(tmp_path):
              NPR=1, DS=c["DS"], DSMIN=1e-5, DSMAX=1.0, UZSTOP={"theta": [1.25, -0.75]},
              sv="u3", verbose=False)
     assert r1.status == r2.status == r3.status == "ok"
-    compare(ours((r1, 11)), auto_rows("um2", "b.1"), tolerance(c, DSMAX=10.0))
-    compare(ours((r2, 2)), auto_rows("um2", "b.2"), tolerance(c, DSMAX=1.0))
+    compare(ours((r1, 11)), auto_rows("um2", "b.1"), location_tolerance(c, DSMAX=10.0))
+    compare(ours((r2, 2)), auto_rows("um2", "b.2"), location_tolerance(c, DSMAX=1.0))
     # Every point of the last run is labelled (NPR = 1); the run ends at theta = 1.25.
     last = [r for r in ours((r3, 1)) if r[0] != ""]
     ref = [r for r in auto_rows("um2", "b.3") if r[0] != ""]
-    compare(last, ref, tolerance(c, DSMAX=1.0), uz_targets=(1.25,))
+    compare(last, ref, location_tolerance(c, DSMAX=1.0), uz_targets=(1.25,))
 
 
 def test_int_demo_fold_locus(tmp_path):
@@ -309,7 +302,7 @@ def test_int_demo_fold_locus(tmp_path):
     p1 = 2.09, a UZ later)."""
     d = demo(tmp_path, "int")
     c = read_constants(d / "c.int")
-    tol = tolerance(c)
+    tol = location_tolerance(c)
     r1 = run(d / "c.int", e="int", sv="int", verbose=False)
     compare(ours((r1, 1)), auto_rows("int", "b.int"), tol, uz_targets=(1.0, 3.0))
     gen = run(d / "c.int", e="int", s="int", IRS=r1("LP1").lab, ICP=[1, 2], ISW=2, sv="gen",
@@ -318,7 +311,7 @@ def test_int_demo_fold_locus(tmp_path):
     assert gen.specials[0].par[0] == pytest.approx(r1("LP1").par[0], abs=tol)
     lp = run(d / "c.int", e="int", s="gen", IRS=8, ICP=[1, 2], ISW=2, sv="lp", verbose=False)
     assert lp.status == "ok"
-    ref = [r for r in branch_rows(DATA / "int" / "autoref" / "b.lp") if r.lab]
+    ref = [r for r in branch_rows(autoref("int") / "b.lp") if r.lab]
     got = [s for s in lp.specials]
     assert (got[0].code, got[0].br) == (ref[0].ty, ref[0].br) == (-54, 2)
     assert abs(got[0].par[1] - ref[0].values[-1]) <= tol       # p2 at the UZ p1 = 3
@@ -334,9 +327,7 @@ def test_int_demo_fold_locus(tmp_path):
     # (v grows as s times the unit null vector: 1e-4 after a step of DS = 0.01), so it
     # moves by 2 s times the steps' error: within 2 s 8 EPSU (1 + max |U|) of AUTO's,
     # 2.0e-3 relative (measured 1.7e-5).
-    with gzip.open(DATA / "int" / "autoref" / "s.lp.gz", "rt") as f:
-        (tmp_path / "s.auto_lp").write_text(f.read())
-    auto_norm = read_s(tmp_path / "s.auto_lp")[0].par[3]
+    auto_norm = read_s(autoref("int") / "s.lp")[0].par[3]
     s_gen = math.sqrt(auto_norm)
     u_gen = max(np.max(np.abs(r.u)) for r in gen.rows)
     assert abs(gen.specials[0].par[3] - auto_norm) <= 2 * s_gen * 8 * eps * (1 + u_gen)
@@ -345,7 +336,7 @@ def test_int_demo_fold_locus(tmp_path):
     # bound must grow with k: one step's 2 EPSU (1 + max |U|) = 2.0e-5, not summed, is
     # exceeded at rows 10-12 (4.8e-5: the difference jumps there, then shrinks again).
     rows = [r for r in lp.rows if r.br == 2]
-    auto = branch_rows(DATA / "int" / "autoref" / "b.lp")
+    auto = branch_rows(autoref("int") / "b.lp")
     assert len(rows) == len(auto) == 40
     for k, (r, a) in enumerate(zip(rows, auto), start=1):
         bound = 2 * k * eps * (1 + np.max(np.abs(r.u)))
@@ -402,8 +393,8 @@ def test_um3_demo(tmp_path):
     r2 = run(d / "c.um3", e="um3", s="u1", IRS=r1.specials[-1].lab, ICP=["eps", "Period"],
              DS=-c["DS"], DSMAX=1.0, UZSTOP={"eps": 0.01}, sv="u2", verbose=False)
     assert r1.status == r2.status == "ok"
-    compare(ours((r1, 11)), auto_rows("um3", "b.1"), tolerance(c, DSMAX=10.0))
-    compare(ours((r2, 2)), auto_rows("um3", "b.2"), tolerance(c, DSMAX=1.0))
+    compare(ours((r1, 11)), auto_rows("um3", "b.1"), location_tolerance(c, DSMAX=10.0))
+    compare(ours((r2, 2)), auto_rows("um3", "b.2"), location_tolerance(c, DSMAX=1.0))
     ends = []
     for ds in (c["DS"], -c["DS"]):
         p = run(d / "c.um3", e="um3", s="u2", IRS=r2.specials[-1].lab, ICP=["theta", "Period"],
@@ -414,10 +405,10 @@ def test_um3_demo(tmp_path):
         # the arclength, THL(11) = 0, and AUTO stops locating on EPSS): ours closer.
         assert abs(p.specials[-1].par[10] - 1e4) < 0.043
         ends.append(p.specials[-1].par[0])
-    ref = [r.values[0] for r in branch_rows(DATA / "um3" / "autoref" / "b.3")
+    ref = [r.values[0] for r in branch_rows(autoref("um3") / "b.3")
            if type_name(r.ty) == "UZ"]
     assert len(ref) == 2
-    np.testing.assert_allclose(sorted(ends), sorted(ref), atol=tolerance(c, DSMAX=1.0))
+    np.testing.assert_allclose(sorted(ends), sorted(ref), atol=location_tolerance(c, DSMAX=1.0))
 
 
 def test_stw_demo(tmp_path):
@@ -429,8 +420,8 @@ def test_stw_demo(tmp_path):
     c = read_constants(d / "c.stw")
     r = run(d / "c.stw", e="stw", sv="stw", verbose=False)
     assert r.status == "ok"
-    compare(ours((r, 1)), auto_rows("stw", "b.stw"), tolerance(c), uz_targets=(1.0,))
-    ref = branch_rows(DATA / "stw" / "autoref" / "b.stw")
+    compare(ours((r, 1)), auto_rows("stw", "b.stw"), location_tolerance(c), uz_targets=(1.0,))
+    ref = branch_rows(autoref("stw") / "b.stw")
     assert r.rows[1].values[0] == pytest.approx(ref[1].values[0], abs=1e-5)
 
 
@@ -447,7 +438,7 @@ def test_ezp_demo(tmp_path):
     q2 = run(d / "c.ezp", e="ezp", s="both", IRS=r("BP1").lab, ISW=-1, DS=-c["DS"], sv="q2",
              verbose=False)
     assert r.status == q1.status == q2.status == "ok"
-    compare(ours((r, 1), (q1, 1), (q2, 1)), auto_rows("ezp", "b.ezp"), tolerance(c),
+    compare(ours((r, 1), (q1, 1), (q2, 1)), auto_rows("ezp", "b.ezp"), location_tolerance(c),
             uz_targets=(2.0, 5.0, 6.0))
     assert [s.lab for s in q2.specials] == [8, 9]
     # The complex branch: Im u1 is nonzero on it (the real branch has none).
@@ -654,10 +645,10 @@ def test_man_demo(tmp_path):
     c0 = read_constants(d / "c.man.0")
     r0 = run(d / "c.man.0", e="man", sv="m0", verbose=False)
     assert r0.status == "ok"
-    compare(ours((r0, 11)), auto_rows("man", "b.0"), tolerance(c0))
+    compare(ours((r0, 11)), auto_rows("man", "b.0"), location_tolerance(c0))
     r1 = run(d / "c.man.1", e="man", s="m0", IRS=r0("UZ2").lab, sv="m1", verbose=False)
     assert r1.status == "ok"
-    ref = [r for r in branch_rows(DATA / "man" / "autoref" / "b.1") if r.lab]
+    ref = [r for r in branch_rows(autoref("man") / "b.1") if r.lab]
     assert r1.specials[-1].ty == type_name(ref[-1].ty) == "UZ"
     assert r1.specials[-1].par[4] == pytest.approx(1.1, abs=1e-9)
 

@@ -28,6 +28,7 @@ import pytest
 
 import closed_form_exact as exact
 from b_rows import branch_rows, labelled, segments
+from tolerances import location_tolerance
 from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.run import run
@@ -46,9 +47,8 @@ def scratch(tmp_path_factory, name: str) -> Path:
 def located_tol(cfile: Path, value: float, **overrides) -> float:
     """Error bound of a located coordinate (module docstring)."""
     c = read_constants(cfile)
-    get = lambda k: overrides.get(k, c[k])
-    ds, dsmax = get("DS"), get("DSMAX")
-    return get("EPSS") * (1 + math.sqrt(abs(ds * dsmax))) + get("EPSL") * (1 + abs(value))
+    return (location_tolerance(c, **overrides)
+            + overrides.get("EPSL", c["EPSL"]) * (1 + abs(value)))
 
 
 def b_rows(folder: Path, sv: str) -> list:

@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 
 from auto_reference import AB2P_LOCUS as AB2, LRZ2P_LOCUS as LRZ2
-from corrector_runs import (assert_counts_agree, assert_rows_agree, fast_and_slow,
-                            location_tolerance)
+from corrector_runs import assert_counts_agree, assert_rows_agree, fast_and_slow
+from tolerances import location_tolerance
 from washer.cont import corrector_algebraic
 from washer.run import run
 

@@ -31,7 +31,7 @@ CHU_PO = dict(IPS=2, ICP=[1, 11], NMX=60)
 
 
 CONSTANTS = {"lrz": DATA / "lrz" / "c.lrz", "lrz_sym": DATA / "lrz_sym" / "c.lrz",
-             "chu": DATA / "auto_reference" / "periodic" / "chu" / "c.chu",
+             "chu": DEMOS / "chu" / "c.chu",
              "tor": DEMOS / "tor" / "c.tor"}
 
 

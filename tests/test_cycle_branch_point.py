@@ -21,6 +21,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
+from tolerances import location_tolerance
 from washer.auto.constants_file import read_constants
 from washer.cont.start import RunError
 from washer.run import run
@@ -56,8 +57,7 @@ def test_bp_of_cycles(family, folder):
     """The circle r = 1 meets the family r = p1 at p1 = 1 (T = pi there). The Jacobian is
     singular at the BP, so the located orbit's radius is as uncertain as the location
     (tol), and T = 2 pi / (1 + r^2) moves by pi per unit of r there."""
-    c = read_constants(folder / "c.circlebp")
-    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    tol = location_tolerance(folder / "c.circlebp")
     (bp,) = [r for r in family.rows if r.lab and r.ty == "BP"]
     assert bp.values[0] == pytest.approx(1.0, abs=tol)
     assert bp.par[10] == pytest.approx(math.pi, abs=2 * math.pi * tol)
@@ -134,8 +134,7 @@ def test_bp_of_cycles_at_a_fold_tip(tmp_path, p2, order):
     (r^2 - 1)^2 is then 0 to 4 (r - 1)^2, and T = 2 pi / (1 + r^2) moves by pi (r - 1)."""
     for f in FOLDBP.iterdir():
         shutil.copy(f, tmp_path)
-    c = read_constants(tmp_path / "c.foldbp")
-    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    tol = location_tolerance(tmp_path / "c.foldbp")
     dr = 10 * tol if order == 1 else 1e-4
     res = run(tmp_path / "c.foldbp", verbose=False, sv="fold", PAR={2: p2})
     assert res.status == "ok"
@@ -396,8 +395,7 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path, window, order):
     demo = Path(__file__).parent / "data" / "auto_demos" / "tor"
     for f in ("tor.f90", "c.tor"):
         shutil.copy(demo / f, tmp_path)
-    c = read_constants(tmp_path / "c.tor")
-    tol = c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    tol = location_tolerance(tmp_path / "c.tor")
     eq = run(tmp_path / "c.tor", verbose=False, sv="eq", e="tor")
     cyc = run(tmp_path / "c.tor", verbose=False, sv="cyc", e="tor", restart=eq, IRS="HB1",
               IPS=2, ICP=[1, 11])

@@ -24,16 +24,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from washer.auto.constants_file import read_constants
+from tolerances import location_tolerance
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
 COLLOCATION = 1e-9
-
-
-def located_tol(cfile: Path) -> float:
-    c = read_constants(cfile)
-    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
 
 
 @pytest.fixture(scope="module")
@@ -100,7 +95,7 @@ def tr_locus(mobius):
 def test_mobius_tr_point(tr_locus, mobius):
     one, _ = tr_locus
     (tr,) = labelled(one, "TR")
-    assert tr.values[0] == pytest.approx(0.0, abs=located_tol(mobius / "c.mobius.tr"))
+    assert tr.values[0] == pytest.approx(0.0, abs=location_tolerance(mobius / "c.mobius.tr"))
     # PAR(12), the torus angle the TR record carries: pi - sqrt(-b) T = pi - 1
     assert tr.par[11] == pytest.approx(math.pi - 1, abs=1e-6)
 
@@ -109,7 +104,7 @@ def test_mobius_tr_locus_resonances(tr_locus, mobius):
     """ICP = [b, a] from TR1 towards smaller b: a stays 0; R3 (-87) at b = -pi^2/9, R4
     (-88) at b = -pi^2/4, then the UZSTOP b = -3 (-84); PAR(12) = pi - sqrt(-b) all along."""
     _, loc = tr_locus
-    tol = located_tol(mobius / "c.mobius.trloc")
+    tol = location_tolerance(mobius / "c.mobius.trloc")
     lab = [r for r in loc.rows if r.lab]
     assert [r.code for r in lab] == [-87, -88, -84]
     assert lab[0].values[0] == pytest.approx(-math.pi ** 2 / 9, abs=tol)
@@ -126,14 +121,14 @@ def test_mobius_pd_locus(mobius):
     one = run(mobius / "c.mobius.pd", verbose=False, sv="pd")
     assert one.status == "ok"
     (pd,) = labelled(one, "PD")
-    assert pd.values[0] == pytest.approx(-0.5, abs=located_tol(mobius / "c.mobius.pd"))
+    assert pd.values[0] == pytest.approx(-0.5, abs=location_tolerance(mobius / "c.mobius.pd"))
     gen = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdgen", s="pd")
     loc = run(mobius / "c.mobius.pdloc", verbose=False, sv="pdloc", s="pdgen",
               IRS=generated(gen))
     assert loc.status == "ok"
     lab = [r for r in loc.rows if r.lab]
     assert [r.code for r in lab] == [-76, -74]
-    tol = located_tol(mobius / "c.mobius.pdloc")
+    tol = location_tolerance(mobius / "c.mobius.pdloc")
     assert lab[0].values[0] == pytest.approx(0.0, abs=tol)
     assert lab[0].values[-1] == pytest.approx(0.0, abs=tol)
     for r in loc.rows:
@@ -206,7 +201,7 @@ def test_mobius_tr_locus_with_a_third_parameter_keeps_the_angle(tr_locus, mobius
     # the angle as the s-file stores it (10 digits) at the UZ, located to within tol
     theta = res.rows[0].par[11]
     assert theta == pytest.approx(math.pi - math.sqrt(3.0),
-                                  abs=located_tol(mobius / "c.mobius.trloc") + 1e-9)
+                                  abs=location_tolerance(mobius / "c.mobius.trloc") + 1e-9)
     for r in res.rows:
         b, a = r.values[0], r.par[0]
         assert a == pytest.approx(0.0, abs=COLLOCATION)
@@ -259,7 +254,7 @@ def test_mobius_fold_tr_locus_folds_and_resonances(fold_tr, mobius):
     closed form to the location tolerance, AUTO-07p's labels (its LP 1.1e-7 off in p2,
     within its looser location)."""
     _, down = fold_tr
-    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    tol = location_tolerance(mobius / "c.mobius_fold.trloc")
     lab = [r for r in down.rows if r.lab]
     assert [r.code for r in lab] == [85, -87, -88, -84]
     want = [(0.0, 0.0), (None, math.pi ** 2 / 9 - 1), (None, math.pi ** 2 / 4 - 1), (4.0, 2.0)]
@@ -286,7 +281,7 @@ def test_mobius_fold_tr_locus_through_the_12_resonance(fold_tr, mobius):
     (theta - pi) vanishes only at those angles, while the multipliers there are
     exp(+-2 pi i/3) and +-i (the closed form, p2 = pi^2/9 - 1 and pi^2/4 - 1)."""
     up, _ = fold_tr
-    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    tol = location_tolerance(mobius / "c.mobius_fold.trloc")
     lab = [r for r in up.rows if r.lab]
     assert [r.code for r in lab] == [-86, 85, -87, -88, -84]
     r2, lp, r3, r4, uz = lab
@@ -310,12 +305,12 @@ def test_mobius_fold_pd_locus_fold(mobius):
     UZSTOP p2 = -0.6 (-74), as AUTO-07p's b.pdloc (its LP 7.7e-7 off in p2)."""
     one = run(mobius / "c.mobius_fold.pd", verbose=False, sv="fpd")
     (pd,) = labelled(one, "PD")
-    assert pd.par[0] == pytest.approx(-0.25, abs=located_tol(mobius / "c.mobius_fold.pd"))
+    assert pd.par[0] == pytest.approx(-0.25, abs=location_tolerance(mobius / "c.mobius_fold.pd"))
     gen = run(mobius / "c.mobius_fold.pdloc", verbose=False, sv="fpdgen", s="fpd")
     loc = run(mobius / "c.mobius_fold.pdloc", verbose=False, sv="fpdloc", s="fpdgen",
               IRS=generated(gen))
     assert loc.status == "ok"
-    tol = located_tol(mobius / "c.mobius_fold.pdloc")
+    tol = location_tolerance(mobius / "c.mobius_fold.pdloc")
     lab = [r for r in loc.rows if r.lab]
     assert [r.code for r in lab] == [75, -74]
     assert (lab[0].par[0], lab[0].par[1]) == pytest.approx((-0.5, 0.0), abs=tol)
@@ -364,7 +359,7 @@ def test_mobius_fold_tr_locus_past_the_12_resonance_from_autos_record(mobius):
               IRS=6, NMX=100)
     assert res.status == "ok"
     assert [r.code for r in res.rows if r.lab] == [85, -86, 85, -87, -88, -84]
-    tol = located_tol(mobius / "c.mobius_fold.trloc")
+    tol = location_tolerance(mobius / "c.mobius_fold.trloc")
     r3, r4 = [r for r in res.rows if r.code in (-87, -88)]
     assert (r3.par[1], r3.par[11]) == pytest.approx((math.pi ** 2 / 9 - 1, 4 * math.pi / 3),
                                                     abs=tol)

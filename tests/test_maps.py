@@ -9,7 +9,6 @@ doublings from an independent high-precision solve) judge where AUTO's own value
 is loose.
 """
 import math
-import shutil
 from pathlib import Path
 
 import mpmath
@@ -17,23 +16,20 @@ import numpy as np
 import pytest
 
 from b_rows import branch_rows
+from demo_files import autoref, copy_demo
+from tolerances import location_tolerance
 from washer.auto.constants_file import read_constants
 from washer.auto.files import type_name
 from washer.cont.runner import RunError
 from washer.run import run
 
-DATA = Path(__file__).parent / "data" / "maps"
+#: the Python transcriptions of the demos' equations (NAME/NAME.py), which the tests run
+#: in place of AUTO's NAME.f90
+PYTHON = Path(__file__).parent / "data" / "maps"
 
 
 def demo(tmp_path: Path, name: str) -> Path:
-    for f in (DATA / name).iterdir():
-        if f.is_file():
-            shutil.copy(f, tmp_path)
-    return tmp_path
-
-
-def location_tolerance(c) -> float:
-    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
+    return copy_demo(name, tmp_path, PYTHON / name)
 
 
 def labelled(path: Path, br=None) -> list:
@@ -84,7 +80,7 @@ def test_logistic_map_demo(tmp_path):
         runs.append(r)
         prev = f"pd{i}"
     ours = [(s.ty, s.br, s.par[0]) for x in runs for s in x.specials]
-    ref = labelled(DATA / "log" / "autoref" / "b.log")
+    ref = labelled(autoref("log") / "b.log")
     assert [(t, b) for t, b, _ in ours] == [(t, b) for t, b, _ in ref]
     for (t, b, o), (_, _, a) in zip(ours, ref):
         assert abs(o - a) <= tol, (t, b, o, a)
@@ -108,12 +104,12 @@ def test_dd2_demo(tmp_path):
     r3 = run(d / "c.dd2", e="dd2", s="dd2", IRS=r1("PD1").lab, ISW=-1, sv="r3", verbose=False)
     r4 = run(d / "c.dd2", e="dd2", s="r3", IRS=r3("PD1").lab, ISW=-1, sv="r4", verbose=False)
     ours = [(s.ty, s.br, s.par[0]) for x in (r1, r3, r4) for s in x.specials]
-    ref = labelled(DATA / "dd2" / "autoref" / "b.dd2")
+    ref = labelled(autoref("dd2") / "b.dd2")
     # The period-doubling locus in (p1, p2): p1 = 3 while u2 = 0, to NMX (EP 79).
     r2 = run(d / "c.dd2", e="dd2", s="dd2", IRS=r1("PD1").lab, ICP=[1, 2], ISW=2, sv="pd",
              verbose=False)
     assert [(s.code, s.br) for s in r2.specials] == \
-        [(r.ty, r.br) for r in branch_rows(DATA / "dd2" / "autoref" / "b.pd") if r.lab] == [(79, 5)]
+        [(r.ty, r.br) for r in branch_rows(autoref("dd2") / "b.pd") if r.lab] == [(79, 5)]
     assert all(row.par[0] == pytest.approx(3.0, abs=1e-9) for row in r2.rows)
     assert [(t, b) for t, b, _ in ours] == [(t, b) for t, b, _ in ref]
     for (t, b, o), (_, _, a) in zip(ours, ref):

@@ -36,7 +36,8 @@ from washer.cont.system import StartData
 from washer.cont.systems.periodic import PeriodicOrbits
 
 DATA = Path(__file__).parent / "data"
-RECORDS = DATA / "auto_reference" / "periodic" / "records"
+RECORDS = DATA / "auto_reference" / "records"
+DEMOS = DATA / "auto_demos"
 
 
 # ------------------------------------------------------------------ the closed-form system
@@ -439,7 +440,7 @@ def test_plot_cli_draws_periodic_branches_and_an_orbit(tmp_path):
     portrait); wrong uses exit with 2."""
     import shutil
     from washer.plots.__main__ import main as plot_main
-    ref = DATA / "auto_reference" / "periodic" / "lrz" / "b.lrz"
+    ref = DEMOS / "lrz" / "autoref" / "b.lrz"
     shutil.copy(ref, tmp_path / "b.lrz")
     shutil.copy(RECORDS / "s.lrz", tmp_path / "s.lrz")
     assert plot_main([str(tmp_path / "b.lrz"), "--y", "1"]) == 0
@@ -497,7 +498,7 @@ def test_period_doubling_switch_through_the_runner(tmp_path):
     collocation error is below that, so the location is the discrete problem's)."""
     import shutil
     from washer.run import run
-    ref = DATA / "auto_reference" / "periodic" / "chu"
+    ref = DEMOS / "chu"
     shutil.copy(ref / "c.chu.3", tmp_path)
     shutil.copy(DATA / "chu" / "chu.py", tmp_path)
     shutil.copy(RECORDS / "s.chu", tmp_path / "s.ref")
@@ -693,7 +694,7 @@ def test_located_orbits_agree_with_autos_profiles(tmp_path, demo, script):
     parameter distance; PAR(4) differs by 1.8e-7 relative)."""
     import shutil
     from washer.run import run
-    ref = DATA / "auto_reference" / "periodic" / demo
+    ref = DEMOS / demo
     for f in ref.glob("c.*"):
         shutil.copy(f, tmp_path)
     shutil.copy(DATA / demo / f"{demo}.py", tmp_path)

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import pytest
 
+from tolerances import location_tolerance
 from washer.auto.constants_file import ConstantsError, read_constants
 from washer.cont.runner import RunError
 from washer.run import run
@@ -37,10 +38,6 @@ from washer.run import run
 DATA = Path(__file__).parent / "data" / "optcircle"
 EXACT = 2e-7
 ICP1 = [1, 11, 12, 24, -24, -21, -31]
-
-
-def located_tol(c, ds) -> float:
-    return c["EPSS"] * (1 + math.sqrt(abs(ds * c["DSMAX"])))
 
 
 @pytest.fixture(scope="module")
@@ -78,7 +75,7 @@ def test_trivial_branch_objective_and_extremum(runs):
         assert r.par[9] == pytest.approx(J(mu, b), abs=EXACT)       # PAR(10)
         assert r.par[11] == 0.0 and r.par[23] == pytest.approx(0.0, abs=EXACT)
     (bp,) = [r for r in o1.rows if r.ty == "BP"]
-    assert bp.values[0] == pytest.approx(1.0, abs=located_tol(c, 0.05))
+    assert bp.values[0] == pytest.approx(1.0, abs=location_tolerance(c, DS=0.05))
     # The b-file's columns: PAR(1), L2-NORM, MAX U(1..2), PERIOD, PAR(12), PAR(24).
     assert o1.titles[-3:] == ["PERIOD", "PAR(12)", "PAR(24)"]
     assert bp.values[-3] == pytest.approx(2 * math.pi, rel=EXACT)
@@ -109,8 +106,8 @@ def test_two_parameter_extremum(runs):
         assert r.par[9] == pytest.approx(1 / 6 - (b - 1) ** 2, abs=EXACT)
         assert r.par[23] == pytest.approx(2 * r.par[13] * (b - 1), abs=EXACT)   # gamma
     uz = [r for r in o3.rows if r.ty == "UZ"]
-    assert uz[0].values[0] == pytest.approx(2 / 3, abs=located_tol(c, 0.05))
-    assert uz[0].par[3] == pytest.approx(1.0, abs=2 * located_tol(c, 0.05))
+    assert uz[0].values[0] == pytest.approx(2 / 3, abs=location_tolerance(c, DS=0.05))
+    assert uz[0].par[3] == pytest.approx(1.0, abs=2 * location_tolerance(c, DS=0.05))
     assert uz[-1].par[3] == pytest.approx(0.7, abs=EXACT)                # UZSTOP on b
 
 

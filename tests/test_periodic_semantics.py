@@ -12,15 +12,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.auto.constants_file import read_constants
+from demo_files import autoref, copy_demo
+from tolerances import location_tolerance
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
-
-
-def located_tol(cfile: Path) -> float:
-    c = read_constants(cfile)
-    return c["EPSS"] * (1 + math.sqrt(abs(c["DS"] * c["DSMAX"])))
 
 
 def folder(tmp_path, name):
@@ -41,7 +37,7 @@ def test_pd_after_a_complex_pair_meets_the_real_axis_within_one_step(tmp_path):
     assert res.status == "ok"
     lab = [r for r in res.rows if r.lab]
     assert [r.ty for r in lab] == ["EP", "PD", "UZ"]
-    assert lab[1].values[0] == pytest.approx(0.01, abs=located_tol(d / "c.mobius.spb"))
+    assert lab[1].values[0] == pytest.approx(0.01, abs=location_tolerance(d / "c.mobius.spb"))
     assert lab[1].stability.values[1] == pytest.approx(-1.0, abs=1e-6)
 
 
@@ -59,7 +55,7 @@ def test_branch_point_of_cycles_leaves_along_the_secant_and_switches_exactly(tmp
     lab = [r for r in res.rows if r.lab]
     assert [r.ty for r in lab] == ["EP", "BP", "UZ"]
     bp = lab[1]
-    assert bp.values[0] == pytest.approx(-0.5, abs=located_tol(d / "c.cyclepf"))
+    assert bp.values[0] == pytest.approx(-0.5, abs=location_tolerance(d / "c.cyclepf"))
     rows = res.rows
     k = rows.index(bp)
     # the stored direction is the unit secant: no motion of the orbit, PAR(1)-dot 1
@@ -93,7 +89,7 @@ def test_a_branch_point_passed_with_negative_ds_keeps_the_direction(tmp_path):
     res = run(tmp_path / "c.pf", verbose=False, sv="pf")
     lab = [(r.ty, r.values[0]) for r in res.rows if r.lab]
     assert [t for t, _ in lab] == ["EP", "BP", "UZ"]
-    assert lab[1][1] == pytest.approx(0.0, abs=located_tol(tmp_path / "c.pf"))
+    assert lab[1][1] == pytest.approx(0.0, abs=location_tolerance(tmp_path / "c.pf"))
     assert lab[2][1] == pytest.approx(-1.0)
 
 
@@ -107,14 +103,14 @@ def test_lor_demo_starts_from_data_and_doubles_twice(tmp_path):
     loose 199.9999902 comes from its own EPSS)."""
     from b_rows import branch_rows
     from washer.auto.files import type_name
-    d = folder(tmp_path, "lor")
+    d = copy_demo("lor", tmp_path, DATA / "lor")
     ours = []
     for cf, s in (("c.lor.1", None), ("c.lor.2", "lor1"), ("c.lor.3", "lor2")):
         kw = {"s": s} if s else {}
         res = run(d / cf, verbose=False, sv=f"lor{cf[-1]}", e="lor", **kw)
         assert res.status == "ok", (cf, res.status)
         ours += [r for r in res.rows if r.lab]
-    ref = [r for r in branch_rows(d / "b.lor") if r.lab]
+    ref = [r for r in branch_rows(autoref("lor") / "b.lor") if r.lab]
     assert [(r.ty, abs(r.br)) for r in ours] == [(type_name(r.ty), abs(r.br)) for r in ref] == [
         ("EP", 1), ("PD", 1), ("UZ", 1), ("PD", 2), ("UZ", 2), ("PD", 3), ("UZ", 3)]
     assert ours[0].values[-1] == pytest.approx(1.4334 - 1.0002, rel=1e-12)
@@ -129,7 +125,7 @@ def test_lor_demo_starts_from_data_and_doubles_twice(tmp_path):
 def test_bad_data_files_are_named_with_line_and_expectation(tmp_path):
     """dat='NAME' errors name the file, the line and what was expected there."""
     from washer.cont.runner import RunError
-    d = folder(tmp_path, "lor")
+    d = copy_demo("lor", tmp_path, DATA / "lor")
     with pytest.raises(RunError, match=r"dat='nothere': no data file nothere or nothere\.dat"):
         run(d / "c.lor.1", verbose=False, e="lor", dat="nothere", sv="x")
     # dat='NAME.dat' (a user's constants file: sandstede-lab's c.auto_SH_half) is the file
@@ -172,7 +168,7 @@ def test_stop_counts_start_afresh_on_every_switched_branch(tmp_path):
             segs[-1].append((r.ty, r.values[0]))
     assert [[t for t, _ in seg] for seg in segs] == [["EP", "BP", "EP"], ["LP", "EP"],
                                                     ["LP", "EP"]]
-    tol = located_tol(tmp_path / "c.qp")
+    tol = location_tolerance(tmp_path / "c.qp")
     for seg in segs[1:]:
         assert seg[0][1] == pytest.approx(-0.25, abs=tol)
         assert seg[1][1] > 1.0
@@ -212,7 +208,7 @@ def pvls(u, par):
         assert r.par[16] == pytest.approx(math.exp(r.values[0]), rel=1e-7)
         assert r.par[18] == pytest.approx(1.0, abs=1e-10)
     uz = [r for r in res.rows if r.ty == "UZ"]
-    assert uz[0].values[0] == pytest.approx(-0.2, abs=located_tol(d / "c.mobpv"))
+    assert uz[0].values[0] == pytest.approx(-0.2, abs=location_tolerance(d / "c.mobpv"))
     assert uz[0].par[17] == 4             # all inside: 1, exp(-2), the pair at exp(-0.2)
 
 
@@ -276,7 +272,7 @@ def test_rotations_have_the_exact_period(tmp_path):
     assert res.status == "ok"
     lab = [r for r in res.rows if r.lab]
     assert [r.ty for r in lab] == ["EP", "UZ", "UZ", "UZ"]
-    tol = located_tol(d / "c.rotor")
+    tol = location_tolerance(d / "c.rotor")
     for r, a_want in zip(lab[1:], (0.3, 0.6, 0.9)):
         a = r.values[0]
         assert a == pytest.approx(a_want, abs=tol)
@@ -292,9 +288,7 @@ def test_general_bvp_starts_from_data(tmp_path):
     the same points as from stpnt: the branch points p1 = 1, 2, ... of u1'' = -(p1 pi)^2
     u1 + u1^2 (exact: the eigenvalues of the linearisation)."""
     d = tmp_path
-    for f in (DATA / "bvp" / "bvp").iterdir():
-        if f.is_file():
-            shutil.copy(f, d)
+    copy_demo("bvp", d, DATA / "bvp" / "bvp")
     (d / "zero.dat").write_text("".join(f"{t:.3f} 0.0 0.0\n" for t in np.linspace(0, 1, 11)))
     plain = run(d / "c.bvp", verbose=False, e="bvp", sv="plain")
     data = run(d / "c.bvp", verbose=False, e="bvp", dat="zero", sv="data")
@@ -304,7 +298,7 @@ def test_general_bvp_starts_from_data(tmp_path):
     bps = [v for t, v in got if t == "BP"]
     assert len(bps) >= 3
     for k, v in enumerate(bps, start=1):
-        assert v == pytest.approx(k, abs=located_tol(d / "c.bvp"))
+        assert v == pytest.approx(k, abs=location_tolerance(d / "c.bvp"))
 
 
 @pytest.mark.parametrize("ty, moving, period", [("HB3", 0, 2 * math.pi), ("HB4", 2, math.pi)])

@@ -10,7 +10,7 @@ from washer.plots import diagrams
 from washer.plots.__main__ import main
 
 DATA = Path(__file__).parent / "data"
-LRZ = DATA / "auto_reference" / "periodic" / "lrz" / "b.lrz"
+LRZ = DATA / "auto_demos" / "lrz" / "autoref" / "b.lrz"
 
 
 def test_header_names_of_an_auto_b_file():

@@ -19,7 +19,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from washer.run import run
-from tests.test_cycle_loci import COLLOCATION, generated, located_tol
+from tests.test_cycle_loci import COLLOCATION, generated
+from tolerances import location_tolerance
 
 DATA = Path(__file__).parent / "data" / "mobius"
 
@@ -55,7 +56,7 @@ def test_rotation_from_data_torus_bifurcation(rotor):
         U = np.asarray(r.U)
         assert U[-1, 0] - U[0, 0] == pytest.approx(2 * math.pi, abs=COLLOCATION)
     (tr,) = [r for r in res.rows if r.ty == "TR"]
-    assert tr.par[0] == pytest.approx(0.0, abs=located_tol(rotor / "c.rotor"))
+    assert tr.par[0] == pytest.approx(0.0, abs=location_tolerance(rotor / "c.rotor"))
     assert tr.par[11] == pytest.approx(math.pi - T, abs=COLLOCATION)
 
 
@@ -70,7 +71,7 @@ def test_rotation_torus_locus_resonances(rotor):
     loc = run(rotor / "c.rotor.trloc", verbose=False, sv="rtrloc", s="rtrgen",
               IRS=generated(gen))
     assert loc.status == "ok"
-    tol = located_tol(rotor / "c.rotor.trloc")
+    tol = location_tolerance(rotor / "c.rotor.trloc")
     lab = [r for r in loc.rows if r.lab]
     assert [r.code for r in lab] == [-88, -87, -84]
     assert lab[0].par[1] == pytest.approx(math.sqrt(17), abs=tol)
@@ -88,7 +89,7 @@ def test_rotation_period_doubling_turns_twice(rotor):
     one = run(rotor / "c.rotor", dat="rot", verbose=False, sv="rotpd",
               PAR={1: -1.13, 4: 0.25}, UZSTOP={1: 0.1})
     (pd,) = [r for r in one.rows if r.ty == "PD"]
-    assert pd.par[0] == pytest.approx(-0.5, abs=located_tol(rotor / "c.rotor"))
+    assert pd.par[0] == pytest.approx(-0.5, abs=location_tolerance(rotor / "c.rotor"))
     dbl = run(rotor / "c.rotor", verbose=False, files=False, s="rotpd", IRS="PD1", ISW=-1,
               NMX=20, UZSTOP={})
     assert dbl.status == "ok" and dbl.rows[-1].par[0] > 0

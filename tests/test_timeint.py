@@ -1,16 +1,17 @@
 """Time integration by continuation (IPS = -2): AUTO-07p's ivp demo against its b-file,
 and the implicit Euler relation checked on every written step of a linear ODE."""
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from b_rows import branch_rows
+from demo_files import autoref, copy_demo
 from washer.auto.files import type_name
 from washer.run import run
 
-DATA = Path(__file__).parent / "data" / "ivp"
+#: the Python transcription of ivp's equations, which the test runs in place of ivp.f90
+PYTHON = Path(__file__).parent / "data" / "ivp"
 
 
 def test_ivp_demo(tmp_path):
@@ -19,12 +20,10 @@ def test_ivp_demo(tmp_path):
     equilibrium u1 = 1/p4 = 1/3, u2 = p2 (1 - u1) = 2 (p1 = 0) that AUTO's end point
     approaches; the first written point (2 DS: the hidden step and the first) is
     AUTO's to 1e-9 (later steps follow the Newton counts, which differ)."""
-    for f in DATA.iterdir():
-        if f.is_file():
-            shutil.copy(f, tmp_path)
+    copy_demo("ivp", tmp_path, PYTHON)
     r = run(tmp_path / "c.ivp", e="ivp", sv="ivp", verbose=False)
     assert r.status == "ok"
-    ref = [x for x in branch_rows(DATA / "autoref" / "b.ivp")]
+    ref = [x for x in branch_rows(autoref("ivp") / "b.ivp")]
     assert [(s.ty, s.br, s.pt) for s in r.specials] == \
         [(type_name(x.ty), x.br, x.pt) for x in ref if x.lab] == [("EP", 1, 1), ("EP", 1, 500)]
     assert r.rows[1].values[0] == pytest.approx(ref[1].values[0], abs=1e-9)

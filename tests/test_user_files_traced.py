@@ -20,7 +20,9 @@ FILES = sorted(p for p in DATA.rglob("*.py") if "def func" in p.read_text())
 
 
 def _ndim(path: Path) -> int:
-    for c in sorted(path.parent.glob("c.*")):
+    # a transcription of an AUTO demo's equations reads the demo's constants files
+    beside = sorted(path.parent.glob("c.*"))
+    for c in beside or sorted((DATA / "auto_demos" / path.stem).glob("c.*")):
         for line in c.read_text().splitlines():
             words = line.replace(",", " ").replace("=", " ").split()
             if "NDIM" in words:
