@@ -28,7 +28,10 @@ lapack        the addresses of numpy's own LAPACK routines, for the compiled eng
               dense solves and eigenvalues (csrc/cont/dense_lapack.cpp)
 newton, corrector_algebraic, corrector_periodic, iterator, events
               the one Newton loop and its compiled forms for equilibria and the fold and
-              Hopf loci (C written once in include/ae_correct.h) and for periodic orbits
+              Hopf loci (C written once in include/ae_correct.h, the GH test's l1 in
+              include/ae_lyapunov.h; FUNC from user_files_bridge.c, a Python func through
+              ae_callback.c, a sympy problem's generated C through ae_generated.c) and for
+              periodic orbits
               (C++ in csrc/cont/po_correct.cpp; corrector_algebraic.compiled_corrector
               chooses where they apply), the
               pseudo-arclength iterator (predictor, corrector, step control), test
