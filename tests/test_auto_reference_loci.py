@@ -1,4 +1,6 @@
-"""The engine against AUTO-07p's own output (tests/data/auto_reference) and closed forms.
+"""The scripts ab2p.auto and lrz2p.auto (the equilibria of AUTO-07p's demos ab and lrz,
+then ab's fold locus and both Hopf loci in two parameters) against AUTO-07p's own
+output (tests/data/auto_reference/ab2p, lrz2p) and closed forms.
 
 Special points are compared by type, order and parameter values at 1e-6
 relative. Where AUTO-07p's own location is less accurate than that (it stops
@@ -21,8 +23,8 @@ DATA = Path(__file__).parent / "data"
 REF = DATA / "auto_reference"
 
 
-def demo_dir(tmp_path_factory, demo: str) -> Path:
-    """A scratch folder holding the demo's equations and constants."""
+def scratch_copy(tmp_path_factory, demo: str) -> Path:
+    """A scratch folder holding tests/data/DEMO's equations DEMO.py and constants c.DEMO."""
     d = tmp_path_factory.mktemp(demo)
     for f in (f"{demo}.py", f"c.{demo}"):
         shutil.copy(DATA / demo / f, d)
@@ -31,7 +33,7 @@ def demo_dir(tmp_path_factory, demo: str) -> Path:
 
 @pytest.fixture(scope="module")
 def ab_runs(tmp_path_factory):
-    d = demo_dir(tmp_path_factory, "ab")
+    d = scratch_copy(tmp_path_factory, "ab")
     out = {"eq": run(d / "c.ab", verbose=False, sv="eq")}
     common = dict(AB2P_LOCUS, PAR={}, s="eq", verbose=False)
     for name, irs, ds in (("lp_fwd", "LP1", 0.01), ("lp_bwd", "LP1", -0.01),
@@ -43,7 +45,7 @@ def ab_runs(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def lrz_runs(tmp_path_factory):
-    d = demo_dir(tmp_path_factory, "lrz")
+    d = scratch_copy(tmp_path_factory, "lrz")
     out = {"eq": run(d / "c.lrz", verbose=False, sv="eq")}
     common = dict(LRZ2P_LOCUS, s="eq", IRS="HB1", verbose=False)
     out["hb_fwd"] = run(d / "c.lrz", sv="hb_fwd", **common)
