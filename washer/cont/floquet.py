@@ -14,14 +14,15 @@ The tests, with the sign conventions of AUTO:
 * LP of cycles: the PAR(ICP(1))-component of the unit tangent.
 * BP of cycles: a determinant of the bordered Jacobian reduced to the boundary
   unknowns, supplied by the system (it depends on the discretisation).
-* PD and TR: ONE test, AUTO's FNSPBV: |mu_2| - 1 wherever TPSPBV classes mu_2 as a
-  period doubling (real, < -0.5) or a torus (|Im| > sqrt(EPSS)) of a kind being
-  detected, else undefined; its key is SPB, and the located zero is typed by TPSPBV at
-  the located point (`spb_code`). One function for both matters where a complex pair
-  meets the negative real axis and one of the pair crosses -1 within a step: the
-  previous point is of torus type inside the circle, the next of PD type outside;
-  separate PD and TR functions each see only one end of the step and miss the PD.
-  This is the only torus test of the engine.
+* PD and TR: ONE test, |mu| - 1 of the nontrivial multiplier nearest the circle among
+  those TPSPBV classes as a period doubling (real, < -0.5) or a torus
+  (|Im| > sqrt(EPSS)) of a kind being detected, undefined if none (AUTO's FNSPBV takes
+  mu_2 only, and is undefined where mu_2 is real above -0.5: `spb_test`); its key is
+  SPB, and the located zero is typed by TPSPBV at the located point (`spb_code`). One
+  function for both matters where a complex pair meets the negative real axis and one
+  of the pair crosses -1 within a step: the previous point is of torus type inside the
+  circle, the next of PD type outside; separate PD and TR functions each see only one
+  end of the step and miss the PD. This is the only torus test of the engine.
 PD and TR are accepted only where the stable count changed (FNSPBV), and undefined
 while the multipliers are inaccurate or with fewer than two nontrivial multipliers (a
 planar autonomous orbit has one, real and positive).
@@ -213,19 +214,45 @@ def torus_pair(mu, trivial: bool = True) -> complex:
     return complex(cpx[0]) if cpx.size else complex(np.nan, np.nan)
 
 
+def _kind(m: complex, epss: float) -> int:
+    """TPSPBV's type of one multiplier: Code.TR if complex (|Im| > sqrt(EPSS)), Code.PD if
+    real and below -0.5, else 0 (real above -0.5: no PD/TR through it)."""
+    if not np.isfinite(m):
+        return 0
+    if abs(m.imag) > math.sqrt(epss):
+        return int(Code.TR)
+    if m.real < -0.5:
+        return int(Code.PD)
+    return 0
+
+
 def classify(mu: np.ndarray, epss: float, trivial: bool = True) -> tuple[int, float | None]:
     """AUTO's TPSPBV + FNSPBV on sorted multipliers: (Code.PD / Code.TR / 0,
     |mu_2| - 1 or None); mu_2 is the nontrivial multiplier closest to the circle."""
     m2 = critical(mu, trivial)
-    if m2 is None:
-        return 0, None
-    if not np.isfinite(m2):
-        return 0, None
-    if abs(m2.imag) > math.sqrt(epss):
-        return int(Code.TR), float(abs(m2) - 1)
-    if m2.real < -0.5:
-        return int(Code.PD), float(abs(m2) - 1)
-    return 0, None
+    kind = 0 if m2 is None else _kind(m2, epss)
+    return (kind, float(abs(m2) - 1)) if kind else (0, None)
+
+
+def spb_test(mu: np.ndarray, epss: float, kinds: tuple, trivial: bool = True) -> float | None:
+    """The combined PD/TR test: |mu| - 1 of the nontrivial multiplier closest to the circle
+    among those TPSPBV types as one of `kinds` (sorted multipliers, so the first such),
+    None if there is none.
+
+    Where mu_2 (the closest of all) is of such a kind this is AUTO's FNSPBV, |mu_2| - 1.
+    AUTO's test is undefined wherever mu_2 is real above -0.5, even while another real
+    multiplier below -0.5 is crossing -1: a step from -1.956 to -0.916 that starts with
+    +0.649 nearest the circle changes no defined sign and the PD is missed. Skipping the
+    untyped multipliers keeps the test defined through such a step. A switch between two
+    typed multipliers on either side of the circle can change its sign without a
+    crossing; `accept` (the stable count must change) rejects that, as it does for
+    AUTO's mu_2 switching."""
+    k = 1 if trivial else 0
+    for m in mu[k:]:
+        m = complex(m)
+        if _kind(m, epss) in kinds:
+            return float(abs(m) - 1)
+    return None
 
 
 def torus_angle(mu: np.ndarray, epss: float, trivial: bool = True) -> float | None:
@@ -337,9 +364,7 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
     if SPB in codes:
         d = None
         if ndim - trivial >= 2 and st is not None and not inaccurate(st):
-            kind, val = classify(st.values, epss, trivial)
-            if kind in kinds:
-                d = val
+            d = spb_test(st.values, epss, kinds, trivial)
         out[SPB] = d
     return out
 
