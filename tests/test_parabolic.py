@@ -8,11 +8,13 @@ import math
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 import sympy as sp
 
 from b_rows import branch_rows
-from washer.auto.files import type_name
+import shooting
+from washer.auto.files import read_s, type_name
 from washer.auto.script import run_script
 from washer.run import run
 
@@ -322,25 +324,66 @@ def test_wave_train_fold_locus(tmp_path):
     assert at.par[10] == pytest.approx(fold.par[10], abs=3e-3)
 
 
+def _wav_travelling_wave_field(par):
+    """wav's travelling-wave system u' = v, v' = -(c v + f(u)) / D (c = PAR(10), D = PAR(15),
+    PAR(16)) with f written again from wav.f90's FUNC: (f, jac) of the 4 components
+    (u1, u2, v1, v2) at the parameters par (NPAR,), the Jacobian by sympy."""
+    x = sp.symbols("u1 u2 v1 v2")
+    p = sp.symbols("p1:17")
+    r = x[1] / (p[4] + x[1]) * x[0] / (1 + x[0] + p[5] * x[0] ** 2)
+    f = (-p[0] * (p[3] * r - (p[1] - x[0])), -p[0] * (p[3] * r - p[6] * (p[2] - x[1])))
+    field = sp.Matrix([x[2], x[3], -(p[9] * x[2] + f[0]) / p[14], -(p[9] * x[3] + f[1]) / p[15]])
+    values, jacobian = sp.lambdify([x, p], list(field)), sp.lambdify([x, p], field.jacobian(x))
+    par = [float(v) for v in par[:16]]
+    return (lambda u: np.array(values(u, par), float),
+            lambda u: np.array(jacobian(u, par), float))
+
+
+def _real_multiplier_nearest_minus_one(mu) -> complex:
+    """The real multiplier (|Im| < 1e-6) below -0.5 nearest -1 (a PD's), None if none."""
+    real = [m.real for m in mu if abs(m.imag) < 1e-6 and m.real < -0.5]
+    return min(real, key=lambda m: abs(m + 1.0)) if real else None
+
+
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gfortran") is None, reason="gfortran is not installed")
 def test_wave_trains_tori_and_period_doubling(tmp_path, monkeypatch):
     """wav's wave trains with ISP = 2 (tests/data/wave_trains): AUTO-07p's two TR and its
-    PD, the switch at the PD (ISW = -1, the wave length doubled) and the doubled family's
-    own PD, each in AUTO's order at AUTO's PAR(3) within the location tolerance and at
-    its wave length."""
+    PD, each in AUTO's order at AUTO's PAR(3) within the location tolerance and at its wave
+    length; the switch at that PD (ISW = -1, the wave length doubled) and the doubled
+    family's own PD likewise.
+
+    Between the second TR and AUTO's PD we label three more PDs (PAR(3) = 641.515,
+    641.564, 640.149) that AUTO-07p 0.9.2 does not. They are real: AUTO's own d.sp shows
+    each crossing (PT 44 -> 45: the pair -0.499 +- 0.387i -> -1.407, stable count 4 -> 3;
+    PT 48 -> 49: -2.318 -> the pair -0.497 +- 0.369i, 2 -> 3; PT 66 -> 67: the pair
+    -0.587 +- 0.256i -> -1.886, 3 -> 2), but there the multiplier nearest the circle is a
+    positive real one (0.984, 1.081, 1.224), where AUTO's FNSPBV is undefined. Here single
+    shooting (tests/shooting.py: DOP853 at rtol 1e-12, its own Newton, nothing of the
+    collocation) at 0.003 on either side of each located PAR(3) finds a real multiplier
+    on each side of -1 (-0.936 / -1.059, -1.131 / -0.842, -1.016 / -0.983)."""
     data = Path(__file__).parent / "data" / "wave_trains"
     for f in ("wav.f90", "c.wav"):
         shutil.copy(WAV / f, tmp_path)
-    shutil.copy(data / "sp.auto", tmp_path)
+    script = (data / "sp.auto").read_text()
+    # AUTO's run 4 switches at its PD1 (PAR(3) = 621.07); ours is PD4, after the three
+    # PDs AUTO does not label (asserted below)
+    assert 'r3("PD1")' in script
+    (tmp_path / "sp.auto").write_text(script.replace('r3("PD1")', 'r3("PD4")'))
     (tmp_path / "b.sp.ref").write_bytes(gzip.decompress((data / "autoref" / "b.sp.gz").read_bytes()))
     monkeypatch.chdir(tmp_path)
     run_script("sp.auto")
-    for ours, ref in (("b.sp", tmp_path / "b.sp.ref"), ("b.pd", data / "autoref" / "b.pd")):
-        a = [r for r in branch_rows(ref) if r.lab]
-        b = [r for r in branch_rows(tmp_path / ours) if r.lab]
-        assert [(type_name(r.ty), r.br) for r in b] == [(type_name(r.ty), r.br) for r in a]
-        for x, y in zip(a, b):
+    sp_rows = [r for r in branch_rows(tmp_path / "b.sp") if r.lab]
+    extra = [r for r in sp_rows if type_name(r.ty) == "PD"][:-1]
+    auto_sp = [r for r in branch_rows(tmp_path / "b.sp.ref") if r.lab]
+    at = [type_name(r.ty) for r in auto_sp].index("PD")
+    assert [type_name(r.ty) for r in sp_rows] == (
+        [type_name(r.ty) for r in auto_sp[:at]] + ["PD"] * 3 + [type_name(r.ty) for r in auto_sp[at:]])
+    ours_sp = [r for r in sp_rows if all(r is not e for e in extra)]
+    for ours, a in ((ours_sp, auto_sp), ([r for r in branch_rows(tmp_path / "b.pd") if r.lab],
+                                         [r for r in branch_rows(data / "autoref" / "b.pd") if r.lab])):
+        assert [(type_name(r.ty), r.br) for r in ours] == [(type_name(r.ty), r.br) for r in a]
+        for x, y in zip(a, ours):
             if type_name(x.ty) in ("EP", "MX"):
                 continue
             # located within EPSS (1 + sqrt(DS DSMAX)) in arclength by each engine, PAR(3)
@@ -349,3 +392,21 @@ def test_wave_trains_tori_and_period_doubling(tmp_path, monkeypatch):
             # the wave length (weight 0 in the arclength) to AUTO's printed digits where
             # it moves slowly, else through |dT/dPAR(3)| ~ 10 times the tolerance
             assert y.values[-1] == pytest.approx(x.values[-1], abs=3e-3)
+
+    records = {r.lab: r for r in read_s(tmp_path / "s.sp")}
+    step = 0.003    # ten location tolerances in PAR(3); the nearest fold is 0.04 away
+    for row in extra:
+        rec = records[row.lab]
+        found = {}
+        for side in (-1, 0, 1):
+            par = np.array(rec.par, float)
+            par[2] += side * step
+            f, jac = _wav_travelling_wave_field(par)
+            found[side] = _real_multiplier_nearest_minus_one(
+                shooting.multipliers(f, jac, rec.u[0, :4], rec.par[10]))
+        assert None not in found.values()
+        # a real multiplier crosses -1 between the two sides
+        assert (abs(found[-1]) - 1.0) * (abs(found[1]) - 1.0) < 0
+        # at the located PAR(3), within its 3e-4, mu is -1 within that times d mu / d PAR(3)
+        slope = abs(found[1] - found[-1]) / (2 * step)
+        assert abs(found[0] + 1.0) <= 3e-4 * slope
