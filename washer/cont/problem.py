@@ -51,6 +51,7 @@ from __future__ import annotations
 import copy
 import functools
 import inspect
+import types
 from pathlib import Path
 
 import numpy as np
@@ -754,10 +755,17 @@ class Problem:
         """Whether stpnt takes AUTO's time argument: stpnt(u, par, t), t in [0, 1]
         (a periodic orbit's start for IPS = 2). Looked up once per problem (a signature
         costs a tenth of a millisecond)."""
-        if self._stpnt is None:
+        f = self._stpnt
+        if f is None:
             return False
+        if type(f) is types.FunctionType and not hasattr(f, "__wrapped__") \
+                and not hasattr(f, "__signature__"):
+            # a plain function's positional parameters are its code's co_argcount (what
+            # the signature below reads from it), without the signature's tenth of a ms
+            code = f.__code__
+            return code.co_argcount >= 3 or bool(code.co_flags & inspect.CO_VARARGS)
         try:
-            params = inspect.signature(self._stpnt).parameters.values()
+            params = inspect.signature(f).parameters.values()
         except (TypeError, ValueError):
             return False
         positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY,

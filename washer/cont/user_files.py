@@ -39,6 +39,26 @@ def load_user_problem(name: str, folder: Path, ndim: int) -> Problem:
     return load_compiled_problem(path, ndim, name=name)
 
 
+#: (path, source bytes) -> the code object of the files loaded in this process: every run
+#: executes NAME.py afresh (it may have changed, and its module-level state is the run's
+#: own), but compiling the same source again, where no bytecode is cached
+#: (PYTHONDONTWRITEBYTECODE, a read-only folder), cost each short run about a tenth of a ms
+_CODE: dict = {}
+_CODE_MAX = 32
+
+
+def _module_code(path: Path):
+    """The code of the Python file at path, as importlib's source loader compiles it."""
+    source = path.read_bytes()
+    key = (str(path), source)
+    code = _CODE.get(key)
+    if code is None:
+        if len(_CODE) >= _CODE_MAX:
+            _CODE.clear()
+        code = _CODE[key] = compile(source, str(path), "exec", dont_inherit=True)
+    return code
+
+
 def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls,
     bcnd, icnd, fopt).
@@ -55,7 +75,8 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     spec = importlib.util.spec_from_file_location(f"auto_user_{name}", path)
     mod = importlib.util.module_from_spec(spec)
     try:
-        spec.loader.exec_module(mod)
+        # what spec.loader.exec_module does, with the compiled source remembered
+        exec(_module_code(path), mod.__dict__)
     except Exception as exc:
         raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
     from washer.cont import user_files_sympy

@@ -387,10 +387,22 @@ def _start_points(python: Problem, seed: int = LOAD_SEED) -> tuple[np.ndarray, n
     except Exception:
         u0, p0 = np.zeros(n), np.zeros(TRACE_NPAR)
     zu, zp = _load_deviates(seed, n, len(p0))
-    scales = np.geomspace(1e-3, 1.0, LOAD_POINTS - 1)
-    us = [u0] + [u0 + s * (1 + np.abs(u0)) * z for s, z in zip(scales, zu)]
-    ps = [p0] + [p0 + s * (1 + np.abs(p0)) * z for s, z in zip(scales, zp)]
-    return np.array(us), np.array(ps)
+    scales = _load_scales()
+    # row k: u0 + s_k (1 + |u0|) z_k, the same operations in the same order as one row at
+    # a time (elementwise, broadcast): the same doubles in two numpy calls a vector
+    us, ps = np.empty((LOAD_POINTS, n)), np.empty((LOAD_POINTS, len(p0)))
+    us[0], ps[0] = u0, p0
+    np.add(u0, scales * (1 + np.abs(u0)) * zu, out=us[1:])
+    np.add(p0, scales * (1 + np.abs(p0)) * zp, out=ps[1:])
+    return us, ps
+
+
+@functools.lru_cache(maxsize=1)
+def _load_scales() -> np.ndarray:
+    """The offsets' relative sizes of `_start_points`, (LOAD_POINTS - 1, 1), read-only."""
+    scales = np.geomspace(1e-3, 1.0, LOAD_POINTS - 1)[:, None]
+    scales.setflags(write=False)
+    return scales
 
 
 def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
@@ -398,12 +410,16 @@ def _agree(compiled: np.ndarray, fn, us, pars, what: str) -> None:
     values, bit for bit, and there is at least one such point (none compared is nothing
     verified)."""
     compared = 0
-    for j, (u, p) in enumerate(zip(us, pars)):
-        try:
-            with np.errstate(all="ignore"):
-                ref = np.asarray(fn(u.copy(), p.copy()), dtype=float)
-        except Exception:
-            continue                 # not a point of the function's domain
+    with np.errstate(all="ignore"):
+        refs = []
+        for u, p in zip(us, pars):
+            try:
+                refs.append(np.asarray(fn(u.copy(), p.copy()), dtype=float))
+            except Exception:
+                refs.append(None)    # not a point of the function's domain
+    for j, ref in enumerate(refs):
+        if ref is None:
+            continue
         if not np.isfinite(ref).all():
             continue
         if not same_bits(ref, compiled[j][tuple(slice(0, s) for s in ref.shape)]):
