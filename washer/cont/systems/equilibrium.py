@@ -49,13 +49,19 @@ def hopf_pair(lam: np.ndarray) -> complex | None:
 
 def hopf_test(lam: np.ndarray) -> float | None:
     """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
-    mu = hopf_pair(lam)
+    return _pair_test(hopf_pair(lam))
+
+
+def _pair_test(mu: complex | None) -> float | None:
     return None if mu is None else mu.real
 
 
 def hopf_period(lam: np.ndarray) -> float | None:
     """PAR(11) = 2 pi / |Im| of the pair closest to the imaginary axis (PVLSAE)."""
-    mu = hopf_pair(lam)
+    return _pair_period(hopf_pair(lam))
+
+
+def _pair_period(mu: complex | None) -> float | None:
     return None if mu is None else float(2 * np.pi / abs(mu.imag))
 
 
@@ -228,10 +234,22 @@ class EquilibriumSystem(AlgebraicSystem):
         """NEUTRAL_HB's zeros are Hopf points (HB); other keys are their own codes."""
         return Code.HB if key == NEUTRAL_HB else key
 
+    #: (spectrum, hopf_pair of it) of the last spectrum asked for (`_pair`)
+    _pair_memo = None
+
+    def _pair(self, lam: np.ndarray) -> complex | None:
+        """hopf_pair(lam), once per spectrum: a point's HB test and its PAR(11) read the
+        same pair of the same array (spectra are not changed in place)."""
+        memo = self._pair_memo
+        if memo is None or memo[0] is not lam:
+            memo = self._pair_memo = (lam, hopf_pair(lam))
+        return memo[1]
+
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         out = self._lp_bp(tangent, factor, codes)
         if Code.HB in codes:
-            out[Code.HB] = hopf_test(stability.values) if stability is not None else None
+            out[Code.HB] = _pair_test(self._pair(stability.values)) \
+                if stability is not None else None
         if NEUTRAL_HB in codes:
             out[NEUTRAL_HB] = neutral_hopf_test(stability) if stability is not None else None
         return out
@@ -255,7 +273,7 @@ class EquilibriumSystem(AlgebraicSystem):
                 lam = cached[1]
             else:
                 lam = eigenvalues_sorted(self.problem.dfdu(x[:-1], self._p(x)))
-            per = hopf_period(lam)
+            per = _pair_period(self._pair(lam))
             if per is not None:
                 sol.par[10] = per
         return sol
