@@ -287,10 +287,11 @@ class Continuation:
     def correct_start(self, x, hold: bool = False):
         """Newton with AUTO's EPSU test: a start point that is not quite a solution
         (STPNT rounding, a restart in other parameters) is corrected before the
-        branch begins, orthogonally to the branch: the matrix is [J; t] with t the
-        null vector of J at the start. (Holding PAR(ICP(1)) instead fails where the
-        branch is parallel to the other unknowns there: a locus along which the
-        principal parameter is constant, as dd2's period-doubling curve p1 = 3.)
+        branch begins (AUTO-07p does not: see _begin), orthogonally to the branch:
+        the matrix is [J; t] with t the null vector of J at the start. (Holding
+        PAR(ICP(1)) instead fails where the branch is parallel to the other unknowns
+        there: a locus along which the principal parameter is constant, as dd2's
+        period-doubling curve p1 = 3.)
         hold: hold PAR(ICP(1)) (the matrix [J; e_last]): a solution at the given
         parameters (washer.cont.runner.solve)."""
         s = self.s
@@ -604,8 +605,14 @@ class Continuation:
         """The start point (corrected for algebraic systems), its tangent, and the
         first step: AUTO's hidden one, or the written plane step of a switch."""
         sysm = self.sys
-        # AUTO corrects algebraic start data only; BVP start data are used as given
-        # (RSPTBV): at a Hopf start the collocation system is singular in the period.
+        # AUTO-07p corrects no start: CNRLAE writes an algebraic start as given at PT 1
+        # (its tangent the null vector of [f_u f_p] there; the unwritten first step's
+        # corrector reaches the solutions), CNRLBV/RSPTBV a BVP's (at a Hopf start the
+        # collocation system is singular in the period). Ours corrects an algebraic one:
+        # without, a restart at a label of a branch-point locus with ISW = -1 takes
+        # IPERP = 1's direction from rounding-level entries (u1 ~ 1e-153 off the
+        # pitchfork's BP, AUTO's record 0) and leaves the other way from AUTO's
+        # (tests/test_isw_restart_curves.py); tests/test_start_point.py holds both rules.
         correct = self.mode != "switch" and sysm.arclength == "sphere"
         x0 = self.correct_start(self.x0) if correct else self.x0
         J0 = self._jacobian(x0)
