@@ -2,7 +2,9 @@
 AUTO's condensation of parameters and block reduction) against dense LAPACK on the
 assembled matrix: solves, the determinant (sign and log-magnitude: the BP test of
 cycles), and the Floquet pair against the null space of the collocation rows and
-against the Householder condensation of washer.cont.collocation."""
+against the monodromy matrix propagated forward interval by interval
+(collocation.fundamental_solution); the pair of the blocks alone (reduction.floquet_pair)
+against the bordered factorisation's."""
 import numpy as np
 import pytest
 
@@ -57,10 +59,14 @@ def test_floquet_pair_annihilates_the_collocation_null_space():
     assert np.linalg.matrix_rank(np.c_[P0, P1]) == n
 
 
-def test_collocation_jacobian_against_superlu_and_householder_floquet():
+def test_collocation_jacobian_against_superlu_and_forward_monodromy():
     """A Jacobian assembled by Collocation (a linear periodic system's blocks): the same
     Newton step as the sparse LU, the same determinant, the same multipliers as the
-    Householder condensation of collocation.condense_blocks."""
+    monodromy matrix of the same discrete equations propagated forward
+    (collocation.fundamental_solution, another elimination: the multipliers here are of
+    modulus 0.2-0.8, where forward propagation loses nothing); the pair of the blocks
+    alone (reduction.floquet_pair) is the bordered factorisation's to the bit (the
+    pivots are chosen in the same columns)."""
     from washer.cont.linalg import SparseFactor
     rng = np.random.default_rng(11)
     n, N, m = 3, 20, 4
@@ -82,7 +88,9 @@ def test_collocation_jacobian_against_superlu_and_householder_floquet():
     s, l = f.sign_logdet()
     assert s == s_ref and l == pytest.approx(l_ref, rel=1e-11)
     mu = floquet.pencil_multipliers(*f.floquet_pair())
-    mu_ref = floquet.pencil_multipliers(*col.condense_blocks(blocks, n))
+    P0, P1 = reduction.floquet_pair(blocks, n)
+    assert np.array_equal(P0, f.floquet_pair()[0]) and np.array_equal(P1, f.floquet_pair()[1])
+    mu_ref = floquet.sort_multipliers(np.linalg.eigvals(col.fundamental_solution(blocks, n)[-1]))
     # the same set (a complex pair ties in AUTO's order by modulus: compare sorted)
     key = lambda z: np.lexsort((z.imag, np.round(z.real, 8)))     # noqa: E731
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)

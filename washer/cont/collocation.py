@@ -28,11 +28,10 @@ Contents, with the AUTO routine each follows:
 * `Collocation`: residual and sparse Jacobian of the discretised BVP with a fixed
   sparsity pattern (the CSC structure is built once per mesh, each evaluation only
   fills the values), and the dense local blocks of every interval.
-* `condense_blocks` (CONPAR + REDUCE): the interior unknowns of each interval are
-  eliminated (condensation of parameters), then the chain of intervals is reduced
-  pairwise (cyclic reduction with orthogonal transformations), which leaves
-  P0 u(0) + P1 u(1) = 0: the monodromy matrix is -P1^-1 P0, whose eigenvalues are
-  `washer.cont.floquet.pencil_multipliers`.
+* `fundamental_solution`: the discrete fundamental solution of the linearised
+  equations, forward interval by interval. (The condensation CONPAR + REDUCE, which
+  leaves P0 u(0) + P1 u(1) = 0, is the compiled factorisation's:
+  `washer.cont.reduction.floquet_pair`.)
 * `eqdf`, `new_mesh`, `interpolate` (EQDF, NEWMSH, INTERP): mesh adaptation by
   equidistribution of the (NCOL+1)-st derivative's NCOL+1-st root.
 """
@@ -467,8 +466,9 @@ def fundamental_solution(blocks: np.ndarray, ndim: int) -> np.ndarray:
     (blocks from `Collocation.local_blocks` with NDIM = ndim): Phi (n_nodes, ndim, ndim)
     with v(node k) = Phi[k] v(0) for every solution of the collocation equations; Phi[-1]
     is the monodromy matrix whose eigenvalues are the Floquet multipliers (the same
-    discrete problem as `condense_blocks`, solved forward interval by interval: each
-    interval's collocation equations give its NCOL later nodes from its first one).
+    discrete problem as `washer.cont.reduction.floquet_pair` condenses, solved forward
+    interval by interval: each interval's collocation equations give its NCOL later nodes
+    from its first one).
     Forward propagation loses accuracy on strongly unstable orbits (|mu| >> 1); it
     serves the eigenfunctions of the loci, where the critical multipliers are on the
     unit circle."""
@@ -482,40 +482,6 @@ def fundamental_solution(blocks: np.ndarray, ndim: int) -> np.ndarray:
         nxt = -np.linalg.solve(Br, B0 @ Phi[j * m])                 # (m n, n)
         Phi[j * m + 1:(j + 1) * m + 1] = nxt.reshape(m, n, n)
     return Phi
-
-
-def condense_blocks(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]:
-    """AUTO's condensation of parameters (CONPAR) and reduction (REDUCE), for the
-    homogeneous collocation system of the variational equation.
-
-    blocks : (NTST, NCOL*NDIM, (NCOL+1)*NDIM) local collocation blocks, columns
-        ordered node 0 (NDIM), interior nodes, node NCOL (NDIM).
-    Returns (P0, P1), each (NDIM, NDIM), with P0 y(0) + P1 y(1) = 0 for every
-    solution y of the discretised linearised equations (Householder transformations
-    only, so no pivoting decisions and no growth).
-    """
-    n = ndim
-    nint = blocks.shape[2] - 2 * n
-    if nint > 0:
-        Q, _ = np.linalg.qr(blocks[:, :, n:n + nint], mode="complete")
-        E = np.swapaxes(Q, 1, 2)[:, nint:, :]          # rows annihilating the interior
-        A = E @ blocks[:, :, :n]
-        B = E @ blocks[:, :, -n:]
-    else:
-        A, B = blocks[:, :, :n], blocks[:, :, -n:]
-    while len(A) > 1:
-        K = len(A)
-        p = K // 2
-        Aa, Ba, Ab, Bb = A[0:2 * p:2], B[0:2 * p:2], A[1:2 * p:2], B[1:2 * p:2]
-        Q, _ = np.linalg.qr(np.concatenate([Ba, Ab], axis=1), mode="complete")
-        G = np.swapaxes(Q, 1, 2)[:, n:, :]              # (p, n, 2n)
-        An = G[:, :, :n] @ Aa
-        Bn = G[:, :, n:] @ Bb
-        if K % 2:
-            An = np.concatenate([An, A[-1:]])
-            Bn = np.concatenate([Bn, B[-1:]])
-        A, B = An, Bn
-    return A[0], B[0]
 
 
 # --------------------------------------------------------------------------- adaptation

@@ -138,7 +138,7 @@ def _pencil_eigvals(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 def pencil_multipliers(P0: np.ndarray, P1: np.ndarray,
                        deflate_trivial: bool = False) -> np.ndarray:
     """Eigenvalues of the monodromy matrix -P1^-1 P0 (FLOWKM; P0, P1 from
-    `washer.cont.collocation.condense_blocks`), as the generalized eigenvalues of the
+    `washer.cont.reduction.floquet_pair`), as the generalized eigenvalues of the
     pencil (P0, -P1) by QZ, so that huge multipliers (long orbits near a homoclinic one)
     come out as large or infinite values instead of overflowing; infinite ones are inf.
     deflate_trivial: the orbit has a trivial multiplier (an autonomous periodic orbit),

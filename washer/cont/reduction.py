@@ -106,6 +106,31 @@ def collocation_blocks(WT: np.ndarray, WP: np.ndarray, dtm: np.ndarray, T: float
     return out
 
 
+def floquet_pair(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]:
+    """(P0, P1), each (NDIM, NDIM), with P0 y(0) + P1 y(1) = 0 for every solution y of the
+    homogeneous collocation equations with these blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM)
+    (AUTO's CONPAR + REDUCE): the Floquet pair of `BorderedCollocation`, made by the same
+    eliminations without parameter columns or dense rows of a continuation. The pivots
+    are chosen in the columns of U alone, so the pair of a Jacobian's blocks is, to the
+    bit, the one its bordered factorisation gives."""
+    blocks = np.ascontiguousarray(blocks, dtype=float)
+    N, mn, w = blocks.shape
+    n = ndim
+    m = mn // n
+    if w != mn + n or mn != m * n:
+        raise ValueError(f"floquet_pair: blocks of shape {blocks.shape} for NDIM = {n}")
+    handle = ffi.gc(lib.cont_bvp_new(N, m, n, 0), lib.cont_bvp_free)
+    if handle == ffi.NULL:
+        raise MemoryError("floquet_pair: no memory for the factorisation")
+    # NDIM dense rows of zeros: the eliminations carry them along, the pair does not
+    # read them (the remaining system is then singular, which the pair does not use)
+    extra = np.zeros((n, (N * m + 1) * n))
+    P0, P1 = np.zeros((n, n)), np.zeros((n, n))
+    lib.cont_bvp_factor(handle, _ptr(blocks), ffi.NULL, _ptr(extra), ffi.NULL, _ptr(P0),
+                        _ptr(P1))
+    return P0, P1
+
+
 class BorderedCollocation:
     """A factorised bordered collocation matrix (the `Factor` contract: solve,
     sign_logdet) with the Floquet pair.

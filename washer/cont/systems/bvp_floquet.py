@@ -20,8 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from washer.cont import collocation as col
-from washer.cont import floquet
+from washer.cont import floquet, reduction
 from washer.cont.system import Stability, register
 from washer.cont.systems.bvp_branch_point import BVPBranchPointLocus
 from washer.cont.systems.general_bvp import BoundaryValueProblem, BVPFoldLocus
@@ -48,7 +47,7 @@ class BoundaryValueFloquet(BoundaryValueProblem):
         N, m, n = self.mesh.ntst, self.mesh.ncol, self.ndim
         fu, _ = self.gauss_fu_fp(self.at_gauss(U).reshape(-1, n), par)
         blocks = self.coll.local_blocks(1.0, fu.reshape(N, m, n, n))
-        return floquet.pencil_multipliers(*col.condense_blocks(blocks, n))
+        return floquet.pencil_multipliers(*reduction.floquet_pair(blocks, n))
 
     def stability(self, x, J=None) -> Stability | None:
         """Multipliers and AUTO's NINS (floquet.stability); None when ISP = 0."""

@@ -373,14 +373,15 @@ class PeriodicOrbits(CollocationBVP):
         """Floquet multipliers at x in AUTO's order, from the condensed collocation
         blocks of the Jacobian at x (CONPAR + REDUCE + FLOWKM): the pair of the compiled
         factorisation of that Jacobian when it was factorised (the tangent at a
-        converged point), else a condensation of its blocks. J: the Jacobian at x
+        converged point), else the same eliminations on its blocks alone
+        (reduction.floquet_pair: the same pair to the bit). J: the Jacobian at x
         when known (`_blocks_at`)."""
         blocks = self._blocks_at(x, J)
         reduced = getattr(self, "_reduced", None)
         if reduced is not None and reduced[0] is self._last_blocks[2]:
             P0, P1 = reduced[1].floquet_pair()
         else:
-            P0, P1 = col.condense_blocks(blocks, self.ndim)
+            P0, P1 = reduction.floquet_pair(blocks, self.ndim)
         return floquet.pencil_multipliers(P0, P1, deflate_trivial=True)
 
     def stability(self, x: np.ndarray, J=None) -> Stability | None:
