@@ -286,9 +286,8 @@ def _main(args) -> int:
     print("Exact stability of the forced response (Floquet multipliers, shooting):")
     from washer.paper import exact_stability
     t2 = time.perf_counter()
-    exact = exact_stability.compute(params, exact_stability.N_CURVE_QUICK if args.quick
-                                  else exact_stability.N_CURVE, ends=not args.quick,
-                                  progress=lambda m: print(m, flush=True))
+    exact = exact_stability.compute(params, args.quick, ends=not args.quick,
+                                    progress=lambda m: print(m, flush=True))
     exact_files = exact_stability.write(d, exact)
     t_exact = time.perf_counter() - t2
     # The whirl past the Hopf point: the periodic orbits down to C_p = 0
