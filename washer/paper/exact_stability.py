@@ -78,8 +78,8 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
     C_p = 0, the lower end (both UZSTOP).
 
     Returns a dict: Omega (Hz), C_p (N m s/rad), theta (rad; PAR(12), the angle of the
-    critical multiplier pair exp(+-i theta)): arrays over the locus's points from its
-    lower end up; 'start' (the index of params' Omega, the TR point both runs start
+    critical multiplier pair exp(+-i theta)), slope (dC_p/dOmega, N m s/rad/Hz, from the
+    tangent): arrays over the locus's points from its lower end up; 'start' (the index of params' Omega, the TR point both runs start
     from); 'specials' [(type, Omega, C_p, theta)] of the labelled points other than the
     ends; 'ends' {low, high}: {Omega, C_p, theta, why}; 'monotone' (Omega rises along the
     whole locus: no fold in Omega); 'points' of each run (each includes the start);
@@ -117,9 +117,14 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
 
     def point(r):
         return float(r.par[1]), float(r.par[0]), float(r.par[11])
+
+    def slope(r):               # dC_p/dOmega from the tangent d PAR(ICP)/ds
+        d = dict(zip(r.icp, r.rldot))
+        return d[PAR_INDEX["C_p"]] / d[PAR_INDEX["Omega"]]
     return {"Omega": np.array([r.par[1] for r in rows]),
             "C_p": np.array([r.par[0] for r in rows]),
             "theta": np.array([r.par[11] for r in rows]),
+            "slope": np.array([slope(r) for r in rows]),
             "start": len(ways["low"].rows) - 1,
             "specials": [(r.ty,) + point(r) for r in
                          ways["low"].specials[::-1] + ways["high"].specials
@@ -364,8 +369,15 @@ def markdown(res: dict) -> str:
 def plot_fig4(ax, res: dict) -> None:
     """Overlay the exact (the TR locus, a line; its one-parameter checks, markers),
     averaged and frozen critical curves of `compute` on ax."""
+    from scipy.interpolate import CubicHermiteSpline
     f4 = res["fig4"]
-    ax.plot(f4["Omega"], f4["C_p_exact"], "k-", lw=1.5, label="exact (TR locus)")
+    loc = f4["locus"]
+    # between the locus's points (~1 Hz apart), the cubic through their values and
+    # tangents: error O(h^4), where straight segments show corners at the steep lower end
+    om = np.linspace(loc["Omega"][0], loc["Omega"][-1], 400)
+    ax.plot(om, CubicHermiteSpline(loc["Omega"], loc["C_p"], loc["slope"])(om), "k-",
+            lw=1.5, label="exact (TR locus)")
+    ax.plot(loc["Omega"], loc["C_p"], "k.", ms=3)
     chk = f4["checks"]
     ax.plot([c["Omega"] for c in chk] + [f4["Omega_low"]["shooting"]],
             [c["C_p_shooting"] for c in chk] + [0.0], "ko", mfc="none", ms=6,
