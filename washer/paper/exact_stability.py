@@ -101,7 +101,7 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
     for end, sign in (("low", -1.0), ("high", 1.0)):
         ways[end] = _run_ok(run(
             folder / "c.washer.forced.tr", verbose=False, files=False, params=params,
-            restart=gen, PAR={}, IRS=ep, NMX=300, DS=sign * steps["DS"],
+            restart=gen, PAR={}, IRS=ep, NMX=300, NPR=0, DS=sign * steps["DS"],
             DSMAX=steps["DSMAX"], UZR={},
             UZSTOP={"Omega": [0.0, omega_max], "C_p": [0.0, 10.0]}, **mesh),
             f"c.washer.forced.tr toward the {end} end")
