@@ -53,7 +53,7 @@ CHECK_OMEGAS, CHECK_OMEGAS_QUICK = (5.0, 12.5), ()
 #: lower end is located to EPSS = 1e-7 in arclength (Muller's last step far below). 1e-8.
 CHECK_TOL = 1e-8
 #: Steps of the locus: DS = DSMAX = 1 in the arclength, about 1 Hz in Omega (the constants
-#: file's DS = 0.05 grows by 1.1 per step, three Newton iterations each: four times the
+#: file's DS = 0.05 grows by 1.1 per step, three Newton iterations each: 3.5 times the
 #: steps on the same curve). Quick: NTST = 10 (see CHECK_TOL; at 7 the lower end moves by
 #: 2e-8 Hz, at 5 by 3e-7) and about 2 Hz.
 LOCUS = {"DS": 1.0, "DSMAX": 1.0}
