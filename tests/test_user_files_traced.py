@@ -1,6 +1,6 @@
-"""Python user files' func traced into compiled C (washer.cont.tracer, washer.cont.user_files_traced):
-the compiled function equals the Python one bit for bit, and what cannot be traced or
-does not agree stays Python, saying why."""
+"""Python user files' func traced into compiled C (washer.cont.tracer,
+washer.cont.user_files_traced): the compiled function equals the Python one bit for bit,
+and what cannot be traced or does not agree stays Python, saying why."""
 import importlib.util
 from pathlib import Path
 
@@ -12,6 +12,7 @@ from washer.cont.problem import Problem
 from washer.cont.tracer import TraceError, numpy_loop, trace_function
 from washer.cont.user_files_traced import TracedProblem, traced_problem
 from washer.cont.user_files import load_user_problem
+from demo_files import copy_demo
 
 DATA = Path(__file__).parent / "data"
 #: Every Python user file shipped with the tests (func(u, par) defined), with its NDIM
@@ -442,8 +443,18 @@ def test_traced_folders_write_the_python_runs_files(folder, tmp_path):
     outs = {}
     for trace in ("0", "1"):
         d = tmp_path / trace
-        shutil.copytree(src, d)
-        target = (sorted(d.glob("*.auto")) or sorted(d.glob("c.*")))[0]
+        kind, _, demo = folder.partition("/")
+        if kind in ("bvp", "maps"):
+            # AUTO's demo folder with the Python transcription of its equations beside it
+            d.mkdir()
+            copy_demo(demo, d, src)
+        else:
+            shutil.copytree(src, d)
+        # the demo's own script NAME.auto (a demo folder also holds AUTO's clean.auto)
+        name = folder.rpartition("/")[2]
+        own = d / f"{name}.auto"
+        scripts = [own] if own.exists() else sorted(d.glob("*.auto"))
+        target = (scripts or sorted(d.glob("c.*")))[0]
         env = dict(os.environ, WASHER_TRACE=trace, OMP_NUM_THREADS="1",
                    PYTHONPATH=os.pathsep.join([str(Path(__file__).parents[1]),
                                                os.environ.get("PYTHONPATH", "")]))
