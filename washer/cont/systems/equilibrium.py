@@ -47,21 +47,14 @@ def hopf_pair(lam: np.ndarray) -> complex | None:
     return best
 
 
-def hopf_test(lam: np.ndarray) -> float | None:
-    """Re of the complex eigenvalue closest to the imaginary axis (None if all real)."""
-    return _pair_test(hopf_pair(lam))
-
-
-def _pair_test(mu: complex | None) -> float | None:
+def hopf_test(mu: complex | None) -> float | None:
+    """AUTO's HB test of `mu`, the pair `hopf_pair` finds: Re mu (None if all are real)."""
     return None if mu is None else mu.real
 
 
-def hopf_period(lam: np.ndarray) -> float | None:
-    """PAR(11) = 2 pi / |Im| of the pair closest to the imaginary axis (PVLSAE)."""
-    return _pair_period(hopf_pair(lam))
-
-
-def _pair_period(mu: complex | None) -> float | None:
+def hopf_period(mu: complex | None) -> float | None:
+    """PAR(11) = 2 pi / |Im mu| of the pair `hopf_pair` finds (PVLSAE; None if all are
+    real)."""
     return None if mu is None else float(2 * np.pi / abs(mu.imag))
 
 
@@ -248,7 +241,7 @@ class EquilibriumSystem(AlgebraicSystem):
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         out = self._lp_bp(tangent, factor, codes)
         if Code.HB in codes:
-            out[Code.HB] = _pair_test(self._pair(stability.values)) \
+            out[Code.HB] = hopf_test(self._pair(stability.values)) \
                 if stability is not None else None
         if NEUTRAL_HB in codes:
             out[NEUTRAL_HB] = neutral_hopf_test(stability) if stability is not None else None
@@ -273,7 +266,7 @@ class EquilibriumSystem(AlgebraicSystem):
                 lam = cached[1]
             else:
                 lam = eigenvalues_sorted(self.problem.dfdu(x[:-1], self._p(x)))
-            per = _pair_period(self._pair(lam))
+            per = hopf_period(self._pair(lam))
             if per is not None:
                 sol.par[10] = per
         return sol
