@@ -107,23 +107,27 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
             f"c.washer.forced.tr toward the {end} end")
     rows = ways["low"].rows[::-1] + ways["high"].rows[1:]
     ends = {k: w.rows[-1] for k, w in ways.items()}
+    # the parameters' places in PAR (the one map, washer.machine.layout); theta is the
+    # locus's own PAR(12)
+    i_cp, i_om, i_theta = PAR_INDEX["C_p"] - 1, PAR_INDEX["Omega"] - 1, 11
 
     def why(r):
-        if abs(r.par[0]) <= 1e-12:
+        if abs(r.par[i_cp]) <= 1e-12:
             return "C_p,crit = 0: the lower end (UZSTOP C_p = 0)"
-        if abs(r.par[1] - omega_max) <= 1e-9 * omega_max:
+        if abs(r.par[i_om] - omega_max) <= 1e-9 * omega_max:
             return f"Table 1's end, Omega = {omega_max:g} Hz (UZSTOP)"
         return f"{r.ty} (not a UZSTOP: the locus stops short)"
 
     def point(r):
-        return float(r.par[1]), float(r.par[0]), float(r.par[11])
+        return float(r.par[i_om]), float(r.par[i_cp]), float(r.par[i_theta])
 
     def slope(r):               # dC_p/dOmega from the tangent d PAR(ICP)/ds
         d = dict(zip(r.icp, r.rldot))
         return d[PAR_INDEX["C_p"]] / d[PAR_INDEX["Omega"]]
-    return {"Omega": np.array([r.par[1] for r in rows]),
-            "C_p": np.array([r.par[0] for r in rows]),
-            "theta": np.array([r.par[11] for r in rows]),
+    omega = np.array([r.par[i_om] for r in rows])
+    return {"Omega": omega,
+            "C_p": np.array([r.par[i_cp] for r in rows]),
+            "theta": np.array([r.par[i_theta] for r in rows]),
             "slope": np.array([slope(r) for r in rows]),
             "start": len(ways["low"].rows) - 1,
             "specials": [(r.ty,) + point(r) for r in
@@ -131,7 +135,7 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
                          if not any(r is e for e in ends.values())],
             "ends": {k: dict(zip(("Omega", "C_p", "theta"), point(r)), why=why(r))
                      for k, r in ends.items()},
-            "monotone": bool(np.all(np.diff([r.par[1] for r in rows]) > 0)),
+            "monotone": bool(np.all(np.diff(omega) > 0)),
             "points": {k: len(w.rows) for k, w in ways.items()},
             "ntst": mesh.get("NTST", 20)}
 
@@ -446,8 +450,8 @@ def main(argv: list[str] | None = None) -> int:
                                  "multipliers of the forced response): JSON, Markdown, Fig 4.")
     ap.add_argument("--out", type=Path, default=Path("out/forced"))
     ap.add_argument("--quick", action="store_true",
-                    help="a coarser Fig 4 locus, one check beside the nominal one and the "
-                    "lower end, no Table 1 ends")
+                    help="a coarser Fig 4 locus, checked at the nominal point and the lower "
+                    "end only, no Table 1 ends")
     args = ap.parse_args(argv)
     res = compute(load_params(), args.quick, ends=not args.quick)
     write(args.out, res)
