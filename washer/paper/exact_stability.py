@@ -137,7 +137,7 @@ def torus_locus(params: Params, omega_max: float = OMEGA_MAX, quick: bool = Fals
                      for k, r in ends.items()},
             "monotone": bool(np.all(np.diff(omega) > 0)),
             "points": {k: len(w.rows) for k, w in ways.items()},
-            "ntst": mesh.get("NTST", 20)}
+            "ntst": int(ends["high"].ntst)}           # the mesh the locus ran on
 
 
 #: Half-width (relative) of the bracket of the lower end's shooting location around an
