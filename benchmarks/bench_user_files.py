@@ -4,7 +4,8 @@ file of the same equations and the washer's own kernel path.
     python benchmarks/bench_user_files.py [--repeat N]
 
 Cases: AUTO's `ab` demo (tests/data/auto_demos/ab/ab.f90, compiled through
-washer.cont.user_files_native) and its Python transcription (tests/data/ab_demo/ab.py), both
+washer.cont.user_problem.user_files_native) and its Python transcription
+(tests/data/ab_demo/ab.py), both
 through Problem.func_many on k points (k = 1: the fixed cost of one call; k = 1000: the
 per-point cost of a batch, as the engine's stencils and collocation points call it);
 the washer's built-in problem (e='washer', NDIM 12, the C++ kernel through cffi) the same
@@ -56,8 +57,8 @@ def main() -> int:
     ap.add_argument("--repeat", type=int, default=5)
     args = ap.parse_args()
     os.environ.setdefault("OMP_NUM_THREADS", "1")
-    from washer.cont.user_files_native import load_compiled_problem
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files_native import load_compiled_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     from washer.problems.washer import washer_problem
     cases = [("ab.f90 (compiled)", load_compiled_problem(DATA / "auto_demos" / "ab" / "ab.f90", 2),
               2, 36),

@@ -17,7 +17,8 @@ def autoref(name: str) -> Path:
 def copy_demo(name: str, dest: Path, *extra: Path) -> Path:
     """`dest` with demo NAME's files (not its autoref/), then each file of the folders in
     `extra` (a test's own files, such as a Python transcription NAME.py of the equations,
-    which wins over AUTO's NAME.f90 beside it: washer.cont.user_files). Returns dest."""
+    which wins over AUTO's NAME.f90 beside it: washer.cont.user_problem.user_files). Returns
+    dest."""
     for folder in (DEMOS / name, *extra):
         for f in folder.iterdir():
             if f.is_file():

@@ -459,7 +459,7 @@ def test_a_failing_stpnt_of_a_profile_names_its_time_and_the_users_line(tmp_path
     is extended to a larger NDIM: a ProblemError naming the time, what was being done and
     the user's file and line."""
     from washer.cont.problem import Problem, ProblemError
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     (tmp_path / "bad.py").write_text(
         "def func(u, par):\n    return -u\n\n\n"
         "def stpnt(u, par, t):\n    if t > 0.5:\n        raise ValueError('no start here')\n"

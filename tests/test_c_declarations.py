@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 import sympy
 
-from washer.cont import user_files_native, corrector_algebraic, user_files_sympy
+from washer.cont import corrector_algebraic
+from washer.cont.user_problem import user_files_native, user_files_sympy
 
 ROOT = Path(__file__).resolve().parent.parent
 CONT = ROOT / "washer" / "cont"
@@ -84,7 +85,7 @@ def named(decls: set, name: str) -> str:
 
 
 @pytest.mark.parametrize("cdef, source", [
-    (user_files_native.CDEF, CONT / "user_files_bridge.c"),
+    (user_files_native.CDEF, CONT / "user_problem" / "user_files_bridge.c"),
     (corrector_algebraic._CALLBACK_CDEF, CONT / "ae_callback.c"),
     (corrector_algebraic._GENERATED_CDEF, CONT / "ae_generated.c"),
 ], ids=["user_files_bridge", "ae_callback", "ae_generated"])

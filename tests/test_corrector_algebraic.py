@@ -148,9 +148,9 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, mon
     with the user's Jacobians (JAC = 1) a compiled user file keeps the Python loop and
     Python equations take the compiled one (their dfdu called back); sympy equations
     take it with differences or their generated exact Jacobians."""
-    from washer.cont.user_files_native import load_compiled_problem
+    from washer.cont.user_problem.user_files_native import load_compiled_problem
     from washer.cont.settings import Settings
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     from washer.cont.system import StartData
     from washer.cont.systems.equilibrium import EquilibriumSystem
 
@@ -176,7 +176,8 @@ def test_only_compiled_equilibria_with_difference_jacobians(tmp_path, cache, mon
     exact = corrector_algebraic.compiled_corrector(system(with_dfdu, 1), s, 20.0)
     assert exact is not None and exact.user.exact
     assert not corrector_algebraic.compiled_corrector(system(with_dfdu, 0), s, 20.0).user.exact
-    # traced into C (washer.cont.user_files_traced): FUNC directly with differences, the call back
+    # traced into C (washer.cont.user_problem.user_files_traced): FUNC directly with
+    # differences, the call back
     # (of the traced dfdu) with the user's Jacobians
     monkeypatch.setenv("WASHER_TRACE", "1")
     traced = load_python_problem("ab", jac_py, 2)
@@ -258,10 +259,10 @@ def test_no_c_compiler_keeps_the_python_loop_and_other_errors_propagate(monkeypa
     (CompileError: no compiler, a failed compile) the Python loop runs; any other error
     of the set-up is raised, not taken for a missing compiler. A failed build is
     remembered: the next run's start does not compile again."""
-    from washer.cont import c_library as compile_module
-    from washer.cont.c_library import CompileError
+    from washer.cont.user_problem import c_library as compile_module
+    from washer.cont.user_problem.c_library import CompileError
     from washer.cont.settings import Settings
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
@@ -292,7 +293,7 @@ def test_a_work_layout_out_of_step_with_c_fails_loudly(cache, monkeypatch):
     only), the correction raises instead of reading other numbers as the points."""
     from washer.cont.branch import Counters
     from washer.cont.settings import Settings
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)
@@ -322,7 +323,7 @@ def test_an_error_of_the_call_back_itself_is_raised(cache, monkeypatch):
     error in the call back's own code is raised, not hidden behind a Python-loop step."""
     from washer.cont.branch import Counters
     from washer.cont.settings import Settings
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     s = Settings(NDIM=2, ICP=[1], IPS=1)
     monkeypatch.setenv("WASHER_TRACE", "0")      # ab.py's func in Python (the call back)
     system = _ab_system(load_python_problem("ab", DATA / "ab", 2), s)

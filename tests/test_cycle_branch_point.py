@@ -192,7 +192,7 @@ def _system(folder, cfile, records, **kw):
     start resolution as every run)."""
     from washer.auto.files import read_s
     from washer.cont.runner import build
-    from washer.cont.user_files import load_user_problem
+    from washer.cont.user_problem.user_files import load_user_problem
     c = read_constants(folder / cfile)
     for k, v in kw.items():
         c.set(k, v)
@@ -286,7 +286,7 @@ def test_adjoint_second_derivatives_both_ways():
     import numpy as np
 
     from washer.cont.systems.bvp import VectorField
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     x, y, p1, p2, p3, a, b = sp.symbols("x y p1 p2 p3 a b", real=True)
     r = sp.sqrt(x ** 2 + y ** 2)
     g = (r - p1) * (sp.exp(p2) - r) + p3

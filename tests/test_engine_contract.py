@@ -12,7 +12,7 @@ import pytest
 from washer.cont import systems
 from washer.auto.constants_file import Constants, read_constants
 from washer.auto.files import read_s
-from washer.cont.user_files import load_python_problem
+from washer.cont.user_problem.user_files import load_python_problem
 from washer.cont.runner import RunError, build, execute
 from washer.cont.runner import run as run_in_memory
 from washer.cont.settings import Settings

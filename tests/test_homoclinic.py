@@ -26,7 +26,7 @@ from washer.cont import runner
 from washer.cont.constants import Constants
 from washer.cont.problem import Problem
 from washer.cont.start import RunError
-from washer.cont.user_files import load_user_problem
+from washer.cont.user_problem.user_files import load_user_problem
 
 DATA = Path(__file__).parent / "data" / "homcont"
 T = 40.0               # PAR(11): the truncation interval

@@ -34,7 +34,7 @@ from washer.auto.script import run_script
 from washer.cont import runner
 from washer.cont.constants import Constants
 from washer.cont.problem import Problem
-from washer.cont.user_files import load_user_problem
+from washer.cont.user_problem.user_files import load_user_problem
 
 DATA = Path(__file__).parent / "data" / "homcont"
 MU = 0.25

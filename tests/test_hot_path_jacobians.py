@@ -383,8 +383,8 @@ def test_a_python_demo_on_arrays_is_autos_func_bit_for_bit(name, tmp_path):
     (tests/data/auto_demos/NAME/NAME.f90) bit for bit at every point, where separate
     calls on numpy scalars are not at some: why that rule is not the small stencils'
     bitwise comparison with separate calls, which would refuse these files' arrays."""
-    from washer.cont.user_files_native import load_compiled_problem
-    from washer.cont.user_files import load_python_problem
+    from washer.cont.user_problem.user_files_native import load_compiled_problem
+    from washer.cont.user_problem.user_files import load_python_problem
     data = Path(__file__).parent / "data"
     shutil.copy(data / "auto_demos" / name / f"{name}.f90", tmp_path)
     fortran = load_compiled_problem(tmp_path / f"{name}.f90", 2, name)

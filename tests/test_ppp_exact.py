@@ -49,7 +49,7 @@ from washer.auto.diagram import type_name
 from washer.auto.files import read_b
 from washer.cont.events import location_tolerance
 from washer.cont.normal_form import first_lyapunov
-from washer.cont.user_files import load_user_problem
+from washer.cont.user_problem.user_files import load_user_problem
 from washer.run import run
 
 DEMO = Path(__file__).parent / "data" / "auto_demos" / "ppp"

@@ -33,7 +33,7 @@ def test_user_file_saved_state_starts_afresh_for_every_run():
     """pcl's PVLS sets PAR(21) = U(0)(7) - 10 on its FIRST call only (a SAVEd flag): AUTO
     runs every run in a new process, so every run's first call sets it. The compiled
     library reloaded (`fresh`) behaves so; without the reload the second call is a no-op."""
-    from washer.cont.user_files_native import load_compiled_problem
+    from washer.cont.user_problem.user_files_native import load_compiled_problem
     p = load_compiled_problem(DATA / "auto_demos" / "pcl" / "pcl.f90", 9)
 
     def pvls_once():

@@ -51,7 +51,8 @@ def test_a_short_equilibrium_run_imports_only_what_it_uses(tmp_path):
     report = _run(tmp_path, "c.ab")
     assert report["status"] == 0 and (tmp_path / "b.ab").stat().st_size > 0
     modules = set(report["modules"])
-    assert "washer.cont.user_files_traced" in modules and "washer.cont.systems.equilibrium" in modules
+    assert "washer.cont.user_problem.user_files_traced" in modules
+    assert "washer.cont.systems.equilibrium" in modules
     loaded = sorted(m for m in modules
                     if m.split(".")[0] in NOT_IMPORTED or m in NOT_IMPORTED_ENGINE)
     assert loaded == []

@@ -1,4 +1,5 @@
-"""AUTO user files in Fortran and C, compiled on the fly (washer.cont.c_library, .compiled).
+"""AUTO user files in Fortran and C, compiled on the fly (washer.cont.user_problem.c_library,
+.compiled).
 
 Checked against independent references: the Python transcription of the same equations
 (tests/data/ab_demo/ab.py), central differences for the user's Jacobians, closed-form
@@ -12,9 +13,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from washer.cont.c_library import CompileError, build_library, source_file, source_text
-from washer.cont.user_files_native import load_compiled_problem
-from washer.cont.user_files import load_python_problem
+from washer.cont.user_problem.c_library import CompileError, build_library, source_file, source_text
+from washer.cont.user_problem.user_files_native import load_compiled_problem
+from washer.cont.user_problem.user_files import load_python_problem
 
 DATA = Path(__file__).parent / "data"
 AB_F90 = DATA / "auto_demos" / "ab" / "ab.f90"
@@ -129,7 +130,7 @@ def test_a_user_file_edited_in_the_same_process_is_built_again(cache, tmp_path):
     hashing at every run's start), keyed by the file's content: the same file twice is
     the same library, an edited one a new library with the edited equations, and the
     library is checked to exist before it is reused."""
-    from washer.cont.user_files_native import compile_user_file
+    from washer.cont.user_problem.user_files_native import compile_user_file
     src = tmp_path / "ab.f90"
     shutil.copy(AB_F90, src)
     lib1 = compile_user_file(src)

@@ -6,9 +6,9 @@ import inspect
 
 import numpy as np
 
-from washer.cont import user_files, user_files_traced
+from washer.cont.user_problem import user_files, user_files_traced
 from washer.cont.problem import Problem
-from washer.cont.user_files import load_python_problem
+from washer.cont.user_problem.user_files import load_python_problem
 
 FILE = """import numpy as np
 CALLS = []
@@ -98,7 +98,7 @@ def test_a_library_key_follows_its_sources_and_headers(tmp_path):
     headers' names, sizes and modification times: an edited source or header, a header
     added, is another key, and the kept key is the one hashed afresh."""
     import os
-    from washer.cont import c_library
+    from washer.cont.user_problem import c_library
     inc = tmp_path / "include"
     inc.mkdir()
     (inc / "a.h").write_text("#define A 1\n")

@@ -1,4 +1,5 @@
-"""User problems as sympy expressions (washer.cont.user_files_sympy): the generated and compiled
+"""User problems as sympy expressions (washer.cont.user_problem.user_files_sympy): the generated
+and compiled
 f, f_u, f_p against the hand-written Lorenz equations and their Jacobian written out
 by hand, and runs against the closed-form Hopf point and the Python file's run."""
 import shutil
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 from washer.cont.problem import ProblemError
-from washer.cont.user_files import load_python_problem
+from washer.cont.user_problem.user_files import load_python_problem
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -158,7 +159,7 @@ def test_a_copy_in_another_folder_does_not_generate_again(folder, tmp_path_facto
     """sympy's differentiation and printing (most of a short run's set-up) run once for
     the same equations in a process: a chain of runs, each in its own folder, reuses
     the C."""
-    from washer.cont import user_files_sympy
+    from washer.cont.user_problem import user_files_sympy
     calls = []
     real = user_files_sympy.generate_c
     monkeypatch.setattr(user_files_sympy, "generate_c", lambda *a, **k: calls.append(1) or real(*a, **k))

@@ -1,5 +1,6 @@
-"""Python user files' func traced into compiled C (washer.cont.tracer,
-washer.cont.user_files_traced): the compiled function equals the Python one bit for bit,
+"""Python user files' func traced into compiled C (washer.cont.user_problem.tracer,
+washer.cont.user_problem.user_files_traced): the compiled function equals the Python one bit for
+bit,
 and what cannot be traced or does not agree stays Python, saying why."""
 import importlib.util
 from pathlib import Path
@@ -9,9 +10,9 @@ import pytest
 
 from washer.cont.pointwise import same_bits
 from washer.cont.problem import Problem
-from washer.cont.tracer import TraceError, numpy_loop, trace_function
-from washer.cont.user_files_traced import TracedProblem, traced_problem
-from washer.cont.user_files import load_user_problem
+from washer.cont.user_problem.tracer import TraceError, numpy_loop, trace_function
+from washer.cont.user_problem.user_files_traced import TracedProblem, traced_problem
+from washer.cont.user_problem.user_files import load_user_problem
 from demo_files import copy_demo
 
 DATA = Path(__file__).parent / "data"
@@ -156,7 +157,7 @@ def test_numpy_loop_is_numpy(tmp_path):
         numpy_loop(np.isnan)            # no loop from doubles to doubles
 
 
-#: Every class of power numpy distinguishes (washer.cont.tracer): the operator with a
+#: Every class of power numpy distinguishes (washer.cont.user_problem.tracer): the operator with a
 #: Python int -1, 2 (ufuncs on arrays), a Python float 0.5, other ints and floats, the
 #: loop's own fast values (0, 1, -1.0, 2.0) and np.float64 exponents, a constant base,
 #: a computed exponent, PAR(i) itself as the exponent (its stride on arrays), np.power.
@@ -191,7 +192,7 @@ def test_every_class_of_power_is_numpys_bit_for_bit_in_each_mode(tmp_path):
     the same operations or calls numpy's own loop. And the modes do differ (x ** 2 is
     not pow(x, 2) at some x): the test can fail."""
     from washer.cont.problem import broadcast_rows
-    from washer.cont.user_files_traced import ARRAYS, ARRAYS_PAR_BROADCAST, SCALARS
+    from washer.cont.user_problem.user_files_traced import ARRAYS, ARRAYS_PAR_BROADCAST, SCALARS
     n = len(POWERS)
     p = traced_problem(_problem(_powers, ndim=n), tmp_path / "t.py")
     assert isinstance(p, TracedProblem) and p.two_ways, getattr(p, "route", "")
@@ -323,7 +324,7 @@ def test_traced_runs_write_the_python_runs_files(name, locus, tmp_path, monkeypa
     the same. The trace is taken and never refused on the way."""
     import shutil
     import auto_reference
-    from washer.cont import user_files_traced
+    from washer.cont.user_problem import user_files_traced
     from washer.run import run
     refused = []
     monkeypatch.setattr(user_files_traced.TraceState, "refuse",
@@ -405,7 +406,7 @@ TRACED_FOLDERS = {"bvp/bvp": True, "bvp/ext": True, "bvp/lin": True, "bvp/nep": 
 
 _RUN_BOTH_WAYS = '''
 import sys
-from washer.cont import user_files_traced
+from washer.cont.user_problem import user_files_traced
 seen = []
 real_build, real_refuse = user_files_traced._build, user_files_traced.TraceState.refuse
 def build(*a):

@@ -74,6 +74,11 @@ def test_wheel_has_every_subpackage_the_constants_and_a_stripped_kernel(built):
     packages = {str(p.parent.relative_to(src)) for p in (src / "washer").rglob("__init__.py")}
     missing = [p for p in packages if f"{p}/__init__.py" not in info]
     assert not missing, f"subpackages missing from the wheel: {missing}"
+    # The C the engine compiles at run time (the user files' bridge, the correctors' C and
+    # the headers they include) is read beside its module: every such file ships.
+    c_files = {str(p.relative_to(src)) for e in ("*.c", "*.h") for p in (src / "washer").rglob(e)}
+    assert "washer/cont/user_problem/user_files_bridge.c" in c_files
+    assert not c_files - set(info), f"C files missing from the wheel: {sorted(c_files - set(info))}"
     shipped = {p.name for p in (src / "auto_constants").glob("c.*")}
     in_wheel = {Path(n).name for n in info if n.startswith("washer/auto_constants/")}
     assert shipped and shipped == in_wheel

@@ -5,7 +5,8 @@ file beside the constants file.
     build = named_problem("washer:frozen")    # a family's from_constants, None for a file
 
 e = 'NAME' or 'NAME:variant' names one of the families below when NAME is theirs, else
-the user's NAME.py or AUTO's NAME.f90, NAME.f, NAME.c (washer.cont.user_files). The table
+the user's NAME.py or AUTO's NAME.f90, NAME.f, NAME.c (washer.cont.user_problem.user_files). The
+table
 names each family's module by its import path, imported on first use: `washer.run` and
 AUTO's command language (washer.auto.clui) look e up here and so stay below the problems
 they run (the AUTO file layer imports no problem of the washer's, and a run of a user's
@@ -34,7 +35,7 @@ def resolve_problem(c, folder, params=None):
     washer.Params; default: its own), else the user's file in `folder` (washer.cont.
     user_files.load_user_problem). RunError naming the constants file when e is empty."""
     from washer.cont.runner import RunError
-    from washer.cont.user_files import load_user_problem
+    from washer.cont.user_problem.user_files import load_user_problem
     e = c["e"]
     if not e:
         raise RunError(f"{c.source}: no equations: set e='NAME' (NAME.py, or AUTO's NAME.f90, "

@@ -35,7 +35,7 @@ from washer.auto.constants_file import (DEFAULTS, IGNORED, Constants, ConstantsE
                                    parse_override, read_constants)
 from washer.auto.files import AutoFileError, read_named_dat, read_s
 from washer.cont.branch import Branch
-from washer.cont.c_library import CompileError
+from washer.cont.user_problem.c_library import CompileError
 from washer.cont.problem import Problem, ProblemError
 from washer.cont.runner import RunError, build, execute, restart_records
 from washer.auto.sinks import FileSink, ScreenSink
@@ -108,7 +108,8 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
         problem = resolve_problem(c, folder, params)
     route = getattr(problem, "route", None)
     if verbose and route:
-        # how a Python file's func is evaluated (washer.cont.user_files_traced), and why
+        # how a Python file's func is evaluated (washer.cont.user_problem.user_files_traced),
+        # and why
         print(f"note: e='{c['e']}': {route}", file=sys.stderr)
     _check_size(c, problem, allow_large)
     # The restart data is read whole before any output file is opened: the

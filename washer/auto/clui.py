@@ -73,7 +73,7 @@ class Runner:
         (compiled once, cached), or a family the package ships (e = 'washer...',
         washer.named_problems), built from the run's `constants` as `washer.run` builds
         it (e='washer' starts from the equilibrium at the constants' PAR)."""
-        from washer.cont.user_files import find_problem_file, load_user_problem
+        from washer.cont.user_problem.user_files import find_problem_file, load_user_problem
         if not e:
             raise AutoError("The equation file argument is missing.")
         folder = Path(".").resolve()
@@ -200,7 +200,7 @@ def _execute(sol: Solution) -> Diagram:
     from washer.cont.runner import RunError, build, execute
     from washer.cont.problem import ProblemError
     from washer.auto.sinks import FileSink, ScreenSink
-    from washer.cont.c_library import CompileError
+    from washer.cont.user_problem.c_library import CompileError
     c = sol.c
     e = c.get("e") or ""
     if c.get("IRS") and sol.empty:

@@ -3,15 +3,17 @@ knows nothing of washing machines and reads and writes no b-, s- or d-files (was
 does: a run's files are sinks attached to it). Its modules:
 
 problem       the user's equations (FUNC, STPNT, PVLS, BCND, ICND, FOPT) and their
-              finite-difference derivatives; user_files finds them beside the constants
-              file: NAME.py, or user_files_native (AUTO's Fortran/C user files, with
-              user_files_bridge.c), user_files_sympy (sympy expressions generated into C);
-              c_library compiles C and Fortran into a shared library, cached by content;
-              tracer records a Python func into C and user_files_traced trusts that C
-              where it is the Python func bit for bit; pointwise: when a Python func is
+              finite-difference derivatives; pointwise: when a Python func is
               called once on the arrays of a small stencil;
               parabolic: a parabolic PDE's user problem as the first-order system in x
               that the systems of IPS 11-17 continue
+user_problem/ the user's files turned into a Problem (its own list of modules):
+              user_files finds them beside the constants file (NAME.py, or AUTO's
+              Fortran/C user files: user_files_native with user_files_bridge.c),
+              user_files_sympy (sympy expressions generated into C), tracer and
+              user_files_traced (a Python func traced into C, trusted where it is the
+              Python func bit for bit), c_library (C and Fortran compiled, cached by
+              content)
 differences   central differences: AUTO's step, the points and the quotient, the one
               definition every finite-difference derivative of the engine uses
 constants, settings
@@ -29,11 +31,10 @@ lapack        the addresses of numpy's own LAPACK routines, for the compiled eng
 newton, corrector_algebraic, corrector_periodic, iterator, events
               the one Newton loop and its compiled forms for equilibria and the fold and
               Hopf loci (C written once in include/ae_correct.h, the GH test's l1 in
-              include/ae_lyapunov.h; FUNC from user_files_bridge.c, a Python func through
-              ae_callback.c, a sympy problem's generated C through ae_generated.c) and for
-              periodic orbits
-              (C++ in csrc/cont/po_correct.cpp; corrector_algebraic.compiled_corrector
-              chooses where they apply), the
+              include/ae_lyapunov.h; FUNC from user_problem/user_files_bridge.c, a
+              Python func through ae_callback.c, a sympy problem's generated C through
+              ae_generated.c) and for periodic orbits (C++ in csrc/cont/po_correct.cpp;
+              corrector_algebraic.compiled_corrector chooses where they apply), the
               pseudo-arclength iterator (predictor, corrector, step control), test
               functions' sign changes and their location
 start, runner, branch

@@ -3,7 +3,7 @@
  * calls the user's func point by point (or in one batch) exactly as the Python loop
  * does; with the user's Jacobians (JAC = 1, -1) on equilibria, [f_u, f_PAR(ICP(1))] too
  * (stage 3: Problem.jacobian, as the Python loop calls it). Compiled on first use
- * (washer.cont.c_library), as the bridge of user files is.
+ * (washer.cont.user_problem.c_library), as the bridge of user files is.
  */
 #include <stddef.h>
 #include <string.h>

@@ -1,9 +1,10 @@
 /* The corrector of algebraic continuation (include/ae_correct.h) for the generated C of
- * sympy problems (washer.cont.user_files_sympy): its washer_sym_func and washer_sym_jac are
+ * sympy problems (washer.cont.user_problem.user_files_sympy): its washer_sym_func and
+ * washer_sym_jac are
  * called through function pointers, f over all the rows of a difference stencil in one
  * call (as Problem.func_many calls the generated func_batch), and with JAC = 1 the exact
  * [f_u, f_PAR(ICP(1))] (as Problem.jacobian's dfdu and dfdp give them). Compiled on
- * first use (washer.cont.c_library) by washer.cont.corrector_algebraic.
+ * first use (washer.cont.user_problem.c_library) by washer.cont.corrector_algebraic.
  */
 #include <stddef.h>
 

@@ -21,7 +21,8 @@ differ from LAPACK's in the last bit, far inside EPSU), the small products of th
 plain sums (BLAS may round them otherwise).
 
 f is evaluated by
-* compiled AUTO user files (washer.cont.user_files_native): the C is part of the file's bridge
+* compiled AUTO user files (washer.cont.user_problem.user_files_native): the C is part of the
+* file's bridge
   (user_files_bridge.c) and calls FUNC directly;
 * equations in Python (NAME.py with func): washer/cont/ae_callback.c, compiled on first
   use, calls back into Python once per Newton iteration (twice on the loci: f_u first,
@@ -29,7 +30,8 @@ f is evaluated by
   point by point (or in one batch) exactly as the Python loop calls it: the same values;
   on equilibria with the user's Jacobians (JAC = 1: dfdu and dfdp; JAC = -1: dfdu and
   the differenced f_PAR), twice: Problem.jacobian, then func at the iterate;
-* equations as sympy expressions (washer.cont.user_files_sympy): washer/cont/ae_generated.c,
+* equations as sympy expressions (washer.cont.user_problem.user_files_sympy):
+* washer/cont/ae_generated.c,
   compiled on first use, calls the generated C's f (a stencil's points in one call, as
   the Python loop's func_many) and, with JAC = 1, its exact f_u and f_p (as the Python
   loop's Problem.jacobian) through C function pointers.
@@ -52,7 +54,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.c_library import CompileError
+from washer.cont.user_problem.c_library import CompileError
 from washer.cont.differences import FD_STEP
 from washer.cont.newton import ConvergenceError
 from washer.cont.linalg import all_finite
@@ -149,8 +151,8 @@ def _library(source: str, cdef: str):
     if source in _failures:
         raise _failures[source]
     if source not in _libraries:
-        from washer.cont.c_library import build_library, declarations, source_file
-        from washer.cont.user_files_native import INCLUDE
+        from washer.cont.user_problem.c_library import build_library, declarations, source_file
+        from washer.cont.user_problem.user_files_native import INCLUDE
         ffi = declarations(cdef, Path(source).stem)
         try:
             path = build_library([source_file(HERE / source)], Path(source).stem,
@@ -163,7 +165,8 @@ def _library(source: str, cdef: str):
 
 
 class GeneratedEquations:
-    """The generated C of a sympy problem (washer.cont.user_files_sympy) behind ae_generated.c:
+    """The generated C of a sympy problem (washer.cont.user_problem.user_files_sympy) behind
+    ae_generated.c:
     its washer_sym_func and (JAC = 1) washer_sym_jac passed as C function pointers, so
     the corrector calls them directly, as the Python loop calls them through
     Problem.func, func_many (the stencil in one call) and Problem.jacobian's dfdu and
@@ -446,9 +449,9 @@ def compiled_corrector(system, settings, divergence: float):
     for equilibria and the fold and Hopf loci (the sphere arclength), corrector_periodic's for periodic
     orbits (its `plane` attribute True: Continuation.correct hands it the plane
     arclength's corrections)."""
-    from washer.cont.user_files_native import CompiledProblem
+    from washer.cont.user_problem.user_files_native import CompiledProblem
     from washer.cont.problem import Problem
-    from washer.cont.user_files_sympy import SymbolicProblem
+    from washer.cont.user_problem.user_files_sympy import SymbolicProblem
     problem = getattr(system, "problem", None)
     if getattr(system, "arclength", None) == "plane":
         # here: corrector_periodic brings the collocation code, which equilibria never use
@@ -464,7 +467,8 @@ def compiled_corrector(system, settings, divergence: float):
     traced = getattr(problem, "traced", False)
     if traced and (kind == 0 and not problem.differenced_jacobian
                    or problem.two_ways and problem.differenced_jacobian):
-        # a Python file traced into C (washer.cont.user_files_traced) with its own Jacobians on
+        # a Python file traced into C (washer.cont.user_problem.user_files_traced) with its own
+        # Jacobians on
         # equilibria, or with a power numpy computes otherwise on a stencil's arrays
         # (with difference Jacobians: the Python file's loci with its own are the Python
         # loop): called back as the Python file's problem is (Problem.jacobian's traced

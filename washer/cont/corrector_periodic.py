@@ -11,8 +11,10 @@ quotients, refactorised up to NWTN iterations, chord iterations after), the same
 factorisation and solve (the compiled condensation of CollocationBVP.factor) and the same
 stopping test (AUTO's NEWTONBV: EPSU on the profile, EPSL on each parameter, the
 divergence test of Continuation.correct), written once in C++ (csrc/cont/po_correct.cpp).
-f is evaluated by the generated C of sympy problems (washer.cont.user_files_sympy) and by FUNC of
-compiled AUTO user files (the bridge's washer_po_func, washer.cont.user_files_native) through
+f is evaluated by the generated C of sympy problems (washer.cont.user_problem.user_files_sympy)
+and by FUNC of
+compiled AUTO user files (the bridge's washer_po_func,
+washer.cont.user_problem.user_files_native) through
 function pointers, called from C++ directly (and their exact f_u with JAC != 0, as the
 Python loop's Problem.dfdu_many: the generated Jacobian, the user's DFDU by the bridge's
 washer_po_jac); a Python file's f is called back from the C++ loop through
@@ -90,7 +92,8 @@ class PeriodicCorrector:
         self.n = system.ndim
         self.error = None
         self._cb = ffi.callback("cont_po_feval", self._evaluate, onerror=self._onerror)
-        # a sympy problem's generated C (washer.cont.user_files_sympy), called from C++ directly:
+        # a sympy problem's generated C (washer.cont.user_problem.user_files_sympy), called from
+        # C++ directly:
         # f, and its exact f_u where the Python loop uses it (Problem.has_dfdu)
         self._sfunc = self._sjac = ffi.NULL
         self._npar_jp = 0
@@ -100,7 +103,8 @@ class PeriodicCorrector:
                 self._sjac = generated.pointer("washer_sym_jac", ffi, "cont_po_sym_jac")
             self._npar_jp = max(generated.npar, 1)
             self._keep = generated      # the library stays loaded while the pointers live
-        # a compiled user file's FUNC (washer.cont.user_files_native.CompiledUser), its pointers
+        # a compiled user file's FUNC (washer.cont.user_problem.user_files_native.CompiledUser),
+        # its pointers
         # bound afresh for each correction (CompiledUser.po_pointers)
         self._user = user
         self._npar = 0
@@ -264,8 +268,8 @@ def periodic_corrector(system, settings, divergence: float):
     """The compiled corrector of a PeriodicOrbits `system`, or None where the Python loop
     runs: other systems, the Python factorisation (bvp.COMPILED_FACTOR off), a Python
     file's Jacobians in use, f evaluated with its Jacobians (func_dfdu_batch)."""
-    from washer.cont.user_files_native import CompiledProblem
-    from washer.cont.user_files_sympy import SymbolicProblem
+    from washer.cont.user_problem.user_files_native import CompiledProblem
+    from washer.cont.user_problem.user_files_sympy import SymbolicProblem
     from washer.cont.systems.periodic import PeriodicOrbits
     problem = getattr(system, "problem", None)
     if type(system) is not PeriodicOrbits or not bvp.COMPILED_FACTOR \

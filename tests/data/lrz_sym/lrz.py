@@ -1,5 +1,6 @@
 """AUTO demo 'lrz' (Lorenz) as sympy expressions: washer generates and compiles f and
-its exact Jacobians (washer.cont.user_files_sympy). The same equations as tests/data/lrz/lrz.py."""
+its exact Jacobians (washer.cont.user_problem.user_files_sympy). The same equations as
+tests/data/lrz/lrz.py."""
 import sympy as sp
 
 u = sp.symbols("x y z")

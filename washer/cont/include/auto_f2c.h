@@ -4,7 +4,7 @@
  * bcnd, icnd, fopt and pvls with AUTO's C signatures (0-based arrays, Jacobians
  * column-major: dfdu[i + j*ndim] = d f_i / d u_j). The header collects them in
  * the table `user`, which washer's shim calls. getp() is AUTO's PVLS support
- * routine (solution measures, see washer/cont/user_files_native.py).
+ * routine (solution measures, see washer/cont/user_problem/user_files_native.py).
  */
 #ifndef WASHER_AUTO_F2C_H
 #define WASHER_AUTO_F2C_H

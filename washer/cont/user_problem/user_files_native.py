@@ -3,7 +3,7 @@
     problem = load_compiled_problem("ab.f90", ndim=2)     # or ab.f, ab.c
 
 compiles the user file with washer's bridge (user_files_bridge.c) into a shared
-library (washer.cont.c_library: once, cached by content hash, recompiled when the
+library (washer.cont.user_problem.c_library: once, cached by content hash, recompiled when the
 file changes), loads it through cffi and returns a washer.cont.problem.Problem
 calling AUTO's user ABI:
 
@@ -26,14 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.c_library import (CompileError, build_library, declarations, source_file,
-                                 source_text)
+from washer.cont.user_problem.c_library import (CompileError, build_library, declarations,
+                                                source_file, source_text)
 from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
 HERE = Path(__file__).parent
 SHIM = HERE / "user_files_bridge.c"
-INCLUDE = HERE / "include"
+# The headers the bridge includes (auto_f2c.h, ae_correct.h, ae_lyapunov.h) are the engine's,
+# shared with the compiled correctors' own C: washer/cont/include/, one folder up.
+INCLUDE = HERE.parent / "include"
 #: User-file suffixes, in AUTO's order of lookup (runAUTO: .f90, .f, .c).
 SUFFIXES = (".f90", ".f", ".c")
 #: Length of the ICP array passed to user routines (AUTO passes its NPARX-long ICP).
@@ -168,7 +170,7 @@ class CompiledUser:
 
     def __init__(self, path: Path, ndim: int, lib_path: Path | None = None):
         """path: the user file; lib_path: its library when built otherwise (generated
-        C: washer.cont.user_files_traced), else compiled here with the bridge."""
+        C: washer.cont.user_problem.user_files_traced), else compiled here with the bridge."""
         self.path, self.ndim = Path(path), ndim
         self._lib_path = compile_user_file(path) if lib_path is None else Path(lib_path)
         self.lib = _open(self._lib_path)

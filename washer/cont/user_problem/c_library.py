@@ -12,7 +12,7 @@ Compilers are the system's `gcc` and `gfortran` (Debian packages `gcc` and
 `gfortran`); $CC and $FC override them. A failed compile raises CompileError
 with the compiler's own messages, which name the user's file and line.
 
-Used by the AUTO user files (washer.cont.user_files_native) and by generated problems.
+Used by the AUTO user files (washer.cont.user_problem.user_files_native) and by generated problems.
 """
 from __future__ import annotations
 

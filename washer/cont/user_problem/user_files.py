@@ -5,8 +5,10 @@
 NAME.py wins when it exists: Python functions (func, stpnt, dfdu, dfdp, pvls, bcnd, icnd;
 docs/continuation.md, "Your own equations") or sympy expressions u, par, f (generated into C
 and compiled:
-washer.cont.user_files_sympy). Otherwise AUTO's own user file NAME.f90, NAME.f or NAME.c, compiled on
-first use (washer.cont.user_files_native). Names are plain: a file is looked up beside the constants
+washer.cont.user_problem.user_files_sympy). Otherwise AUTO's own user file NAME.f90, NAME.f or
+NAME.c, compiled on
+first use (washer.cont.user_problem.user_files_native). Names are plain: a file is looked up
+beside the constants
 file, never elsewhere on disk.
 """
 from __future__ import annotations
@@ -26,7 +28,7 @@ def find_problem_file(name: str, folder: Path) -> Path | None:
     py = Path(folder) / f"{name}.py"
     if py.exists():
         return py
-    from washer.cont.user_files_native import find_user_file
+    from washer.cont.user_problem.user_files_native import find_user_file
     return find_user_file(name, folder)
 
 
@@ -35,7 +37,7 @@ def load_user_problem(name: str, folder: Path, ndim: int) -> Problem:
     path = find_problem_file(name, folder)
     if path is None or path.suffix == ".py":
         return load_python_problem(name, folder, ndim)
-    from washer.cont.user_files_native import load_compiled_problem
+    from washer.cont.user_problem.user_files_native import load_compiled_problem
     return load_compiled_problem(path, ndim, name=name)
 
 
@@ -79,7 +81,7 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
         exec(_module_code(path), mod.__dict__)
     except Exception as exc:
         raise ProblemError(f"{path}: failed to import: {type(exc).__name__}: {exc}") from exc
-    from washer.cont import user_files_sympy
+    from washer.cont.user_problem import user_files_sympy
     if user_files_sympy.is_symbolic(mod):
         # u, par, f as sympy expressions: generated into C and compiled (user_files_sympy.py)
         return user_files_sympy.symbolic_problem(mod, path, ndim, name)
@@ -91,6 +93,6 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
                       bcnd=getattr(mod, "bcnd", None), icnd=getattr(mod, "icnd", None),
                       fopt=getattr(mod, "fopt", None))
     # func (dfdu, dfdp) traced into compiled C where that is verified to be the same
-    # function bit for bit; else this problem (washer.cont.user_files_traced)
-    from washer.cont.user_files_traced import traced_problem
+    # function bit for bit; else this problem (washer.cont.user_problem.user_files_traced)
+    from washer.cont.user_problem.user_files_traced import traced_problem
     return traced_problem(problem, path)

@@ -3,15 +3,17 @@ Python functions compute, bit for bit.
 
     problem = traced_problem(python_problem, path)   # a TracedProblem, or python_problem
 
-washer.cont.tracer records func (and dfdu, dfdp when the file has them) on stand-ins and
+washer.cont.user_problem.tracer records func (and dfdu, dfdp when the file has them) on
+stand-ins and
 writes AUTO's C user file of the same operations; it is compiled with washer's bridge
 (user_files_bridge.c: the path of NAME.c user files, cached by content, with
--ffp-contract=off) and loaded as a compiled user file (washer.cont.user_files_native), so the
+-ffp-contract=off) and loaded as a compiled user file
+(washer.cont.user_problem.user_files_native), so the
 compiled correctors of equilibria, the fold and Hopf loci and periodic orbits call FUNC
 directly. STPNT, PVLS, BCND, ICND and FOPT stay the Python file's.
 
 A func with a power that numpy computes otherwise on numpy scalars than on arrays
-(washer.cont.tracer: `x ** 2` is libm's pow on a np.float64, x * x on an array) is
+(washer.cont.user_problem.tracer: `x ** 2` is libm's pow on a np.float64, x * x on an array) is
 called in the mode the Python problem would have called it with: its `func_many` makes
 Problem.func_many's choices (one point at a time; one call on arrays for a batch of
 VECTORISE_MIN points and more, checked once against separate calls; one call on arrays
@@ -28,7 +30,7 @@ and a single difference means the trace is not the function):
   against the Python functions called one point at a time;
 * in every run, the first RUN_POINTS points whose f the run asks for through the
   problem (the start, the first Jacobians' stencils) and the first Jacobians.
-A difference, or a Python function that traces to nothing honest (washer.cont.tracer:
+A difference, or a Python function that traces to nothing honest (washer.cont.user_problem.tracer:
 a branch on a value, an unknown function), and the problem is the Python one for good:
 the call that showed the difference returns the Python values, the compiled correctors
 hand the rest of the run to the Python loop (`func_ready` False) and later runs take the
@@ -46,13 +48,16 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.cont.c_library import CompileError, build_library, declarations, source_text
-from washer.cont.user_files_native import SHIM, INCLUDE, CompiledProblem, CompiledUser
 from washer.cont.linalg import all_finite
 from washer.cont.pointwise import same_bits
 from washer.cont.problem import (Problem, ProblemError, STENCIL_MIN, VECTORISE_CHECK,
                                  VECTORISE_MIN, broadcast_rows)
-from washer.cont.tracer import TraceError, emit_user_file, numpy_loop, trace_function
+from washer.cont.user_problem.c_library import (CompileError, build_library, declarations,
+                                                source_text)
+from washer.cont.user_problem.tracer import (TraceError, emit_user_file, numpy_loop,
+                                             trace_function)
+from washer.cont.user_problem.user_files_native import (SHIM, INCLUDE, CompiledProblem,
+                                                        CompiledUser)
 
 #: The length of PAR the functions are traced with (AUTO's NPARX): a func reading
 #: PAR beyond it is not traced.
@@ -67,7 +72,8 @@ FLAGS = ("-ffp-contract=off",)
 #: What the bridge's cffi declarations lack: washer_traced_bind of the generated C.
 _BIND_CDEF = """int washer_traced_bind(int k, void *const *loops, void *const *data);
 void washer_traced_mode(int mode);"""
-#: washer_traced_mode's modes (washer.cont.tracer): func on numpy scalars (one point), on
+#: washer_traced_mode's modes (washer.cont.user_problem.tracer): func on numpy scalars (one
+#point), on
 #: arrays, on arrays whose par rows are one broadcast vector (row stride 0)
 SCALARS, ARRAYS, ARRAYS_PAR_BROADCAST = 0, 1, 2
 

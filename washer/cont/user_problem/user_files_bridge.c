@@ -366,7 +366,8 @@ void washer_pvls(int ndim, const double *u, double *par)
 /* PVLS of an algebraic problem (IPS 0, 1 and their loci) as one call: GETP's context of
  * equilibria without eigenvalues, PAR(1..npar) copied to `first` (the caller's to call
  * again with eigenvalues where GETP asked for them), PVLS, and whether GETP asked for
- * eigenvalues (washer_eig_wanted: read and reset). The same calls washer.cont.user_files_native
+ * eigenvalues (washer_eig_wanted: read and reset). The same calls
+ * washer.cont.user_problem.user_files_native
  * makes one by one. */
 int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int npar)
 {
