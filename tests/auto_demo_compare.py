@@ -59,10 +59,20 @@ PERIOD_RTOL = 1e-3
 #: folder has AUTO's man1.auto and man2.auto beside man.auto (man2 starts from man1's s.start);
 #: r3b's manifold scripts start from r3b.auto's families (each writes b.flq: the last one's
 #: is compared; V1a.auto's last run stops at a label that is not there, in AUTO too, so it
-#: comes last; L1a.auto stops so as well and is left out, H1b.auto and the X scripts too).
+#: comes last; L1a.auto stops so as well and is left out, H1b.auto and the X scripts too);
+#: nbody is AUTO's demos/python/n-body, whose two scripts compute the Lagrange points (the
+#: first writes each kind's last UZ to s.l1-s.l5, the second saves b.lagrange_points and
+#: leaves its last run in fort.7).
 SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto"), "fhh": ("fhn.auto",),
            "fnb": ("fhn.auto",), "man": ("man.auto", "man1.auto", "man2.auto"),
-           "r3b": ("r3b.auto", "H1a.auto", "H1c.auto", "V1b.auto", "V1a.auto")}
+           "r3b": ("r3b.auto", "H1a.auto", "H1c.auto", "V1b.auto", "V1a.auto"),
+           "nbody": ("compute_lagrange_points_0.5.auto",
+                     "compute_lagrange_points_family.auto")}
+
+#: Folders that hold another user file of a demo (AUTO's Fortran-77 NAME.f beside the
+#: demo's NAME.f90) and AUTO's outputs with it: the demo's folder gives the constants and
+#: scripts, without its NAME.f90 (which would win over NAME.f, runAUTO's order).
+VARIANT_OF = {"dd2f77": "dd2", "ivpf77": "ivp", "optf77": "opt", "pd1f77": "pd1"}
 
 
 
@@ -273,11 +283,19 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     in turn, each while the previous one succeeded), compare."""
     src = DEMOS / demo
     work = workdir / demo
-    shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref*"))
+    base = VARIANT_OF.get(demo)
+    if base is not None:
+        shutil.copytree(DEMOS / base, work, ignore=shutil.ignore_patterns(
+            "autoref*", f"{base}.f90"))
+        shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref*"),
+                        dirs_exist_ok=True)
+    else:
+        shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref*"))
     env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1")
     t0 = time.perf_counter()
     rc, log = 0, ""
-    for script in SCRIPTS.get(demo, (f"{demo}.auto",)):
+    name = VARIANT_OF.get(demo, demo)
+    for script in SCRIPTS.get(name, (f"{name}.auto",)):
         try:
             proc = subprocess.run([sys.executable, "-m", "washer.auto", script], cwd=work,
                                   env=env, stdin=subprocess.DEVNULL, capture_output=True,
@@ -306,8 +324,10 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
 
 
 def all_demos() -> list[str]:
-    return sorted(p.name for p in DEMOS.iterdir()
-                  if (p / SCRIPTS.get(p.name, (f"{p.name}.auto",))[0]).exists())
+    def script(name):
+        base = VARIANT_OF.get(name, name)
+        return DEMOS / base / SCRIPTS.get(base, (f"{base}.auto",))[0]
+    return sorted(p.name for p in DEMOS.iterdir() if script(p.name).exists())
 
 
 def main(argv: list[str]) -> int:

@@ -78,6 +78,13 @@ EXPECTED_FAIL = {
     "r3b": "V1b.auto's seven UZ lie 0.17 % later in PAR(11) than AUTO's: its start, V1's "
            "label 12, lies further along the vertical family than AUTO's (period 5.20876, "
            "AUTO 5.19993: the step after the BP at PT 10 goes further)",
+    "cir": "run 2's UZ7 and UZ8 lie 1e-4 from AUTO's in PAR(1), near PAR(2) = 0, where the "
+           "equilibrium's stable pair crosses the imaginary axis: the size of the "
+           "discretisation error there (tests/test_homoclinic.py)",
+    "nbody": "after each BP of the circle of equilibria our next step takes one Newton "
+             "iteration more than AUTO's (whose predictor is the secant of its last, tiny, "
+             "location step), so our steps stay at 2/3 of AUTO's and NMX = 2000 ends the "
+             "first run before L3's BP: the branch of the collinear points is not computed",
     "ppp": "AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "
            "switched Hopf loci where the exact l1 is -0.662 (its test reads a Newton "
            "residual), and its BP of cycles 7.0e-4 before HB7, where the family ends "
@@ -95,6 +102,8 @@ STOPS_AT_LABEL = {"mtn": "Restart label IRS=15 not found", "kdv": "Label UZ2 not
 #: libm): the other count measured, and why. Measured on an AVX-512 AMD EPYC against the
 #: demo table's counts (made on another machine).
 ROUNDING_DEPENDENT = {
+    "cir": (10, "run 2's UZ6 lies at the location tolerance from AUTO's: matched on this "
+                "machine, not on the one of the first count (tests/test_homoclinic.py)"),
     "lcbp": (7, "run 3's backward run (the generic BP locus, ISW = 3) ends at PAR(1) = 0, "
                 "its UZSTOP, where the circles shrink to the Hopf point: its BP test is at "
                 "its noise floor there (-3.6e-51 to +2.3e-58 over the last step here, "

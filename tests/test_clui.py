@@ -231,6 +231,29 @@ def test_label_selection_on_autos_own_files():
         bd("HB99")
 
 
+def test_a_solutions_points_and_writefilename_as_autos(tmp_path):
+    """AUTO's AUTOSolution: s[i] (and s['data'][i]) is the i-th point of the mesh, with
+    ['t'] and ['u'] (an equilibrium has one point: AUTO's n-body script reads
+    x["data"][0]["u"][1], U(2), to sort the Lagrange points), and writeFilename writes
+    the s-record: the nbody demo's s.l4, written so by AUTO, is read and written back
+    byte for byte."""
+    from washer.auto.diagram import read_solutions
+    src = DEMOS / "nbody" / "autoref" / "s.l4"
+    (x,) = read_solutions(src)
+    assert x["data"][0]["t"] == 0.0
+    assert x["data"][0]["u"][1] == x[0][1] == x["U(2)"] == 8.6602540378e-01
+    with pytest.raises(IndexError):
+        x[1]                                    # an equilibrium has one point
+    x.writeFilename(tmp_path / "s.l4")
+    assert (tmp_path / "s.l4").read_bytes() == src.read_bytes()
+    x.writeFilename(tmp_path / "s.l4", append=True)
+    assert (tmp_path / "s.l4").read_bytes() == 2 * src.read_bytes()
+    orbit = [s for s in read_solutions(DEMOS / "chu" / "autoref" / "s.chu")
+             if s["TY"] == "PD"][0]
+    assert orbit[3]["t"] == orbit.t[3] and list(orbit[3]["u"]) == list(orbit.U[3])
+    assert orbit["data"][3][2] == orbit.U[3][2]
+
+
 def test_splabs_reads_a_solution_file_by_name(tmp_path, monkeypatch):
     # AUTO's splabs('mu', 'LP') reads s.mu (the cusp demo passes a name)
     monkeypatch.chdir(tmp_path)

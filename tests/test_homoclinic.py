@@ -175,11 +175,11 @@ CIR_AT_TOLERANCE = {("b.2", "UZ", 6)}
 @pytest.mark.slow
 def test_cir_runs_match_auto_away_from_the_hopf_point(tmp_path, monkeypatch):
     work = tmp_path / "cir"
-    shutil.copytree(DATA / "cir", work, ignore=shutil.ignore_patterns("autoref"))
+    shutil.copytree(DEMOS / "cir", work, ignore=shutil.ignore_patterns("autoref"))
     monkeypatch.chdir(work)
     run_script("cir.auto")
     unmatched = set()
-    for ref in sorted((DATA / "cir" / "autoref").glob("b.*")):
+    for ref in sorted(autoref("cir").glob("b.*")):
         a, matched, why = compare_files(work / ref.name, ref)
         assert a, ref
         unmatched |= {(ref.name, p.ty, p.lab) for i, p in enumerate(a) if i not in matched}

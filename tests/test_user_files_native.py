@@ -179,3 +179,28 @@ def test_fortran_and_c_runs_give_the_same_branch(cache, tmp_path):
         run(d / "c.ab.1", verbose=False, sv="out", e="ab")
         rows[src.suffix] = [(r.pt, r.ty, r.lab, r.values) for b in read_b(d / "b.out") for r in b]
     assert rows[".f90"] == rows[".c"] and len(rows[".c"]) > 10
+
+
+def test_a_stub_icnd_with_integral_conditions_stops_the_run_by_name(cache, tmp_path,
+                                                                     monkeypatch):
+    """AUTO-07p's Fortran-77 bvp.f (tests/data/auto_demos/bvpf77) has a stub ICND, while
+    the demo's constants ask for NINT = 1: FI(1) is never set. AUTO-07p 0.9.2 computes
+    NaN from its second point on (its b-file, kept beside the file); the integrand left
+    unset stops washer's run at its start, naming ICND, instead of being read as 0 (a
+    condition 0 = 0 that left PAR(2) free and went to PAR(1) = 5.5 on the trivial branch
+    without a branch point)."""
+    import gzip
+
+    from washer.auto.script import run_script
+    demos = DATA / "auto_demos"
+    rows = [ln.split() for ln in gzip.open(demos / "bvpf77" / "autoref" / "b.bvp.gz", "rt")
+            if not ln.startswith("   0")]
+    assert rows[0][1] == "1" and all(r[4] == "NaN" for r in rows[1:]) and len(rows) == 200
+    for f in (demos / "bvp").iterdir():
+        if f.is_file() and f.name != "bvp.f90":
+            shutil.copy(f, tmp_path)
+    shutil.copy(demos / "bvpf77" / "bvp.f", tmp_path)
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(Exception, match=r"ICND returned non-finite values or left some of "
+                                        r"FI\(1\.\.NINT = 1\) unset"):
+        run_script("bvp.auto")

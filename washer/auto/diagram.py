@@ -113,13 +113,38 @@ def _with_parameters(par, changes, parnames=None) -> np.ndarray:
     return out
 
 
+class MeshPoint(np.ndarray):
+    """One point of a solution's mesh (AUTO's SLPoint): the state U(1..NDIM) there as a
+    vector indexed from 0, with p['u'] (the same vector) and p['t'] (its time in [0, 1];
+    0 for the one point of an equilibrium)."""
+
+    def __new__(cls, u, t: float):
+        obj = np.array(u, dtype=float).view(cls)
+        obj.time = float(t)
+        return obj
+
+    def __array_finalize__(self, obj):
+        self.time = getattr(obj, "time", 0.0)
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            if key == "t":
+                return self.time
+            if key == "u":
+                return np.asarray(self)
+            raise KeyError(f"{key!r}: a mesh point has 't' and 'u'")
+        return np.asarray(self)[key]
+
+
 class Solution:
     """One labelled solution (AUTO's AUTOSolution): an s-record with the constants `c`
     (an AutoConstants: what a run restarted from it uses) and the b-file row `b`.
 
     s['PAR(1)'], s['U(1)'], names from parnames/unames, s['LAB'], s['TY'], s['BR'],
-    s['PT'], s.PAR (the vector), s.U, s.t; s.load(**constants) -> a copy with the
-    constants changed; s.run(**constants)."""
+    s['PT'], s.PAR (the vector), s.U, s.t; s[i] (and s['data'][i]) the i-th point of its
+    mesh (`MeshPoint`: s[0]['u'][1] is U(2) at t = 0, an equilibrium's one point too, as
+    AUTO's); s.load(**constants) -> a copy with the constants changed;
+    s.run(**constants); s.writeFilename(path) writes its s-record."""
 
     def __init__(self, record: Record | None, c=None, raw: list[str] | None = None,
                  row: Row | None = None, titles: list[str] | None = None):
@@ -218,6 +243,12 @@ class Solution:
                 return self.row.values[self.titles.index(k)]
             raise KeyError(f"{key!r}: not a field of this solution (LAB, TY, BR, PT, "
                            "PAR(i), U(i), a parameter or state name)")
+        if isinstance(key, (int, np.integer)):
+            # AUTO's Pointset: an integer selects a point of the mesh (an equilibrium
+            # has one), not a component of the state
+            U = np.atleast_2d(self.U)
+            t = rec.t[key] if rec.t is not None and U.shape[0] > 1 else 0.0
+            return MeshPoint(U[key], t)
         return self.U[key]
 
     def __call__(self, t: float) -> np.ndarray:
@@ -298,6 +329,14 @@ class Solution:
         return _run_command(self, **kw)
 
     # ------------------------------------------------------------ writing
+    def writeFilename(self, path, append: bool = False) -> None:
+        """Write the s-record to the file path (AUTO's AUTOSolution.writeFilename),
+        after what it holds with append."""
+        text = self.text()
+        if append and Path(path).exists():
+            text = Path(path).read_text() + text
+        write_text(path, text)
+
     def text(self) -> str:
         """The s-record: header rewritten from the fields, body as read."""
         r = self._need()

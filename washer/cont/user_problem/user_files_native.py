@@ -409,7 +409,9 @@ class CompiledUser:
     def bcnd(self, par, nbc: int, u0, u1) -> np.ndarray:
         """AUTO's BCND: the NBC boundary conditions at u(0) = u0, u(1) = u1."""
         par = np.ascontiguousarray(par, dtype=float)
-        fb = np.zeros(nbc)
+        # NaN until BCND sets them: a condition it leaves unset (a stub BCND with NBC > 0)
+        # is then refused by name (`CompiledProblem.bcnd`), not read as 0
+        fb = np.full(nbc, np.nan)
         dbc = np.zeros(max(1, nbc * (2 * self.ndim + len(par))))
         self.lib.washer_bcnd(self.ndim, _dptr(par), self._icp_ptr, nbc,
                              _dptr(np.ascontiguousarray(u0, float)),
@@ -435,7 +437,10 @@ class CompiledUser:
         arrs = [np.ascontiguousarray(a, dtype=float) for a in (u, uold, udot, upold)]
         k = arrs[0].shape[0]
         par = np.ascontiguousarray(par, dtype=float)
-        fi = np.zeros((k, nint))
+        # NaN until ICND sets them (as fb in `bcnd`): AUTO-07p's own Fortran-77 bvp.f,
+        # whose ICND is a stub, with the demo's NINT = 1 solved 0 = 0 silently; AUTO
+        # computes NaN from its second point on (tests/test_user_files_native.py)
+        fi = np.full((k, nint), np.nan)
         scratch = np.zeros(max(1, nint * (self.ndim + len(par))))
         self.lib.washer_icnd_batch(k, self.ndim, _dptr(par), self._icp_ptr, nint,
                                    *(_dptr(a) for a in arrs), _dptr(fi), _dptr(scratch))
@@ -480,7 +485,8 @@ class CompiledProblem(Problem):
         """AUTO's BCND: the (nbc,) boundary conditions at u(0) = u0, u(1) = u1."""
         fb = self.user.bcnd(par, nbc, u0, u1)
         if not np.all(np.isfinite(fb)):
-            raise ProblemError(f"{self.name}: BCND returned non-finite values")
+            raise ProblemError(f"{self.name}: BCND returned non-finite values or left "
+                               f"some of FB(1..NBC = {nbc}) unset")
         return fb
 
     def icnd(self, u, uold, udot, upold, par, nint: int) -> np.ndarray:
@@ -492,7 +498,8 @@ class CompiledProblem(Problem):
         """ICND at k mesh points in one foreign call: each argument (k, NDIM) -> (k, nint)."""
         fi = self.user.icnd_batch(par, nint, U, Uold, Udot, Upold)
         if not np.all(np.isfinite(fi)):
-            raise ProblemError(f"{self.name}: ICND returned non-finite values")
+            raise ProblemError(f"{self.name}: ICND returned non-finite values or left "
+                               f"some of FI(1..NINT = {nint}) unset")
         return fi
 
     def pvls(self, u, par, t=None, ntst: int = 0, ncol: int = 0) -> np.ndarray:
