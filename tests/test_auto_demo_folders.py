@@ -81,6 +81,7 @@ EXPECTED_FAIL = {
     "cir": "run 2's UZ7 and UZ8 lie 1e-4 from AUTO's in PAR(1), near PAR(2) = 0, where the "
            "equilibrium's stable pair crosses the imaginary axis: the size of the "
            "discretisation error there (tests/test_homoclinic.py)",
+    "cirf77": "the same as cir's (AUTO's b-files with cir.f are its b-files with cir.f90)",
     "nbody": "after each BP of the circle of equilibria our next step takes one Newton "
              "iteration more than AUTO's (whose predictor is the secant of its last, tiny, "
              "location step), so our steps stay at 2/3 of AUTO's and NMX = 2000 ends the "
@@ -102,6 +103,7 @@ STOPS_AT_LABEL = {"mtn": "Restart label IRS=15 not found", "kdv": "Label UZ2 not
 #: libm): the other count measured, and why. Measured on an AVX-512 AMD EPYC against the
 #: demo table's counts (made on another machine).
 ROUNDING_DEPENDENT = {
+    "cirf77": (10, "as cir's"),
     "cir": (10, "run 2's UZ6 lies at the location tolerance from AUTO's: matched on this "
                 "machine, not on the one of the first count (tests/test_homoclinic.py)"),
     "lcbp": (7, "run 3's backward run (the generic BP locus, ISW = 3) ends at PAR(1) = 0, "
