@@ -10,7 +10,8 @@ DEMOS = DATA / "auto_demos"
 
 
 def autoref(name: str) -> Path:
-    """The folder of AUTO's own output files of demo NAME."""
+    """The folder of AUTO's own output files of demo NAME (its s-files stored as s.X.gz,
+    which washer's readers take for `autoref(NAME) / "s.X"`)."""
     return DEMOS / name / "autoref"
 
 

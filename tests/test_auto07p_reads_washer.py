@@ -16,6 +16,7 @@ import pytest
 
 from b_rows import branch_rows, header_blocks
 from washer.auto.constants_file import read_constants
+from washer.auto.diagram import read_solutions
 from washer.auto.files import read_s
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -139,15 +140,13 @@ def test_auto07p_continues_washers_fold_locus_of_a_bvp(integral, tmp_path):
 
 
 def _record_heads(path: Path) -> list[tuple[list[int], list[int]]]:
-    """Each s-record's 16 header integers and the ICP line of its stored direction."""
-    lines = path.read_text().splitlines()
-    out, i = [], 0
-    while i < len(lines):
-        h = [int(x) for x in lines[i].split()]
-        ntpl, nar, nrowpr = h[6], h[7], h[8]
-        icp_line = i + 1 + ((nar - 1) // 7 + 1) * ntpl
-        out.append((h, [int(x) for x in lines[icp_line].split()]))
-        i += 1 + nrowpr
+    """Each s-record's 16 header integers and the ICP line of its stored direction (the
+    records' own lines, as read_solutions keeps them: s.NAME.gz read where s.NAME is not)."""
+    out = []
+    for s in read_solutions(path):
+        h = [int(x) for x in s.raw[0].split()]
+        ntpl, nar = h[6], h[7]
+        out.append((h, [int(x) for x in s.raw[1 + ((nar - 1) // 7 + 1) * ntpl].split()]))
     return out
 
 

@@ -1,4 +1,5 @@
 """Constants files, b/s/d files, and the command line."""
+import gzip
 import shutil
 from pathlib import Path
 
@@ -6,7 +7,7 @@ import numpy as np
 import pytest
 
 from washer.auto.constants_file import ConstantsError, parse_override, read_constants
-from washer.auto.files import fmt_e, read_b, read_s
+from washer.auto.files import AutoFileError, fmt_e, read_b, read_s
 from washer.cont.record import find_record
 from washer.run import main, run
 
@@ -145,6 +146,57 @@ def test_our_files_have_auto_layout_and_restart(tmp_path):
     rows = [l for l in (tmp_path / "b.eq").read_text().splitlines() if not l.startswith("   0")]
     assert all(len(l) == 4 + 6 + 4 + 5 + 19 * 4 for l in rows)       # (I4,I6,I4,I5,4ES19.10)
     assert res.status == "ok" and res("HB1").lab == 2
+
+
+def _same_records(a, b):
+    assert [(r.br, r.pt, r.ty, r.lab) for r in a] == [(r.br, r.pt, r.ty, r.lab) for r in b]
+    for r, s in zip(a, b):
+        assert np.array_equal(r.par, s.par) and np.array_equal(r.U, s.U)
+
+
+def test_a_gzipped_s_file_reads_and_restarts_as_the_plain_one(tmp_path, monkeypatch):
+    """s.NAME.gz stands for s.NAME where s.NAME does not exist: read_s, the command
+    language's sl and load(s=...), washer.run.load and a restart (IRS) read the same
+    records from it as from the plain file, bit for bit (the text is the same), and a
+    run restarted from it writes the same b-file rows."""
+    from washer.auto import clui
+    from washer.run import load
+    for f in ("ab.py", "c.ab"):
+        shutil.copy(DATA / "ab" / f, tmp_path)
+    plain = DATA / "auto_reference" / "ab2p" / "s.eq"
+    shutil.copy(plain, tmp_path / "s.eq")
+    zipped = gzip.compress(plain.read_bytes())
+    (tmp_path / "s.zipped.gz").write_bytes(zipped)
+    (tmp_path / "s.gz.gz").write_bytes(zipped)            # the s-file of a run named 'gz'
+    want = read_s(plain)
+    _same_records(read_s(tmp_path / "s.zipped"), want)
+    _same_records(read_s(tmp_path / "s.zipped.gz"), want)
+    _same_records(read_s(tmp_path / "s.gz"), want)
+    _same_records(load(tmp_path / "s.zipped"), want)
+    monkeypatch.chdir(tmp_path)
+    assert [s["LAB"] for s in clui.sl("zipped")] == [r.lab for r in want]
+    assert clui.load(s="zipped", IRS=2)["PAR(1)"] == find_record(want, 2).par[0]
+    rows = {}
+    for s in ("eq", "zipped"):
+        run(tmp_path / "c.ab", verbose=False, s=s, sv=f"from_{s}", IRS=3, ICP=[1], NMX=8)
+        rows[s] = [(r.br, r.pt, r.ty, r.lab, r.values) for b in read_b(tmp_path / f"b.from_{s}")
+                   for r in b]
+    assert len(rows["eq"]) == 8 and rows["zipped"] == rows["eq"]
+    assert (tmp_path / "s.zipped.gz").read_bytes() == zipped       # read, never written
+
+
+def test_a_users_plain_s_file_wins_over_a_gzipped_one(tmp_path):
+    """Where both s.NAME and s.NAME.gz exist, s.NAME is read (the user's own file; AUTO
+    knows no .gz); a damaged gzip stream is an error naming the file."""
+    full = (DATA / "auto_reference" / "ab2p" / "s.eq").read_bytes()
+    first = read_s(DATA / "auto_reference" / "ab2p" / "s.eq")[:1]
+    (tmp_path / "s.x.gz").write_bytes(gzip.compress(full))
+    from washer.auto.files import record_text
+    (tmp_path / "s.x").write_text(record_text(first[0]))
+    _same_records(read_s(tmp_path / "s.x"), first)
+    (tmp_path / "s.cut.gz").write_bytes(gzip.compress(full)[:200])
+    with pytest.raises(AutoFileError, match=r"s\.cut\.gz: cannot read an AUTO s-file"):
+        read_s(tmp_path / "s.cut")
 
 
 def test_failed_run_keeps_points_and_ends_with_mx(tmp_path):

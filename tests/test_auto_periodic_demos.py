@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from auto_reference import DATA, autoref, demo_dir
+from auto_reference import autoref, demo_dir
 from b_rows import branch_rows, segments
 from washer.auto.files import type_name
 from washer.run import run
@@ -194,7 +194,7 @@ def test_plp_isola_from_a_fold_locus_point(tmp_path_factory):
     PAR(4) = 4 and the fold at 4.72213 (STOP LP1) each way, as in AUTO's b.iso (1e-5:
     the location tolerance EPSS = 1e-6 with DS, DSMAX of c.plp.iso)."""
     d = demo_dir(tmp_path_factory, "plp")
-    shutil.copy(DATA / "auto_demos" / "plp" / "autoref" / "s.loci", d / "s.aloci")
+    shutil.copy(autoref("plp") / "s.loci.gz", d / "s.aloci.gz")      # s='aloci' reads it
     ref = [r for r in rows(autoref("plp") / "b.iso") if r.lab]
     got = []
     for ds, sv in ((None, "isof"), ("-", "isob")):

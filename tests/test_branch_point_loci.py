@@ -2,7 +2,6 @@
 driven through `washer.run` on problems whose loci are known in closed form."""
 from __future__ import annotations
 
-import gzip
 import os
 import shutil
 import subprocess
@@ -235,8 +234,7 @@ def test_sspg_locus_closed_form_auto_and_restart_from_auto(tmp_path):
         assert len(rows) == 50
         for row in rows:
             assert _on_sspg_locus(row.values[0], row.values[-1]) == pytest.approx(0, abs=1e-8)
-    with gzip.open(DATA / "bvp_bp" / "s.sspg.2.sw.gz", "rb") as f:
-        (tmp_path / "s.auto").write_bytes(f.read())
+    shutil.copy(DATA / "bvp_bp" / "s.sspg.2.sw.gz", tmp_path / "s.auto.gz")
     r = run(tmp_path / "c.sspg", e="sspg", s="auto", IRS=8, ICP=[1, 2], ISW=2, sv="fromauto",
             verbose=False)
     assert r.status == "ok" and len(r.rows) == 50

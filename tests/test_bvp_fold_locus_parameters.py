@@ -22,7 +22,6 @@ Two problems with the locus known independently of the engine:
   the boundary conditions (b_p q) and the integral's parameter part stays zero, so the
   extended system's every part is exercised by a q that matters.
 """
-import gzip
 import math
 import shutil
 from pathlib import Path
@@ -179,12 +178,6 @@ ICP=['nu1', 'T', 'delta', 'nu2', 'T-', 'mu'], STOP=['LP1']
 """
 
 
-def _gunzipped(gz, path):
-    """gz's content written to path (returned)."""
-    path.write_bytes(gzip.decompress(gz.read_bytes()))
-    return path
-
-
 def _b_rows(path):
     """The b-file's rows (PAR(ICP(1)), L2-NORM, MAX U(1), PAR(ICP(2..))), one array."""
     return np.array([r.values for r in branch_rows(path)])
@@ -208,12 +201,12 @@ def test_snh_fold_locus_from_autos_lp_follows_autos_rows(tmp_path):
     same (measured: 1.8e-8 in nu1, 1.3e-7 in T-). MAX xgamma is a maximum over the mesh's
     nodes, which the mesh adaptation moves: left out."""
     shutil.copy(SNH / "snh.f90", tmp_path)
-    _gunzipped(SNH_R7, tmp_path / "s.r7")
+    shutil.copy(SNH_R7, tmp_path / "s.r7.gz")
     (tmp_path / "c.tb8").write_text(SNH_8)
     gen = run(tmp_path / "c.tb8", s="r7", IRS=8, sv="gen", verbose=False)
     end = gen.specials[-1]
     assert end.ty == "EP" and len(gen.rows) == 5
-    [auto_end] = read_s(_gunzipped(SNH_GEN8, tmp_path / "s.autogen"))
+    [auto_end] = read_s(SNH_GEN8)
     assert auto_end.ty == "EP" and auto_end.pt == 5
     assert end.par[30] == pytest.approx(auto_end.par[30], rel=1e-6)
     assert abs(end.par[29]) == pytest.approx(abs(auto_end.par[29]), rel=1e-5)

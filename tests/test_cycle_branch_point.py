@@ -155,8 +155,6 @@ def test_isoperiodic_locus_on_autos_curve(tmp_path):
     measured 1.5e-10 in PAR(1), 1e-12 in PAR(6); 1e-8 allowed (AUTO prints 11 digits,
     the spline through rows <= 0.006 apart in PAR(3) errs by ~h^4 f''''/384, and both
     engines stop Newton at EPSL = 1e-9)."""
-    import gzip
-
     import numpy as np
     from scipy.interpolate import CubicSpline
 
@@ -164,8 +162,7 @@ def test_isoperiodic_locus_on_autos_curve(tmp_path):
     demo = Path(__file__).parent / "data" / "auto_demos" / "tfc"
     for f in ("tfc.f90", "c.tfc"):
         shutil.copy(demo / f, tmp_path)
-    with gzip.open(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz", "rb") as src:
-        (tmp_path / "s.tfc.5").write_bytes(src.read())
+    shutil.copy(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz", tmp_path)
     # the constants run 6 inherits in tfc.auto (runs 2, 3, 5), then its own
     kw = dict(e="tfc", IPS=2, IPLT=1, EPSL=1e-9, EPSU=1e-9, EPSS=1e-7, ITMX=12,
               UZR={6: 0.013}, ILP=0, NMX=50, NPR=10, THL={}, ICP=[3, 1, 6], ISW=2, DS=0.01,
@@ -213,8 +210,6 @@ def test_jacobian_is_the_residuals_derivative(tmp_path, generating, case):
     truncation ~1e-8, and the residual's own differences (f_p, step 1e-7) round to ~1e-9
     of f, ~1e-5 over that step; measured at most 1.4e-7 of the largest entry, 1e-6
     allowed (a wrong sign of the f_pq term, or a 1 % error in f_uu^T phi, fails it)."""
-    import gzip
-
     import numpy as np
     if case == "circle":
         for f in DATA.iterdir():
@@ -226,8 +221,7 @@ def test_jacobian_is_the_residuals_derivative(tmp_path, generating, case):
         demo = Path(__file__).parent / "data" / "auto_demos" / "tfc"
         for f in ("tfc.f90", "c.tfc"):
             shutil.copy(demo / f, tmp_path)
-        with gzip.open(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz") as src:
-            (tmp_path / "s.tfc.5").write_bytes(src.read())
+        shutil.copy(Path(__file__).parent / "data" / "tfc_bp" / "s.tfc.5.gz", tmp_path)
         cfile, records = "c.tfc", "tfc.5"
         kw = dict(e="tfc", IPS=2, ILP=0, NTST=6, THL={}, ICP=[3, 1, 6, 2], ISW=3, DS=0.01,
                   DSMAX=0.1, IRS=24)
@@ -258,12 +252,10 @@ def test_restart_from_autos_generating_record(tmp_path, isw, icp):
     restarts our locus: (u, phi) are its first 2 NDIM components and phi3, a, b sit at
     AUTO's places. lcbp's circles have radius PAR(1) and PAR(2) and period 1, so its BP
     locus is PAR(1) = PAR(2) = r (PAR(3) = 0); checked to Newton's tolerance."""
-    import gzip
     demo = Path(__file__).parent / "data" / "auto_demos" / "lcbp"
     for f in ("lcbp.f90", "c.lcbp"):
         shutil.copy(demo / f, tmp_path)
-    with gzip.open(Path(__file__).parent / "data" / "lcbp_bp" / "s.lcbp.2.sw.gz") as src:
-        (tmp_path / "s.lcbp.2.sw").write_bytes(src.read())
+    shutil.copy(Path(__file__).parent / "data" / "lcbp_bp" / "s.lcbp.2.sw.gz", tmp_path)
     loc = run(tmp_path / "c.lcbp", verbose=False, sv="loc", s="lcbp.2.sw", e="lcbp", IRS=8,
               ISW=isw, ICP=icp, NMX=15, DS=0.01)
     assert loc.status == "ok"
@@ -481,15 +473,11 @@ def test_abcb_bp_two_points_past_the_tip_is_regular(tmp_path):
     (+8e-5 at PT 84, -0.67 at the same point bordered by the step back, -0.34 at the
     'located' point), not a zero. Ours labels the singular tip (LP or BP: both are right
     there), and no BP past it."""
-    import gzip
-
     import numpy as np
     from scipy.integrate import solve_ivp
 
     from washer.auto.files import read_s
-    with gzip.open(Path(__file__).parent / "data" / "abcb_tip" / "s.abcb.2.gz", "rb") as src:
-        (tmp_path / "s.auto").write_bytes(src.read())
-    recs = {r.lab: r for r in read_s(tmp_path / "s.auto")}
+    recs = {r.lab: r for r in read_s(Path(__file__).parent / "data" / "abcb_tip" / "s.abcb.2")}
 
     def smallest_singular_values(rec):
         p = np.array(rec.par, float)

@@ -354,7 +354,7 @@ def test_mobius_fold_tr_locus_past_the_12_resonance_from_autos_record(mobius):
     7e-9 off in p2), so the R2 point here carries the start's error through a singular
     Newton (p1 - p2^2 = 5.6e-7, EPSL = 1e-7 relative increments over linear
     convergence): 1e-6 allowed there."""
-    shutil.copy(AUTO_FOLD / "s.trloc_down", mobius / "s.autotrloc")
+    shutil.copy(AUTO_FOLD / "s.trloc_down.gz", mobius / "s.autotrloc.gz")
     res = run(mobius / "c.mobius_fold.trloc", verbose=False, files=False, s="autotrloc",
               IRS=6, NMX=100)
     assert res.status == "ok"

@@ -10,7 +10,6 @@ H = 0 on the profile to the discretisation's accuracy.
 AUTO: its demo san (tests/data/homcont/README.md), runs 1 and 6-11 (IEQUIB = 0, the test
 function IPSI = 11 in run 11), run by `run_script` as AUTO ran them.
 """
-import gzip
 import shutil
 from pathlib import Path
 
@@ -141,9 +140,7 @@ def test_orbit_flip_test_function_on_autos_solutions(tmp_path):
     # AUTO's PAR(31) to its 11 written digits.
     recs = []
     for n in (10, 11):
-        p = tmp_path / f"s.{n}"
-        p.write_bytes(gzip.decompress((DATA / "san" / "autoref" / f"s.{n}.gz").read_bytes()))
-        recs.append(read_s(p)[-1])
+        recs.append(read_s(DATA / "san" / "autoref" / f"s.{n}")[-1])      # s.NAME.gz
     prob = load_user_problem("san", DEMOS / "san", 3)
     c = Constants(dict(NDIM=3, IPS=9, IRS=recs[0].lab, ICP=[7, 8, 31], IPSI=[11], IEQUIB=0,
                        NTST=35, JAC=-1, ISP=0, ILP=0))

@@ -19,8 +19,6 @@ kappa*.
 """
 from __future__ import annotations
 
-import gzip
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -147,9 +145,7 @@ def test_inclination_and_orientation_on_autos_adjoint(tmp_path):
     # to its written digits, and the orientation (FNCSHO's, written to AUTO's d-file only)
     # changes sign where PAR(33) does: the inclination flip UZ6 (PAR(4) = 1.23086), from
     # orientable (> 0) to twisted (< 0), the orbit run 5 continues as "non-orientable".
-    p = tmp_path / "s.3"
-    p.write_bytes(gzip.decompress((DATA / "san" / "autoref-adjoint" / "s.3.gz").read_bytes()))
-    recs = read_s(p)
+    recs = read_s(DATA / "san" / "autoref-adjoint" / "s.3")              # s.3.gz
     prob = load_user_problem("san", DEMOS / "san", 3)
     c = Constants(dict(NDIM=3, IPS=9, IRS=recs[0].lab, ICP=[4, 8, 10, 21, 33], IPSI=[1, 13],
                        IEQUIB=0, ITWIST=1, NTST=35, JAC=-1, ISP=0, ILP=0))

@@ -20,7 +20,6 @@ AUTO's demo mtn (a saddle-node homoclinic orbit with IPSI 15, 16, then the fixed
 a non-central one) beyond the demo table: its runs 4-6 from AUTO's own solutions; AUTO's
 demo rev (reversible) checked against the first integral of its equation.
 """
-import gzip
 import shutil
 from pathlib import Path
 
@@ -239,7 +238,7 @@ def test_mtn_runs_4_to_6_from_autos_own_solutions(tmp_path, monkeypatch):
     src = DEMOS / "mtn"
     work = tmp_path / "mtn"
     shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref"))
-    (work / "s.1").write_bytes(gzip.decompress((src / "autoref" / "s.1.gz").read_bytes()))
+    shutil.copy(src / "autoref" / "s.1.gz", work)      # sl('1') and s='1' read s.1.gz
     (work / "r.auto").write_text("r1=sl('1')\n"
                                  "r4=run('mtn',c='mtn.4',s='1',sv='4')\n"
                                  "r5=run(r1('UZ3'),e='mtn',c='mtn.5',sv='5')\n"

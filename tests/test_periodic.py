@@ -17,6 +17,7 @@ every IAD steps) that uses only the system's contract (residual, jacobian, facto
 border, inner, update) and `remesh`: an independent check of the system against the
 engine's iterator, which the other tests use through washer.run.
 """
+import gzip
 import importlib.util
 import math
 from pathlib import Path
@@ -320,7 +321,7 @@ def test_period_doubling_switch_starts_the_doubled_branch():
 def test_autos_periodic_record_round_trips_byte_for_byte():
     """An AUTO-07p periodic record (lrz label 8: NTPL 141, direction stored) read and
     written again by record_text is the same text."""
-    lines = (RECORDS / "s.lrz").read_text().splitlines(keepends=True)
+    lines = gzip.decompress((RECORDS / "s.lrz.gz").read_bytes()).decode().splitlines(True)
     i = 0
     while True:
         h = lines[i].split()
@@ -442,7 +443,7 @@ def test_plot_cli_draws_periodic_branches_and_an_orbit(tmp_path):
     from washer.plots.__main__ import main as plot_main
     ref = DEMOS / "lrz" / "autoref" / "b.lrz"
     shutil.copy(ref, tmp_path / "b.lrz")
-    shutil.copy(RECORDS / "s.lrz", tmp_path / "s.lrz")
+    shutil.copy(RECORDS / "s.lrz.gz", tmp_path / "s.lrz.gz")
     assert plot_main([str(tmp_path / "b.lrz"), "--y", "1"]) == 0
     assert (tmp_path / "b_lrz_diagram.png").stat().st_size > 10000
     assert plot_main([str(tmp_path / "s.lrz"), "--label", "14", "--phase", "1", "3"]) == 0
@@ -501,7 +502,7 @@ def test_period_doubling_switch_through_the_runner(tmp_path):
     ref = DEMOS / "chu"
     shutil.copy(ref / "c.chu.3", tmp_path)
     shutil.copy(DATA / "chu" / "chu.py", tmp_path)
-    shutil.copy(RECORDS / "s.chu", tmp_path / "s.ref")
+    shutil.copy(RECORDS / "s.chu.gz", tmp_path / "s.ref.gz")
     T_pd = next(r for r in read_s(RECORDS / "s.chu") if r.lab == 8).par[10]    # 2.2835478
     found = []
     for ntst in (80, 160):

@@ -33,7 +33,7 @@ from pathlib import Path
 
 from washer.auto.constants_file import (DEFAULTS, IGNORED, Constants, ConstantsError, copy_examples,
                                    parse_override, read_constants)
-from washer.auto.files import AutoFileError, read_named_dat, read_s
+from washer.auto.files import AutoFileError, read_named_dat, read_s, s_file
 from washer.cont.branch import Branch
 from washer.cont.user_problem.c_library import CompileError
 from washer.cont.problem import Problem, ProblemError
@@ -103,7 +103,7 @@ def run(constants, verbose: bool = True, problem: Problem | None = None, params=
     name = c["sv"] or default_name
     # Restarts read s.<s>, else s.NAME of the constants file (AUTO's load('NAME')):
     # sv names only what is written.
-    restart_from, restart = restart, folder / f"s.{c['s'] or default_name}"
+    restart_from, restart = restart, s_file(folder / f"s.{c['s'] or default_name}")
     if problem is None:
         problem = resolve_problem(c, folder, params)
     route = getattr(problem, "route", None)
@@ -196,7 +196,7 @@ def load(path):
         return read_s(p)
     from washer.auto.diagram import Diagram
     s_path = p.with_name("s." + p.name[2:]) if p.name.startswith("b.") else None
-    return Diagram.read(p, s_path if s_path is not None and s_path.exists() else None)
+    return Diagram.read(p, s_path)
 
 
 def _copy_examples(args: list[str]) -> int:

@@ -30,6 +30,7 @@ from washer.auto.constants_file import Constants, ConstantsError, read_constants
 from washer.auto import diagram
 from washer.auto.script_constants import (SPECIAL_KEYS, STANDARD_KEYS, AutoConstants,  # noqa: F401
                                         AutoError)
+from washer.auto.files import s_file
 from washer.auto.diagram import (NONE_KEYS, Diagram, Solution, SolutionList, label_selector,
                                   read_solutions, type_name)
 from washer.atomic import save_figure
@@ -167,9 +168,9 @@ def _configure(data=None, **kw) -> Solution:
 
 
 def _read_s(name: str) -> SolutionList:
-    path = Path(f"s.{name}")
+    path = s_file(f"s.{name}")
     if not path.exists():
-        raise AutoError(f"{path}: no such solution file")
+        raise AutoError(f"s.{name}: no such solution file")
     out = SolutionList(read_solutions(path))
     out.source = str(path)
     return out
@@ -341,7 +342,7 @@ def _names(name) -> list[str]:
 def _existing(paths: list[str]) -> list[str]:
     """paths (b., s., d.) when the b- or s-file exists, else an error naming them: a
     misspelt name must not become empty output files."""
-    if not any(os.path.exists(p) for p in paths[:2]):
+    if not (os.path.exists(paths[0]) or s_file(paths[1]).exists()):
         raise AutoError(f"no output files {paths[0]}, {paths[1]}")
     return paths
 

@@ -24,7 +24,7 @@ import numpy as np
 from washer.atomic import write_text
 from washer.cont.codes import split_code, split_label, type_name as _type_name
 from washer.auto.files import (AutoFileError, Record, Row, _fortran_float, _read_record,
-                               _read_text, fmt_e, record_text)
+                               _read_text, fmt_e, record_text, s_file)
 from washer.auto.script_constants import AutoConstants
 
 
@@ -537,7 +537,7 @@ class Diagram(list):
         """Branches of a b-file with the s-file's records attached to the labelled rows
         in order, and the d-file's text on the first branch (as AUTO's bifDiag)."""
         branches = read_branches(b_path, c) if b_path and Path(b_path).exists() else []
-        sols = read_solutions(s_path, c) if s_path and Path(s_path).exists() else []
+        sols = read_solutions(s_path, c) if s_path and s_file(s_path).exists() else []
         if not branches and sols:
             return cls([_branch_of_solutions(sols, c)])
         k = 0
@@ -823,8 +823,9 @@ def read_branches(path, c=None) -> list[Branch]:
 
 
 def read_solutions(path, c=None) -> list[Solution]:
-    """Solutions of an s-file, each with its record's lines kept."""
-    path = Path(path)
+    """Solutions of an s-file (s.NAME.gz where s.NAME does not exist: files.s_file), each
+    with its record's lines kept."""
+    path = s_file(path)
     lines = _read_text(path, "an AUTO s-file").splitlines()
     out, i = [], 0
     while i < len(lines):

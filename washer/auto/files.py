@@ -17,10 +17,12 @@ target untouched) and never truncate a protected file (the restart source).
 from __future__ import annotations
 
 import functools
+import gzip
 import math
 import os
 import re
 import time
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -541,10 +543,32 @@ class OutputFiles:
 
 # ----------------------------------------------------------------------- readers
 
+#: The suffix of a file kept gzipped: NAME.gz holds NAME's text.
+GZIP_SUFFIX = ".gz"
+
+
+def s_file(path) -> Path:
+    """The file that s-file `path` (s.NAME) names: `path` itself where it exists, so a
+    user's plain s.NAME always wins; else s.NAME.gz beside it where that exists (an
+    s-file kept gzipped, as large reference files are); else `path`, so that a missing
+    file is reported by the name the user wrote."""
+    path = Path(path)
+    if path.exists():
+        return path
+    gz = path.with_name(path.name + GZIP_SUFFIX)
+    return gz if gz.exists() else path
+
+
 def _read_text(path: Path, what: str) -> str:
-    """A file's text; AutoFileError for a missing, binary or non-UTF-8 file."""
+    """A file's text, decompressed where its name ends in .gz; AutoFileError for a
+    missing, binary or non-UTF-8 file or a damaged gzip stream."""
     try:
         data = Path(path).read_bytes()
+        if Path(path).name.endswith(GZIP_SUFFIX):
+            data = gzip.decompress(data)
+    except (gzip.BadGzipFile, EOFError, zlib.error) as exc:
+        raise AutoFileError(f"{path}: cannot read {what}: not a whole gzip file ({exc})") \
+            from None
     except OSError as exc:
         raise AutoFileError(f"{path}: cannot read {what} ({exc.strerror})") from None
     return decode_text(data, str(path), what, AutoFileError)
@@ -584,9 +608,10 @@ def read_s(path: Path) -> list[Record]:
     (docs/auto.md 2.2); a header that is not integers, a record cut short, a number
     that does not parse or a block of the wrong size raises AutoFileError naming
     the file, the line and what was expected there, so a corrupt restart file
-    never starts a run from wrong data.
+    never starts a run from wrong data. s.NAME.gz is read where s.NAME does not
+    exist (`s_file`).
     """
-    path = Path(path)
+    path = s_file(path)
     lines = _read_text(path, "an AUTO s-file").splitlines()
     out, i = Records(), 0
     while i < len(lines):

@@ -48,8 +48,9 @@ def _main(argv: list[str] | None) -> int:
                     help="s-file: components of the phase portrait (default 1 2)")
     ap.add_argument("--out", type=Path, default=None)
     args = ap.parse_args(argv)
+    from washer.auto.files import s_file           # s.NAME may be kept as s.NAME.gz
     for f in args.files:
-        if not f.exists():
+        if not (s_file(f) if f.name.startswith("s.") else f).exists():
             print(f"error: {f}: no such file", file=sys.stderr)
             return 2
     import matplotlib
