@@ -101,3 +101,63 @@ def test_the_trivial_multiplier_is_deflated_so_its_double_partner_stays_real():
         for m in mu[np.abs(mu - 1) >= 1e-3]:
             assert np.min(np.abs(ref - m)) < 1e-8 * abs(m), (m, ref)
     assert 0 < complex_whole < 40
+
+
+# ------------------------------------------- the deflated pencil in one compiled call
+# (csrc/cont/floquet.cpp: numpy's GESDD, DGEMM, DGEMV, DDOT and scipy's DGGEV called as
+# numpy and scipy call them, so the multipliers are the Python's to the bit)
+
+compiled = pytest.mark.skipif(floquet.compiled_routines() is None, reason="numpy or scipy links no bundled scipy-openblas here")
+
+
+def python_deflated(P0, P1):
+    """pencil_multipliers' Python before the sort."""
+    with np.errstate(all="ignore"):
+        mu = floquet._deflated_eigvals(P0, -P1)
+    return np.where(np.isfinite(mu), mu, np.inf + 0j)
+
+
+def orbit_pairs(seed, n, count):
+    """(P0, P1) with a multiplier at 1 (P0 = -P1 M, M x = x), of magnitudes 1e-3 to 1e3,
+    every fifth rounded to eighths (ties in QZ's and the sort's choices)."""
+    rng = np.random.default_rng(seed)
+    for k in range(count):
+        M = rng.standard_normal((n, n)) * 10.0 ** rng.integers(-2, 3)
+        x = rng.standard_normal(n)
+        M -= np.outer(M @ x - x, x) / (x @ x)
+        P1 = rng.standard_normal((n, n)) * 10.0 ** rng.integers(-3, 4)
+        P0 = -P1 @ M
+        if k % 5 == 0:
+            P0 = np.round(P0 * 8) / 8
+        yield P0, P1
+
+
+@compiled
+@pytest.mark.parametrize("n", [2, 3, 4, 6, 12])
+def test_compiled_deflation_is_the_pythons_bit_for_bit(n):
+    served = 0
+    for P0, P1 in orbit_pairs(10 + n, n, 200):
+        got = floquet._compiled_deflated_eigvals(P0, P1)
+        if got is None:                      # left to the Python (infinite eigenvalues)
+            continue
+        served += 1
+        ref = python_deflated(P0, P1)
+        assert got.tobytes() == ref.tobytes(), (P0, P1, got, ref)
+        assert floquet.pencil_multipliers(P0, P1, True).tobytes() == \
+            floquet.sort_multipliers(ref).tobytes()
+    assert served >= 180                     # the compiled call is what runs
+
+
+@compiled
+def test_compiled_deflation_leaves_what_it_cannot_do_to_the_python():
+    P1 = -np.eye(3)
+    P0 = np.diag([1.0, 2.0, 0.5])
+    assert floquet._compiled_deflated_eigvals(P0, P1) is not None
+    bad = P0.copy()
+    bad[1, 2] = np.nan
+    assert floquet._compiled_deflated_eigvals(bad, P1) is None      # nothing to deflate
+    assert floquet._compiled_deflated_eigvals(np.asfortranarray(P0 + 0.1), P1) is None
+    singular = -np.diag([1.0, 1.0, 0.0])                              # an infinite multiplier
+    assert floquet._compiled_deflated_eigvals(P0, singular) is None
+    mu = floquet.pencil_multipliers(P0, singular, True)
+    assert np.isinf(mu).sum() == 1 and mu[0] == 1.0

@@ -166,6 +166,18 @@ int cont_dense_lu_solve(void *getrs, int n, const double *lu, const int64_t *ipi
 int cont_eigenvalues_sorted(void *geev, int n, const double *A, int lda, double *w,
                             double *work, int lwork_max, int *lwork);
 
+/* The Floquet multipliers of the pair (P0, P1) (n x n each, row-major; P0 y(0) + P1 y(1) =
+ * 0) with the trivial one deflated first, washer.cont.floquet's deflated pencil and QZ
+ * (csrc/cont/floquet.cpp): the same calls of the same libraries as its Python, so the same
+ * bits. routines: numpy's GESDD, CBLAS DGEMM, DGEMV and DDOT (ILP64) and scipy's DGGEV
+ * (LP64) (washer.cont.lapack.floquet_routines). mu (2 n): (re, im) pairs, the trivial
+ * multiplier first, then DGGEV's order; non-finite quotients are (inf, 0). lwork (2):
+ * GESDD's and DGGEV's workspace, asked for where <= 0 and kept (functions of n alone).
+ * Returns 0, or 1 (n < 2 or something not finite to deflate by), 2 (GESDD failed),
+ * 3 (DGGEV failed or an infinite eigenvalue): the Python then computes them itself. */
+int cont_floquet_deflated(void *const *routines, int n, const double *P0, const double *P1,
+                          double *mu, int64_t *lwork);
+
 /* The unit tangent of a dense algebraic point (washer.cont.linalg.unit_tangent): border (n) =
  * theta * ref elementwise, cont_dense_lu of [J; border] (J (n - 1) x n, row stride ldj) into
  * lu (n * n + n doubles: the factors, then room for the norm's terms), ipiv, sign_logdet and

@@ -146,6 +146,10 @@ def pencil_multipliers(P0: np.ndarray, P1: np.ndarray,
     forced or general linear system) must not be deflated: the null vector of C0 - C1
     is then no eigenvector and the deflation moves every multiplier.
     Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
+    if deflate_trivial:
+        mu = _compiled_deflated_eigvals(P0, P1)
+        if mu is not None:
+            return sort_multipliers(mu)
     C0, C1 = np.asarray(P0, float), -np.asarray(P1, float)
     with np.errstate(all="ignore"):
         mu = _deflated_eigvals(C0, C1) if deflate_trivial else _pencil_eigvals(C0, C1)
@@ -192,6 +196,53 @@ def _deflated_eigvals(C0: np.ndarray, C1: np.ndarray) -> np.ndarray:
     if not (np.isfinite(one) and np.isfinite(A).all() and np.isfinite(B).all()):
         return _pencil_eigvals(C0, C1)      # C0 X or C1 X zero: nothing to deflate by
     return np.r_[complex(one), _pencil_eigvals(A, B)]
+
+
+#: the compiled deflation and QZ (`compiled_routines`): empty until first asked, then
+#: [None] (numpy and scipy serve) or [(ffi, lib, the routines' addresses)]
+_COMPILED: list = []
+#: GESDD's and DGGEV's workspace by order n, asked for by the first call of each n
+_COMPILED_LWORK: dict = {}
+
+
+def compiled_routines():
+    """(ffi, lib, routines) of csrc/cont/floquet.cpp, or None where numpy's or scipy's
+    bundled OpenBLAS or the compiled call is missing (washer.cont.lapack)."""
+    if not _COMPILED:
+        from washer.cont.lapack import floquet_routines
+        found = floquet_routines()
+        if found is None:
+            _COMPILED.append(None)
+        else:
+            from washer._cont import ffi, lib
+            _COMPILED.append((ffi, lib, ffi.new("void *[]", list(found))))
+    return _COMPILED[0]
+
+
+def _compiled_deflated_eigvals(P0, P1) -> np.ndarray | None:
+    """`_deflated_eigvals(P0, -P1)` with non-finite values as inf, made by
+    csrc/cont/floquet.cpp in one call (the same LAPACK and BLAS calls of numpy's and
+    scipy's libraries, the same arithmetic: the same bits, without the Python around
+    some fifteen numpy calls), or None where it does not serve: no compiled routines, not
+    C-contiguous float64 square matrices of order >= 2, or a case the C++ leaves to the
+    Python (nothing finite to deflate by, LAPACK's failure, infinite eigenvalues)."""
+    got = compiled_routines()
+    if (got is None or type(P0) is not np.ndarray or type(P1) is not np.ndarray
+            or P0.dtype != np.float64 or P1.dtype != np.float64 or P0.ndim != 2
+            or P0.shape != P1.shape or P0.shape[0] != P0.shape[1] or P0.shape[0] < 2
+            or not (P0.flags.c_contiguous and P1.flags.c_contiguous)):
+        return None
+    ffi, lib, routines = got
+    n = P0.shape[0]
+    lwork = _COMPILED_LWORK.get(n)
+    if lwork is None:
+        lwork = _COMPILED_LWORK[n] = ffi.new("int64_t[2]")
+    mu = np.empty(n, complex)
+    if lib.cont_floquet_deflated(routines, n, ffi.from_buffer("double[]", P0),
+                                 ffi.from_buffer("double[]", P1),
+                                 ffi.from_buffer("double[]", mu), lwork) != 0:
+        return None
+    return mu
 
 
 def critical(mu: np.ndarray, trivial: bool = True) -> complex | None:
