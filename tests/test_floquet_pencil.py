@@ -71,6 +71,23 @@ def test_sort_multipliers_is_autos_order(trivial):
         floquet.sort_multipliers(np.array([np.nan + 0j]))
 
 
+@pytest.mark.parametrize("trivial", [True, False])
+def test_sort_multipliers_orders_near_ties_as_numpys_absolute_value_does(trivial):
+    """Moduli a few units in the last place apart, whose order numpy's complex absolute
+    value (not libm's hypot: they differ in the last bit for a third of random numbers)
+    decides; the compiled sort where washer._cont is built."""
+    rng = np.random.default_rng(6)
+    for _ in range(2000):
+        n = int(rng.integers(2, 8))
+        r = 1.0 + rng.choice([-1, 1]) * 0.3 + rng.integers(-4, 5, n) * 2.0 ** -52
+        mu = r * np.exp(1j * rng.uniform(-np.pi, np.pi, n))
+        if rng.random() < 0.3:
+            mu[0] = 1.0 + rng.integers(-3, 4) * 2.0 ** -52 * 1j
+        with np.errstate(invalid="ignore"):
+            ref = reference_order(mu, trivial)
+        assert floquet.sort_multipliers(mu, trivial).tobytes() == ref.tobytes(), mu
+
+
 def test_the_trivial_multiplier_is_deflated_so_its_double_partner_stays_real():
     """On a family of conservative orbits (AUTO's r3b halo and vertical families) the
     trivial multiplier 1 is double with one eigenvector (a Jordan block). A monodromy

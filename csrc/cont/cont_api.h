@@ -177,6 +177,12 @@ int cont_eigenvalues_sorted(void *geev, int n, const double *A, int lda, double 
  * 3 (DGGEV failed or an infinite eigenvalue): the Python then computes them itself. */
 int cont_floquet_deflated(void *const *routines, int n, const double *P0, const double *P1,
                           double *mu, int64_t *lwork);
+/* The multipliers mu (n (re, im) pairs) in AUTO's order, washer.cont.floquet.sort_multipliers
+ * made as numpy makes it (the same values of numpy's complex absolute value): with trivial,
+ * the one of least |mu - 1| first (the first such; nan distances never win), then the others
+ * by ||mu| - 1|, ties in their order, nan last. out (2 n). Returns 0, 1 (trivial and every
+ * distance nan: the Python raises), -1 (n <= 0). */
+int cont_multipliers_sorted(int n, const double *mu, int trivial, double *out);
 
 /* The unit tangent of a dense algebraic point (washer.cont.linalg.unit_tangent): border (n) =
  * theta * ref elementwise, cont_dense_lu of [J; border] (J (n - 1) x n, row stride ldj) into

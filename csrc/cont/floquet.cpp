@@ -8,6 +8,7 @@
 // for bit (tests/test_floquet_pencil.py holds them so); the Python around the ~15 numpy
 // calls is what is saved (about 450K instructions a point at NDIM 3).
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 #include "cont.h"
@@ -146,6 +147,68 @@ extern "C" int cont_floquet_deflated(void *const *routines, int n, const double 
         bool finite = std::isfinite(qr) && std::isfinite(qi);
         mu[2 * (i + 1)] = finite ? qr : INFINITY;
         mu[2 * (i + 1) + 1] = finite ? qi : 0.0;
+    }
+    return 0;
+}
+
+namespace {
+// numpy's absolute value of a complex number (its SIMD loop, which contiguous arrays take
+// on this machine): the larger part times sqrt(fma(r, r, 1)), r the smaller over the
+// larger; inf if a part is infinite, else nan if one is nan, 0 where both are 0. It is
+// not libm's hypot (they differ in the last bit for about a third of random numbers),
+// and the order of the multipliers is decided on its values.
+double numpy_cabs(double re, double im) {
+    re = std::fabs(re);
+    im = std::fabs(im);
+    if (std::isinf(re) || std::isinf(im)) return INFINITY;
+    if (std::isnan(re) || std::isnan(im)) return NAN;
+    double big = re > im ? re : im, small = re > im ? im : re;
+    if (big == 0.0) return 0.0;
+    double r = small / big;
+    return big * std::sqrt(std::fma(r, r, 1.0));
+}
+
+// numpy's sort order of floats: nan after every number
+bool before(double a, double b) { return a < b || (b != b && a == a); }
+}  // namespace
+
+extern "C" int cont_multipliers_sorted(int n, const double *mu, int trivial, double *out) {
+    if (n <= 0) return -1;
+    std::vector<int> rest;
+    rest.reserve(n);
+    int k = 0;
+    if (trivial) {
+        // np.argmin of |mu - 1| with nan as inf: the first of the smallest
+        int i1 = -1;
+        double best = INFINITY;
+        bool all_nan = true;
+        for (int i = 0; i < n; ++i) {
+            double d = numpy_cabs(mu[2 * i] - 1.0, mu[2 * i + 1] - 0.0);
+            if (d != d) d = INFINITY;
+            else all_nan = false;
+            if (i1 < 0 || d < best) {
+                i1 = i;
+                best = d;
+            }
+        }
+        if (all_nan) return 1;                  // the Python raises numpy's error
+        out[0] = mu[2 * i1];
+        out[1] = mu[2 * i1 + 1];
+        k = 1;
+        for (int i = 0; i < n; ++i)
+            if (i != i1) rest.push_back(i);
+    } else {
+        for (int i = 0; i < n; ++i) rest.push_back(i);
+    }
+    // the others by ||mu| - 1|, a stable sort (np.argsort's kind="stable")
+    std::vector<double> key(n);
+    for (int i : rest) key[i] = std::fabs(numpy_cabs(mu[2 * i], mu[2 * i + 1]) - 1.0);
+    std::stable_sort(rest.begin(), rest.end(),
+                     [&key](int a, int b) { return before(key[a], key[b]); });
+    for (int i : rest) {
+        out[2 * k] = mu[2 * i];
+        out[2 * k + 1] = mu[2 * i + 1];
+        ++k;
     }
     return 0;
 }

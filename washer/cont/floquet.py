@@ -58,6 +58,15 @@ INACCURATE_NOTE = "Multiplier inaccurate"
 SPB = int(Code.PD)
 
 
+# The compiled sort (csrc/cont/floquet.cpp's cont_multipliers_sorted: the order below, from
+# the same values of numpy's complex absolute value); without washer._cont the Python serves.
+try:
+    from washer._cont import ffi as _FFI, lib as _LIB
+    _SORTED = getattr(_LIB, "cont_multipliers_sorted", None)
+except ImportError:                         # pragma: no cover - not built
+    _SORTED = None
+
+
 def sort_multipliers(mu, trivial: bool = True) -> np.ndarray:
     """AUTO's order: the multiplier closest to 1 first (when the orbit has a trivial
     one), then by ||mu| - 1| (a stable sort: ties keep the order they came in)."""
@@ -65,6 +74,10 @@ def sort_multipliers(mu, trivial: bool = True) -> np.ndarray:
     if len(mu) == 0:
         return mu
     out = np.empty(len(mu), complex)
+    if _SORTED is not None and mu.ndim == 1 and mu.flags.c_contiguous and _SORTED(
+            len(mu), _FFI.from_buffer("double[]", mu), trivial,
+            _FFI.from_buffer("double[]", out)) == 0:
+        return out                  # csrc/cont/floquet.cpp: the same order, in one call
     with np.errstate(invalid="ignore"):
         if trivial:
             # np.nanargmin's choice (NaN distances never win; all NaN is an error),
