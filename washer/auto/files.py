@@ -302,6 +302,7 @@ class OutputFiles:
                 raise AutoFileError(f"{p}: cannot write this output file "
                                     f"({exc.strerror or exc})") from None
         self._handles: dict = {}
+        self._by_id: dict = {}      # the same handles by id(path)
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
         self._flushed = time.monotonic()
@@ -314,9 +315,11 @@ class OutputFiles:
         """Append, and flush all files when `flush_seconds` have passed since the last
         flush (0: after every write). Handles stay open for the run (opened without
         following symlinks); `close` flushes and ends them."""
-        fh = self._handles.get(path)
+        # (found by the Path object's identity, the three paths being this object's own: a
+        # Path's hash is a Python-level call, and a point writes twice)
+        fh = self._by_id.get(id(path))
         if fh is None:
-            fh = self._handles[path] = _open_output(path, append=True)
+            fh = self._handles[path] = self._by_id[id(path)] = _open_output(path, append=True)
         fh.write(text)
         now = time.monotonic()
         if now - self._flushed >= self.flush_seconds:
@@ -340,6 +343,7 @@ class OutputFiles:
         for fh in self._handles.values():
             fh.close()
         self._handles.clear()
+        self._by_id.clear()
 
     def __del__(self):
         try:

@@ -55,6 +55,8 @@ class _Executor:
         #: tangent are still those objects (a periodic orbit's Solution costs a pass over
         #: its profile); anything else in between drops it.
         self._window_solution = None
+        # the sinks' point methods, looked up once (every record calls each)
+        self._point_sinks = [sink.point for sink in self.sinks]
 
     def emit(self, what: str, *args) -> None:
         for sink in self.sinks:
@@ -77,14 +79,15 @@ class _Executor:
         # internal ones included where AUTO counts them (the cycle fold's beta, PAR(NPAR+1):
         # periodic.f90 INITPS, NFPR = NBC + NINT - NDIM + 1 = 4), as the header lists them.
         icp = list(getattr(sysm, "header_icp", sysm.free))
-        out = Record(br=br, pt=pt, code=curve_code(base, sysm.curve_type), lab=lab,
-                     nfpr=len(icp), isw=s.ISW, ndim_user=sol.ndim_user, ips=s.IPS,
-                     u=np.asarray(sol.u), par=np.asarray(sol.par), icp=icp,
-                     rldot=list(sol.rldot)[:len(icp)], udot=sol.udot, t=sol.t, ntst=sol.ntst,
-                     ncol=sol.ncol, values=values, stable=stable, stability=point.stability,
-                     info=info or {}, npari=getattr(sysm, "npari", 0))
+        nfpr = len(icp)
+        # (positional: Record's fields in their order)
+        out = Record(br, pt, curve_code(base, sysm.curve_type), lab, nfpr, s.ISW,
+                     sol.ndim_user, s.IPS, np.asarray(sol.u), np.asarray(sol.par), icp,
+                     list(sol.rldot)[:nfpr], sol.udot, sol.t, sol.ntst, sol.ncol, values,
+                     stable, point.stability, info or {}, getattr(sysm, "npari", 0))
         self.run.branch.rows.append(out)
-        self.emit("point", out, point)
+        for sink_point in self._point_sinks:
+            sink_point(out, point)
         return out
 
     def info_at(self, point: Point, base: int) -> dict:
