@@ -667,7 +667,8 @@ class Continuation:
         st, sysm = self.state, self.sys
         current = st.point
         nxt, st.ds = self._retrying_step(current, st.ds)
-        yield from self._flush()
+        if self._pending:                   # (most steps have no notes)
+            yield from self._flush()
         if nxt is None:
             self.state = None
             yield Step("failed", current, text=self.failure)
@@ -695,7 +696,8 @@ class Continuation:
         # find no key; most steps, and its set-up costs more than this check)
         hit = self._first_zero(current, nxt, st.ds) \
             if sign_changes(current.tests, nxt.tests) else None
-        yield from self._flush()
+        if self._pending:
+            yield from self._flush()
         if hit is not None:
             # sp's located tests are stored as 0 (`events.clear_located`).
             sp, key, same = hit
