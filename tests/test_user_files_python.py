@@ -118,3 +118,19 @@ def test_a_library_key_follows_its_sources_and_headers(tmp_path):
     assert k1 != k0 and k1 == fresh()
     (inc / "b.h").write_text("\n")
     assert c_library.library_key(src, [inc]) not in (k0, k1)
+
+
+def test_a_library_keys_headers_are_what_glob_lists(tmp_path):
+    """library_key reads a folder's headers with os.scandir: the names and files that
+    sorted(Path(folder).glob('*.h')) lists (a hidden header too, not a '.hpp' or a file
+    without the suffix), nothing for a folder that is not there."""
+    from pathlib import Path
+    from washer.cont.user_problem import c_library
+    for name in ("b.h", "a.h", ".hidden.h", "c.hpp", "h", "z.H"):
+        (tmp_path / name).write_text("\n")
+    (tmp_path / "sub.h").mkdir()
+    listed = c_library._headers(tmp_path)
+    assert listed == [(p.name, str(p)) for p in sorted(Path(tmp_path).glob("*.h"))]
+    assert [n for n, _ in listed] == [".hidden.h", "a.h", "b.h", "sub.h"]
+    assert c_library._headers(tmp_path / "missing") == [] == list(
+        Path(tmp_path / "missing").glob("*.h"))

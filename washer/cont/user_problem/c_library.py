@@ -116,15 +116,26 @@ _KEYS: dict = {}
 _KEYS_MAX = 64
 
 
+def _headers(folder) -> list[tuple[str, str]]:
+    """(name, path) of the headers `*.h` in folder, by name: what Path(folder).glob('*.h')
+    lists, sorted, read with os.scandir (pathlib's glob and Path objects cost a short run
+    of a small problem more than its hash, once per library a run)."""
+    try:
+        with os.scandir(folder) as entries:
+            return sorted((e.name, e.path) for e in entries if e.name.endswith(".h"))
+    except (FileNotFoundError, NotADirectoryError, PermissionError):
+        return []                       # (glob lists nothing there either)
+
+
 def library_key(sources: list[Source], includes: list[Path] = (), extra: str = "") -> str:
     """The content hash naming a library: compilers' versions, flags, sources, includes."""
     kinds = {"fortran" if s.fortran else "c" for s in sources}
     kinds.add("c")
     versions = tuple(_version(_compiler(kind)) for kind in sorted(kinds))
     texts = tuple((Path(s.name).name, s.data()) for s in sources)
-    headers = [sorted(Path(inc).glob("*.h")) for inc in includes]
-    stamps = tuple((f.name, st.st_size, st.st_mtime_ns)
-                   for files in headers for f in files for st in (f.stat(),))
+    headers = [_headers(inc) for inc in includes]
+    stamps = tuple((name, st.st_size, st.st_mtime_ns)
+                   for files in headers for name, path in files for st in (os.stat(path),))
     memo = (versions, extra, texts, stamps)
     key = _KEYS.get(memo)
     if key is not None:
@@ -136,8 +147,9 @@ def library_key(sources: list[Source], includes: list[Path] = (), extra: str = "
     for name, data in texts:
         h.update(name.encode() + b"\0" + data + b"\0")
     for files in headers:
-        for f in files:
-            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+        for name, path in files:
+            with open(path, "rb") as fh:
+                h.update(name.encode() + b"\0" + fh.read() + b"\0")
     key = h.hexdigest()[:20]
     if len(_KEYS) >= _KEYS_MAX:
         _KEYS.clear()
