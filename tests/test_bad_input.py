@@ -27,7 +27,7 @@ def _c(tmp_path, text, name="c.x"):
 
 # ------------------------------------------------------------ name constants
 @pytest.mark.parametrize("stmt", ["sv = '../x'", "sv = 'out/x'", "s = '..'", "s = '/tmp/eq'",
-                                  "e = '../models/evil'", "sv = 'a\\b'", "dat = 'x/../../y'"])
+                                  "sv = 'a\\b'", "dat = 'x/../../y'"])
 def test_paths_in_names_are_refused_in_files(tmp_path, stmt):
     with pytest.raises(ConstantsError) as err:
         read_constants(_c(tmp_path, f"NDIM = 2\n{stmt}\n"))
@@ -45,6 +45,15 @@ def test_paths_in_names_are_refused_as_overrides(override):
 def test_plain_names_pass():
     c = Constants({"sv": "hopf.bwd", "s": "eq", "e": "washer:frozen"})
     assert (c["sv"], c["s"], c["e"]) == ("hopf.bwd", "eq", "washer:frozen")
+
+
+def test_e_may_be_a_path_as_auto_reads_it(tmp_path):
+    """AUTO's e is the user file's path without its suffix (e='./functions/yamada'
+    compiles ./functions/yamada.f90): only read, so a path is kept (s, dat, sv are
+    names: above)."""
+    c = read_constants(_c(tmp_path, "NDIM = 2\ne = './functions/model'\n"))
+    assert c["e"] == "./functions/model"
+    assert Constants({"e": "../models/m"})["e"] == "../models/m"
 
 
 # ----------------------------------------------------------- values and ICP

@@ -179,3 +179,46 @@ def test_isw_minus_two_is_refused_with_the_restart_label_named(tmp_path):
     with pytest.raises(RunError, match=rf"c\.ab.*ISW=-2 \(IRS={lab}\)"):
         run(tmp_path / "c.ab", s="hb", IRS=lab, ICP=[1], ISW=-2, sv="again", verbose=False)
     assert not list(tmp_path.glob("*.again"))
+
+
+def test_periodic_orbits_start_from_any_point_of_a_hopf_curve_as_auto(tmp_path_factory):
+    """IPS = 2 at a label of a Hopf curve (ISW = 2 of the equilibria): AUTO's INITPS takes
+    ITP = 3 or |ITP| / 10 = 3 as a Hopf point whatever |ISW| <= 1 says, so ISW = -1 at a
+    regular label and ISW = 1 at the curve's EP both start the periodic orbits there, from
+    the record's state and its period PAR(11) (STPNPB), as at an HB label. NEWLAB's branch
+    is the record's (ITP is not 3): -9 here, not the label. Both runs as AUTO's b-files
+    (tests/data/isw_curves/isw_cycles.auto). The period has no weight in the arclength
+    (THL = {11: 0}): where the two Hopf curves' labels differ by dP in PAR(1) (1.5e-7,
+    within EPSL), the periods of the orbits differ by up to |dT / dPAR(1)| dP along the
+    family, the slope taken from AUTO's own rows."""
+    runs = _ab_script(tmp_path_factory, "isw_cycles.auto")
+    for name in ("hcyc", "hcycep"):
+        ours, auto = runs[name], _auto(name)
+        assert _same(ours[:, :-1], auto[:, :-1]), name
+        slope = np.abs(np.diff(auto[:, -1]) / np.diff(auto[:, 4])).max()
+        d_par = np.abs(ours[:, 4] - auto[:, 4]).max()
+        assert d_par < 1e-6 and np.abs(ours[:, -1] - auto[:, -1]).max() < 2 * slope * d_par
+        assert np.all(runs[name][:, 0] == -9)
+        # the orbits grow from the Hopf point: L2-norm increasing, period column positive
+        assert np.all(np.diff(runs[name][:, 5]) > 0)
+
+
+def test_the_user_file_may_sit_in_a_subfolder_named_by_a_path_in_e(tmp_path, monkeypatch):
+    """e='./model/ab' is AUTO's ab.f90 in the folder model/ (AUTO compiles e + '.f90'
+    wherever that is); the run is the same as with ab.f90 beside the constants files:
+    isw_cycles.auto's periodic orbits from the Hopf curve, as AUTO's own b.hcyc."""
+    if shutil.which("gfortran") is None:
+        pytest.skip("ab.f90 needs gfortran")
+    (tmp_path / "model").mkdir()
+    shutil.copy(DATA / "auto_demos" / "ab" / "ab.f90", tmp_path / "model")
+    for f in ("c.ab.1", "c.ab.2"):
+        shutil.copy(DATA / "auto_demos" / "ab" / f, tmp_path)
+    script = (DATA / "isw_curves" / "isw_cycles.auto").read_text()
+    assert "e='ab'" in script
+    (tmp_path / "sub.auto").write_text(script.replace("e='ab'", "e='./model/ab'"))
+    monkeypatch.chdir(tmp_path)
+    clui._runner.refused.clear()
+    run_script("sub.auto")
+    assert not clui._runner.refused
+    ours, auto = _rows(Path("b.hcyc").read_text()), _auto("hcyc")
+    assert _same(ours[:, :-1], auto[:, :-1])

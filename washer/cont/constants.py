@@ -177,16 +177,20 @@ def _check_bound(key: str, value, where: str) -> None:
 
 
 def check_name(key: str, value: str, where: str) -> None:
-    """Refuse a path in a name constant (e, s, dat, sv).
+    """Refuse a path in a name constant (s, dat, sv), and a NUL byte in any (e too).
 
-    AUTO uses these as name suffixes: sv='x' writes b.x, s.x, d.x in the run's
+    AUTO uses s, dat, sv as name suffixes: sv='x' writes b.x, s.x, d.x in the run's
     folder. A separator or '..' would make washer read or write outside that
-    folder, which a constants file should never do by accident.
+    folder, which a constants file should never do by accident. e is the user
+    file's path without its suffix, as AUTO's (e='./functions/yamada' compiles
+    ./functions/yamada.f90, relative to the constants file's folder): only read.
     """
+    if key == "e" and "\0" not in value:
+        return
     bad = [c for c in ("/", "\\", "\0") if c in value]
     if bad or ".." in value:
         what = "a path separator" if bad and bad[0] != "\0" else "a NUL byte" if bad else "'..'"
-        role = ("e='NAME' loads NAME.py beside the constants file" if key == "e" else
+        role = ("e='NAME' loads NAME.py (NAME.f90, NAME.f, NAME.c)" if key == "e" else
                 "AUTO writes and reads b.NAME, s.NAME, d.NAME in the constants file's folder")
         raise ConstantsError(
             f"{where}: {key}={value!r} contains {what}: {key} is a name ({role}), not a path; "

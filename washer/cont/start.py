@@ -199,6 +199,11 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
     ty = str(c["TY"] or "").strip()
     if ty and rec is not None:
         kind, par = restart_type(c, ty, par)
+    if s.IPS == 2 and abs(s.ISW) <= 1 and kind == "HB-curve" and np.ndim(rec.u) == 1:
+        # INITPS: ITP = 3 or |ITP| / 10 = 3 starts periodic orbits as from an HB: any
+        # point of a Hopf curve (its record holds the state first and the period in
+        # PAR(11), as an HB's).
+        kind = "HB"
     if s.IPS == 2 and kind == "HB" and s.ISW == -1:
         s = s.with_(ISW=1)          # INITPS: ISW = 1 when starting from an HB
     # A problem that supplies its period map has its periodic orbits by shooting
@@ -285,7 +290,8 @@ def system_for(c, s: Settings, problem, u, par, rec, data=None):
 def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = None) -> int:
     """AUTO's NEWLAB: IBR if given; a new branch after the file's highest (or `mbr`) for
     IRS = 0 and switches; the HB's label for a periodic branch from it (and for a curve
-    started at a special point); else the record's branch."""
+    started at a special point; not from a point of a Hopf curve: NEWLAB asks ITP = 3);
+    else the record's branch."""
     if mbr is None:
         mbr = max((abs(r.br) for r in records), default=0) if records else 0
     if c["IBR"]:
@@ -296,7 +302,8 @@ def branch_number(c, s: Settings, rec, kind: str, records, mbr: int | None = Non
         # A locus of cycles started at its special point: AUTO's INITPS makes that run
         # ISW = -2 (its generating run), so NEWLAB gives it a new branch.
         return mbr + 1
-    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or (s.IPS in (2, 12) and kind == "HB") or \
+    if (abs(rec.code) < 10 and abs(s.ISW) == 2) or \
+            (s.IPS in (2, 12) and kind == "HB" and split_code(rec.code)[1] != 3) or \
             (s.IPS == 5 and kind == "LP"):
         # (IPS = 5: the extremum continued in one parameter more from its LP)
         return rec.lab

@@ -6,10 +6,9 @@ NAME.py wins when it exists: Python functions (func, stpnt, dfdu, dfdp, pvls, bc
 docs/continuation.md, "Your own equations") or sympy expressions u, par, f (generated into C
 and compiled:
 washer.cont.user_problem.user_files_sympy). Otherwise AUTO's own user file NAME.f90, NAME.f or
-NAME.c, compiled on
-first use (washer.cont.user_problem.user_files_native). Names are plain: a file is looked up
-beside the constants
-file, never elsewhere on disk.
+NAME.c, compiled on first use (washer.cont.user_problem.user_files_native). NAME is looked up
+beside the constants file; as AUTO's e it may also be a path without the suffix
+(e='./functions/yamada' is functions/yamada.f90 in the constants file's folder).
 """
 from __future__ import annotations
 
@@ -19,12 +18,19 @@ from pathlib import Path
 from washer.cont.problem import Problem, ProblemError
 
 
+def _check_file_name(name: str) -> None:
+    """ProblemError unless name ends in a file's name (a path's last part: not empty, '.',
+    '..' or hidden)."""
+    last = name.replace("\\", "/").rsplit("/", 1)[-1]
+    if not last or last.startswith(".") or "\0" in name:
+        raise ProblemError(f"e='{name}': expected the name of NAME.py (or NAME.f90, NAME.f, "
+                           "NAME.c), or its path without the suffix")
+
+
 def find_problem_file(name: str, folder: Path) -> Path | None:
     """folder/NAME.py, else AUTO's NAME.f90, NAME.f or NAME.c (runAUTO's order); None if
-    there is none. ProblemError for a name that is not a plain file name."""
-    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
-        raise ProblemError(f"e='{name}': expected the name of NAME.py (or NAME.f90, NAME.f, "
-                           "NAME.c) beside the constants file (no paths)")
+    there is none. ProblemError for a name that names no file."""
+    _check_file_name(name)
     py = Path(folder) / f"{name}.py"
     if py.exists():
         return py
@@ -65,16 +71,13 @@ def load_python_problem(name: str, folder: Path, ndim: int) -> Problem:
     """The user's equations from folder/NAME.py (functions func, stpnt, dfdu, dfdp, pvls,
     bcnd, icnd, fopt).
 
-    Only a plain name is accepted: the module is looked up beside the
-    constants file, never elsewhere on disk."""
-    if not name or any(c in name for c in "/\\") or name in (".", "..") or name.startswith("."):
-        raise ProblemError(f"e='{name}': expected the name of NAME.py beside the constants "
-                           "file (no paths)")
+    NAME is looked up in `folder` (a path without the suffix: in its folder there)."""
+    _check_file_name(name)
     path = Path(folder) / f"{name}.py"
     if not path.exists():
         raise ProblemError(f"e='{name}': no equations file {path} (expected func(u, par) and "
                            "stpnt(u, par) there)")
-    spec = importlib.util.spec_from_file_location(f"auto_user_{name}", path)
+    spec = importlib.util.spec_from_file_location(f"auto_user_{path.stem}", path)
     mod = importlib.util.module_from_spec(spec)
     try:
         # what spec.loader.exec_module does, with the compiled source remembered
