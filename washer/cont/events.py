@@ -63,7 +63,10 @@ SIMULTANEOUS = 1e-6
 #: first served in its test order, a bifurcation overriding UZ, CP overriding LP). For
 #: BVPs LCSPBV's order is FNCSBV's: ITEST 1 the fold (LPC), 2 the branch point (BPC),
 #: 3 PD/TR (tfc's BP locus meets a fold at PAR(6) = 0.0173913: AUTO's restart types it LP).
-PRIORITY = (Code.BP, Code.CP, Code.BT, Code.LP, Code.HB, Code.ZH, Code.LPC, Code.BPC,
+#: The fold (ITEST 1) comes before the BT (ITEST 4): where a Hopf curve touches a fold
+#: curve that is a line of constant PAR(ICP(1)) (a parameter the folds do not depend on),
+#: the BT is a fold of the Hopf curve too, and AUTO types it LP and goes on.
+PRIORITY = (Code.BP, Code.CP, Code.LP, Code.BT, Code.HB, Code.ZH, Code.LPC, Code.BPC,
             Code.PD, Code.TR)
 
 
@@ -526,8 +529,11 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     # from sp's value.
     same = []
     for k in sign_changes(prev.tests, cur.tests):
-        # User values (UZ) are never merged: two UZR values are two points.
-        if k == key or isinstance(k, tuple) or isinstance(key, tuple):
+        # User values (UZ) are never merged with each other: two UZR values are two
+        # points. A bifurcation test vanishing at a located UZ overrides it (LCSPAE:
+        # the point is typed by the bifurcation, and a UZSTOP there does not stop);
+        # a UZ vanishing at a located bifurcation is that point.
+        if k == key or (isinstance(k, tuple) and isinstance(key, tuple)):
             continue
         if k in located and abs(located[k] - span) < tol:
             same.append(k)
