@@ -54,6 +54,19 @@ def test_the_fold_locus_of_homoclinic_orbits_is_alpha_equal_beta():
     br3 = runner.run(Constants(dict(base, ICP=[1, 2, 3], ISW=2, IRS=br2.specials[-1].lab,
                                     NMX=20, NPR=5, DS=0.05, DSMAX=0.1)), prob, br2)
     assert br3.status == "ok" and len(br3.specials) >= 4
+    # The null vector at this fold is (v, q) = (0, q along mu): the orbit does not depend
+    # on mu where alpha - mu^2 - beta is held, so the generating run grows q alone (v
+    # stays rounding, as AUTO-07p's: 8e-21 there). Its parameter components and norm are
+    # the last NPARI parameters, PAR(21 .. 23) and PAR(24) = |v|^2 + |q|^2, held fixed
+    # along the locus: the restart keeps them (AUTO's s-records of this problem hold
+    # PAR(21) = 0.08097885, PAR(24) = 0.00655757 at both runs' points). With them dropped
+    # the norm condition is a double zero and the first step converged by rounding.
+    end = np.asarray(br2.specials[-1].par, float)
+    npari = br2.specials[-1].npari
+    assert npari == 4 and end[-1] > 0
+    assert end[-npari] ** 2 == pytest.approx(end[-1], rel=1e-12)
+    for rec in br3.specials:
+        assert np.asarray(rec.par, float)[-npari:] == pytest.approx(end[-npari:], rel=1e-12)
     for rec in br3.specials:
         par, U = np.asarray(rec.par, float), np.asarray(rec.U, float)
         # the locus alpha = beta, mu = 0 (as the fold above: measured 4e-13)

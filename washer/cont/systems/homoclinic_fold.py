@@ -41,6 +41,16 @@ class HomoclinicFoldLocus(BVPFoldLocus):
                                 f"more parameter than the branch's {free}: ICP = "
                                 f"{list(s.ICP)} names none", keys=("ICP",))
         par = np.asarray(orbit.par, float)
+        rec = data.record
+        npari = int(getattr(rec, "npari", 0) or 0) if data.kind != "LP" else 0
+        if npari:
+            # A record of this locus: the homoclinic system drops its internal parameters
+            # (the null vector's parameter components q and its norm, AUTO's NPARI last
+            # PAR), which the locus's equations need as they were: with q = 0 and norm 0
+            # the null vector's norm condition is singular (a double zero of |v|^2 + |q|^2)
+            # and the restart's first step converges or not by rounding.
+            p = np.asarray(data.par, float)
+            par = np.r_[par, p[len(p) - npari:]]
         s2 = hs.with_(ISW=2, ICP=free + rest, IPS=9)
         super().__init__(StartData(orbit.problem, s2, data.u, par, data.record, data.kind,
                                    data.unames))
