@@ -8,6 +8,7 @@
 //   da/dx = M^-1 (df/dx - d(M a)/dx |_{a fixed}).
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "dynamics.hpp"
 #include "washer.h"
@@ -39,6 +40,28 @@ int speed_law(double t, const double *P, int law, Speed &s) {
     return WASHER_OK;
 }
 
+// The right-hand sides of da/dq (6), da/dqd (6), da/d(theta, w, wd) (3) and da/dP, row-major.
+using DerivRhs = Eigen::Matrix<double, 6, 15 + WASHER_N_SYMDIFF, Eigen::RowMajor>;
+
+// M X = B in place for X, with M = L L^T and L the lower triangle of `llt` (Eigen's
+// matrixLLT()): forward, then back substitution, a row of B at a time (each row
+// operation one vectorisable loop over all right-hand sides). Eigen's own solve of a
+// matrix right-hand side takes its blocked path (packing, a GEMM kernel), four times
+// these instructions on a 6 x 6 factor; the two round differently (the order of each
+// entry's sum), each within the factor's rounding error.
+static void cholesky_solve_rows(const Mat6 &llt, DerivRhs &B) {
+    double inv[6];
+    for (int i = 0; i < 6; ++i) inv[i] = 1.0 / llt(i, i);
+    for (int i = 0; i < 6; ++i) {               // L Y = B
+        for (int k = 0; k < i; ++k) B.row(i) -= llt(i, k) * B.row(k);
+        B.row(i) *= inv[i];
+    }
+    for (int i = 5; i >= 0; --i) {              // L^T X = Y
+        for (int k = i + 1; k < 6; ++k) B.row(i) -= llt(k, i) * B.row(k);
+        B.row(i) *= inv[i];
+    }
+}
+
 int accelerations(const double *q, const double *qd, double th, double w, double wd,
                   const double *P, bool derivs, Accel &out) {
     RowMat6 M;
@@ -58,12 +81,16 @@ int accelerations(const double *q, const double *qd, double th, double w, double
     Mat6xS fp, Gp;
     washer_gen_derivs(q, qd, th, w, wd, P, out.a.data(), fq.data(), fqd.data(), fth.data(),
                       fw.data(), fwd.data(), fp.data(), Gq.data(), Gth.data(), Gp.data());
-    out.a_q = llt.solve(Mat6(fq - Gq));
-    out.a_qd = llt.solve(Mat6(fqd));
-    out.a_th = llt.solve(fth - Gth);
-    out.a_w = llt.solve(fw);
-    out.a_wd = llt.solve(fwd);
-    out.a_p = llt.solve(Eigen::Matrix<double, 6, WASHER_N_SYMDIFF>(fp - Gp));
+    // All derivatives' right-hand sides side by side, solved in one pass (below).
+    DerivRhs B;
+    B << fq - Gq, fqd, fth - Gth, fw, fwd, fp - Gp;
+    cholesky_solve_rows(llt.matrixLLT(), B);
+    out.a_q = B.leftCols<6>();
+    out.a_qd = B.middleCols<6>(6);
+    out.a_th = B.col(12);
+    out.a_w = B.col(13);
+    out.a_wd = B.col(14);
+    out.a_p = B.rightCols<WASHER_N_SYMDIFF>();
     return WASHER_OK;
 }
 
@@ -127,10 +154,12 @@ int rhs_jac_fixed(double t, const double *u, const double *P, int law, double *d
 
 // H(tau) of eq 54 and its first two tau-derivatives. H rotates (x, y) and
 // (alpha, beta) by tau (eq 52 with erratum 7); H is orthogonal, H^-1 = H^T.
+// H' = H K and H'' = -H D, with K the generator of the two rotations (K(b, b+1) = -1,
+// K(b+1, b) = 1 for b = 0, 3) and D = K^T K (1 on the four rotated coordinates).
 struct FrameMatrices {
     Mat6 H, H1, H2;
-    explicit FrameMatrices(double tau) {
-        const double c = std::cos(tau), s = std::sin(tau);
+    double c, s;                          // cos(tau), sin(tau)
+    FrameMatrices(double c_, double s_) : c(c_), s(s_) {
         H.setZero(); H1.setZero(); H2.setZero();
         for (int b : {0, 3}) {
             H(b, b) = c;  H(b, b + 1) = -s; H(b + 1, b) = s;  H(b + 1, b + 1) = c;
@@ -139,14 +168,44 @@ struct FrameMatrices {
         }
         H(2, 2) = H(5, 5) = 1.0;
     }
+    explicit FrameMatrices(double tau) : FrameMatrices(std::cos(tau), std::sin(tau)) {}
+    // X <- X H (columns b, b+1 of each rotated pair mixed)
+    template <class M> void times_H(M &X) const {
+        for (int b : {0, 3}) {
+            for (int i = 0; i < X.rows(); ++i) {
+                const double u = X(i, b), v = X(i, b + 1);
+                X(i, b) = c * u + s * v;
+                X(i, b + 1) = c * v - s * u;
+            }
+        }
+    }
+    // X <- H^T X (rows b, b+1 mixed)
+    template <class M> void Ht_times(M &X) const {
+        for (int b : {0, 3}) {
+            for (int j = 0; j < X.cols(); ++j) {
+                const double u = X(b, j), v = X(b + 1, j);
+                X(b, j) = c * u + s * v;
+                X(b + 1, j) = c * v - s * u;
+            }
+        }
+    }
 };
+
+// The frames of the averaged system, tau_k = 2 pi k / N_AVERAGE (cos and sin once).
+static const FrameMatrices &averaged_frame(int k) {
+    static const auto frames = [] {
+        std::vector<FrameMatrices> out;
+        for (int i = 0; i < N_AVERAGE; ++i) out.emplace_back(TWO_PI * i / N_AVERAGE);
+        return out;
+    }();
+    return frames[k];
+}
 
 // eps_ddot of eq 57 at one frame angle tau (theta = tau, constant speed):
 //   M (H eps_dd + H'' w^2 eps + 2 H' w eps_d) = f(H eps, w H' eps + H eps_d, tau, w, 0).
 // Accumulates `weight` times the result (and its derivatives) into the outputs.
-static int rot_at(double tau, const double *xi, const double *P, double weight, Vec6 &dd,
-                  Mat12 *J, Mat12xD *Jp) {
-    const FrameMatrices F(tau);
+static int rot_at(const FrameMatrices &F, double tau, const double *xi, const double *P,
+                  double weight, Vec6 &dd, Mat12 *J, Mat12xD *Jp) {
     const double w = TWO_PI * P[WP_Omega];
     const Eigen::Map<const Vec6> eps(xi), epsd(xi + 6);
     const Vec6 q = F.H * eps;
@@ -156,20 +215,49 @@ static int rot_at(double tau, const double *xi, const double *P, double weight, 
     if (rc) return rc;
     const Mat6 Ht = F.H.transpose();
     dd += weight * Ht * (A.a - w * w * F.H2 * eps - 2.0 * w * F.H1 * epsd);
+    if (!J && !Jp) return WASHER_OK;
+    // With H' = H K and H'' = -H D the derivatives are rotations of rows and columns,
+    // not 6 x 6 products: d/deps = H^T a_q H + w (H^T a_qd H) K + w^2 D and
+    // d/deps_d = H^T a_qd H - 2 w K.
+    Mat6 Y = A.a_qd;
+    F.times_H(Y);
+    Mat6 X = A.a_q;
+    F.times_H(X);
+    for (int b : {0, 3}) {                  // X + w Y K
+        X.col(b) += w * Y.col(b + 1);
+        X.col(b + 1) -= w * Y.col(b);
+    }
+    F.Ht_times(Y);                          // H^T a_qd H
     if (J) {
-        J->block<6, 6>(6, 0) += weight * Ht * (A.a_q * F.H + w * A.a_qd * F.H1 - w * w * F.H2);
-        J->block<6, 6>(6, 6) += weight * Ht * (A.a_qd * F.H - 2.0 * w * F.H1);
+        F.Ht_times(X);
+        Mat6 Jd = Y;
+        for (int b : {0, 3}) {
+            X(b, b) += w * w;
+            X(b + 1, b + 1) += w * w;
+            Jd(b, b + 1) += 2.0 * w;
+            Jd(b + 1, b) -= 2.0 * w;
+        }
+        J->block<6, 6>(6, 0) += weight * X;
+        J->block<6, 6>(6, 6) += weight * Jd;
     }
     if (Jp) {
-        for (int j = 0; j < WASHER_N_DIFF; ++j) {
-            Vec6 col;
-            if (j == WASHER_DIFF_OMEGA_COL)   // w = 2 pi Omega enters f, qd, H' w and H'' w^2
-                col = TWO_PI * Ht * (A.a_w + A.a_qd * (F.H1 * eps)
-                                     - 2.0 * w * F.H2 * eps - 2.0 * F.H1 * epsd);
-            else
-                col = Ht * A.a_p.col(symbolic_column(j));
-            Jp->block<6, 1>(6, j) += weight * col;
+        // w = 2 pi Omega enters f, qd, H' w and H'' w^2:
+        //   d/dOmega = 2 pi (H^T a_w + (H^T a_qd H) K eps + 2 w D eps - 2 K eps_d)
+        Vec6 a_w = A.a_w;
+        F.Ht_times(a_w);
+        Vec6 Keps = Vec6::Zero(), v = Vec6::Zero();
+        for (int b : {0, 3}) {
+            Keps(b) = -eps(b + 1);
+            Keps(b + 1) = eps(b);
+            v(b) = 2.0 * w * eps(b) + 2.0 * epsd(b + 1);
+            v(b + 1) = 2.0 * w * eps(b + 1) - 2.0 * epsd(b);
         }
+        Jp->block<6, 1>(6, WASHER_DIFF_OMEGA_COL) += weight * (TWO_PI * (a_w + Y * Keps + v));
+        Mat6xS a_p = A.a_p;
+        F.Ht_times(a_p);
+        for (int j = 0; j < WASHER_N_DIFF; ++j)
+            if (j != WASHER_DIFF_OMEGA_COL)
+                Jp->block<6, 1>(6, j) += weight * a_p.col(symbolic_column(j));
     }
     return WASHER_OK;
 }
@@ -185,10 +273,11 @@ static int rot_eval(const double *xi, const double *P, int frame, double *dxi, d
     if (Jp) Jpm.setZero();
     int rc = WASHER_OK;
     if (frame == 0) {
-        rc = rot_at(P[WP_tau0], xi, P, 1.0, dd, J ? &Jm : nullptr, Jp ? &Jpm : nullptr);
+        rc = rot_at(FrameMatrices(P[WP_tau0]), P[WP_tau0], xi, P, 1.0, dd, J ? &Jm : nullptr,
+                    Jp ? &Jpm : nullptr);
     } else {
         for (int k = 0; k < N_AVERAGE && rc == WASHER_OK; ++k)
-            rc = rot_at(TWO_PI * k / N_AVERAGE, xi, P, 1.0 / N_AVERAGE, dd,
+            rc = rot_at(averaged_frame(k), TWO_PI * k / N_AVERAGE, xi, P, 1.0 / N_AVERAGE, dd,
                         J ? &Jm : nullptr, Jp ? &Jpm : nullptr);
     }
     if (rc) return rc;

@@ -66,6 +66,39 @@ def test_rotating_frame_equals_transformed_ground_frame(distinct_params):
     np.testing.assert_allclose(got[:6], epsd)
 
 
+def test_rotating_frame_jacobian_is_the_transformed_ground_frame_jacobian(distinct_params):
+    """The frozen frame's f_u at tau0 from the ground frame's at q = H eps, q_dot = w H' eps
+    + H eps_dot, theta = tau0 (jac_fixed's a_q, a_qd, a_p; eq 57 differentiated):
+    d/deps = H^T (a_q H + w a_qd H' - w^2 H''), d/deps_dot = H^T (a_qd H - 2 w H'),
+    d/dP = H^T a_p, as numpy's 6 x 6 products. The kernel turns the rows and columns of
+    the rotated pairs instead (H' = H K, H'' = -H D): equal to rounding (1e-13 of the
+    block's largest entry: a few roundings of sums of six terms)."""
+    rng = np.random.default_rng(6)
+    tau, W = distinct_params["tau0"], 2 * np.pi * distinct_params["Omega"]
+    c, s = np.cos(tau), np.sin(tau)
+    H, H1 = np.eye(6), np.zeros((6, 6))
+    for b in (0, 3):
+        H[b:b + 2, b:b + 2] = [[c, -s], [s, c]]
+        H1[b:b + 2, b:b + 2] = [[-s, -c], [c, -s]]
+    H2 = -(H - np.diag([0, 0, 1, 0, 0, 1]))
+    P = distinct_params.vector()
+    for _ in range(5):
+        eps, epsd = random_state(rng)
+        q, qd = H @ eps, W * H1 @ eps + H @ epsd
+        # the constant speed law at t = tau / w: theta = tau (to rounding), w, w_dot = 0
+        Jg, Jpg = kernel.jac_fixed(tau / W, np.r_[q, qd], P, "constant")
+        a_q, a_qd = Jg[6:, :6], Jg[6:, 6:]
+        J, Jp = kernel.jac_rot(np.r_[eps, epsd], P, "frozen")
+        for got, ref in ((J[6:, :6], H.T @ (a_q @ H + W * a_qd @ H1 - W**2 * H2)),
+                         (J[6:, 6:], H.T @ (a_qd @ H - 2 * W * H1))):
+            assert np.max(np.abs(got - ref)) <= 1e-13 * np.max(np.abs(ref))
+        for j, name in enumerate(kernel.DIFF_NAMES):
+            if name != "Omega":          # theta and w move with Omega on the ground
+                ref = H.T @ Jpg[6:, j]
+                assert np.max(np.abs(Jp[6:, j] - ref)) <= 1e-13 * max(np.max(np.abs(ref)),
+                                                                       1e-300), name
+
+
 def test_averaged_frame_is_the_mean_over_tau(distinct_params):
     rng = np.random.default_rng(4)
     xi = np.r_[random_state(rng)]
