@@ -37,8 +37,10 @@ struct Accel {
     Vec6 a_th, a_w, a_wd;                 // da/dtheta, da/dw, da/dwd
     Mat6xS a_p;                           // da/dP (symbolic parameters)
 };
+// pmask: the columns j of a_p computed (bit j, WASHER_SYMDIFF_INDEX[j]); the others are 0.
+constexpr unsigned ALL_SYMDIFF = (1u << WASHER_N_SYMDIFF) - 1;
 int accelerations(const double *q, const double *qd, double th, double w, double wd,
-                  const double *P, bool derivs, Accel &out);
+                  const double *P, bool derivs, Accel &out, unsigned pmask = ALL_SYMDIFF);
 
 int rhs_fixed(double t, const double *u, const double *P, int law, double *du);
 int jac_fixed(double t, const double *u, const double *P, int law, double *J, double *Jp);

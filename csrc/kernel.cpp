@@ -63,7 +63,7 @@ static void cholesky_solve_rows(const Mat6 &llt, DerivRhs &B) {
 }
 
 int accelerations(const double *q, const double *qd, double th, double w, double wd,
-                  const double *P, bool derivs, Accel &out) {
+                  const double *P, bool derivs, Accel &out, unsigned pmask) {
     RowMat6 M;
     Vec6 f;
     washer_gen_mf(q, qd, th, w, wd, P, M.data(), f.data());
@@ -80,7 +80,8 @@ int accelerations(const double *q, const double *qd, double th, double w, double
     Vec6 fth, fw, fwd, Gth;
     Mat6xS fp, Gp;
     washer_gen_derivs(q, qd, th, w, wd, P, out.a.data(), fq.data(), fqd.data(), fth.data(),
-                      fw.data(), fwd.data(), fp.data(), Gq.data(), Gth.data(), Gp.data());
+                      fw.data(), fwd.data(), fp.data(), Gq.data(), Gth.data(), Gp.data(),
+                      pmask);
     // All derivatives' right-hand sides side by side, solved in one pass (below).
     DerivRhs B;
     B << fq - Gq, fqd, fth - Gth, fw, fwd, fp - Gp;
@@ -204,14 +205,19 @@ static const FrameMatrices &averaged_frame(int k) {
 // eps_ddot of eq 57 at one frame angle tau (theta = tau, constant speed):
 //   M (H eps_dd + H'' w^2 eps + 2 H' w eps_d) = f(H eps, w H' eps + H eps_d, tau, w, 0).
 // Accumulates `weight` times the result (and its derivatives) into the outputs.
+// jp_columns: the columns of Jp computed (bit j: column j), the others left as they are.
 static int rot_at(const FrameMatrices &F, double tau, const double *xi, const double *P,
-                  double weight, Vec6 &dd, Mat12 *J, Mat12xD *Jp) {
+                  double weight, Vec6 &dd, Mat12 *J, Mat12xD *Jp, unsigned jp_columns) {
     const double w = TWO_PI * P[WP_Omega];
     const Eigen::Map<const Vec6> eps(xi), epsd(xi + 6);
     const Vec6 q = F.H * eps;
     const Vec6 qd = w * F.H1 * eps + F.H * epsd;
     Accel A;
-    int rc = accelerations(q.data(), qd.data(), tau, w, 0.0, P, J || Jp, A);
+    unsigned pmask = 0;                     // the symbolic columns Jp's columns need
+    for (int j = 0; j < WASHER_N_DIFF; ++j)
+        if (Jp && j != WASHER_DIFF_OMEGA_COL && (jp_columns >> j & 1u))
+            pmask |= 1u << symbolic_column(j);
+    int rc = accelerations(q.data(), qd.data(), tau, w, 0.0, P, J || Jp, A, pmask);
     if (rc) return rc;
     const Mat6 Ht = F.H.transpose();
     dd += weight * Ht * (A.a - w * w * F.H2 * eps - 2.0 * w * F.H1 * epsd);
@@ -252,18 +258,23 @@ static int rot_at(const FrameMatrices &F, double tau, const double *xi, const do
             v(b) = 2.0 * w * eps(b) + 2.0 * epsd(b + 1);
             v(b + 1) = 2.0 * w * eps(b + 1) - 2.0 * epsd(b);
         }
-        Jp->block<6, 1>(6, WASHER_DIFF_OMEGA_COL) += weight * (TWO_PI * (a_w + Y * Keps + v));
+        if (jp_columns >> WASHER_DIFF_OMEGA_COL & 1u)
+            Jp->block<6, 1>(6, WASHER_DIFF_OMEGA_COL) += weight * (TWO_PI * (a_w + Y * Keps + v));
         Mat6xS a_p = A.a_p;
         F.Ht_times(a_p);
         for (int j = 0; j < WASHER_N_DIFF; ++j)
-            if (j != WASHER_DIFF_OMEGA_COL)
+            if (j != WASHER_DIFF_OMEGA_COL && (jp_columns >> j & 1u))
                 Jp->block<6, 1>(6, j) += weight * a_p.col(symbolic_column(j));
     }
     return WASHER_OK;
 }
 
+static constexpr unsigned ALL_DIFF = (1u << WASHER_N_DIFF) - 1;
+
+// f, f_u and the columns jp_columns of f_p (bit j: Jp's column j; the others are 0) of
+// the rotating frame; any output may be NULL.
 static int rot_eval(const double *xi, const double *P, int frame, double *dxi, double *J,
-                    double *Jp) {
+                    double *Jp, unsigned jp_columns = ALL_DIFF) {
     if (!all_finite(xi, 12)) return WASHER_ENONFINITE_INPUT;
     if (frame != 0 && frame != 1) return WASHER_EBAD_ARGUMENT;
     Vec6 dd = Vec6::Zero();
@@ -274,11 +285,11 @@ static int rot_eval(const double *xi, const double *P, int frame, double *dxi, d
     int rc = WASHER_OK;
     if (frame == 0) {
         rc = rot_at(FrameMatrices(P[WP_tau0]), P[WP_tau0], xi, P, 1.0, dd, J ? &Jm : nullptr,
-                    Jp ? &Jpm : nullptr);
+                    Jp ? &Jpm : nullptr, jp_columns);
     } else {
         for (int k = 0; k < N_AVERAGE && rc == WASHER_OK; ++k)
             rc = rot_at(averaged_frame(k), TWO_PI * k / N_AVERAGE, xi, P, 1.0 / N_AVERAGE, dd,
-                        J ? &Jm : nullptr, Jp ? &Jpm : nullptr);
+                        J ? &Jm : nullptr, Jp ? &Jpm : nullptr, jp_columns);
     }
     if (rc) return rc;
     if (dxi) {
@@ -392,11 +403,12 @@ int washer_jac_rot_batch(int n, const double *xi, const double *P, int pstride, 
     });
 }
 int washer_rhs_jac_rot_batch(int n, const double *xi, const double *P, int pstride, int frame,
-                             double *dxi, double *J, double *Jp, int *nfail) {
+                             double *dxi, double *J, double *Jp, unsigned jp_columns,
+                             int *nfail) {
     return batch(n, nfail, [&](int i) {
         return rot_eval(xi + 12 * i, P + (long)i * pstride, frame, dxi ? dxi + 12 * i : nullptr,
                         J ? J + 144 * i : nullptr,
-                        Jp ? Jp + (long)12 * WASHER_N_DIFF * i : nullptr);
+                        Jp ? Jp + (long)12 * WASHER_N_DIFF * i : nullptr, jp_columns & ALL_DIFF);
     });
 }
 

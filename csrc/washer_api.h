@@ -42,9 +42,12 @@ int washer_rhs_rot_batch(int n, const double *xi, const double *P, int pstride, 
 int washer_jac_rot_batch(int n, const double *xi, const double *P, int pstride, int frame,
                          double *J, double *Jp, int *nfail);
 /* The rhs and its Jacobians together, for n states (the rhs is a by-product of the
- * Jacobians: the same values as washer_rhs_rot_batch's, bit for bit). */
+ * Jacobians: the same values as washer_rhs_rot_batch's, bit for bit). jp_columns: the
+ * columns of Jp computed (bit j: column j), the others 0; a column's values are the same
+ * whatever else is asked for (the parameter derivatives not asked for are skipped). */
 int washer_rhs_jac_rot_batch(int n, const double *xi, const double *P, int pstride, int frame,
-                             double *dxi, double *J, double *Jp, int *nfail);
+                             double *dxi, double *J, double *Jp, unsigned jp_columns,
+                             int *nfail);
 
 /* Interrupting long work. Integrations check a process-wide flag between steps
  * and return WASHER_EINTERRUPTED when it is set. While one runs, SIGINT (Ctrl-C)

@@ -124,6 +124,43 @@ def test_washer_f_with_its_jacobians_is_f_and_then_the_jacobians_are_the_kernels
     assert not np.array_equal(fu_other, fu)
 
 
+def test_washer_pass_computes_the_f_p_columns_asked_for_with_the_same_values():
+    """e='washer': once a column of f_p has been asked for alone (dfdp_many: Newton's
+    free parameter), the kernel pass that gives f with its Jacobians computes that
+    column only (the generated derivatives' pmask); f, f_u and that column are the full
+    pass's bit for bit, and a column not computed there (Omega, PAR(2)) is evaluated
+    afresh when asked, to the full pass's values too. The kernel's restricted pass:
+    the asked columns bit for bit, the others 0."""
+    from washer.machine import kernel
+    from washer.problems.rotating import rotating_problem
+    prob = rotating_problem().with_jac(1)
+    u0, par0 = prob.start(17)
+    rng = np.random.default_rng(11)
+    us = u0 + 1e-3 * rng.normal(size=(7, 12))
+    pars = np.repeat(par0[None, :], 7, axis=0)
+    full = rotating_problem().with_jac(1)
+    ref_f = full.func_many_with_jacobian(us, pars)
+    ref_fu = full.dfdu_many(us, pars)
+    ref = {i: full.dfdp_many(us, pars, i) for i in (1, 2, 3)}
+    prob.dfdp_many(us + 1e-4, pars, 1)        # PAR(1) asked for once: C_p and its tied dampers
+    assert np.array_equal(prob.func_many_with_jacobian(us, pars), ref_f)
+    assert np.array_equal(prob.dfdu_many(us, pars), ref_fu)
+    for i in (1, 2, 3):
+        assert np.array_equal(prob.dfdp_many(us, pars, i), ref[i]), i
+    assert np.any(ref[2] != 0) and np.any(ref[3] != 0)
+    P = np.asarray(kernel_params_of(par0))
+    f, J, Jp = kernel.rhs_jac_rot_batch(us, P)
+    f1, J1, Jp1 = kernel.rhs_jac_rot_batch(us, P, columns=[0, 4])
+    assert np.array_equal(f1, f) and np.array_equal(J1, J)
+    assert np.array_equal(Jp1[:, :, [0, 4]], Jp[:, :, [0, 4]])
+    assert not np.any(np.delete(Jp1, [0, 4], axis=2))
+
+
+def kernel_params_of(par):
+    from washer.problems.parameters import _reference_params, kernel_parameters
+    return kernel_parameters(_reference_params())[0](par)
+
+
 def test_parameter_rows_are_the_view_broadcast_to_gives():
     """broadcast_rows (func_many's one parameter vector for k points) is the view
     np.broadcast_to gives: same values, row stride 0, read-only, whatever the input."""

@@ -44,7 +44,9 @@ along the few vectors they are needed on (1 Jacobian per vector, forward from th
 own), not second differences of f (4 (NDIM + 2) values of f per vector). A problem
 whose f comes with its Jacobians at no extra cost (the washer's kernel) may pass
 `func_dfdu_batch(us, pars)` (-> (k, NDIM)): f, with dfdu_batch and dfdp_batch at the same
-points then answered from that one evaluation (`func_many_with_jacobian`).
+points then answered from that one evaluation (`func_many_with_jacobian`). Where one
+column of f_p costs less than all of them, `dfdp_batch_column(us, pars, index)` (-> (k,
+NDIM), d f / d PAR(index), the values of dfdp_batch's column) answers dfdp_many.
 """
 from __future__ import annotations
 
@@ -147,7 +149,7 @@ class Problem:
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
                  parnames: dict | None = None, unames: dict | None = None, jac: int = 0,
                  bcnd=None, icnd=None, flow=None, fopt=None, fopt_batch=None,
-                 dfdp_batch=None, func_dfdu_batch=None):
+                 dfdp_batch=None, func_dfdu_batch=None, dfdp_batch_column=None):
         self.ndim, self.name, self.npar = ndim, name, npar
         self._func_dfdu_batch = func_dfdu_batch
         self._fopt, self._fopt_batch = fopt, fopt_batch
@@ -157,7 +159,7 @@ class Problem:
         self._icnd_vectorised = None      # does icnd accept (ndim, k) arrays? (checked once)
         self._func, self._stpnt, self._dfdu, self._dfdp = func, stpnt, dfdu, dfdp
         self._dfdu_batch, self._func_batch, self._pvls = dfdu_batch, func_batch, pvls
-        self._dfdp_batch = dfdp_batch
+        self._dfdp_batch, self._dfdp_batch_column = dfdp_batch, dfdp_batch_column
         self._vectorised = None       # does func accept (ndim, k) arrays? (checked once)
         self._pointwise = PointwiseCheck()    # func on the arrays of a small stencil
         self.parnames = dict(parnames or {})
@@ -570,11 +572,17 @@ class Problem:
         if not self.has_dfdp_batch:
             raise ProblemError(f"{self.name}: no batched dfdp (dfdp_batch with JAC = 1)")
         us = np.asarray(us, dtype=float)
-        out = self._call(self._dfdp_batch, "dfdp_batch", us, pars)
-        if out.ndim != 3 or out.shape[:2] != (len(us), self.ndim) or out.shape[2] < index:
-            raise ProblemError(f"{self.name}: dfdp_batch returned shape {out.shape}, expected "
-                               f"({len(us)}, {self.ndim}, >= {index})")
-        col = out[:, :, index - 1]
+        if self._dfdp_batch_column is not None:
+            col = self._call(self._dfdp_batch_column, "dfdp_batch_column", us, pars, index)
+            if col.shape != (len(us), self.ndim):
+                raise ProblemError(f"{self.name}: dfdp_batch_column returned shape {col.shape}, "
+                                   f"expected ({len(us)}, {self.ndim})")
+        else:
+            out = self._call(self._dfdp_batch, "dfdp_batch", us, pars)
+            if out.ndim != 3 or out.shape[:2] != (len(us), self.ndim) or out.shape[2] < index:
+                raise ProblemError(f"{self.name}: dfdp_batch returned shape {out.shape}, "
+                                   f"expected ({len(us)}, {self.ndim}, >= {index})")
+            col = out[:, :, index - 1]
         if not np.all(np.isfinite(col)):
             raise ProblemError(f"{self.name}: dfdp_batch returned non-finite values")
         return col

@@ -203,16 +203,19 @@ def jac_rot_batch(X, P, frame: str = "averaged"):
     return J, Jp
 
 
-def rhs_jac_rot_batch(X, P, frame: str = "averaged"):
+def rhs_jac_rot_batch(X, P, frame: str = "averaged", columns=None):
     """Rotating-frame rhs and Jacobians for n states in one pass: (f (n, 12), J (n, 12, 12),
     Jp (n, 12, N_DIFF)); f is a by-product of the Jacobians (the values of rhs_rot_batch,
-    bit for bit) at the cost of jac_rot_batch alone."""
+    bit for bit) at the cost of jac_rot_batch alone. columns: the columns of Jp computed
+    (indices into DIFF_NAMES; None: all), the others 0; each column's values are the same
+    whatever else is computed (the parameter derivatives not asked for are skipped)."""
     X = _batch_states(X, "X")
     n = X.shape[0]
     P, stride = _batch_params(P, n)
+    mask = (1 << N_DIFF) - 1 if columns is None else sum(1 << j for j in set(columns))
     out, J, Jp = np.empty_like(X), np.empty((n, 12, 12)), np.empty((n, 12, N_DIFF))
     _batch_call(lib.washer_rhs_jac_rot_batch, n, "rhs_jac_rot_batch", _ptr(X), _ptr(P), stride,
-                _frame(frame), _ptr(out), _ptr(J), _ptr(Jp))
+                _frame(frame), _ptr(out), _ptr(J), _ptr(Jp), mask)
     return out, J, Jp
 
 

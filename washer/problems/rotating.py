@@ -35,6 +35,25 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
     cols = {name: kernel.DIFF_NAMES.index(name) for name in PAR_NAMES.values()}
     kernel_params, kernel_params_many = kernel_parameters(params)
 
+    tied_names = layout.moved_by("C_p", tied)[1:]
+    tied_pars = {layout.PAR_INDEX[n] for n in tied_names}
+
+    def jp_columns(index: int) -> list:
+        """The kernel's Jp columns (kernel.DIFF_NAMES) d f / d PAR(index) is made of: its
+        parameter's, with the tied dampers' for C_p; none for the tied dampers' own PAR
+        (they move with C_p) and for PAR the equations do not read."""
+        name = PAR_NAMES.get(index)
+        if name is None or index in tied_pars:
+            return []
+        return [cols[name]] + ([cols[n] for n in tied_names] if name == "C_p" else [])
+
+    def par_column(Jp, index: int) -> np.ndarray:
+        """d f / d PAR(index) from the kernel's Jp (..., 12, N_DIFF) -> (..., 12)."""
+        out = np.zeros(Jp.shape[:-1])
+        for j in jp_columns(index):       # C_p's column, then the tied ones added
+            out += Jp[..., j]
+        return out
+
     # jac_rot returns J and Jp together: dfdu and dfdp at the same point (every
     # Newton step asks for both) share one kernel call through this cache.
     last = {"key": None, "val": None}
@@ -54,54 +73,69 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
     def dfdu(u, par):
         return jac(u, par)[0].copy()
 
-    # jac_rot_batch returns J and Jp together: the collocation Jacobian asks for f_u and
-    # then f_p at the same points; one kernel call serves both.
+    # The batched Jacobians of the last points: (J, Jp, the Jp columns computed, None for
+    # all of them). The collocation Jacobian asks for f_u and then f_p at the points
+    # whose f has just been evaluated (func_dfdu_batch): one kernel pass serves all three.
     last_batch = {"key": None, "val": None}
+    # The Jp columns that pass computes: those of the PAR asked for one at a time so far
+    # (dfdp_column: Newton's free parameters), all before the first such ask. The
+    # parameter derivatives not asked for are a fifth of a pass; a column's values do not
+    # depend on the others computed with it, so this history sets the cost, never a value.
+    asked = {"columns": None}
 
-    def jac_batch(us, pars):
+    def batch_key(us, pars):
+        return (us.shape, us.tobytes(), pars.shape, pars.tobytes())
+
+    def jac_batch(us, pars, need=None):
+        """(J, Jp) at the points, Jp holding at least the columns `need` (None: all)."""
         us, pars = np.ascontiguousarray(us, float), np.asarray(pars, float)
-        key = (us.shape, us.tobytes(), pars.shape, pars.tobytes())
-        if last_batch["key"] != key:
-            last_batch["key"] = None
-            last_batch["val"] = kernel.jac_rot_batch(us, kernel_params_many(pars), frame)
-            last_batch["key"] = key
-        return last_batch["val"]
+        key = batch_key(us, pars)
+        if last_batch["key"] == key:
+            J, Jp, columns = last_batch["val"]
+            if columns is None or (need is not None and set(need) <= columns):
+                return J, Jp
+        last_batch["key"] = None
+        J, Jp = kernel.jac_rot_batch(us, kernel_params_many(pars), frame)
+        last_batch["val"] = (J, Jp, None)
+        last_batch["key"] = key
+        return J, Jp
 
     def dfdu_batch(us, pars):
-        return jac_batch(us, pars)[0].copy()
+        return jac_batch(us, pars, need=())[0].copy()
 
     def func_dfdu_batch(us, pars):
         # f with J and Jp from one kernel pass (f is their by-product): the Jacobians
         # asked for next at these points (the collocation Jacobian after its residual)
         # come from the cache
         us, pars = np.ascontiguousarray(us, float), np.asarray(pars, float)
-        key = (us.shape, us.tobytes(), pars.shape, pars.tobytes())
+        key = batch_key(us, pars)
+        columns = asked["columns"]
         last_batch["key"] = None
-        f, J, Jp = kernel.rhs_jac_rot_batch(us, kernel_params_many(pars), frame)
-        last_batch["val"] = (J, Jp)
+        f, J, Jp = kernel.rhs_jac_rot_batch(us, kernel_params_many(pars), frame, columns)
+        last_batch["val"] = (J, Jp, None if columns is None else frozenset(columns))
         last_batch["key"] = key
         return f
+
+    def dfdp_column(us, pars, index):
+        need = jp_columns(index)
+        columns = asked["columns"]
+        asked["columns"] = set(need) if columns is None else columns | set(need)
+        return par_column(jac_batch(us, pars, need)[1], index)
 
     def dfdp_batch(us, pars):
         Jp = jac_batch(us, pars)[1]
         out = np.zeros((len(Jp), 12, np.shape(pars)[-1]))
-        for i, name in PAR_NAMES.items():
+        for i in PAR_NAMES:
             if i <= out.shape[2]:
-                out[:, :, i - 1] = Jp[:, :, cols[name]]
-        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
-            out[:, :, 0] += Jp[:, :, cols[name]]
-            out[:, :, layout.PAR_INDEX[name] - 1] = 0.0
+                out[:, :, i - 1] = par_column(Jp, i)
         return out
 
     def dfdp(u, par):
         Jp = jac(u, par)[1]
         out = np.zeros((12, len(par)))
-        for i, name in PAR_NAMES.items():
+        for i in PAR_NAMES:
             if i <= len(par):
-                out[:, i - 1] = Jp[:, cols[name]]
-        for name in layout.moved_by("C_p", tied)[1:]:     # the tied columns move with C_p
-            out[:, 0] += Jp[:, cols[name]]
-            out[:, layout.PAR_INDEX[name] - 1] = 0.0
+                out[:, i - 1] = par_column(Jp, i)
         return out
 
     def stpnt(u, par):
@@ -110,7 +144,7 @@ def rotating_problem(frame: str = "averaged", params=None, name: str = "washer")
 
     return Problem(12, func, stpnt, dfdu, dfdp, name=name, npar=NPAR, dfdu_batch=dfdu_batch,
                    func_batch=func_batch, dfdp_batch=dfdp_batch, parnames=dict(PAR_NAMES),
-                   func_dfdu_batch=func_dfdu_batch)
+                   func_dfdu_batch=func_dfdu_batch, dfdp_batch_column=dfdp_column)
 
 
 def first_hopf(params, name: str = "C_p", lo: float = 0.0, hi: float = 2.0,
