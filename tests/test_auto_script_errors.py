@@ -204,18 +204,6 @@ def test_equations_that_raise_name_the_users_file_and_line(ab, capsys):
     assert not Path("b.after").exists()         # the script stopped at the failed run
 
 
-def test_a_start_that_does_not_converge_fails_the_run(ab):
-    """A start point far from any solution (Newton diverging from it) is a failed run."""
-    Path("far.py").write_text("import numpy as np\n\n\ndef func(u, par):\n"
-                              "    return np.array([u[0] ** 2 + 1.0 + 0 * par[0]])\n\n\n"
-                              "def stpnt(u, par):\n    u[0] = 0.3\n    par[0] = 1.0\n")
-    Path("c.far").write_text("NDIM=1, IPS=1, ICP=[1], IRS=0, NMX=10, NPR=10, DS=0.01, DSMIN=1e-4, "
-                             "DSMAX=0.1, NPAR=1\n")
-    msg = _error("run(e='far', c='far')\n")
-    assert msg.startswith("x.auto:1: AutoError: run(e='far') failed at its start:")
-    assert "Newton did not converge" in msg
-
-
 def test_a_failed_run_is_raised_to_the_caller_catchable_as_autos(ab):
     """Imported use: the failed run raises AutoError, which a script catches under
     AUTO's name (AUTOExceptions.AUTORuntimeError) and goes on."""

@@ -123,6 +123,9 @@ def test_dd2_demo(tmp_path):
     np.testing.assert_allclose(bp.U, [0.5, 0.0], atol=1e-8)
 
 
+#: AUTO-07p's fold and period-doubling loci of u -> u + p - q u - u^2 (README.md there)
+FQ = Path(__file__).parent / "data" / "maps" / "fq"
+
 FOLD_MAP = '''
 import numpy as np
 def func(u, par):
@@ -308,25 +311,33 @@ def test_map_loci_restart_from_their_points(tmp_path):
     c = tmp_path / "c.fq"
     run(c, e="fq", sv="fq", verbose=False)
     closed = {"LP": lambda q: -q * q / 4, "PD": lambda q: 1 - q * q / 4}
+    ends = {}
     for ty, curve in (("LP", "fql"), ("PD", "pdl")):
         loc = run(c, e="fq", s="fq", IRS=f"{ty}1", ICP=[1, 2], ISW=2, DS=0.01,
                   UZSTOP={2: [-1.0, 1.0]}, sv=curve, verbose=False)
         end = loc.specials[-1]
-        assert end.ty == "UZ" and end.par[1] == pytest.approx(-1.0)
+        assert end.ty == "UZ" and abs(end.par[1]) == pytest.approx(1.0)
+        if ty == "LP":
+            # PAR(1)-dot is 0 at the start: STPRAE's rule makes PAR(2)-dot positive, as
+            # AUTO-07p's b-file of this run (tests/data/maps/fq/README.md: the PD
+            # locus's way is AUTO's difference noise)
+            auto_end = [r for r in branch_rows(FQ / "b.fql.auto") if r.ty != 0][-1]
+            assert end.par[1] == pytest.approx(auto_end.values[-1]) == 1.0
+        ends[ty] = end.par[1]
         again = run(c, e="fq", s=curve, IRS=end.lab, ICP=[1, 2], ISW=2, DS=0.01,
                     UZSTOP={2: [-1.0, 1.0]}, sv="again", verbose=False)
         assert again.status == "ok" and again.specials[-1].ty == "UZ"
-        assert again.specials[-1].par[1] == pytest.approx(1.0)
+        assert again.specials[-1].par[1] == pytest.approx(-end.par[1])
         assert len(again.rows) > 20
         for row in again.rows:
             assert row.par[0] == pytest.approx(closed[ty](row.par[1]), abs=1e-8)
-    # ISW = 1 at the fold locus's end (q = -1, located): the fixed points u^2 + q u = p
+    # ISW = 1 at the fold locus's end (q = 1, located): the fixed points u^2 + q u = p
     # at that q, which stays fixed
     fixed = run(c, e="fq", s="fql", IRS="UZ1", ICP=[1], ISW=1, DS=0.01, NMX=20, UZSTOP={},
                 sv="fixed", verbose=False)
     assert fixed.status == "ok" and len(fixed.rows) == 20
     q = fixed.rows[0].par[1]
-    assert q == pytest.approx(-1.0, abs=1e-8)
+    assert q == pytest.approx(ends["LP"], abs=1e-8)
     for row in fixed.rows:
         assert row.par[1] == q
         assert row.U[0] ** 2 + q * row.U[0] == pytest.approx(row.par[0], abs=1e-9)

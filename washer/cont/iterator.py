@@ -46,8 +46,8 @@ from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (Convergen
 #: A Newton iterate whose correction exceeds this multiple of the first
 #: correction diverges (AUTO's SOLVAE: DELREF = 20 max(...)).
 DIVERGENCE_FACTOR = 20.0
-#: Newton iterations allowed to correct a start point that is not quite a
-#: solution (STPNT rounding, a restart in other parameters).
+#: Newton iterations allowed to correct a start point to a solution at its parameters
+#: (`Continuation.correct_start`).
 START_ITERATIONS = 20
 #: A tangent solve whose result is this large (relative to 1) came from a
 #: numerically singular bordered matrix (exactly at a branch point): the
@@ -284,28 +284,14 @@ class Continuation:
             and getattr(sysm, "newton_jacobian_at_point", False) else None
         return x, it
 
-    def correct_start(self, x, hold: bool = False):
-        """Newton with AUTO's EPSU test: a start point that is not quite a solution
-        (STPNT rounding, a restart in other parameters) is corrected before the
-        branch begins (AUTO-07p does not: see _begin), orthogonally to the branch:
-        the matrix is [J; t] with t the null vector of J at the start. (Holding
-        PAR(ICP(1)) instead fails where the branch is parallel to the other unknowns
-        there: a locus along which the principal parameter is constant, as dd2's
-        period-doubling curve p1 = 3.)
-        hold: hold PAR(ICP(1)) (the matrix [J; e_last]): a solution at the given
-        parameters (washer.cont.runner.solve)."""
+    def correct_start(self, x):
+        """Newton with AUTO's EPSU test at fixed PAR(ICP(1)) (the matrix [J; e_last]):
+        the solution at the given parameters nearest x (washer.cont.runner.solve). A run
+        does not correct its start (AUTO-07p neither: see _begin)."""
         s = self.s
         x = np.array(x, dtype=float)
         e = np.zeros(len(x))
         e[-1] = 1.0
-        if not hold:
-            try:
-                J0 = self.sys.jacobian(x)
-            except ProblemError as exc:
-                raise ConvergenceError(f"the equations fail at the start point ({exc})") \
-                    from exc
-            if isinstance(J0, np.ndarray) and np.all(np.isfinite(J0)):
-                e = np.linalg.svd(J0)[2][-1]
 
         residual = _failing_as("the equations fail at the start point", self._residual)
         jacobian = _failing_as("the equations fail at the start point", self._jacobian)
@@ -371,7 +357,7 @@ class Continuation:
             e[-1] = 1.0
             t = self._factor(J, e).solve(e)
         t = t / math.sqrt(self.sys.inner(t, t))
-        return orient(t, len(t) - 1, self.s.EPSL, x[-1])
+        return orient(t, x, len(getattr(self.sys, "free", ())) or 1, self.s.EPSL, self.s.EPSU)
 
     # ----------------------------------------------------------- evaluation
     def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0,
@@ -602,20 +588,16 @@ class Continuation:
             yield from self.step()
 
     def _begin(self):
-        """The start point (corrected for algebraic systems), its tangent, and the
+        """The start point (as given), its tangent, and the
         first step: AUTO's hidden one, or the written plane step of a switch."""
         sysm = self.sys
-        # AUTO-07p corrects no start: CNRLAE writes an algebraic start as given at PT 1
-        # (its tangent the null vector of [f_u f_p] there; the unwritten first step's
-        # corrector reaches the solutions), CNRLBV/RSPTBV a BVP's (at a Hopf start the
-        # collocation system is singular in the period). Ours corrects an algebraic one:
-        # without, a restart at a label of a branch-point locus with ISW = -1 takes
-        # IPERP = 1's direction from rounding-level entries (u1 ~ 1e-153 off the
-        # pitchfork's BP, AUTO's record 0) and leaves the other way from AUTO's
-        # (tests/test_isw_restart_curves.py); tests/test_start_point.py holds both rules.
-        correct = self.mode != "switch" and sysm.arclength == "sphere"
-        x0 = self.correct_start(self.x0) if correct else self.x0
-        J0 = self._jacobian(x0)
+        # AUTO-07p corrects no start, and neither do we: CNRLAE writes an algebraic start
+        # as given at PT 1 (its tangent the null vector of [f_u f_p] there, turned by
+        # STPRAE's sign rule, linalg.orient; the unwritten first step's corrector reaches
+        # the solutions), CNRLBV/RSPTBV a BVP's (at a Hopf start the collocation system is
+        # singular in the period). tests/test_start_point.py.
+        x0 = self.x0
+        J0 = _failing_as("the equations fail at the start point", self._jacobian)(x0)
         t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
         t0 = t0 / math.sqrt(sysm.inner(t0, t0))
         start = self.evaluate(x0, t0, tangent=t0)

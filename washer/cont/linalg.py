@@ -494,10 +494,20 @@ def nullvc(A: np.ndarray, k: int) -> np.ndarray:
     return u
 
 
-def orient(t: np.ndarray, lam_index: int, epsl: float, lam: float) -> np.ndarray:
-    """AUTO's sign rule for a fresh tangent (STPRAE): PAR(ICP(1))-dot > 0, or,
-    if it is negligible, the first non-negligible component positive."""
-    if abs(t[lam_index]) / (1 + abs(lam)) > epsl:
-        return t if t[lam_index] > 0 else -t
-    big = np.flatnonzero(np.abs(t) > 1e-8 * np.max(np.abs(t)))
-    return t if t[big[0]] > 0 else -t
+def orient(t: np.ndarray, x: np.ndarray, nfpr: int, epsl: float, epsu: float) -> np.ndarray:
+    """AUTO-07p's sign rule for the start direction of an algebraic run (ae.f90 STPRAE,
+    every IPERP: a fresh null vector, the null vector of [f_u f_p; stored direction], or
+    the stored direction itself), for t of unit length and the point x, both laid out as
+    AUTO's U(1..NDIM + 1): PAR(ICP(1)) last, PAR(ICP(2..NFPR)) in U(NDIM - NFPR + 2..NDIM).
+    PAR(ICP(1))-dot is made positive where |t_last| / (1 + |x_last|) > EPSL; where it is
+    not (rounding at a pitchfork, a fold in PAR(ICP(1))), the first of U(NDIM - NFPR + 2
+    ..NDIM), then U(1..NDIM - NFPR + 1), with |t_j| / (1 + |x_j|) > EPSU is made positive
+    (AUTO-07p 0.9.2: a restart on a branch-point locus whose PAR(1)-dot is 1e-163 goes the
+    same way whatever that rounding's sign). Nothing above the thresholds: t as given."""
+    n = len(t) - 1
+    if abs(t[n]) / (1 + abs(x[n])) > epsl:
+        return -t if t[n] < 0 else t
+    for j in [*range(n - nfpr + 1, n), *range(n - nfpr + 1)]:
+        if abs(t[j]) / (1 + abs(x[j])) > epsu:
+            return -t if t[j] < 0 else t
+    return t

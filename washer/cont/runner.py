@@ -304,8 +304,8 @@ def restart_records(restart, c) -> tuple[list, str]:
 
 
 def solve(c, problem, restart=None):
-    """The start point of a run corrected by Newton at fixed PAR(ICP(1)) (the iterator's
-    start correction holding the parameter; the engine's one Newton): (x, system, counters),
+    """The start point of a run corrected by Newton at fixed PAR(ICP(1))
+    (Continuation.correct_start; the engine's one Newton): (x, system, counters),
     x the system's unknowns (state, then PAR(ICP(1))), the system for its stability(x,
     J), params(x), and the work done (Counters: one residual per Newton iteration).
     Raises ConvergenceError, RunError."""
@@ -313,7 +313,7 @@ def solve(c, problem, restart=None):
     records, source = restart_records(restart, c)
     r, _, _ = build(c, problem, records, name=problem.name, records_source=source)
     it = Continuation(r.system, r.settings)
-    return it.correct_start(it.x0, hold=True), r.system, it.counters
+    return it.correct_start(it.x0), r.system, it.counters
 
 
 def run(c, problem, restart=None, sinks=(), name: str = "") -> Branch:

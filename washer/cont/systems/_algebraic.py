@@ -81,12 +81,18 @@ class AlgebraicSystem:
 
     def restart_direction(self, t):
         """A stored direction the run restarts along (AUTO's CNRLAE: STPRAE with
-        IPERP = -1 where |IPS| = 1 or IPS = 11): turned so that PAR(ICP(1))-dot is not
-        negative, DS's sign then choosing the way; kept as stored for IPS = 0. None
-        stays None."""
+        IPERP = -1 where |IPS| = 1 or IPS = 11): made unit and turned by STPRAE's sign
+        rule (`orient`), DS's sign then choosing the way; kept as stored for IPS = 0.
+        None stays None."""
         if t is None or abs(self.settings.IPS) != 1 and self.settings.IPS != 11:
             return t
-        return -t if t[-1] < 0 else t
+        return self.orient(t / math.sqrt(self.inner(t, t)), self._x0)
+
+    def orient(self, t, x):
+        """AUTO's sign rule for a start direction t (unit in `inner`) at x (STPRAE;
+        linalg.orient) with this run's NFPR = len(free), EPSL and EPSU."""
+        s = self.settings
+        return orient(t, x, len(self.free), s.EPSL, s.EPSU)
 
     # --------------------------------------------------------------- norms
     def inner(self, a, b) -> float:
@@ -162,7 +168,7 @@ class AlgebraicSystem:
         nd = np.sqrt(self.inner(d, d))
         if not np.isfinite(nd) or nd < 1e-12:
             return []
-        return [orient(d / nd, len(d) - 1, self.settings.EPSL, x[-1])]
+        return [self.orient(d / nd, x)]
 
     # ------------------------------------------------------------- output
     def measure(self, x) -> float:

@@ -195,12 +195,11 @@ class EquilibriumSystem(AlgebraicSystem):
         if self._perp:
             # STPRAE, IPERP = 1: NLVC of the square matrix [f_u f_lambda; UDOT] (its
             # complete pivoting drops the row eliminated last), scaled to unit length
-            # in the weighted norm, PAR(ICP(1))-dot made positive; DS's sign then
+            # in the weighted norm and turned by STPRAE's sign rule; DS's sign then
             # chooses the way.
             J = np.asarray(self.jacobian(self._x0), dtype=float)
             d = nullvc(np.vstack([J, self._stored]), 1)
-            d = d / np.sqrt(self.inner(d, d))
-            return self._x0.copy(), (-d if d[-1] < 0 else d)
+            return self._x0.copy(), self.orient(d / np.sqrt(self.inner(d, d)), self._x0)
         if self._switch:
             # ISW = -1 at a BP label: start along the other branch (AUTO's STBIF).
             t = self._t0

@@ -34,7 +34,7 @@ from washer.cont.differences import columns
 from washer.cont.problem import Problem
 from washer.cont.system import Stability, StartData, register
 from washer.cont.floquet import torus_resonance_tests
-from washer.cont.linalg import null_vectors, orient
+from washer.cont.linalg import null_vectors
 from washer.cont.systems._algebraic import AlgebraicSystem
 from washer.cont.systems._loci import LocusSystem
 from washer.cont.systems.equilibrium import EquilibriumSystem
@@ -185,7 +185,7 @@ class FixedPoints(EquilibriumSystem):
                 t = null_vectors(J, 1)[:, 0]
             d = null_vectors(np.vstack([J, t]), 1)[:, 0]
             d = d / math.sqrt(self.inner(d, d))
-            return self._x0.copy(), orient(d, len(d) - 1, self.settings.EPSL, self._x0[-1])
+            return self._x0.copy(), self.orient(d, self._x0)
         return super().start()
 
     # ------------------------------------------------------------ stability
