@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from b_rows import branch_rows
 from washer.run import run
 
 DATA = Path(__file__).parent / "data"
@@ -21,23 +22,35 @@ def ab(tmp_path):
     return tmp_path / "c.ab"
 
 
-def test_two_zeros_in_one_step_are_both_found_in_order(ab):
-    # Two user points closer together than one step: a linear estimate could
-    # take them in either order; both must be labelled, in arclength order.
-    values = [0.1, 0.1000005]
-    res = run(ab, verbose=False, UZR={1: values}, DS=0.05, DSMAX=0.05, NMX=20, ISP=0, ILP=0)
-    uz = [s.par[0] for s in res.specials if s.ty == "UZ"]
-    assert uz == [pytest.approx(v, abs=1e-9) for v in values]
+#: AUTO-07p 0.9.2's b-files of the three runs below (tests/data/uz_stop/README.md)
+NEAR = DATA / "uz_stop"
 
 
-def test_a_stop_next_to_another_zero_still_stops(ab):
-    # A UZSTOP and a UZR zero in the same step, the UZR one first: the run must
-    # label it and then stop at the UZSTOP value, not step past it.
-    res = run(ab, verbose=False, UZR={1: 0.1}, UZSTOP={1: 0.1000005}, DS=0.05, DSMAX=0.05,
-              NMX=20, ISP=0, ILP=0)
+def _labelled(rows):
+    return [(abs(r.pt), r.ty, r.lab) for r in rows if r.ty != 0]
+
+
+@pytest.mark.parametrize("name, uzr, uzstop, labelled", [
+    # 1e-5 apart in PAR(1), 1.6e-4 in arclength: two zeros in one step, both labelled in
+    # arclength order (a linear estimate could take them in either order)
+    ("two4", [0.1, 0.10001], None, [0.1, 0.10001]),
+    # 5e-7 apart, 8e-6 in arclength, within the location tolerance 1.05e-5: AUTO's
+    # LCSPAE stores the second user value as 0 once the first is located: one UZ
+    ("two", [0.1, 0.1000005], None, [0.1]),
+    # the same with the second a UZSTOP: one UZ, and the run goes on to NMX
+    ("stop", [0.1], [0.1000005], [0.1])])
+def test_user_values_in_one_step_as_auto(ab, name, uzr, uzstop, labelled):
+    kw = {} if uzstop is None else {"UZSTOP": {1: uzstop}}
+    res = run(ab, verbose=False, UZR={1: uzr}, DS=0.05, DSMAX=0.05, NMX=20, ISP=0, ILP=0,
+              sv="w", **kw)
+    ours = branch_rows(ab.parent / "b.w")
+    autos = branch_rows(NEAR / f"b.near_{name}")
+    assert _labelled(ours) == _labelled(autos)
     uz = [s.par[0] for s in res.specials if s.ty == "UZ"]
-    assert uz == [pytest.approx(0.1, abs=1e-9), pytest.approx(0.1000005, abs=1e-9)]
-    assert res.specials[-1].ty == "UZ"
+    # each located to within EPSS (1 + sqrt(DS DSMAX)) = 1.05e-5 of arclength, along
+    # which PAR(1) moves 0.06 per unit here: 1e-9 is far inside that
+    assert uz == [pytest.approx(v, abs=1e-9) for v in labelled]
+    assert res.specials[-1].ty == "EP"
 
 
 def test_a_located_point_at_nmx_or_outside_the_window_is_the_end_point(ab):

@@ -466,6 +466,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         keys = [k for k in sign_changes(prev.tests, target.tests)
                 if (found is None or k != found[1]) and k not in failed
                 and not (k in located and abs(located[k] - span) < tol)
+                and not (found is not None and _same_user_point(found[1], k, prev, target,
+                                                                span, settings))
                 and not (found is not None and k in (Code.LP, Code.LPC)
                          and found[1] in TORUS_FOLDS.get(curve_type, ()))
                 and accepted(k, prev, target)
@@ -524,13 +526,20 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     if found is None:
         return None
     sp, key = found
+    # User values vanishing at a located one: the point's key is the first in AUTO's
+    # order (`_same_user_point`); the others are stored as 0 with it, not labelled.
+    users = [k for k in sign_changes(prev.tests, cur.tests)
+             if k == key or _same_user_point(key, k, prev, sp, span, settings)] \
+        if isinstance(key, tuple) else []
+    if users:
+        key = min(users, key=lambda k: k[1])
     # Other tests that change sign over the step and vanish at sp, to within the
     # location tolerance: located there in this step, or by their linear zero estimate
     # from sp's value.
     same = []
     for k in sign_changes(prev.tests, cur.tests):
-        # User values (UZ) are never merged with each other: two UZR values are two
-        # points. A bifurcation test vanishing at a located UZ overrides it (LCSPAE:
+        # User values are not merged with each other here: one vanishing at a located
+        # user value is that point's (`_same_user_point`, above). A bifurcation test vanishing at a located UZ overrides it (LCSPAE:
         # the point is typed by the bifurcation, and a UZSTOP there does not stop);
         # a UZ vanishing at a located bifurcation is that point.
         if k == key or (isinstance(k, tuple) and isinstance(key, tuple)):
@@ -562,8 +571,22 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         sec = (sp.x - prev.x) / span
         sp.tangent = sec / math.sqrt(inner(sec, sec))
         refresh(sp)
-    clear_located(prev, sp, span, [key] + same, settings)
+    clear_located(prev, sp, span, [key] + same + users, settings)
     return sp, best, same
+
+
+def _same_user_point(found, k, prev, sp, span: float, settings) -> bool:
+    """Whether user value k (a UZ key) vanishes at sp, where user value `found` was
+    located, a step of arclength span from prev: AUTO's LCSPAE / LCSPBV, once a point is
+    located, store 0 for a later test whose zero lies within the location tolerance of it
+    (`at_step_end`), and its UZ tests come first, in IUZ's order (UZR's values as listed,
+    then UZSTOP's: `Settings.UZR`'s). So a UZR value and a UZSTOP value at one parameter
+    value are one point, typed by the UZR: labelled once, and the run does not stop
+    there (AUTO-07p 0.9.2 on ab's equilibria, ab's cycles and exp's BVP,
+    tests/test_uz_stop.py)."""
+    return isinstance(found, tuple) and isinstance(k, tuple) and k != found \
+        and k in prev.tests and sp.tests.get(k) is not None \
+        and at_step_end(prev.tests[k], sp.tests[k], span, settings)
 
 
 def signed_distance(d: np.ndarray, s: float, inner) -> float:
