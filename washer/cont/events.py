@@ -539,9 +539,10 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     same = []
     for k in sign_changes(prev.tests, cur.tests):
         # User values are not merged with each other here: one vanishing at a located
-        # user value is that point's (`_same_user_point`, above). A bifurcation test vanishing at a located UZ overrides it (LCSPAE:
-        # the point is typed by the bifurcation, and a UZSTOP there does not stop);
-        # a UZ vanishing at a located bifurcation is that point.
+        # user value is that point's (`_same_user_point`, above). A bifurcation test
+        # vanishing at a located UZ overrides it (LCSPAE: the point is typed by the
+        # bifurcation, and a UZSTOP there does not stop); a UZ vanishing at a located
+        # bifurcation is that point.
         if k == key or (isinstance(k, tuple) and isinstance(key, tuple)):
             continue
         if k in located and abs(located[k] - span) < tol:
