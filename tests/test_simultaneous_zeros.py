@@ -106,3 +106,55 @@ def test_a_bt_that_is_a_fold_of_the_hopf_curve_is_typed_lp_and_passed(tmp_path):
     # the curve goes on past it (A grows again), to NMX
     rows = [r for r in hopf.rows if abs(r.pt) > abs(lp.pt)]
     assert rows and hopf.specials[-1].ty == "EP" and max(r.par[1] for r in rows) > a_bt + 0.03
+
+
+def yamada_slow_limit():
+    """(A, I, dkappa/dgamma) where the laser model's Hopf curve meets gamma = 0 (sympy).
+    The Hopf condition c2 c1 = c0 on the characteristic polynomial lam^3 + c2 lam^2 +
+    c1 lam + c0 of the lasing equilibria (G = Q + 1, Q = B / (1 + a I)) is gamma^2 h(I) +
+    O(gamma^3): the curve crosses gamma = 0 at a root of h, where kappa = omega^2 = c1 =
+    gamma c1'(I) + O(gamma^2) changes sign (a simple zero). There J = f_u is nilpotent
+    (J^2 = 0): every lasing state at gamma = 0 solves the Hopf system with kappa = 0."""
+    A, g, G, Q, I, lam = sp.symbols("A g G Q I lam")
+    B, a = sp.Rational(29, 5), sp.Rational(9, 5)
+    f = sp.Matrix([g * (A - G - G * I), g * (B - Q - a * Q * I), (G - Q - 1) * I])
+    J = f.jacobian([G, Q, I])
+    lasing = {G: 1 + B / (1 + a * I), Q: B / (1 + a * I)}
+    assert sp.simplify((J.subs(g, 0) ** 2).subs(lasing)) == sp.zeros(3, 3)
+    poly = sp.expand((lam * sp.eye(3) - J).det())
+    c2, c1, c0 = (poly.coeff(lam, k) for k in (2, 1, 0))
+    h = sp.Poly(sp.expand(c2 * c1 - c0).subs(lasing), g)
+    assert sp.simplify(h.coeff_monomial(1)) == 0 and sp.simplify(h.coeff_monomial(g)) == 0
+    i_star = max(sp.Poly(sp.numer(sp.together(h.coeff_monomial(g ** 2))), I).nroots(n=30))
+    a_star = ((1 + I) * (1 + B / (1 + a * I))).subs(I, i_star)
+    slope = sp.Poly(c1.subs(lasing), g).coeff_monomial(g).subs(I, i_star)
+    return float(a_star), float(i_star), float(slope)
+
+
+def test_a_hopf_curve_whose_frequency_vanishes_with_gamma_stops_at_the_bt(tmp_path):
+    """The laser model's Hopf curve forwards from its Hopf point at gamma = 0.1 reaches
+    gamma = 0 at A = 10.44 (closed form above), where kappa changes sign: a BT, and the
+    run stops there (AUTO stops at a BT on a Hopf curve; the user's UZSTOP gamma = 0 is
+    the same point). The extended system's determinant (the BP test) vanishes there too,
+    but to fourth order, one sign on both sides: ours -2.1e-13, -5.1e-15 at gamma =
+    2.2e-5, 8.8e-6; AUTO-07p's d-file of the same run -3.0e-14, -5.6e-14 at gamma =
+    1.2e-5, -1.3e-5. AUTO-07p types BP there (its test changing sign on rounding within
+    a location step) and, a BP not being a BT, goes on along the neutral saddles to NMX."""
+    (tmp_path / "yam.py").write_text(YAMADA)
+    c = tmp_path / "c.yam"
+    c.write_text("NDIM = 3, IPS = 1, ILP = 1, ISP = 2, ICP = ['A', 'gamma'], NPAR = 4, "
+                 "parnames = {1: 'gamma', 2: 'A', 3: 'B', 4: 'a'}, NMX = 100, NPR = 10, "
+                 "MXBF = 0, DS = 0.01, DSMIN = 0.05, DSMAX = 0.1, EPSL = 1e-6, EPSU = 1e-6, "
+                 f"EPSS = 1e-4, e = 'yam'\n")
+    run(c, sv="eq", verbose=False)
+    run(c, s="eq", IRS="BP1", ISW=-1, sv="lasing", verbose=False)
+    hopf = run(c, s="lasing", IRS="HB1", ISW=2, DS=5e-3, DSMIN=5e-3, DSMAX=5e-3, NMX=2000,
+               NPR=100, UZSTOP={}, verbose=False)
+    a_star, i_star, slope = yamada_slow_limit()
+    assert slope > 0                 # kappa > 0 (a Hopf pair) for gamma > 0 only
+    end = hopf.specials[-1]
+    assert end.ty == "BT" and abs(end.pt) < 2000
+    assert not [s for s in hopf.specials if s.ty == "BP"]
+    tol = 1e-4 * (1 + np.sqrt(5e-3 * 5e-3))          # AUTO's location tolerance
+    assert abs(end.par[0]) < 2 * tol and abs(end.par[1] - a_star) < 2 * tol
+    assert abs(end.u[2] - i_star) < 2 * tol
