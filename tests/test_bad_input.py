@@ -497,3 +497,17 @@ def test_uzr_on_a_parameter_past_npar_widens_the_parameters(tmp_path):
     c.write_text(base + "UZR = {-0: 1.0}\n")
     with pytest.raises(RunError, match=r"UZR/UZSTOP on PAR\(0\)"):
         run(c, verbose=False)
+
+
+def test_quoted_indices_are_parameter_indices(tmp_path):
+    """ICP = ['3','1'] with no parnames (a user's constants file, run by AUTO-07p 0.9.2
+    as PAR(3), PAR(1): its b-file's first column PAR(3)): a string no parnames entry
+    holds that spells an index is that index; a parnames entry of that spelling wins."""
+    c = read_constants(_c(tmp_path, b"NDIM = 5, IPS = 1\nICP =  ['3','1']\n"
+                                    b"UZSTOP = {'3': 10.0}\n"))
+    assert c.icp() == [3, 1]
+    assert c.par_index("3") == 3 and c.par_index("-3") == -3
+    named = Constants({"parnames": {5: "3"}})
+    assert named.par_index("3") == 5
+    with pytest.raises(ConstantsError, match="unknown parameter '3a'"):
+        named.par_index("3a")

@@ -226,7 +226,8 @@ class Constants(dict):
 
     # ----------------------------------------------------------------- names
     def par_index(self, key, where: str | None = None) -> int:
-        """1-based PAR index of an integer or a name (parnames, 'PERIOD' = 11);
+        """1-based PAR index of an integer or a name (parnames, 'PERIOD' = 11, 'PAR(3)',
+        or the index spelled as a string, '3');
         a leading '-' on a name gives a negative index. `where` (file:line) names the
         place in errors, else the constants' source."""
         where = where or self.source
@@ -244,6 +245,10 @@ class Constants(dict):
                     return int(i) * sign
             if re.fullmatch(r"PAR\(\d+\)", name):
                 return int(name[4:-1]) * sign
+            if re.fullmatch(r"\d+", name):
+                # a quoted index, ICP = ['3', '1'] (AUTO-07p reads a name that no
+                # parnames entry holds as the index it spells)
+                return int(name) * sign
         raise ConstantsError(f"{where}: unknown parameter {key!r}; parnames = "
                              f"{self['parnames']}")
 
