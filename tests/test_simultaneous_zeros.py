@@ -80,6 +80,22 @@ def stpnt(u, par):
 '''
 
 
+def _lasing_branch(tmp_path):
+    """The laser model's constants file in tmp_path (Python user file yam.py), its trivial
+    branch saved as 'eq' and the lasing branch switched from its BP saved as 'lasing'
+    (a Hopf point on it, HB1, at gamma = 0.1); returns the constants file."""
+    (tmp_path / "yam.py").write_text(YAMADA)
+    c = tmp_path / "c.yam"
+    c.write_text("NDIM = 3, IPS = 1, ILP = 1, ISP = 2, ICP = ['A', 'gamma'], NPAR = 4, "
+                 "parnames = {1: 'gamma', 2: 'A', 3: 'B', 4: 'a'}, NMX = 100, NPR = 10, "
+                 "MXBF = 0, DS = 0.01, DSMIN = 0.05, DSMAX = 0.1, EPSL = 1e-6, EPSU = 1e-6, "
+                 "EPSS = 1e-4, e = 'yam'\n")
+    run(c, sv="eq", verbose=False)
+    bp = run(c, s="eq", IRS="BP1", ISW=-1, sv="lasing", verbose=False)
+    assert any(s.ty == "HB" for s in bp.specials)
+    return c
+
+
 def test_a_bt_that_is_a_fold_of_the_hopf_curve_is_typed_lp_and_passed(tmp_path):
     """The Hopf curve of the laser model in (A, gamma), from its Hopf point at gamma =
     0.1, backwards: it touches the fold line A = A_BT at the BT, where A is extremal
@@ -87,15 +103,7 @@ def test_a_bt_that_is_a_fold_of_the_hopf_curve_is_typed_lp_and_passed(tmp_path):
     equations in Fortran, these constants) types it LP (32) at PT 398, A = 6.0600732476,
     and goes on; so does this run, its LP within the location tolerance of the closed
     form."""
-    (tmp_path / "yam.py").write_text(YAMADA)
-    c = tmp_path / "c.yam"
-    c.write_text("NDIM = 3, IPS = 1, ILP = 1, ISP = 2, ICP = ['A', 'gamma'], NPAR = 4, "
-                 "parnames = {1: 'gamma', 2: 'A', 3: 'B', 4: 'a'}, NMX = 100, NPR = 10, "
-                 "MXBF = 0, DS = 0.01, DSMIN = 0.05, DSMAX = 0.1, EPSL = 1e-6, EPSU = 1e-6, "
-                 f"EPSS = 1e-4, e = 'yam'\n")
-    run(c, sv="eq", verbose=False)
-    bp = run(c, s="eq", IRS="BP1", ISW=-1, sv="lasing", verbose=False)
-    assert any(s.ty == "HB" for s in bp.specials)
+    c = _lasing_branch(tmp_path)
     hopf = run(c, s="lasing", IRS="HB1", ISW=2, DS=-5e-3, DSMIN=5e-3, DSMAX=5e-3, NMX=600,
                NPR=100, UZSTOP={}, sv="hopf", verbose=False)
     a_bt, g_bt, _ = yamada_bt()
@@ -140,14 +148,7 @@ def test_a_hopf_curve_whose_frequency_vanishes_with_gamma_stops_at_the_bt(tmp_pa
     2.2e-5, 8.8e-6; AUTO-07p's d-file of the same run -3.0e-14, -5.6e-14 at gamma =
     1.2e-5, -1.3e-5. AUTO-07p types BP there (its test changing sign on rounding within
     a location step) and, a BP not being a BT, goes on along the neutral saddles to NMX."""
-    (tmp_path / "yam.py").write_text(YAMADA)
-    c = tmp_path / "c.yam"
-    c.write_text("NDIM = 3, IPS = 1, ILP = 1, ISP = 2, ICP = ['A', 'gamma'], NPAR = 4, "
-                 "parnames = {1: 'gamma', 2: 'A', 3: 'B', 4: 'a'}, NMX = 100, NPR = 10, "
-                 "MXBF = 0, DS = 0.01, DSMIN = 0.05, DSMAX = 0.1, EPSL = 1e-6, EPSU = 1e-6, "
-                 f"EPSS = 1e-4, e = 'yam'\n")
-    run(c, sv="eq", verbose=False)
-    run(c, s="eq", IRS="BP1", ISW=-1, sv="lasing", verbose=False)
+    c = _lasing_branch(tmp_path)
     hopf = run(c, s="lasing", IRS="HB1", ISW=2, DS=5e-3, DSMIN=5e-3, DSMAX=5e-3, NMX=2000,
                NPR=100, UZSTOP={}, verbose=False)
     a_star, i_star, slope = yamada_slow_limit()
