@@ -204,3 +204,80 @@ def test_a_stub_icnd_with_integral_conditions_stops_the_run_by_name(cache, tmp_p
     with pytest.raises(Exception, match=r"ICND returned non-finite values or left some of "
                                         r"FI\(1\.\.NINT = 1\) unset"):
         run_script("bvp.auto")
+
+
+INCLUDING_F = """\
+      SUBROUTINE FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)
+      IMPLICIT DOUBLE PRECISION (A-H,O-Z)
+      INCLUDE 'rate.inc'
+      DIMENSION U(NDIM),PAR(*),F(NDIM)
+      F(1)=RATE*U(1)
+      RETURN
+      END
+      SUBROUTINE STPNT(NDIM,U,PAR)
+      IMPLICIT DOUBLE PRECISION (A-H,O-Z)
+      DIMENSION U(NDIM),PAR(*)
+      U(1)=1.D0
+      RETURN
+      END
+      SUBROUTINE BCND
+      RETURN
+      END
+      SUBROUTINE ICND
+      RETURN
+      END
+      SUBROUTINE FOPT
+      RETURN
+      END
+      SUBROUTINE PVLS
+      RETURN
+      END
+"""
+
+INCLUDING_C = """\
+#include "auto_f2c.h"
+#include "rate.h"
+int func(integer ndim, const doublereal *u, const integer *icp, const doublereal *par,
+         integer ijac, doublereal *f, doublereal *dfdu, doublereal *dfdp)
+{ f[0] = RATE * u[0]; return 0; }
+int stpnt(integer ndim, doublereal t, doublereal *u, doublereal *par) { u[0] = 1.0; return 0; }
+int bcnd(integer ndim, const doublereal *par, const integer *icp, integer nbc,
+         const doublereal *u0, const doublereal *u1, integer ijac, doublereal *fb,
+         doublereal *dbc) { return 0; }
+int icnd(integer ndim, const doublereal *par, const integer *icp, integer nint,
+         const doublereal *u, const doublereal *uold, const doublereal *udot,
+         const doublereal *upold, integer ijac, doublereal *fi, doublereal *dint) { return 0; }
+int fopt(integer ndim, const doublereal *u, const integer *icp, const doublereal *par,
+         integer ijac, doublereal *fs, doublereal *dfdu, doublereal *dfdp) { return 0; }
+int pvls(integer ndim, const doublereal *u, doublereal *par) { return 0; }
+"""
+
+
+@pytest.mark.parametrize("kind", ["fortran", "c"])
+def test_a_user_file_is_built_again_when_a_file_it_includes_changes(kind, cache, tmp_path):
+    """AUTO's brc.f takes its dimensions from brc.inc (INCLUDE 'brc.inc'), a C file may
+    #include "x.h" of its own: the library is keyed by the included files too, so an
+    edited include file gives the edited equations, in the same process (the library
+    remembered per file) and in a new one (build_library's key)."""
+    from washer.cont.user_problem import c_library
+    from washer.cont.user_problem.user_files_native import compile_user_file
+    if kind == "fortran":
+        src, inc = tmp_path / "rate.f", tmp_path / "rate.inc"
+        src.write_text(INCLUDING_F)
+        write = lambda r: inc.write_text(f"      PARAMETER (RATE={r}D0)\n")  # noqa: E731
+    else:
+        src, inc = tmp_path / "rate.c", tmp_path / "rate.h"
+        src.write_text(INCLUDING_C)
+        write = lambda r: inc.write_text(f"#define RATE {r}\n")  # noqa: E731
+    write(2.0)
+    assert c_library.included_files(src) == [inc]
+    lib2 = compile_user_file(src)
+    assert load_compiled_problem(src, 1).func(np.array([1.5]), np.zeros(36))[0] == 3.0
+    write(3.0)
+    lib3 = compile_user_file(src)
+    assert lib3 != lib2
+    assert load_compiled_problem(src, 1).func(np.array([1.5]), np.zeros(36))[0] == 4.5
+    key3 = c_library.library_key([source_file(src)])
+    write(2.0)
+    assert c_library.library_key([source_file(src)]) != key3
+    assert compile_user_file(src) == lib2     # the first library, from the cache

@@ -3,8 +3,8 @@
 One job: sources (files on disk or generated text) -> a `.so` that cffi can
 dlopen. The library's name carries a SHA-256 of everything that decides the
 machine code (the compiler's version line, the flags, every source's name and
-bytes, the include files), so an unchanged source is never compiled twice and
-an edited one always is. Libraries live in a cache folder:
+bytes, the include files, the user's own files a source includes), so an unchanged
+source is never compiled twice and an edited one always is. Libraries live in a cache folder:
 
     $WASHER_CACHE, else $XDG_CACHE_HOME/washer/compiled, else ~/.cache/washer/compiled
 
@@ -19,6 +19,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -63,6 +64,35 @@ def source_file(path) -> Source:
     """A source on disk (compiled where it is, so messages name its path)."""
     p = Path(path)
     return Source(name=str(p), path=p)
+
+
+#: A line that includes another file of the user's: Fortran's INCLUDE 'NAME' (any case,
+#: fixed or free form) and the preprocessor's #include "NAME" (not <NAME>: the system's).
+_INCLUDE_LINE = re.compile(rb"""^[ \t]*(?:#[ \t]*include[ \t]*"([^"\n]+)"|include[ \t]*['"]([^'"\n]+)['"])""",
+                           re.IGNORECASE | re.MULTILINE)
+
+
+def included_files(path) -> list[Path]:
+    """The files a source on disk includes from its own folder, as the compiler finds
+    them (beside the including file), and the files those include, in order, each once.
+
+    They decide the machine code as the source does (AUTO's brc.f takes its dimensions
+    from brc.inc): a library keyed without them would outlive an edit of them."""
+    found: list[Path] = []
+    todo = [Path(path)]
+    while todo:
+        current = todo.pop(0)
+        try:
+            text = current.read_bytes()
+        except OSError:
+            continue
+        for m in _INCLUDE_LINE.finditer(text):
+            name = (m.group(1) or m.group(2)).decode(errors="replace").strip()
+            inc = current.parent / name
+            if inc.is_file() and inc not in found:
+                found.append(inc)
+                todo.append(inc)
+    return found
 
 
 def source_text(name: str, text: str | bytes) -> Source:
@@ -133,6 +163,8 @@ def library_key(sources: list[Source], includes: list[Path] = (), extra: str = "
     kinds.add("c")
     versions = tuple(_version(_compiler(kind)) for kind in sorted(kinds))
     texts = tuple((Path(s.name).name, s.data()) for s in sources)
+    texts += tuple((inc.name, inc.read_bytes()) for s in sources if s.path is not None
+                   for inc in included_files(s.path))
     headers = [_headers(inc) for inc in includes]
     stamps = tuple((name, st.st_size, st.st_mtime_ns)
                    for files in headers for name, path in files for st in (os.stat(path),))

@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from washer.cont.user_problem.c_library import (CompileError, build_library, declarations,
-                                                source_file, source_text)
+                                                included_files, source_file,
+                                                source_text)
 from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
@@ -125,9 +126,10 @@ def compile_user_file(path) -> Path:
     fortran = path.suffix != ".c"
     shim = SHIM.read_bytes()
     try:
-        # named as build_library's key names it: the file's name and content (a copy in
-        # another folder is the same library)
+        # named as build_library's key names it: the file's name and content and those
+        # of the files it includes (a copy in another folder is the same library)
         key = (path.name, path.read_bytes(), shim,
+               tuple((inc.name, inc.read_bytes()) for inc in included_files(path)),
                tuple((h.name, h.stat().st_mtime_ns, h.stat().st_size)
                      for h in sorted(INCLUDE.glob("*.h"))),
                *(os.environ.get(v) for v in ("CC", "FC", "PATH", "WASHER_CACHE",
