@@ -59,6 +59,7 @@ EXPECTED_FAIL = {
     "rev": "the differences are AUTO's (tests/test_homoclinic_kinds.py: the first integral vanishes "
            "on every orbit): its UZ for PAR(1) = 1.7 after the LP is written at 1.698836, and "
            "its run 3 ends MX at -0.90993 where ours goes on to NMX",
+    "revf77": "the same as rev's (AUTO's b-files with rev.f are its b-files with rev.f90)",
     "kpr": "run 10, continued past a zero of PSI 9 (the equilibrium's leading "
            "stable eigenvalue crossing 0, where the truncated problem is ill-posed), ends "
            "earlier in ours (MX) than in AUTO (EP at NMX)",
