@@ -95,10 +95,11 @@ EXPECTED_FAIL = {
 
 #: Demos whose script stops at a restart label it does not find (a point of AUTO's that
 #: ours does not label before it, EXPECTED_FAIL says why; san's AUTO stops there too: its
-#: run 11 has no UZ for run 12 to start from, and r3b's V1a.auto, whose last run asks for
+#: run 11 has no UZ for run 12 to start from, with san.f as with san.f90, and r3b's V1a.auto, whose last run asks for
 #: label 13 of a run that has 9): what the log says at that stop.
 STOPS_AT_LABEL = {"mtn": "Restart label IRS=15 not found", "kdv": "Label UZ2 not found",
-                  "san": "Label UZ1 not found", "r3b": "Restart label IRS=13 not found"}
+                  "san": "Label UZ1 not found", "sanf77": "Label UZ1 not found",
+                  "r3b": "Restart label IRS=13 not found"}
 
 #: Demos whose count moves with rounding that depends on the machine (its BLAS kernels and
 #: libm): the other count measured, and why. Measured on an AVX-512 AMD EPYC against the
