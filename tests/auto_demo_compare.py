@@ -67,15 +67,18 @@ SCRIPTS = {"snh": ("h1b.auto", "cb.auto", "tb.auto"), "fhh": ("fhn.auto",),
            "fnb": ("fhn.auto",), "man": ("man.auto", "man1.auto", "man2.auto"),
            "r3b": ("r3b.auto", "H1a.auto", "H1c.auto", "V1b.auto", "V1a.auto"),
            "nbody": ("compute_lagrange_points_0.5.auto",
-                     "compute_lagrange_points_family.auto")}
+                     "compute_lagrange_points_family.auto"),
+           "pclc": ("pclc.auto",)}
 
 #: Folders that hold another user file of a demo (AUTO's Fortran-77 NAME.f beside the
 #: demo's NAME.f90) and AUTO's outputs with it: the demo's folder gives the constants and
-#: scripts, without its NAME.f90 (which would win over NAME.f, runAUTO's order).
+#: scripts, without its NAME.f90 (which would win over NAME.f, runAUTO's order); or another
+#: script of the demo (SCRIPTS names it) with the constants files it reads (pclc: AUTO's
+#: pclc.auto beside pcl.auto, the same runs from c.pcl.1-8).
 VARIANT_OF = {"cirf77": "cir", "dd2f77": "dd2", "expf77": "exp", "intf77": "int",
               "ivpf77": "ivp", "optf77": "opt", "pd1f77": "pd1", "brcf77": "brc",
               "shef77": "she", "revf77": "rev",
-              "wavf77": "wav", "sanf77": "san"}
+              "wavf77": "wav", "sanf77": "san", "pclc": "pcl"}
 
 
 
@@ -288,8 +291,9 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     work = workdir / demo
     base = VARIANT_OF.get(demo)
     if base is not None:
-        shutil.copytree(DEMOS / base, work, ignore=shutil.ignore_patterns(
-            "autoref*", f"{base}.f90"))
+        # a variant with its own user file (NAME.f, NAME.c) runs without the base's NAME.f90
+        own = [f"{base}.f90"] if any((src / f"{base}{x}").exists() for x in (".f", ".c")) else []
+        shutil.copytree(DEMOS / base, work, ignore=shutil.ignore_patterns("autoref*", *own))
         shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref*"),
                         dirs_exist_ok=True)
     else:
@@ -297,8 +301,7 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1")
     t0 = time.perf_counter()
     rc, log = 0, ""
-    name = VARIANT_OF.get(demo, demo)
-    for script in SCRIPTS.get(name, (f"{name}.auto",)):
+    for script in scripts_of(demo):
         try:
             proc = subprocess.run([sys.executable, "-m", "washer.auto", script], cwd=work,
                                   env=env, stdin=subprocess.DEVNULL, capture_output=True,
@@ -326,10 +329,18 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     return res
 
 
+def scripts_of(demo: str) -> tuple[str, ...]:
+    """The scripts a demo runs, in order: its own in SCRIPTS, else its base demo's (a
+    variant's folder gives another user file or constants file to the base's script)."""
+    base = VARIANT_OF.get(demo, demo)
+    return SCRIPTS.get(demo, SCRIPTS.get(base, (f"{base}.auto",)))
+
+
 def all_demos() -> list[str]:
     def script(name):
-        base = VARIANT_OF.get(name, name)
-        return DEMOS / base / SCRIPTS.get(base, (f"{base}.auto",))[0]
+        first = scripts_of(name)[0]
+        own = DEMOS / name / first
+        return own if own.exists() else DEMOS / VARIANT_OF.get(name, name) / first
     return sorted(p.name for p in DEMOS.iterdir() if script(p.name).exists())
 
 
