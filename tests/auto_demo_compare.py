@@ -79,7 +79,8 @@ VARIANT_OF = {"cirf77": "cir", "dd2f77": "dd2", "expf77": "exp", "intf77": "int"
               "ivpf77": "ivp", "optf77": "opt", "pd1f77": "pd1", "brcf77": "brc",
               "shef77": "she", "revf77": "rev",
               "wavf77": "wav", "sanf77": "san", "pclc": "pcl",
-              "pvlf77": "pvl", "opsf77": "ops"}
+              "pvlf77": "pvl", "opsf77": "ops",
+              "mtnf77": "mtn"}
 
 
 
