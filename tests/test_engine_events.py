@@ -387,6 +387,20 @@ def test_a_zero_far_inside_a_flat_test_is_bisected_to():
         events._widening = saved
 
 
+def _points_of(tests):
+    """(point(s), refresh(point)) for a one-dimensional branch x = s whose test values
+    are tests[key](s)."""
+    from washer.cont.branch import Point
+
+    def point(s):
+        return Point(np.array([s]), np.array([1.0]), None,
+                     {k: f(s) for k, f in tests.items()})
+
+    def refresh(p):
+        p.tests = {k: f(p.x[0]) for k, f in tests.items()}
+    return point, refresh
+
+
 def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
     """AUTO's LCSPAE / LCSPBV store 0 as the value of the test they located and of every
     test whose zero lies within the location tolerance of the point; a stored 0 makes no
@@ -398,17 +412,11 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
     label for the one point)."""
     from types import SimpleNamespace
     from washer.cont.codes import Code
-    from washer.cont.branch import Point
     from washer.cont.events import first_zero, sign_changes
     settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-6)
     tests = {Code.LP: lambda s: 0.3 - s, Code.BP: lambda s: (s - 0.3) ** 3}
 
-    def point(s):
-        return Point(np.array([s]), np.array([1.0]), None,
-                     {k: f(s) for k, f in tests.items()})
-
-    def refresh(p):
-        p.tests = {k: f(p.x[0]) for k, f in tests.items()}
+    point, refresh = _points_of(tests)
     prev, cur = point(0.0), point(1.0)
     sp, key, same = first_zero(prev, cur, 1.0, settings,
                                trial=lambda s, k, base=None, chord=None: (point(s),
@@ -422,3 +430,43 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
         nxt = point(sp.x[0] + 1e-3)
         nxt.tests[Code.BP] = noise
         assert sign_changes(sp.tests, nxt.tests) == []
+
+
+def test_a_second_zero_within_the_tolerance_of_a_located_fold_is_not_searched():
+    """AUTO's LCSPBV, once a point is located (AP%ITP /= 0), sets a later test's Q1 = 0
+    where its zero lies within the location tolerance EPSS (1 + sqrt|DS DSMAX|) of that
+    point: it is neither located nor allowed to move the point. snh's h1b has a BP test
+    at rounding level (-1.5e-13 before its fold, 1e-16 at it): searched between the
+    previous point and the located fold, its noise zero 2.5e-6 of arclength short of the
+    fold became the point, typed LP, where the fold test was 1.5e-3, not 0, and the next
+    step labelled the fold again. Here the fold test 0.5 - s vanishes at s = 0.5 and
+    the BP test 1e-13 (0.5 - d - s) at d = 1e-4 short of it, inside the tolerance 2e-4
+    (EPSS 1e-4, DS = DSMAX = 1) but not within the fraction SIMULTANEOUS of the step: the
+    point is the fold itself, both tests are stored as 0 there, so the next step (fold
+    test -0.1 beyond) sees no sign change."""
+    from types import SimpleNamespace
+    from washer.cont.codes import Code
+    from washer.cont.events import SIMULTANEOUS, first_zero, linear_fraction, sign_changes
+    settings = SimpleNamespace(EPSS=1e-4, DS=1.0, DSMAX=1.0, ITMX=9, DSMIN=1e-6)
+    d = 1e-4
+    tests = {Code.LPC: lambda s: 0.5 - s, Code.BPC: lambda s: 1e-13 * (0.5 - d - s)}
+
+    point, refresh = _points_of(tests)
+    prev, cur = point(0.0), point(1.0)
+    at_fold = tests[Code.BPC](0.5)
+    # the old rule would search it: its zero is 2e-4 of the way short of the fold
+    assert linear_fraction(prev.tests[Code.BPC], at_fold) < 1 - SIMULTANEOUS
+    tried = []
+
+    def trial(s, key, base=None, chord=None, span=None):
+        tried.append(key)
+        return point(s), tests[key](s)
+    sp, key, same = first_zero(prev, cur, 1.0, settings, trial=trial,
+                               accepted=lambda k, a, b: True, refresh=refresh,
+                               inner=lambda a, b: float(a @ b), note=lambda text: None)
+    assert Code.BPC not in tried                       # never searched
+    assert key == Code.LPC
+    # the fold test is linear: the secant's first trial lands on its zero (to HMACH)
+    assert sp.x[0] == pytest.approx(0.5, abs=1e-6)
+    assert sp.tests[Code.LPC] == 0.0 and sp.tests[Code.BPC] == 0.0
+    assert sign_changes(sp.tests, point(0.6).tests) == []

@@ -462,6 +462,14 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     # not searched again short of it, where its value at the branch point (next to a
     # crossing branch, whatever tangent the trial took) says nothing of this branch.
     located: dict = {}
+    # Once a point is located, a test whose zero lies within the location tolerance of
+    # it (`at_step_end` from prev to it) is not searched: AUTO's LCSPAE / LCSPBV set its
+    # Q1 = 0 there (AP%ITP /= 0), so it neither changes sign nor moves the point. A
+    # fraction of the step (SIMULTANEOUS) is no such rule: snh's h1b (BP test at
+    # rounding level, -1.5e-13 before its fold and 1e-16 at it) had its BP searched
+    # 2.5e-6 of arclength short of the located fold, a noise zero the location
+    # converged on; the point, typed LP, then lay short of the fold (fold test 1.5e-3,
+    # not 0) and the next step labelled the fold again, 3.4e-10 further in nu1.
     for _ in range(2 * len(cur.tests) + 1):
         keys = [k for k in sign_changes(prev.tests, target.tests)
                 if (found is None or k != found[1]) and k not in failed
@@ -470,6 +478,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                                                                 span, settings))
                 and not (found is not None and k in (Code.LP, Code.LPC)
                          and found[1] in TORUS_FOLDS.get(curve_type, ()))
+                and not (found is not None
+                         and at_step_end(prev.tests[k], target.tests[k], span, settings))
                 and accepted(k, prev, target)
                 and SIMULTANEOUS < linear_fraction(prev.tests[k], target.tests[k])
                 < (1 - SIMULTANEOUS if found is not None else 2)]
@@ -572,7 +582,10 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         sec = (sp.x - prev.x) / span
         sp.tangent = sec / math.sqrt(inner(sec, sec))
         refresh(sp)
-    clear_located(prev, sp, span, [key] + same + users, settings)
+    # best is stored as 0 too: the label's test (a fold typed over a branch point found
+    # within the tolerance of it) would otherwise change sign again on the next step
+    # where sp lies short of its zero, and label the same point twice.
+    clear_located(prev, sp, span, [best, key] + same + users, settings)
     return sp, best, same
 
 
