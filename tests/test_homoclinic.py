@@ -354,3 +354,29 @@ def test_a_free_parameter_in_no_equation_is_the_start_direction(tmp_path, monkey
     assert abs(end[-1] - (-0.01)) < 1e-9          # DS (AUTO: -1.0000001e-2, its perturbed DS)
     assert abs(end[0]) < 1e-12                    # PAR(3) = 0: the Hamiltonian orbit
     assert abs(end[1] - start[1]) < 1e-8          # the orbit has not moved
+
+
+def test_the_projection_rows_keep_their_orientation_across_an_accepted_point():
+    """The projection boundary condition's rows L = R^T P (P the projector onto the
+    invariant subspace, R the reference basis taken at the last accepted point) must be a
+    continuous function along the branch, across the accepted points too: the tests at
+    the next point are compared with those stored at this one. A Schur basis's orientation
+    is arbitrary (LAPACK may return -Z for the same subspace), so taking it as the new
+    reference as it comes flips the sign of L's rows, and with them the sign of the BP
+    determinant, between two points of the branch that differ by a step: snh's h1b had
+    its BP test (AUTO's FNBPBV: 1e14 to 1e16, positive over the whole run) change sign
+    at accepted points (+2.4e13 to -8.5e12 between two steps) and labelled BPs there.
+    The new reference keeps the old one's orientation (det(Q^T R_old) > 0)."""
+    from washer.cont.systems.homoclinic import _Projection
+    rng = np.random.default_rng(3)
+    At = np.diag([-2.0, -1.0, 1.5]) + 0.1 * rng.standard_normal((3, 3))
+    for m, stable in ((1, False), (2, True)):
+        proj = _Projection(m, stable)
+        before = proj.rows(At)
+        # a reference of the other orientation, as an earlier Schur call may have given
+        proj.ref = proj.ref.copy()
+        proj.ref[:, 0] *= -1
+        flipped = proj.rows(At)
+        assert np.allclose(flipped[0], -before[0])
+        proj.accept(At)
+        assert np.allclose(proj.rows(At), flipped, atol=1e-12)

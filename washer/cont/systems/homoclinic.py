@@ -211,8 +211,19 @@ class _Projection:
         return (Q @ (Q.T @ self.ref)).T
 
     def accept(self, At: np.ndarray) -> None:
-        """The subspace of At (NDIM, NDIM) at the accepted point is the new reference."""
-        self.ref = invariant_basis(At, self.m, self.stable)
+        """The subspace of At (NDIM, NDIM) at the accepted point is the new reference,
+        oriented as the old one (det(Q^T R_old) > 0)."""
+        Q = invariant_basis(At, self.m, self.stable)
+        if self.ref is not None and self.ref.shape == Q.shape and Q.size \
+                and np.linalg.det(Q.T @ self.ref) < 0:
+            # A Schur basis's orientation is LAPACK's choice: taken as it comes, the
+            # rows L flip sign between two points of the branch, and with them the sign
+            # of the BP test, whose values at the next point are compared with this
+            # point's (snh's h1b labelled BPs at such flips, +2.4e13 to -8.5e12 from one
+            # step to the next; AUTO's FNBPBV stays positive over the whole run).
+            Q = Q.copy()
+            Q[:, 0] *= -1
+        self.ref = Q
 
 
 class _SignedVectors:
