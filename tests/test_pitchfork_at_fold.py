@@ -85,9 +85,6 @@ NOT_YET = {
     (1.5, 0.17): "one BP, but located at PAR(1) = u1 = u2 = 6.8e-4, on the symmetric branch 28 "
                  "location tolerances from the crossing (AUTO-07p's BP at PT 12: 1.6e-6 from "
                  "it)",
-    (5.0, 0.11): "the step from the BP at PT 14 lands on the symmetric branch 1.8e-7 from the "
-                 "crossing (PAR(1) = -1.8e-7), where the BP test is zero again: a second BP at "
-                 "PT 15 (AUTO-07p: LP at PT 14 only)",
     (0.3, 0.05): "the step to PT 28, predicted along the secant of the last step (AUTO's "
                  "SOLVAE), converges onto the symmetric branch before the crossing and the "
                  "next ends MX: AUTO-07p's own run of these equations (Fortran, the same "
