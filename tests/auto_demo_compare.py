@@ -80,7 +80,7 @@ VARIANT_OF = {"cirf77": "cir", "dd2f77": "dd2", "expf77": "exp", "intf77": "int"
               "shef77": "she", "revf77": "rev",
               "wavf77": "wav", "sanf77": "san", "pclc": "pcl",
               "pvlf77": "pvl", "opsf77": "ops",
-              "mtnf77": "mtn"}
+              "mtnf77": "mtn", "kprf77": "kpr"}
 
 
 
