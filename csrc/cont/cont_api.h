@@ -161,6 +161,14 @@ int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const dou
  * -1 bad sizes. */
 int cont_dense_lu(void *getrf, int n, const double *M, int ldm, const double *last, double *lu,
                   int64_t *ipiv, double *sign_logdet);
+/* cont_scaled_slogdet: the BP test's determinant of S (n x n, row-major) as
+ * washer.cont.systems.bvp's bp_value takes it with numpy: out[0] = numpy.linalg.norm(S)
+ * (sqrt(0.0 + DDOT(S, S)), ddot numpy's CBLAS ddot), out[1], out[2] numpy's slogdet of
+ * S / out[0] (cont_dense_lu). work: 2 n * n doubles, ipiv n. Returns 0, 1 (the norm is 0 or
+ * not finite: out[1], out[2] untouched), 2 (GETRF found an exact zero pivot: (0, -inf)),
+ * -1 bad sizes. */
+int cont_scaled_slogdet(void *getrf, void *ddot, int n, const double *S, double *work,
+                        int64_t *ipiv, double *out);
 int cont_dense_lu_solve(void *getrs, int n, const double *lu, const int64_t *ipiv,
                         const double *b, double *x);
 int cont_eigenvalues_sorted(void *geev, int n, const double *A, int lda, double *w,

@@ -57,6 +57,18 @@ extern "C" int cont_dense_lu(void *getrf, int n, const double *M, int ldm,
     return 0;
 }
 
+extern "C" int cont_scaled_slogdet(void *getrf, void *ddot, int n, const double *S,
+                                   double *work, int64_t *ipiv, double *out) {
+    if (n <= 0) return -1;
+    const size_t nn = (size_t)n * n;
+    const double scale = numpy_norm(reinterpret_cast<numpy_cblas_ddot_t>(ddot), (int64_t)nn, S);
+    out[0] = scale;
+    if (!std::isfinite(scale) || scale == 0) return 1;
+    double *scaled = work, *lu = work + nn;
+    for (size_t i = 0; i < nn; ++i) scaled[i] = S[i] / scale;
+    return cont_dense_lu(getrf, n, scaled, n, nullptr, lu, ipiv, out + 1) == 0 ? 0 : 2;
+}
+
 extern "C" int cont_dense_lu_solve(void *getrs, int n, const double *lu, const int64_t *ipiv,
                                    const double *b, double *x) {
     if (n <= 0) return -1;

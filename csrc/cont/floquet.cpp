@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 #include "cont.h"
+#include "numpy_sum.h"
 
 namespace {
 typedef int64_t int64;          // numpy's OpenBLAS (scipy_openblas64_)
@@ -28,20 +29,15 @@ typedef void (*gemm_t)(int order, int ta, int tb, int64 m, int64 n, int64 k, dou
 typedef void (*gemv_t)(int order, int trans, int64 m, int64 n, double alpha, const double *a,
                        int64 lda, const double *x, int64 incx, double beta, double *y,
                        int64 incy);
-typedef double (*dot_t)(int64 n, const double *x, int64 incx, const double *y, int64 incy);
+typedef numpy_cblas_ddot_t dot_t;
 typedef void (*ggev_t)(const char *jobvl, const char *jobvr, const int32 *n, double *a,
                        const int32 *lda, double *b, const int32 *ldb, double *alphar,
                        double *alphai, double *beta, double *vl, const int32 *ldvl, double *vr,
                        const int32 *ldvr, double *work, const int32 *lwork, int32 *info, size_t,
                        size_t);
 
-// numpy.linalg.norm of a contiguous vector: sqrt(0.0 + DDOT(x, x)) (ndarray.dot's sum
-// starts at 0.0)
-double norm(dot_t dot, int64 n, const double *x) {
-    double s = 0.0;
-    s += dot(n, x, 1, x, 1);
-    return std::sqrt(s);
-}
+// numpy.linalg.norm of a contiguous vector (numpy_sum.h)
+double norm(dot_t dot, int64 n, const double *x) { return numpy_norm(dot, n, x); }
 }  // namespace
 
 extern "C" int cont_floquet_deflated(void *const *routines, int n, const double *P0,

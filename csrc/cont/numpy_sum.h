@@ -1,5 +1,6 @@
 // numpy's sum of a contiguous float64 array, the same double: the engine's C sums what the
-// Python sums with numpy (po_correct.cpp's vector norms, dense_lapack.cpp's weighted norm).
+// Python sums with numpy (po_correct.cpp's vector norms, dense_lapack.cpp's weighted norm);
+// and numpy.linalg.norm of a contiguous array through numpy's own CBLAS ddot.
 #ifndef WASHER_NUMPY_SUM_H
 #define WASHER_NUMPY_SUM_H
 
@@ -24,6 +25,21 @@ inline double pairwise_sum(const double *a, long n) {
     long n2 = n / 2;
     n2 -= n2 % 8;
     return pairwise_sum(a, n2) + pairwise_sum(a + n2, n - n2);
+}
+
+#include <cmath>
+#include <cstdint>
+
+// numpy's bundled OpenBLAS's cblas_ddot (ILP64), as ndarray.dot of two float64 vectors calls it
+typedef double (*numpy_cblas_ddot_t)(int64_t n, const double *x, int64_t incx, const double *y,
+                                     int64_t incy);
+
+// numpy.linalg.norm of a contiguous float64 array (any shape: it is ravelled): sqrt(0.0 +
+// DDOT(x, x)) (ndarray.dot's sum starts at 0.0; numpy's sqrt is IEEE's)
+inline double numpy_norm(numpy_cblas_ddot_t dot, int64_t n, const double *x) {
+    double s = 0.0;
+    s += dot(n, x, 1, x, 1);
+    return std::sqrt(s);
 }
 
 #endif

@@ -49,6 +49,13 @@ from washer.cont.settings import HMACH
 if TYPE_CHECKING:                  # annotations only; imported where used
     import scipy.sparse as sp
 
+try:
+    # what np.einsum calls without `optimize` (the same loops, the same sums), without its
+    # Python wrapper: ADAPT interpolates every IAD points
+    from numpy._core.multiarray import c_einsum as _einsum
+except ImportError:                # pragma: no cover (another numpy's layout)
+    _einsum = np.einsum
+
 #: AUTO's EQDF treats NCOL-th derivatives below HMACH as zero ("small derivative" case:
 #: the mesh then stays uniform).
 EQDF_SMALL = HMACH
@@ -238,7 +245,7 @@ class Collocation:
         self.n_eq = self.n_coll + self.nbc + nint
         self.n_x = self.n_u + self.npar
         #: local node indices of interval j: j*m + k, shape (N, m + 1)
-        self.local = np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]
+        self.local = local_nodes(N, m)
         self.w_node = mesh.node_weights()
         self._pattern()
 
@@ -492,9 +499,8 @@ def eqdf(mesh: Mesh, U: np.ndarray, periodic: bool = True) -> np.ndarray:
     the piecewise polynomial, summed over components, integrated over the mesh."""
     m, N = mesh.ncol, mesh.ntst
     dtm = mesh.dtm
-    wh = np.array([(-1) ** (m - k) * _binom(m, k) for k in range(m + 1)], float)   # CNTDIF
-    loc = U[np.arange(N)[:, None] * m + np.arange(m + 1)[None, :]]                 # (N, m+1, n)
-    hd = ((m / dtm) ** m)[:, None] * np.einsum("k,jkn->jn", wh, loc)               # (N, n)
+    loc = U[local_nodes(N, m)]                                                      # (N, m+1, n)
+    hd = ((m / dtm) ** m)[:, None] * _einsum("k,jkn->jn", _cntdif(m), loc)          # (N, n)
     pwr = 1.0 / (m + 1)
     eqf = np.zeros(N + 1)
     if N > 1:
@@ -506,20 +512,29 @@ def eqdf(mesh: Mesh, U: np.ndarray, periodic: bool = True) -> np.ndarray:
         jj, dtav = max(N - 2, 0), dtm[-1]
     e = np.sum(np.abs((hd[jj] - hd[-1]) / dtav) ** pwr)
     eqf[N] = eqf[N - 1] + dtm[-1] * e
-    if np.all(np.abs(hd) <= EQDF_SMALL):
+    if (np.abs(hd) <= EQDF_SMALL).all():
         eqf = np.arange(N + 1, dtype=float)
     return eqf
 
 
-def _binom(n: int, k: int) -> int:
+@lru_cache(maxsize=None)
+def _cntdif(m: int) -> np.ndarray:
+    """CNTDIF's weights (m + 1,): (-1)^(m-k) C(m, k), the NCOL-th difference (read-only)."""
     from math import comb
-    return comb(n, k)
+    return _frozen(np.array([(-1) ** (m - k) * comb(m, k) for k in range(m + 1)], float))
+
+
+@lru_cache(maxsize=16)
+def local_nodes(ntst: int, ncol: int) -> np.ndarray:
+    """The node indices of each interval, j * NCOL + k, shape (NTST, NCOL + 1) (read-only:
+    shared by every mesh of these sizes, ADAPT's included)."""
+    return _frozen(np.arange(ntst)[:, None] * ncol + np.arange(ncol + 1)[None, :])
 
 
 def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) -> np.ndarray:
     """AUTO's NEWMSH: a mesh (ntst_new + 1,) that divides the range of EQDF uniformly."""
     eqf = eqdf(mesh, U, periodic)
-    if not np.all(np.diff(eqf) > 0):
+    if not (np.diff(eqf) > 0).all():
         # flat pieces (a component with vanishing derivative over an interval):
         # keep the function strictly increasing so the inverse is defined.
         eqf = eqf + 1e-12 * eqf[-1] * np.arange(len(eqf)) / max(len(eqf) - 1, 1)
@@ -538,7 +553,12 @@ def interpolator(mesh: Mesh, tm_new: np.ndarray, ncol_new: int):
     """`interpolate` from `mesh` onto the nodes of (tm_new, ncol_new) as a function of
     U, the weights computed once: ADAPT moves the point, its directions and the phase
     reference with the same ones."""
-    return evaluator(mesh, Mesh(np.asarray(tm_new, float), ncol_new).node_times())
+    return mesh_interpolator(mesh, Mesh(np.asarray(tm_new, float), ncol_new))
+
+
+def mesh_interpolator(mesh: Mesh, new: Mesh):
+    """`interpolator` onto the nodes of the Mesh `new` (whose node times it keeps)."""
+    return evaluator(mesh, new.node_times())
 
 
 def evaluate(mesh: Mesh, U: np.ndarray, t) -> np.ndarray:
@@ -554,7 +574,7 @@ def evaluator(mesh: Mesh, t):
     z = (t - mesh.tm[j]) / mesh.dtm[j]
     W = interpolation_weights(m, z)                                   # (len(t), m+1)
     idx = j[:, None] * m + np.arange(m + 1)[None, :]
-    return lambda U: np.einsum("tk,tk...->t...", W, np.asarray(U)[idx])
+    return lambda U: _einsum("tk,tk...->t...", W, np.asarray(U)[idx])
 
 
 def profile_from_data(t: np.ndarray, U: np.ndarray, ntst: int, ncol: int,

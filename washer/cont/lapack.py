@@ -6,7 +6,7 @@ GESDD, CBLAS DGEMM, DGEMV and DDOT with scipy's DGGEV (scipy's wheels bundle the
 scipy-openblas, LP64, symbols scipy_dggev_ etc.) for csrc/cont/floquet.cpp, which makes
 the calls washer.cont.floquet's deflated pencil makes through numpy and scipy.
 
-    routines()           # (getrf, getrs, geev) as cffi `void *` of washer._cont, or None
+    routines()           # (getrf, getrs, geev, ddot) as cffi `void *` of washer._cont, or None
     floquet_routines()   # (gesdd, dgemm, dgemv, ddot, dggev), or None
 
 None where numpy or scipy links another LAPACK (a distribution's, MKL, Accelerate), the
@@ -21,7 +21,7 @@ from pathlib import Path
 
 #: the bundled OpenBLAS's file names and symbols (64-bit integers); no other is used
 _PATTERN = "*scipy_openblas64_*"
-_SYMBOLS = ("scipy_dgetrf_64_", "scipy_dgetrs_64_", "scipy_dgeev_64_")
+_SYMBOLS = ("scipy_dgetrf_64_", "scipy_dgetrs_64_", "scipy_dgeev_64_", "scipy_cblas_ddot64_")
 _FLOQUET_SYMBOLS = ("scipy_dgesdd_64_", "scipy_cblas_dgemm64_", "scipy_cblas_dgemv64_",
                     "scipy_cblas_ddot64_")
 #: scipy's bundled OpenBLAS (32-bit integers), which scipy.linalg's flapack calls
@@ -62,8 +62,8 @@ def _addresses(path: Path | None, names: tuple, ffi) -> tuple | None:
 
 
 def routines():
-    """(getrf, getrs, geev) of numpy's bundled OpenBLAS as `void *` of washer._cont's
-    ffi, or None (see the module's docstring)."""
+    """(getrf, getrs, geev, cblas ddot) of numpy's bundled OpenBLAS as `void *` of
+    washer._cont's ffi, or None (see the module's docstring)."""
     try:
         from washer._cont import ffi, lib
     except ImportError:

@@ -94,6 +94,36 @@ def slogdet(M: np.ndarray) -> tuple[float, float]:
     return float(sign), float(logdet)
 
 
+def scaled_slogdet(S: np.ndarray) -> tuple[float, float, float] | tuple[float]:
+    """(scale, sign, log|det|) of a real square S: scale = np.linalg.norm(S) (Frobenius),
+    (sign, log|det|) = np.linalg.slogdet(S / scale), (0, -inf) if that is singular; (scale,)
+    alone where scale is 0 or not finite. One compiled call (csrc/cont/dense_lapack.cpp
+    cont_scaled_slogdet: numpy's own CBLAS DDOT and GETRF, numpy's values bit for bit)
+    where numpy's OpenBLAS is found, else numpy's calls."""
+    n = len(S)
+    if _C is None or type(S) is not np.ndarray or S.dtype != np.float64 \
+            or not S.flags.c_contiguous or S.shape != (n, n) or n == 0:
+        scale = float(np.linalg.norm(S))
+        if not math.isfinite(scale) or scale == 0:
+            return (scale,)
+        return (scale,) + slogdet(S / scale)
+    ffi = _C.ffi
+    bufs = _SLOGDET_BUFFERS.__dict__.get(n)
+    if bufs is None:
+        bufs = _SLOGDET_BUFFERS.__dict__[n] = (ffi.new("double[]", 2 * n * n),
+                                               ffi.new("int64_t[]", n), ffi.new("double[3]"))
+    work, ipiv, out = bufs
+    rc = _C.lib.cont_scaled_slogdet(_C.getrf, _C.ddot, n, ffi.from_buffer("double[]", S),
+                                    work, ipiv, out)
+    if rc == 1:
+        return (out[0],)
+    return out[0], out[1], out[2]
+
+
+#: scaled_slogdet's work buffers by size, one set a thread (cffi's call releases the GIL)
+_SLOGDET_BUFFERS = threading.local()
+
+
 #: Up to this many entries the finite checks run on Python floats (numpy's per-call
 #: overhead of isfinite and all exceeds the whole check at these sizes).
 SMALL = 64
@@ -167,12 +197,12 @@ EIG_MAX = 60
 
 
 class _Compiled:
-    """washer._cont's ffi and lib with the addresses of numpy's GETRF, GETRS and GEEV
-    (washer.cont.lapack)."""
+    """washer._cont's ffi and lib with the addresses of numpy's GETRF, GETRS, GEEV and
+    CBLAS DDOT (washer.cont.lapack)."""
 
     def __init__(self, ffi, lib, routines):
         self.ffi, self.lib = ffi, lib
-        self.getrf, self.getrs, self.geev = routines
+        self.getrf, self.getrs, self.geev, self.ddot = routines
 
 
 #: eigenvalues_sorted's buffers by size, one set a thread (cffi's call releases the GIL)

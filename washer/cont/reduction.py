@@ -38,22 +38,38 @@ def pieces(coll, J, border) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     csrc/cont/cont_api.h."""
     m, n, N = coll.mesh.ncol, coll.ndim, coll.mesh.ntst
     npar = coll.npar
-    kept = getattr(J, "assembly", None)
-    if kept is not None and kept[0] is coll:
-        vals = kept[1]                                   # as assembled
-    else:
-        vals = np.empty(coll.nnz)
-        vals[coll._order] = J.data                       # back to assembly order
+    vals = _assembled(coll, J)
     nb = coll._n_blk
     blocks = vals[:nb].reshape(N, m * n, (m + 1) * n)
     npc = N * m * n * npar
     parcols = vals[nb:nb + npc].reshape(npar, N, m * n).transpose(1, 2, 0)
+    return blocks, parcols, _dense_rows(coll, vals, border)
+
+
+def dense_rows(coll, J, border) -> np.ndarray:
+    """`pieces`' third: the dense rows of [J; border] alone (NDIM + NPAR, nx)."""
+    return _dense_rows(coll, _assembled(coll, J), border)
+
+
+def _assembled(coll, J) -> np.ndarray:
+    """J's values in `coll`'s assembly order (those kept by the assembly, else unpacked)."""
+    kept = getattr(J, "assembly", None)
+    if kept is not None and kept[0] is coll:
+        return kept[1]                                   # as assembled
+    vals = np.empty(coll.nnz)
+    vals[coll._order] = J.data                           # back to assembly order
+    return vals
+
+
+def _dense_rows(coll, vals: np.ndarray, border) -> np.ndarray:
     # the boundary conditions (periodic or general) and integral rows, dense
-    # (NBC + NINT + 1 = NDIM + NPAR rows: NPAR = NBC + NINT - NDIM + 1)
+    # (NBC + NINT + 1 = NDIM + NPAR rows: NPAR = NBC + NINT - NDIM + 1), then the border
+    n, npar = coll.ndim, coll.npar
+    start = coll._n_blk + coll.mesh.ntst * coll.mesh.ncol * n * npar
     extra = np.zeros((n + npar, coll.n_x))
-    extra[coll._tail_rows, coll._tail_cols] = vals[nb + npc:]
+    extra[coll._tail_rows, coll._tail_cols] = vals[start:]
     extra[-1] = border
-    return blocks, parcols, extra
+    return extra
 
 
 def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:

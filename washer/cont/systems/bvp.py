@@ -28,7 +28,7 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont import collocation as col
-from washer.cont import reduction
+from washer.cont import linalg, reduction
 from washer.cont.linalg import PERMC_SPEC, SparseFactor
 from washer.cont.differences import par_points, quotient, u_points, u_quotient
 from washer.cont.problem import broadcast_rows
@@ -280,7 +280,7 @@ class CollocationBVP:
                                     npar=self.n_tail)
         self.n_eq = self.coll.n_eq
         thu = self.settings.theta_u(self.ndim)
-        th = np.r_[thu, np.ones(self.n_comp - self.ndim)]
+        th = np.concatenate((thu, np.ones(self.n_comp - self.ndim)))
         # np.kron(w_node, th) of these 1-D arrays, without kron's generic set-up (ADAPT
         # makes a mesh every IAD points)
         self.weights = np.concatenate(((self.coll.w_node[:, None] * th[None, :]).ravel(),
@@ -400,9 +400,9 @@ class CollocationBVP:
         # null vectors too), extended by periodicity only for the orbits themselves
         # ((IPS = 2 or 12) and |ISW| <= 1); a locus of cycles (ISW = 2) extrapolates.
         periodic = self.periodic_mesh and abs(self.settings.ISW) <= 1
-        tm = col.new_mesh(old, W, old.ntst, periodic=periodic)
+        new = col.Mesh(col.new_mesh(old, W, old.ntst, periodic=periodic), old.ncol)
         nt = self.n_tail
-        onto = col.interpolator(old, tm, old.ncol)
+        onto = col.mesh_interpolator(old, new)
 
         def move(v):
             v = np.asarray(v, float)
@@ -413,7 +413,7 @@ class CollocationBVP:
         # interpolated profile (STUPBV), not the interpolant of the old T f: where the
         # mesh moves across a steep layer the two differ by the interpolation error.
         self.set_phase_reference(onto(self.U_old), self.par)
-        self.set_mesh(col.Mesh(tm, old.ncol))
+        self.set_mesh(new)
         self.mesh_changed()
         return tuple(out)
 
@@ -484,11 +484,11 @@ class CollocationBVP:
         AUTO's FNBPBV (the reduced determinant over det P1). (Normalising each row instead
         would divide out the very row that vanishes at a decoupled BP, e.g.
         1 - exp((mu - a) T) of a symmetry-breaking direction.)"""
-        scale = np.linalg.norm(Sc)
-        if not np.isfinite(scale) or scale == 0:
+        got = linalg.scaled_slogdet(Sc)
+        if len(got) == 1:                       # |S|_F is 0 or not finite
             return 0.0
+        _, sign, logdet = got
         n = len(Sc)
-        sign, logdet = np.linalg.slogdet(Sc / scale)
         if n > 1 and not logdet > _bp_void_logdet(n):
             # A determinant whose two smallest singular values are both below rounding
             # (n eps of the largest) has no sign: it is a product of noise, and flips

@@ -417,7 +417,7 @@ class PeriodicOrbits(CollocationBVP):
             try:
                 compiled = self.compiled_factor_of(J, factor)
                 if compiled is not None and self.coll.has_pattern(J):
-                    extra = reduction.pieces(self.coll, J, self.weights * tangent)[2]
+                    extra = reduction.dense_rows(self.coll, J, self.weights * tangent)
                     extra[self.coll.nbc] = self._own_phase_row(x)
                     Sc = compiled.reduced(extra)
                     if Sc is not None:
