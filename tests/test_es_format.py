@@ -105,8 +105,9 @@ def test_gfortran_texts():
 
 
 def test_point_text_is_the_python_one():
-    """A point's b-line, screen line and eigenvalue block in one compiled call equal the
-    Python layout (python_point_text): rows of 0..12 values, real and complex spectra,
+    """A point's b-line, screen line and eigenvalue or Floquet block in one compiled call
+    equal the Python layout (python_point_text): rows of 0..12 values, real and complex
+    spectra and multipliers (their moduli by libm's hypot as Python's complex abs),
     NaN and 3-digit exponents, negative and wide integers, names of 1..4 characters and a
     heading with non-ASCII column titles."""
     from washer.auto.es_format import point_text, python_point_text
@@ -129,10 +130,19 @@ def test_point_text_is_the_python_one():
             z = np.empty(k, dtype=complex)
             z.real, z.imag = rng.choice(pool, k), rng.choice(pool, k)
             eigen = (ints[0], abs(ints[1]), z)
+        if eigen is not None and trial % 7 < 3:
+            # PVSPBV's Floquet block instead (cycles): the stable count given
+            eigen = eigen + (int(rng.integers(0, 13)),)
         head = heads[trial % 3]
         for vals in (values, values.tolist(), None):
             got = point_text(*ints, name, vals, head, eigen)
             assert got == python_point_text(*ints, name, vals, head, eigen), (ints, name, vals)
+    d = point_text(1, 2, 0, 0, "", None, "", (1, 2, np.array([1.0, -0.6 + 0.8j, 3e-5]), 2))[1]
+    assert d.splitlines() == [
+        "   1     2         Multipliers:     Stable:   2",
+        "   1     2         Multiplier  1    1.00000E+00   0.00000E+00  Abs. Val.   1.00000E+00",
+        "   1     2         Multiplier  2   -6.00000E-01   8.00000E-01  Abs. Val.   1.00000E+00",
+        "   1     2         Multiplier  3    3.00000E-05   0.00000E+00  Abs. Val.   3.00000E-05"]
     b, d = point_text(1, -2, 0, 0, "", [0.5], "", (1, 2, [-1.0 + 2j, -1.0 - 2j]))
     assert b == "   1    -2   0    0  5.0000000000E-001\n"
     assert d.splitlines() == ["   1    -2        0   5.00000E-01", "",

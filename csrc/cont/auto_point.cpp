@@ -1,5 +1,7 @@
 // A continuation point's lines in AUTO-07p's b- and d-files (io.f90 WRLINE, ae.f90
-// PRINTEIG): see cont_auto_point in cont_api.h. The numbers' text is es_format.cpp's.
+// PRINTEIG, bvp.f90 PVSPBV's Floquet block): see cont_auto_point in cont_api.h. The
+// numbers' text is es_format.cpp's.
+#include <cmath>
 #include <cstring>
 
 #include "cont.h"
@@ -31,11 +33,18 @@ int put_str(char *out, const char *s) {
     return len;
 }
 
+// The start of a line of a point's block in the d-file: I4 br, I6 pt, then `label`.
+int block_line(char *out, int br, int pt, const char *label) {
+    int len = put_int(out, br, 4);
+    len += put_int(out + len, pt, 6);
+    return len + put_str(out + len, label);
+}
+
 }  // namespace
 
 extern "C" int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const double *v,
                                int n, const char *dhead, int ebr, int ept, const double *eig,
-                               int neig, int cplx, char *out, int *blen) {
+                               int neig, int cplx, int nstable, char *out, int *blen) {
     int len = 0;
     if (n >= 0) {
         // b-file (WRLINE): I4, I6, I4, I5, ES19.10E3 each value
@@ -64,21 +73,34 @@ extern "C" int cont_auto_point(int br, int pt, int ty, int lab, const char *name
             len += es_field(v[j], 14, 5, 0, out + len);
         out[len++] = '\n';
     }
-    if (neig >= 0) {
+    if (neig >= 0 && nstable >= 0) {
+        // PVSPBV's Floquet multipliers: the stable count given, then each multiplier's Re,
+        // Im and modulus (ES14.5; the modulus is Python's abs of a complex, libm's hypot)
+        len += block_line(out + len, ebr, ept, "         Multipliers:     Stable:");
+        len += put_int(out + len, nstable, 4);
+        for (int k = 0; k < neig; ++k) {
+            const double re = cplx ? eig[2 * k] : eig[k], im = cplx ? eig[2 * k + 1] : 0.0;
+            out[len++] = '\n';
+            len += block_line(out + len, ebr, ept, "         Multiplier");
+            len += put_int(out + len, k + 1, 3);
+            out[len++] = ' ';
+            len += es_field(re, 14, 5, 0, out + len);
+            len += es_field(im, 14, 5, 0, out + len);
+            len += put_str(out + len, "  Abs. Val.");
+            len += es_field(std::hypot(re, im), 14, 5, 0, out + len);
+        }
+        out[len++] = '\n';
+    } else if (neig >= 0) {
         // PRINTEIG: the stable count (Re < 0), then each eigenvalue's Re and Im (ES14.5)
         int stable = 0;
         for (int k = 0; k < neig; ++k)
             stable += (cplx ? eig[2 * k] : eig[k]) < 0.0;
         out[len++] = '\n';
-        len += put_int(out + len, ebr, 4);
-        len += put_int(out + len, ept, 6);
-        len += put_str(out + len, "         Eigenvalues  :   Stable:");
+        len += block_line(out + len, ebr, ept, "         Eigenvalues  :   Stable:");
         len += put_int(out + len, stable, 4);
         for (int k = 0; k < neig; ++k) {
             out[len++] = '\n';
-            len += put_int(out + len, ebr, 4);
-            len += put_int(out + len, ept, 6);
-            len += put_str(out + len, "         Eigenvalue");
+            len += block_line(out + len, ebr, ept, "         Eigenvalue");
             len += put_int(out + len, k + 1, 3);
             out[len++] = ':';
             len += es_field(cplx ? eig[2 * k] : eig[k], 14, 5, 0, out + len);

@@ -135,14 +135,18 @@ int cont_format_es(const double *v, int k, int m, int per_line, int indent, int 
  * ES14.5, a newline); with neig >= 0 PRINTEIG's block: a newline, I4 ebr, I6 ept,
  * '         Eigenvalues  :   Stable:' and I4 the count of real parts below 0, then per
  * eigenvalue a newline, I4 ebr, I6 ept, '         Eigenvalue', I3 its number, ':', its
- * real and imaginary parts in ES14.5, and a final newline. eig: neig real parts (cplx = 0,
+ * real and imaginary parts in ES14.5, and a final newline; with neig >= 0 and nstable >= 0
+ * instead PVSPBV's Floquet block: I4 ebr, I6 ept, '         Multipliers:     Stable:' and
+ * I4 nstable, then per multiplier a newline, I4 ebr, I6 ept, '         Multiplier', I3 its
+ * number, a blank, its real and imaginary parts and its modulus (hypot) in ES14.5, the
+ * modulus after '  Abs. Val.', and a final newline. eig: neig real parts (cplx = 0,
  * imaginary parts 0.0) or neig (re, im) pairs (cplx = 1). Integers are right-justified
  * and never cut. out: the b text, then the d text, then a NUL; *blen the b text's length;
  * returns the whole length. out holds at least 80 + 20 n + strlen(name) + strlen(dhead) +
- * 8 * 14 + 40 + neig * 70 characters. */
+ * 8 * 14 + 40 + neig * 90 characters. */
 int cont_auto_point(int br, int pt, int ty, int lab, const char *name, const double *v, int n,
                     const char *dhead, int ebr, int ept, const double *eig, int neig, int cplx,
-                    char *out, int *blen);
+                    int nstable, char *out, int *blen);
 
 /* A small dense matrix's LU and eigenvalues by numpy's own LAPACK (csrc/cont/dense_lapack.cpp;
  * the routines' addresses from washer.cont.lapack: numpy's bundled OpenBLAS, 64-bit integers),

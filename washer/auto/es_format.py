@@ -129,7 +129,15 @@ def python_point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dh
         v = [float(x) for x in values]
         b = f"{br:4d}{pt:6d}{ty:4d}{lab:5d}{python_es_text(v, 19, 10, True)}\n"
         d = f"{dhead}{br:4d}{pt:6d} {name:>3}{lab:5d}{python_es_text(v[:8], 14, 5)}\n"
-    if eigen is not None:
+    if eigen is not None and len(eigen) == 4:
+        ebr, ept, mults, n_stable = eigen
+        z = np.asarray(mults, dtype=complex).tolist()
+        lines = [f"{ebr:4d}{ept:6d}         Multipliers:     Stable:{n_stable:4d}"]
+        lines += [f"{ebr:4d}{ept:6d}         Multiplier{k:3d} "
+                  f"{python_es_text([x.real, x.imag], 14, 5)}"
+                  f"  Abs. Val.{python_es_text([_modulus(x)], 14, 5)}" for k, x in enumerate(z, 1)]
+        d += "\n".join(lines) + "\n"
+    elif eigen is not None:
         ebr, ept, eig = eigen
         z = np.asarray(eig, dtype=complex).tolist()
         stable = sum(1 for x in z if x.real < 0)
@@ -139,6 +147,15 @@ def python_point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dh
                   for k, x in enumerate(z, 1)]
         d += "\n".join(lines) + "\n"
     return b, d
+
+
+def _modulus(z: complex) -> float:
+    """|z| as Python's abs of a complex takes it (libm's hypot, as cont_auto_point), inf
+    where that overflows (abs raises there, hypot returns inf)."""
+    try:
+        return abs(z)
+    except OverflowError:
+        return math.inf
 
 
 _UTF8: dict = {}           # `_utf8`'s bytes by text
@@ -154,8 +171,10 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
     and screen heading, as given) and the screen line (I4 br, I6 pt, a blank, `name`
     right-justified in 3, I5 lab, the first 8 values in ES14.5). eigen: (br, pt,
     eigenvalues) of PRINTEIG's block (the count of real parts below 0, then each
-    eigenvalue's real and imaginary part in ES14.5) that follows in d, or None. Every
-    line ends with a newline; integers are right-justified, never cut."""
+    eigenvalue's real and imaginary part in ES14.5) that follows in d, or (br, pt,
+    multipliers, stable count) of PVSPBV's Floquet block (the count, then each
+    multiplier's real and imaginary part and modulus in ES14.5), or None. Every line ends
+    with a newline; integers are right-justified, never cut."""
     if _lib is None:
         return python_point_text(br, pt, ty, lab, name, values, dhead, eigen)
     n, v = -1, _ffi.NULL
@@ -166,9 +185,11 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
             a = np.ascontiguousarray(values, dtype=float).ravel()
             n, v = a.size, _ffi.from_buffer("double[]", a)
     ebr = ept = 0
-    neig, e, cplx = -1, _ffi.NULL, 0
+    neig, e, cplx, nstable = -1, _ffi.NULL, 0, -1
     if eigen is not None:
-        ebr, ept, eig = eigen
+        ebr, ept, eig = eigen[:3]
+        if len(eigen) == 4:
+            nstable = eigen[3]
         if type(eig) is np.ndarray and eig.dtype == np.complex128:
             a = np.ascontiguousarray(eig).view(np.float64)
             cplx = 1
@@ -180,12 +201,12 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
         neig = a.size // 2 if cplx else a.size
         e = _ffi.from_buffer("double[]", a)
     nm, dh = _utf8(name), _utf8(dhead)
-    size = 80 + 20 * max(n, 0) + len(nm) + len(dh) + 8 * 14 + 40 + 70 * max(neig, 0)
+    size = 80 + 20 * max(n, 0) + len(nm) + len(dh) + 8 * 14 + 40 + 90 * max(neig, 0)
     buf = _buffer(size + 1)
     blen = _lengths()
     try:
         total = _lib.cont_auto_point(br, pt, ty, lab, nm, v, n, dh, ebr, ept, e, neig, cplx,
-                                     buf, blen)
+                                     nstable, buf, blen)
     except TypeError:           # items a double cannot take: numpy's view
         return point_text(br, pt, ty, lab, name, np.asarray(values, dtype=float), dhead, eigen)
     b = _ffi.unpack(buf, total)

@@ -510,7 +510,8 @@ class OutputFiles:
     def row(self, r: Row, eigen=None) -> None:
         """One b-file line (WRLINE, unit 7), after any pending header; the d-file gets
         the same point in screen format (unit 9), opening the point's block, and with
-        eigen = (br, pt, eigenvalues) PRINTEIG's block after it (`eigenvalues`)."""
+        eigen = (br, pt, eigenvalues) PRINTEIG's block after it (`eigenvalues`), with
+        eigen = (br, pt, multipliers, stable count) PVSPBV's Floquet block (`multipliers`)."""
         bar = D_BAR + "\n" if self._d_points else ""
         self._d_points += 1
         if self._heading[0] != self.column_titles:
@@ -531,12 +532,7 @@ class OutputFiles:
     def multipliers(self, br: int, pt: int, mults, n_stable: int) -> None:
         """AUTO's Floquet block in the d-file (PVSPBV): 'Multipliers:     Stable:' and one
         'Multiplier  k ' line per multiplier with real, imaginary part and modulus (ES14.5)."""
-        mults = np.asarray(mults, dtype=complex)
-        lines = [f"{br:4d}{pt:6d}         Multipliers:     Stable:{n_stable:4d}"]
-        text = fmt_es_many([v for z in mults.tolist() for v in (z.real, z.imag, abs(z))], 14, 5)
-        lines += [f"{br:4d}{pt:6d}         Multiplier{k:3d} {text[42 * (k - 1):42 * k - 14]}"
-                  f"  Abs. Val.{text[42 * k - 14:42 * k]}" for k in range(1, len(mults) + 1)]
-        self.diag("\n".join(lines))
+        self.diag(point_text(0, 0, 0, 0, "", None, "", (br, pt, mults, n_stable))[1])
 
     def record(self, rec: Record) -> None:
         self._append(self.s_path, record_text(rec))

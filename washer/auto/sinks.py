@@ -82,13 +82,14 @@ class FileSink:
         if lab.lab:
             self.files.record(lab)
         st = lab.stability
-        if st is not None and st.kind == "eigenvalues":
+        if st is None:
+            self.files.row(_row(lab))
+        elif st.kind == "eigenvalues":
             self.files.row(_row(lab), (lab.br, (lab.pt - 1) % 9999 + 1, st.values))
             st = None
         else:
-            self.files.row(_row(lab))
-        if st is not None:
-            self.files.multipliers(lab.br, (lab.pt - 1) % 9999 + 1, st.values, st.n_stable)
+            # the Floquet block in the row's own d text (one write)
+            self.files.row(_row(lab), (lab.br, (lab.pt - 1) % 9999 + 1, st.values, st.n_stable))
             for note in st.notes:
                 self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d} NOTE:{note}")
         if "l1" in lab.info:
