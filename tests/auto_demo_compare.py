@@ -80,7 +80,7 @@ VARIANT_OF = {"cirf77": "cir", "dd2f77": "dd2", "expf77": "exp", "intf77": "int"
               "shef77": "she", "revf77": "rev",
               "wavf77": "wav", "sanf77": "san", "pclc": "pcl",
               "pvlf77": "pvl", "opsf77": "ops",
-              "mtnf77": "mtn", "kprf77": "kpr"}
+              "mtnf77": "mtn", "kprf77": "kpr", "fhhf77": "fhh"}
 
 
 
@@ -294,7 +294,7 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     base = VARIANT_OF.get(demo)
     if base is not None:
         # a variant with its own user file (NAME.f, NAME.c) runs without the base's NAME.f90
-        own = [f"{base}.f90"] if any((src / f"{base}{x}").exists() for x in (".f", ".c")) else []
+        own = [f"{f.stem}.f90" for f in src.iterdir() if f.suffix in (".f", ".c")]
         shutil.copytree(DEMOS / base, work, ignore=shutil.ignore_patterns("autoref*", *own))
         shutil.copytree(src, work, ignore=shutil.ignore_patterns("autoref*"),
                         dirs_exist_ok=True)

@@ -63,6 +63,9 @@ EXPECTED_FAIL = {
               "Newton, with JAC = 1, takes it and shrinks its steps, so its run 1 ends before "
               "psi_15 = 0 and its script stops at run 3 (no UZ1); ours differences the "
               "parameter derivatives of HomCont's orbits and runs as with mtn.f90",
+    "fhhf77": "fhh's fhn.f leaves DFDP unset while the constants ask for JAC = 1: AUTO's run 2 "
+              "(PAR(2) free) ends MX at its second point and its script stops at run 3; ours "
+              "differences HomCont's parameter derivatives and runs the whole script as with fhn.f90",
     "kprf77": "the same as kpr's (AUTO's b-files with kpr.f are its b-files with kpr.f90)",
     "revf77": "the same as rev's (AUTO's b-files with rev.f are its b-files with rev.f90)",
     "kpr": "run 10, continued past a zero of PSI 9 (the equilibrium's leading "
