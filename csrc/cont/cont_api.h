@@ -196,6 +196,22 @@ int cont_floquet_deflated(void *const *routines, int n, const double *P0, const 
  * distance nan: the Python raises), -1 (n <= 0). */
 int cont_multipliers_sorted(int n, const double *mu, int trivial, double *out);
 
+/* The test functions of the fold locus of equilibria at a point (washer.cont.systems.fold;
+ * csrc/cont/fold_tests.cpp), numpy's values bit for bit. routines: numpy's GESDD, CBLAS
+ * DDOT and GEEV (ILP64; washer.cont.lapack.routines). A (n x n, row stride lda) = f_u.
+ * w (n): the left null vector of A, the last right singular vector of A^T by GESDD (JOBZ
+ * 'A'), turned where <w, w_ref> >= 0 fails. With phi (n) not NULL, out[0] = <w, phi> (BT);
+ * with F (3 x n: f at u + h phi, u, u - h phi) not NULL, out[1] = <w, (F[0] - 2 F[1] +
+ * F[2]) / h2> (CP); with geev_lwork not NULL (GEEV's workspace, asked for where <= 0 and
+ * kept), out[2] the product of the real parts of the eigenvalues of A with Im > 0 and
+ * |Im| > imag_tol (1 + |lambda|), in the order of cont_eigenvalues_sorted, out[3] 1 where
+ * there is one, else 0 (ZH). lwork (1): GESDD's workspace, asked for where <= 0 and kept.
+ * Returns 0, 1 (GESDD failed or a singular value nan), 2 (A not finite for GEEV), 3 (GEEV
+ * failed), 4 (its workspace beyond 64 n), -1 (bad sizes). */
+int cont_fold_tests(void *const *routines, int n, const double *A, int lda,
+                    const double *w_ref, const double *phi, const double *F, double h2,
+                    double imag_tol, double *w, double *out, int64_t *lwork, int *geev_lwork);
+
 /* The unit tangent of a dense algebraic point (washer.cont.linalg.unit_tangent): border (n) =
  * theta * ref elementwise, cont_dense_lu of [J; border] (J (n - 1) x n, row stride ldj) into
  * lu (n * n + n doubles: the factors, then room for the norm's terms), ipiv, sign_logdet and

@@ -13,16 +13,14 @@
 #include <vector>
 #include "cont.h"
 #include "numpy_sum.h"
+#include "numpy_cabs.h"
+#include "numpy_svd.h"
 
 namespace {
 typedef int64_t int64;          // numpy's OpenBLAS (scipy_openblas64_)
 typedef int int32;              // scipy's (scipy_openblas, LP64)
 enum { RowMajor = 101, NoTrans = 111, Trans = 112 };   // CBLAS's enumerations
 
-typedef void (*gesdd_t)(const char *jobz, const int64 *m, const int64 *n, double *a,
-                        const int64 *lda, double *s, double *u, const int64 *ldu, double *vt,
-                        const int64 *ldvt, double *work, const int64 *lwork, int64 *iwork,
-                        int64 *info, size_t);
 typedef void (*gemm_t)(int order, int ta, int tb, int64 m, int64 n, int64 k, double alpha,
                        const double *a, int64 lda, const double *b, int64 ldb, double beta,
                        double *c, int64 ldc);
@@ -43,7 +41,6 @@ double norm(dot_t dot, int64 n, const double *x) { return numpy_norm(dot, n, x);
 extern "C" int cont_floquet_deflated(void *const *routines, int n, const double *P0,
                                      const double *P1, double *mu, int64_t *lwork) {
     if (n < 2) return 1;
-    gesdd_t gesdd = reinterpret_cast<gesdd_t>(routines[0]);
     gemm_t gemm = reinterpret_cast<gemm_t>(routines[1]);
     gemv_t gemv = reinterpret_cast<gemv_t>(routines[2]);
     dot_t dot = reinterpret_cast<dot_t>(routines[3]);
@@ -59,21 +56,9 @@ extern "C" int cont_floquet_deflated(void *const *routines, int n, const double 
     for (size_t k = 0; k < nn; ++k) C1[k] = -P1[k];
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) D[i + (size_t)j * n] = P0[(size_t)i * n + j] - C1[(size_t)i * n + j];
-    // np.linalg.svd(D): GESDD with JOBZ = 'A' and the workspace GESDD asks for
-    int64 m = n, info = 0;
-    std::vector<int64> iwork(8 * (size_t)n);
-    if (lwork[0] <= 0) {
-        double query = 0.0;
-        int64 q = -1;
-        gesdd("A", &m, &m, D, &m, s, U, &m, VT, &m, &query, &q, iwork.data(), &info, 1);
-        if (info != 0) return 2;
-        lwork[0] = (int64)query;
-        if (lwork[0] == 0) lwork[0] = 1;
-    }
-    std::vector<double> work(lwork[0]);
-    int64 lw = lwork[0];
-    gesdd("A", &m, &m, D, &m, s, U, &m, VT, &m, work.data(), &lw, iwork.data(), &info, 1);
-    if (info != 0) return 2;
+    // np.linalg.svd(D)
+    int64 m = n;
+    if (numpy_gesdd(routines[0], n, D, s, U, VT, lwork) != 0) return 2;
     // numpy's vt (row-major) is VT's Fortran array read across: vt[i][j] = VT[i + j n],
     // i.e. VT's buffer is vt^T row-major = H1 = vt.T row-major. numpy's matmul C0 @ vt.T
     // passes vt's buffer with TransB (vt.T is not C-contiguous), as here.
@@ -148,22 +133,6 @@ extern "C" int cont_floquet_deflated(void *const *routines, int n, const double 
 }
 
 namespace {
-// numpy's absolute value of a complex number (its SIMD loop, which contiguous arrays take
-// on this machine): the larger part times sqrt(fma(r, r, 1)), r the smaller over the
-// larger; inf if a part is infinite, else nan if one is nan, 0 where both are 0. It is
-// not libm's hypot (they differ in the last bit for about a third of random numbers),
-// and the order of the multipliers is decided on its values.
-double numpy_cabs(double re, double im) {
-    re = std::fabs(re);
-    im = std::fabs(im);
-    if (std::isinf(re) || std::isinf(im)) return INFINITY;
-    if (std::isnan(re) || std::isnan(im)) return NAN;
-    double big = re > im ? re : im, small = re > im ? im : re;
-    if (big == 0.0) return 0.0;
-    double r = small / big;
-    return big * std::sqrt(std::fma(r, r, 1.0));
-}
-
 // numpy's sort order of floats: nan after every number
 bool before(double a, double b) { return a < b || (b != b && a == a); }
 }  // namespace

@@ -1,12 +1,14 @@
 """numpy's and scipy's own LAPACK and BLAS routines reached from the compiled engine:
-the addresses of GETRF, GETRS and GEEV in the OpenBLAS numpy is linked with (its wheels
-bundle scipy-openblas, ILP64, whose symbols are scipy_dgetrf_64_ etc.), for
-csrc/cont/dense_lapack.cpp, which calls them as numpy.linalg's gufuncs do; and numpy's
+the addresses of GETRF, GETRS, GEEV, GESDD and CBLAS DDOT in the OpenBLAS numpy is linked
+with (its wheels bundle scipy-openblas, ILP64, whose symbols are scipy_dgetrf_64_ etc.),
+for csrc/cont/dense_lapack.cpp and fold_tests.cpp, which call them as numpy.linalg's
+gufuncs and ndarray.dot do; and numpy's
 GESDD, CBLAS DGEMM, DGEMV and DDOT with scipy's DGGEV (scipy's wheels bundle their own
 scipy-openblas, LP64, symbols scipy_dggev_ etc.) for csrc/cont/floquet.cpp, which makes
 the calls washer.cont.floquet's deflated pencil makes through numpy and scipy.
 
-    routines()           # (getrf, getrs, geev, ddot) as cffi `void *` of washer._cont, or None
+    routines()           # (getrf, getrs, geev, ddot, gesdd) as cffi `void *` of washer._cont,
+                         # or None
     floquet_routines()   # (gesdd, dgemm, dgemv, ddot, dggev), or None
 
 None where numpy or scipy links another LAPACK (a distribution's, MKL, Accelerate), the
@@ -21,7 +23,8 @@ from pathlib import Path
 
 #: the bundled OpenBLAS's file names and symbols (64-bit integers); no other is used
 _PATTERN = "*scipy_openblas64_*"
-_SYMBOLS = ("scipy_dgetrf_64_", "scipy_dgetrs_64_", "scipy_dgeev_64_", "scipy_cblas_ddot64_")
+_SYMBOLS = ("scipy_dgetrf_64_", "scipy_dgetrs_64_", "scipy_dgeev_64_", "scipy_cblas_ddot64_",
+            "scipy_dgesdd_64_")
 _FLOQUET_SYMBOLS = ("scipy_dgesdd_64_", "scipy_cblas_dgemm64_", "scipy_cblas_dgemv64_",
                     "scipy_cblas_ddot64_")
 #: scipy's bundled OpenBLAS (32-bit integers), which scipy.linalg's flapack calls
@@ -62,13 +65,13 @@ def _addresses(path: Path | None, names: tuple, ffi) -> tuple | None:
 
 
 def routines():
-    """(getrf, getrs, geev, cblas ddot) of numpy's bundled OpenBLAS as `void *` of
+    """(getrf, getrs, geev, cblas ddot, gesdd) of numpy's bundled OpenBLAS as `void *` of
     washer._cont's ffi, or None (see the module's docstring)."""
     try:
         from washer._cont import ffi, lib
     except ImportError:
         return None
-    if not hasattr(lib, "cont_dense_lu"):
+    if not hasattr(lib, "cont_dense_lu") or not hasattr(lib, "cont_fold_tests"):
         return None
     import numpy.linalg  # noqa: F401  (numpy's own load of the library comes first)
     return _addresses(library_file(), _SYMBOLS, ffi)

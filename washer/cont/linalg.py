@@ -197,12 +197,14 @@ EIG_MAX = 60
 
 
 class _Compiled:
-    """washer._cont's ffi and lib with the addresses of numpy's GETRF, GETRS, GEEV and
-    CBLAS DDOT (washer.cont.lapack)."""
+    """washer._cont's ffi and lib with the addresses of numpy's GETRF, GETRS, GEEV, CBLAS
+    DDOT and GESDD (washer.cont.lapack)."""
 
     def __init__(self, ffi, lib, routines):
         self.ffi, self.lib = ffi, lib
-        self.getrf, self.getrs, self.geev, self.ddot = routines
+        self.getrf, self.getrs, self.geev, self.ddot, self.gesdd = routines
+        # cont_fold_tests' routines (GESDD, DDOT, GEEV), kept alive with this object
+        self.fold_routines = ffi.new("void *[3]", [self.gesdd, self.ddot, self.geev])
 
 
 #: eigenvalues_sorted's buffers by size, one set a thread (cffi's call releases the GIL)
@@ -222,6 +224,12 @@ def _dense() -> _Compiled | None:
 
 #: the compiled calls of this process (`_dense`), or None
 _C: _Compiled | None = _dense()
+
+
+def compiled_lapack() -> _Compiled | None:
+    """The compiled dense LAPACK calls of this process (washer._cont's ffi and lib, the
+    routines' addresses), or None where numpy.linalg's gufuncs serve."""
+    return _C
 
 
 #: GEEV's workspace in eigenvalues_sorted's buffers: EIG_WORK n doubles (its optimum

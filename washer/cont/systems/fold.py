@@ -18,9 +18,68 @@ import numpy as np
 from washer.cont.codes import Code
 from washer.cont.normal_form import FD2_STEP
 from washer.cont.system import StartData, register
-from washer.cont.linalg import null_vectors
+from washer.cont.linalg import EIG_MAX, compiled_lapack, null_vectors
 from washer.cont.systems._loci import LocusSystem
-from washer.cont.systems.equilibrium import eigenvalues_sorted, is_complex
+from washer.cont.systems.equilibrium import IMAG_TOL, eigenvalues_sorted, is_complex
+
+#: GESDD's and GEEV's workspaces of cont_fold_tests by size (functions of n alone; asked
+#: for at the first call of a size)
+_WORKSPACES: dict = {}
+
+
+def fold_tests(M: np.ndarray, n: int, w_ref: np.ndarray, phi=None, F=None, zh: bool = False):
+    """The fold locus's left null vector and test values at a point: (w, BT, CP, ZH).
+
+    M : a float array whose leading (n, n) block is A = f_u (the extended Jacobian itself).
+    w (n,): the left null vector of A, the right singular vector of A^T of its smallest
+    singular value, oriented so that <w, w_ref> >= 0 (w_ref: the previous point's).
+    BT = <w, phi> where phi (n,) is given; CP = <w, (F[0] - 2 F[1] + F[2]) / h^2> where F
+    (3, n), f at u + h phi, u and u - h phi with h = FD2_STEP, is given (the quadratic
+    coefficient <w, B(phi, phi)>); ZH, where asked, the product of the real parts of A's
+    complex pairs (Im > 0), None where A has none. The values not asked for are None.
+    In one compiled call (cont_fold_tests: numpy's GESDD, DDOT and GEEV called as
+    numpy.linalg.svd, ndarray.dot and eigvals call them, the values of the numpy
+    expressions below bit for bit) where numpy's bundled OpenBLAS is reachable; else by
+    numpy. LinAlgError where the SVD or the eigenvalues fail, as numpy raises it."""
+    C = compiled_lapack()
+    if C is not None and 0 < n <= EIG_MAX and type(M) is np.ndarray and M.dtype == np.float64 \
+            and M.ndim == 2 and M.flags.c_contiguous and M.shape[0] >= n and M.shape[1] >= n \
+            and (F is None or F.shape == (3, n)) and w_ref.shape == (n,):
+        ffi, lib = C.ffi, C.lib
+        got = _WORKSPACES.get(n)
+        if got is None:
+            got = _WORKSPACES[n] = (ffi.new("int64_t[1]"), ffi.new("int[1]"))
+        w, out, buf = np.empty(n), np.zeros(4), ffi.from_buffer
+        ptr = ffi.cast("double *", 0)
+        status = lib.cont_fold_tests(
+            C.fold_routines, n, buf("double[]", M), M.shape[1],
+            buf("double[]", np.ascontiguousarray(w_ref, dtype=float)),
+            ptr if phi is None else buf("double[]", np.ascontiguousarray(phi, dtype=float)),
+            ptr if F is None else buf("double[]", np.ascontiguousarray(F, dtype=float)),
+            FD2_STEP ** 2, IMAG_TOL, buf("double[]", w), buf("double[]", out), got[0],
+            got[1] if zh else ffi.cast("int *", 0))
+        if status == 0:
+            o = out.tolist()
+            return (w, None if phi is None else o[0], None if F is None else o[1],
+                    o[2] if zh and o[3] else None)
+        if status == 1:
+            raise np.linalg.LinAlgError("SVD did not converge")
+        if status == 2:
+            raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+        if status == 3:
+            raise np.linalg.LinAlgError("Eigenvalues did not converge")
+        # (4: GEEV's workspace beyond the call's, -1: numpy's calls below)
+    A = M[:n, :n]
+    w = null_vectors(A.T, 1)[:, 0]
+    w = w if w @ w_ref >= 0 else -w
+    bt = None if phi is None else float(w @ phi)
+    cp = None if F is None else float(w @ ((F[0] - 2 * F[1] + F[2]) / FD2_STEP ** 2))
+    z = None
+    if zh:
+        lam = eigenvalues_sorted(A)
+        pairs = lam[is_complex(lam) & (lam.imag > 0)]
+        z = float(np.prod(pairs.real)) if pairs.size else None
+    return w, bt, cp, z
 
 
 @register(1, 2, "LP")
@@ -79,8 +138,8 @@ class FoldSystem(LocusSystem):
         return J
 
     def _w(self, A):
-        w = null_vectors(A.T, 1)[:, 0]
-        return w if w @ self.w_ref >= 0 else -w
+        """The left null vector of A (n, n) oriented by the last point's (`fold_tests`)."""
+        return fold_tests(A, self.ndim, self.w_ref)[0]
 
     #: (x's bytes, the w_ref it was oriented by, w) of the last test_functions call: the
     #: left null vector at the point update moves to, as the tests computed it
@@ -104,19 +163,17 @@ class FoldSystem(LocusSystem):
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
         n = self.ndim
         u, phi = x[:n], x[n:2 * n]
-        p = self._p(x)
-        A = np.asarray(J)[:n, :n]
         out = self._lp_bp(tangent, factor, codes)
-        w = self._w(A)
-        self._w_at = (x.tobytes(), self.w_ref, w)
+        F = None
         if Code.CP in codes:
             h = FD2_STEP
-            F = self.problem.func_many(np.array([u + h * phi, u, u - h * phi]), p)
-            out[Code.CP] = float(w @ ((F[0] - 2 * F[1] + F[2]) / h ** 2))
+            F = self.problem.func_many(np.array([u + h * phi, u, u - h * phi]), self._p(x))
+        w, bt, cp, zh = fold_tests(np.asarray(J), n, self.w_ref, phi, F, Code.ZH in codes)
+        self._w_at = (x.tobytes(), self.w_ref, w)
+        if Code.CP in codes:
+            out[Code.CP] = cp
         if Code.BT in codes:
-            out[Code.BT] = float(w @ phi)
+            out[Code.BT] = bt
         if Code.ZH in codes:
-            lam = eigenvalues_sorted(A)
-            pairs = lam[is_complex(lam) & (lam.imag > 0)]
-            out[Code.ZH] = float(np.prod(pairs.real)) if pairs.size else None
+            out[Code.ZH] = zh
         return out
