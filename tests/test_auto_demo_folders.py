@@ -91,10 +91,6 @@ EXPECTED_FAIL = {
            "equilibrium's stable pair crosses the imaginary axis: the size of the "
            "discretisation error there (tests/test_homoclinic.py)",
     "cirf77": "the same as cir's (AUTO's b-files with cir.f are its b-files with cir.f90)",
-    "nbody": "after each BP of the circle of equilibria our next step takes one Newton "
-             "iteration more than AUTO's (whose predictor is the secant of its last, tiny, "
-             "location step), so our steps stay at 2/3 of AUTO's and NMX = 2000 ends the "
-             "first run before L3's BP: the branch of the collinear points is not computed",
     "ppp": "AUTO's artefacts (tests/test_ppp_exact.py): its GH at PT 4 of the "
            "switched Hopf loci where the exact l1 is -0.662 (its test reads a Newton "
            "residual), and its BP of cycles 7.0e-4 before HB7, where the family ends "

@@ -240,7 +240,8 @@ def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
 
 
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
-           from_last: bool = False, position=None, resolution: float = 0.0):
+           from_last: bool = False, position=None, resolution: float = 0.0,
+           trace: list | None = None):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
@@ -257,6 +258,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     resolution: the smallest change of the test Newton's tolerance resolves between two
     points (a user value's, `first_zero`); a bracket whose ends differ by no more is no
     jump of the test, whatever its width.
+    trace: a list to which every converged trial (point, s) is appended, in order.
     Returns (point, s) or raises LocationFailed.
 
     AUTO stops as soon as a correction of s is below the tolerance; a
@@ -313,6 +315,8 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
             raise
         if q is None or not np.isfinite(q):
             raise LocationFailed("test function undefined at a trial point")
+        if trace is not None:
+            trace.append((pt, s_new))
         if q == 0:
             best = (pt, s_new, q)
             break
@@ -512,7 +516,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             refresh(target)
             found = (target, key)
             located[key] = span
+            near_sp = [(prev, 0.0)]
             continue
+        trace: list = []
         try:
             sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
                               prev.tests[key], target.tests[key], span, settings,
@@ -520,7 +526,8 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                               position=(lambda p: signed_distance(p.x - prev.x, span, inner))
                               if sphere else
                               (lambda p: inner(p.x - prev.x, prev.step_direction)),
-                              resolution=0.0 if resolution is None else resolution(key))
+                              resolution=0.0 if resolution is None else resolution(key),
+                              trace=trace)
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other
@@ -530,6 +537,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             note(f"NOTE:Possible special point ({_key_name(key, curve_type)}: {exc})")
             continue
         refresh(sp)
+        near_sp = [(prev, 0.0), (target, span)] + trace
         found = (sp, key)
         located[key] = s_sp
         target, span = sp, s_sp
@@ -571,7 +579,15 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         best = min([key] + same, key=_priority)
     if best != key:
         same = [k for k in same if k != best] + [key]
-    if best in (Code.BP, Code.BPC) or secant:
+    tangent = branch_point_tangent(sp, span, near_sp, tol / 10, inner) \
+        if sphere and best in (Code.BP, Code.BPC) else None
+    if tangent is not None:
+        # AUTO's direction there (`branch_point_tangent`): the point's tangent (its
+        # tests' border, the direction written, the one a branch switch starts from:
+        # AUTO's STBIF stores this UDOT) and the next step's predictor.
+        sp.tangent = tangent
+        refresh(sp)
+    elif best in (Code.BP, Code.BPC) or secant:
         # At a branch point G_x has a two-dimensional null space: the bordered
         # tangent solve is singular there, and its solution may point along the other
         # branch (cosine 4e-4 with the branch's direction was measured at a BP of
@@ -587,6 +603,46 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     # where sp lies short of its zero, and label the same point twice.
     clear_located(prev, sp, span, [best, key] + same + users, settings)
     return sp, best, same
+
+
+def branch_point_tangent(sp, s_sp: float, points: list, tol: float, inner):
+    """The followed branch's unit tangent at a branch point sp, at s_sp on the previous
+    point's arclength coordinate s, or None: the derivative at s_sp of the quadratic
+    through sp and, on either side of it, the point of `points` ((point, s): the step's
+    ends and the location's trials) nearest to it at least tol away; dx/ds, oriented as
+    s (as every step direction is: x_next = x + ds d), unit in the inner product. With
+    those points at distances h_a, h_b its error is at most h_a h_b max|x'''| / 6 plus
+    2 eps / min(h_a, h_b) for points off the branch by eps (Newton's tolerance).
+
+    At a branch point G_x's null space is two-dimensional: no tangent solve defines the
+    branch's direction there. AUTO's SOLVAE leaves every converged step along its secant,
+    UDOT = (U - UOLD) / RDS, the steps of LCSPAE's location included, which step on from
+    each other: AUTO leaves a located point along the secant of its last location step,
+    a correction of at least the location tolerance tol (the location stops once the
+    next one is below it), the followed branch's tangent at the point to within that
+    step's length times the curvature plus Newton's error over it. Our trials are steps
+    from the previous point, each converged to Newton's tolerance on its own: the chord
+    from the previous point was off by half the branch's turn over the whole step (the
+    restricted three-body problem's circle of equilibria, tests/data/auto_demos/nbody:
+    the step after each BP then took 3 Newton iterations where AUTO's takes 2, and ADPTDS
+    kept its steps at 2/3 of AUTO's); the secant from the last trial before sp was
+    Newton's noise over their distance where they lie closer than tol (on that circle,
+    EPSU = 1e-9, a BP's last trial 1.2e-6 from the one before lay 2.3e-9 off the circle
+    in PAR(1), and that secant's PAR(1) component was 1.9e-3, the circle's 0)."""
+    near = []
+    for side in (-1, 1):
+        # the nearest point at least tol away on each side of sp (along s's sign)
+        cands = [p for p in points if p[0] is not sp and abs(p[1] - s_sp) >= tol
+                 and (p[1] - s_sp) * side > 0]
+        if not cands:
+            return None
+        near.append(min(cands, key=lambda p: abs(p[1] - s_sp)))
+    (pa, sa), (pb, sb) = near
+    d = pa.x * ((s_sp - sb) / ((sa - sb) * (sa - s_sp))) \
+        + pb.x * ((s_sp - sa) / ((sb - sa) * (sb - s_sp))) \
+        + sp.x * (1 / (s_sp - sa) + 1 / (s_sp - sb))
+    n = math.sqrt(inner(d, d))
+    return d / n if n > 0 and math.isfinite(n) else None
 
 
 def _same_user_point(found, k, prev, sp, span: float, settings) -> bool:
