@@ -113,6 +113,14 @@ ROUNDING_DEPENDENT = {
     "cirf77": (10, "as cir's"),
     "cir": (10, "run 2's UZ6 lies at the location tolerance from AUTO's: matched on this "
                 "machine, not on the one of the first count (tests/test_homoclinic.py)"),
+    "ppp": (46, "run 2's cycles from HB2 shrink onto HB7, where the family ends on the "
+                "equilibria (zero amplitude, u3 at 1e-32: the BP there is located to the closed "
+                "form, tests/test_ppp_exact.py, whatever the rounding); the step after that BP "
+                "starts from a cycle of zero amplitude, where the collocation system is "
+                "singular, and either turns back along the family to EP at NMX (AUTO's, and "
+                "ours with OpenBLAS's SkylakeX kernels) or fails to MX (ours with its Haswell "
+                "kernels, where HB2 and the BP, 6e-9 in PAR(1) apart from the SkylakeX run's, "
+                "move with the rounding of the equilibria's points after their BP)"),
     "lcbp": (7, "run 3's backward run (the generic BP locus, ISW = 3) ends at PAR(1) = 0, "
                 "its UZSTOP, where the circles shrink to the Hopf point: its BP test is at "
                 "its noise floor there (-3.6e-51 to +2.3e-58 over the last step here, "
