@@ -149,3 +149,18 @@ def test_point_text_is_the_python_one():
                               "   1     2         Eigenvalues  :   Stable:   2",
                               "   1     2         Eigenvalue  1:  -1.00000E+00   2.00000E+00",
                               "   1     2         Eigenvalue  2:  -1.00000E+00  -2.00000E+00"]
+
+
+def test_floquet_block_modulus_of_nan_and_inf_parts():
+    """A multiplier with a NaN part has modulus NaN, one with an infinite part inf, in the
+    compiled block (hypot) and in the Python layout alike; CPython's complex abs leaves
+    errno as it found it on the NaN path, so the layout decides NaN before calling it."""
+    from washer.auto.es_format import _modulus, point_text, python_point_text
+    nan, inf = float("nan"), float("inf")
+    mults = np.array([complex(nan, 5.04545e15), complex(inf, nan), complex(1.5e308, 1.5e308)])
+    eigen = (1, 2, mults, 0)
+    assert point_text(1, 2, 0, 0, "", None, "", eigen) == \
+        python_point_text(1, 2, 0, 0, "", None, "", eigen)
+    assert np.isnan(_modulus(complex(nan, 5.04545e15)))
+    assert _modulus(complex(inf, nan)) == inf
+    assert _modulus(complex(1.5e308, 1.5e308)) == inf

@@ -151,7 +151,14 @@ def python_point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dh
 
 def _modulus(z: complex) -> float:
     """|z| as Python's abs of a complex takes it (libm's hypot, as cont_auto_point), inf
-    where that overflows (abs raises there, hypot returns inf)."""
+    where that overflows (abs raises there, hypot returns inf).
+
+    A part NaN and none infinite is NaN, as hypot gives, decided before abs: CPython's
+    complex abs returns NaN there without clearing errno, so an ERANGE left by earlier C
+    code made it raise OverflowError and the modulus read inf."""
+    if (math.isnan(z.real) or math.isnan(z.imag)) and not (
+            math.isinf(z.real) or math.isinf(z.imag)):
+        return math.nan
     try:
         return abs(z)
     except OverflowError:
