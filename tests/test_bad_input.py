@@ -506,6 +506,7 @@ def test_quoted_indices_are_parameter_indices(tmp_path):
     c = read_constants(_c(tmp_path, b"NDIM = 5, IPS = 1\nICP =  ['3','1']\n"
                                     b"UZSTOP = {'3': 10.0}\n"))
     assert c.icp() == [3, 1]
+    assert c.par_values("UZSTOP") == [(3, 10.0)]
     assert c.par_index("3") == 3 and c.par_index("-3") == -3
     named = Constants({"parnames": {5: "3"}})
     assert named.par_index("3") == 5
