@@ -60,6 +60,23 @@ def test_columns_by_parameter_and_state_name(brus):
         b["C"]
 
 
+def test_a_quoted_index_is_that_parameter_as_in_icp(brus):
+    """'2' names PAR(2) in a branch, a loaded b-file and a solution, as ICP = ['2']
+    and UZSTOP = {'2': ...} read it (one reading of a parameter's name,
+    washer.cont.constants.par_name_index); '-2' is no column."""
+    b, folder = brus
+    np.testing.assert_array_equal(b["2"], b["B"])
+    np.testing.assert_array_equal(b["PERIOD"], b["PAR(11)"])
+    with pytest.raises(KeyError):
+        b["-2"]
+    d = load(folder / "b.brus")
+    np.testing.assert_array_equal(d[0]["2"], d[0]["B"])
+    hb = d("HB1")
+    assert hb["2"] == hb["B"] == hb.PAR["2"] == hb.PAR["PAR(2)"]
+    with pytest.raises(KeyError):
+        hb.PAR["-2"]
+
+
 def test_labelled_point_by_name(brus):
     b, _ = brus
     hb = b("HB1")

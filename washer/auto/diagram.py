@@ -23,6 +23,7 @@ import numpy as np
 
 from washer.atomic import write_text
 from washer.cont.codes import split_code, split_label, type_name as _type_name
+from washer.cont.constants import par_name_index
 from washer.auto.files import (AutoFileError, Record, Row, _fortran_float, _read_record,
                                _read_text, fmt_e, record_text, s_file)
 from washer.auto.script_constants import AutoConstants
@@ -62,18 +63,17 @@ class Parameters:
 
     def __init__(self, values, parnames: dict | None = None):
         self.values = np.asarray(values, dtype=float)
-        self.names = {v: int(k) for k, v in (parnames or {}).items()}
+        self.parnames = dict(parnames or {})
 
     def index(self, key) -> int:
+        """0-based position of a name (washer.cont.constants.par_name_index) or of
+        an integer (already 0-based)."""
         if isinstance(key, str):
-            if key in self.names:
-                return self.names[key] - 1
-            m = re.fullmatch(r"PAR\((\d+)\)", key.strip())
-            if m:
-                return int(m.group(1)) - 1
-            if key == "PERIOD":
-                return 10
-            raise KeyError(f"{key!r}: no such parameter (parnames: {sorted(self.names)})")
+            i = par_name_index(key.strip(), self.parnames)
+            if i is None or i < 1:
+                raise KeyError(f"{key!r}: no such parameter (parnames: "
+                               f"{sorted(map(str, self.parnames.values()))})")
+            return i - 1
         return int(key)
 
     def __getitem__(self, key):
@@ -224,18 +224,14 @@ class Solution:
                       "data": self, "Active ICP": list(rec.icp), "rldot": list(rec.rldot)}
             if k in simple:
                 return simple[k]
-            m = re.fullmatch(r"PAR\((\d+)\)", k)
-            if m:
-                return float(rec.par[int(m.group(1)) - 1])
-            if k == "PERIOD":
-                return float(rec.par[10])
+            i = par_name_index(k, (self.c or {}).get("parnames"))
+            if i is not None and i > 0:
+                return float(rec.par[i - 1])
             m = re.fullmatch(r"U\((\d+)\)", k)
             if m:
                 U = np.asarray(rec.u)
                 return U[..., int(m.group(1)) - 1] if U.ndim == 2 else float(U[int(m.group(1)) - 1])
-            pn, un = self._names("parnames"), self._names("unames")
-            if k in pn:
-                return float(rec.par[pn[k] - 1])
+            un = self._names("unames")
             if k in un:
                 U = np.asarray(rec.u)
                 return U[..., un[k] - 1] if U.ndim == 2 else float(U[un[k] - 1])
@@ -476,15 +472,16 @@ class Branch:
         if key in self.titles:
             return self.titles.index(key)
         c = self.c or {}
-        for i, n in (c.get("parnames") or {}).items():
-            if n == key and f"PAR({i})" in self.titles:
-                return self.titles.index(f"PAR({i})")
+        parnames = c.get("parnames") or {}
+        i = par_name_index(key, parnames)
+        # a parameter's column is titled PAR(i), or by its name where parnames gives one
+        for t in (f"PAR({i})", parnames.get(i, parnames.get(str(i)))):
+            if i is not None and t in self.titles:
+                return self.titles.index(t)
         for i, n in (c.get("unames") or {}).items():
             for t in (f"U({i})", f"MAX U({i})"):
                 if n == key and t in self.titles:
                     return self.titles.index(t)
-        if key == "PERIOD" and "PAR(11)" in self.titles:
-            return self.titles.index("PAR(11)")
         raise KeyError(f"{key!r}: no such column (columns: {self.titles})")
 
     @property

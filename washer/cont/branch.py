@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from washer.cont.codes import find
+from washer.cont.constants import par_name_index
 from washer.cont.record import Record  # noqa: F401  (the rows of a Branch)
 from washer.cont.system import Stability
 
@@ -133,17 +134,14 @@ class Branch:
         """One value per point: branch['B'] (a parameter by name: PAR of every point),
         branch['x'] (a state by name: U of every point; the mesh profile of a BVP
         point is (NTPL,) so the result is (npoints, NTPL)), branch['PAR(3)'],
-        branch['U(1)'], branch['PERIOD'], or a b-file column by title
+        branch['3'] (PAR(3), as ICP = ['3'] reads it), branch['U(1)'], branch['PERIOD'],
+        or a b-file column by title
         ('L2-NORM', 'MAX U(1)', ...)."""
         if not isinstance(key, str):
             raise TypeError(f"branch[{key!r}]: index with a name ('B', 'PAR(1)', "
                             "'L2-NORM'); rows are branch.rows, labelled points branch('HB1')")
-        i = self._index(self.parnames, key)
-        if i is None and key == "PERIOD":
-            i = 11
-        if i is None and key.startswith("PAR(") and key.endswith(")") and key[4:-1].isdigit():
-            i = int(key[4:-1])
-        if i is not None:
+        i = par_name_index(key, self.parnames)
+        if i is not None and i > 0:
             return np.array([r.par[i - 1] if len(r.par) >= i else np.nan for r in self.rows])
         j = self._index(self.unames, key)
         if j is None and key.startswith("U(") and key.endswith(")") and key[2:-1].isdigit():

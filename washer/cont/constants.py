@@ -197,6 +197,25 @@ def check_name(key: str, value: str, where: str) -> None:
             "run from the folder you want the files in, or copy the files there")
 
 
+def par_name_index(name: str, parnames: dict) -> int | None:
+    """1-based PAR index a name spells, or None: a parnames entry ({index: name}),
+    'PERIOD' (11), 'PAR(3)', or the index spelled as a string, '3' (AUTO-07p reads a
+    name that no parnames entry holds as the index it spells, ICP = ['3', '1']). A
+    leading '-' gives the negative index. The one reading of a parameter's name: the
+    constants, a run's branch and the command language's branches all use it."""
+    sign = -1 if name.startswith("-") else 1
+    name = name.lstrip("-")
+    if name == "PERIOD":
+        return 11 * sign
+    for i, n in (parnames or {}).items():
+        if n == name:
+            return int(i) * sign
+    m = re.fullmatch(r"(?:PAR\((\d+)\)|(\d+))", name)
+    if m:
+        return int(m.group(1) or m.group(2)) * sign
+    return None
+
+
 class Constants(dict):
     """AUTO constants: a dict of every constant, defaults filled in.
 
@@ -226,31 +245,19 @@ class Constants(dict):
 
     # ----------------------------------------------------------------- names
     def par_index(self, key, where: str | None = None) -> int:
-        """1-based PAR index of an integer or a name (parnames, 'PERIOD' = 11, 'PAR(3)',
-        or the index spelled as a string, '3');
-        a leading '-' on a name gives a negative index. `where` (file:line) names the
-        place in errors, else the constants' source."""
+        """1-based PAR index of an integer or a name (see `par_name_index`); a leading
+        '-' on a name gives a negative index. `where` (file:line) names the place in
+        errors, else the constants' source."""
         where = where or self.source
         if isinstance(key, bool):
             raise ConstantsError(f"{where}: bad parameter index {key!r}")
         if isinstance(key, int):
             return key
-        if isinstance(key, str):
-            sign = -1 if key.startswith("-") else 1
-            name = key.lstrip("-")
-            if name == "PERIOD":
-                return 11 * sign
-            for i, n in self["parnames"].items():
-                if n == name:
-                    return int(i) * sign
-            if re.fullmatch(r"PAR\(\d+\)", name):
-                return int(name[4:-1]) * sign
-            if re.fullmatch(r"\d+", name):
-                # a quoted index, ICP = ['3', '1'] (AUTO-07p reads a name that no
-                # parnames entry holds as the index it spells)
-                return int(name) * sign
-        raise ConstantsError(f"{where}: unknown parameter {key!r}; parnames = "
-                             f"{self['parnames']}")
+        i = par_name_index(key, self["parnames"]) if isinstance(key, str) else None
+        if i is None:
+            raise ConstantsError(f"{where}: unknown parameter {key!r}; parnames = "
+                                 f"{self['parnames']}")
+        return i
 
     def u_index(self, key) -> int:
         if isinstance(key, int) and not isinstance(key, bool):
