@@ -126,10 +126,9 @@ def test_cache_reuses_and_rebuilds(cache, tmp_path):
 
 
 def test_a_user_file_edited_in_the_same_process_is_built_again(cache, tmp_path):
-    """compile_user_file remembers the library it found for a file in this process (no
-    hashing at every run's start), keyed by the file's content: the same file twice is
-    the same library, an edited one a new library with the edited equations, and the
-    library is checked to exist before it is reused."""
+    """In one process (library_key remembers the keys it hashed, by the sources' content)
+    the same file twice is the same library, an edited one a new library with the
+    edited equations, and the library is checked to exist before it is reused."""
     from washer.cont.user_problem.user_files_native import compile_user_file
     src = tmp_path / "ab.f90"
     shutil.copy(AB_F90, src)
@@ -141,6 +140,24 @@ def test_a_user_file_edited_in_the_same_process_is_built_again(cache, tmp_path):
     assert load_compiled_problem(src, 2).func(np.array([1.0, 0.0]), np.zeros(36))[0] == -2.0
     lib2.unlink()                                 # the cache emptied under the process
     assert compile_user_file(src).exists()
+
+def test_a_user_files_library_is_named_by_library_key_alone(cache, tmp_path, monkeypatch):
+    """One definition of what decides a user file's library: c_library.library_key. A
+    change that key sees (here a key made to differ, as an edited include file or a new
+    compiler makes it) gives another library in the same process; no second key beside
+    it can keep the first library."""
+    from washer.cont.user_problem import c_library
+    from washer.cont.user_problem.user_files_native import compile_user_file
+    src = tmp_path / "ab.f90"
+    shutil.copy(AB_F90, src)
+    lib1 = compile_user_file(src)
+    key = c_library.library_key
+    monkeypatch.setattr(c_library, "library_key", lambda *a, **k: "0" * 20)
+    lib2 = compile_user_file(src)
+    assert lib2 != lib1 and lib2.name == "ab-" + "0" * 20 + ".so" and lib2.exists()
+    monkeypatch.setattr(c_library, "library_key", key)
+    assert compile_user_file(src) == lib1
+
 
 def test_compile_error_names_file_and_line(cache, tmp_path):
     bad = tmp_path / "bad.f90"
@@ -257,8 +274,8 @@ int pvls(integer ndim, const doublereal *u, doublereal *par) { return 0; }
 def test_a_user_file_is_built_again_when_a_file_it_includes_changes(kind, cache, tmp_path):
     """AUTO's brc.f takes its dimensions from brc.inc (INCLUDE 'brc.inc'), a C file may
     #include "x.h" of its own: the library is keyed by the included files too, so an
-    edited include file gives the edited equations, in the same process (the library
-    remembered per file) and in a new one (build_library's key)."""
+    edited include file gives the edited equations, in the same process (library_key's
+    memo) and in a new one (build_library's key)."""
     from washer.cont.user_problem import c_library
     from washer.cont.user_problem.user_files_native import compile_user_file
     if kind == "fortran":
@@ -281,3 +298,4 @@ def test_a_user_file_is_built_again_when_a_file_it_includes_changes(kind, cache,
     write(2.0)
     assert c_library.library_key([source_file(src)]) != key3
     assert compile_user_file(src) == lib2     # the first library, from the cache
+

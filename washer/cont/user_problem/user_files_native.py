@@ -20,15 +20,13 @@ call, so the per-point cost is the user's code plus a few nanoseconds.
 """
 from __future__ import annotations
 
-import os
 import weakref
 from pathlib import Path
 
 import numpy as np
 
 from washer.cont.user_problem.c_library import (CompileError, build_library, declarations,
-                                                included_files, source_file,
-                                                source_text)
+                                                source_file, source_text)
 from washer.cont.linalg import eigenvalues_sorted
 from washer.cont.problem import Problem, ProblemError
 
@@ -113,38 +111,13 @@ def find_user_file(name: str, folder: Path) -> Path | None:
     return None
 
 
-#: The libraries built or found in this process: (user file, its content, the bridge's,
-#: the compilers and cache asked for) -> library path. Hashing the sources with the
-#: compilers' versions again at every run's start cost a short run of a small problem a
-#: twentieth of its time; a user file or bridge whose content changed is built afresh.
-_BUILT: dict = {}
-
-
 def compile_user_file(path) -> Path:
-    """The shared library of a user file and the bridge (compiled or from the cache)."""
+    """The shared library of a user file and the bridge (compiled or from the cache),
+    named by c_library.library_key alone (which remembers its keys in this process)."""
     path = Path(path)
-    fortran = path.suffix != ".c"
-    shim = SHIM.read_bytes()
-    try:
-        # named as build_library's key names it: the file's name and content and those
-        # of the files it includes (a copy in another folder is the same library)
-        key = (path.name, path.read_bytes(), shim,
-               tuple((inc.name, inc.read_bytes()) for inc in included_files(path)),
-               tuple((h.name, h.stat().st_mtime_ns, h.stat().st_size)
-                     for h in sorted(INCLUDE.glob("*.h"))),
-               *(os.environ.get(v) for v in ("CC", "FC", "PATH", "WASHER_CACHE",
-                                             "XDG_CACHE_HOME")))
-    except OSError:
-        key = None
-    lib = _BUILT.get(key)
-    if lib is not None and lib.exists():
-        return lib
-    sources = [source_file(path), source_text("washer_shim.c", shim)]
-    lib = build_library(sources, path.stem, includes=[INCLUDE],
-                        defines={"WASHER_FORTRAN": int(fortran)})
-    if key is not None:
-        _BUILT[key] = lib
-    return lib
+    sources = [source_file(path), source_text("washer_shim.c", SHIM.read_bytes())]
+    return build_library(sources, path.stem, includes=[INCLUDE],
+                         defines={"WASHER_FORTRAN": int(path.suffix != ".c")})
 
 
 def _open(lib_path: Path):
