@@ -299,3 +299,60 @@ def test_a_user_file_is_built_again_when_a_file_it_includes_changes(kind, cache,
     assert c_library.library_key([source_file(src)]) != key3
     assert compile_user_file(src) == lib2     # the first library, from the cache
 
+
+#: A fold x^2 = PAR(1) whose FUNC gives DFDU but leaves DFDP as the caller filled it
+#: (zeros), as AUTO's she.f and fhh's fhn.f do; DFDP_LINE is the line that sets it.
+UNSET_DFDP_F = """\
+      SUBROUTINE FUNC(NDIM,U,ICP,PAR,IJAC,F,DFDU,DFDP)
+      IMPLICIT NONE
+      INTEGER NDIM, ICP(*), IJAC
+      DOUBLE PRECISION U(NDIM), PAR(*), F(NDIM)
+      DOUBLE PRECISION DFDU(NDIM,NDIM), DFDP(NDIM,*)
+      F(1) = PAR(1) - U(1)**2 + PAR(2)*U(2)
+      F(2) = -U(2)
+      IF (IJAC.EQ.0) RETURN
+      DFDU(1,1) = -2*U(1)
+      DFDU(1,2) = PAR(2)
+      DFDU(2,1) = 0
+      DFDU(2,2) = -1
+      IF (IJAC.EQ.1) RETURN
+C     DFDP_LINE
+      END
+      SUBROUTINE STPNT(NDIM,U,PAR,T)
+      IMPLICIT NONE
+      INTEGER NDIM
+      DOUBLE PRECISION U(NDIM), PAR(*), T
+      PAR(1) = 1
+      PAR(2) = 0.5
+      U(1) = 1
+      U(2) = 0
+      END
+"""
+
+
+@pytest.mark.parametrize("jac, icp, dfdp, warned", [
+    (1, [1], "", ["PAR(1)"]),        # DFDP unset, f moves with PAR(1): said once
+    (1, [1, 2], "", ["PAR(1)"]),     # d f / d PAR(2) = U(2) = 0 at the start: no word
+    (1, [1], "DFDP(1,1) = 1", []),   # DFDP set
+    (-1, [1], "", []),               # JAC = -1: DFDP is not used (differences)
+    (0, [1], "", [])])
+def test_a_dfdp_left_unset_is_named_once(cache, tmp_path, jac, icp, dfdp, warned):
+    """FUNC gets DFDP zero-filled (as in AUTO-07p), so a user file that never sets it
+    gives zero parameter derivatives that JAC = 1 takes as exact: one ProblemWarning
+    per such continuation parameter at the run's start, naming the file and PAR(i),
+    where a central difference of f shows f depends on it."""
+    import warnings
+    from washer.cont.problem import ProblemWarning
+    from washer.run import run
+    src = tmp_path / "fold.f"
+    src.write_text(UNSET_DFDP_F.replace("C     DFDP_LINE", f"      {dfdp}" if dfdp else
+                                        "C     DFDP left unset"))
+    (tmp_path / "c.fold").write_text(f"e = 'fold'\nNDIM = 2\nICP = {icp}\nJAC = {jac}\n"
+                                     "NMX = 20\nDS = -0.05\nDSMAX = 0.1\nISP = 0\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run(tmp_path / "c.fold", verbose=False)
+    said = [str(w.message) for w in caught if issubclass(w.category, ProblemWarning)]
+    assert len(said) == len(warned)
+    for text, name in zip(said, warned):
+        assert str(src) in text and f"d f / d {name}" in text

@@ -92,6 +92,10 @@ JACOBIAN_STEP = 1e-7
 #: The signs (a, b) of the four points z + a h e_s + b k w of a mixed second difference.
 _SIGN_A = np.array([1.0, 1.0, -1.0, -1.0])
 _SIGN_B = np.array([1.0, -1.0, 1.0, -1.0])
+#: A central difference of f in a parameter (step differences.FD_STEP (1 + |PAR(i)|))
+#: rounds to about eps T / h ~ 2e-9 T, T the size of f's terms, taken as |f_u| (1 + |u|):
+#: a derivative five hundred times that is f's own (`Problem.unset_dfdp`).
+DEPENDENCE_FLOOR = 1e-6
 
 
 def user_frame(exc: BaseException) -> str:
@@ -130,6 +134,10 @@ class ProblemError(RuntimeError):
     """The user's equations are missing, malformed or failed to evaluate."""
 
 
+class ProblemWarning(UserWarning):
+    """The user's equations look inconsistent (a derivative they give disagrees with f)."""
+
+
 def user_failure(name: str, what: str, exc: BaseException) -> "ProblemError":
     """The ProblemError of a user function that raised: '{name}: {what} failed:
     {exception type}: {message} (FILE:LINE)', the place as `user_frame` finds it."""
@@ -144,6 +152,9 @@ class Problem:
     -1 dfdu only. Use `with_jac` for a configured copy (problems are never
     changed behind their owner's back).
     """
+
+    #: The file the equations come from, where there is one (messages name it).
+    source: str = ""
 
     def __init__(self, ndim: int, func, stpnt=None, dfdu=None, dfdp=None, name: str = "",
                  npar: int = 0, dfdu_batch=None, func_batch=None, pvls=None,
@@ -595,6 +606,10 @@ class Problem:
                 raise ProblemError(f"{self.name}: dfdp returned shape {full.shape}, expected "
                                    f"({self.ndim}, >= {max(indices)})")
             return full[:, [i - 1 for i in indices]]
+        return self._dfdp_differences(u, par, indices)
+
+    def _dfdp_differences(self, u, par, indices) -> np.ndarray:
+        """`dfdp`'s central differences of f, shape (ndim, len(indices))."""
         par = np.asarray(par, dtype=float)
         m = len(indices)
         points = [par_points(par, i) for i in indices]
@@ -603,6 +618,27 @@ class Problem:
             2 * m, len(par))
         F = self.func_many(np.repeat(np.asarray(u, float)[None, :], 2 * m, axis=0), pars)
         return quotient(F[:m], F[m:], h[:, None]).T
+
+    def unset_dfdp(self, u, par, indices) -> list[tuple[int, float]]:
+        """(i, max_j |d f_j / d PAR(i)|) for each 1-based index i of `indices` whose
+        column of the user's dfdp (in use: JAC = 1) is exactly zero at (u, par) while a
+        central difference of f shows f moving with PAR(i), above DEPENDENCE_FLOOR
+        (1 + |f_u| (1 + |u|)). AUTO's FUNC gets DFDP zero-filled and a user file that
+        never sets it (AUTO's she.f) gives zero parameter derivatives, which Newton takes
+        as exact. Empty without a user dfdp in use."""
+        if self._dfdp is None or self.jac != 1 or not indices:
+            return []
+        u = np.asarray(u, dtype=float)
+        given = self.dfdp(u, par, indices)
+        zero = [j for j in range(len(indices)) if not np.any(given[:, j])]
+        if not zero:
+            return []
+        found = self._dfdp_differences(u, par, [indices[j] for j in zero])
+        terms = float(np.max(np.abs(self.dfdu(u, par)), initial=0.0)) * \
+            (1 + float(np.max(np.abs(u), initial=0.0)))
+        size = np.max(np.abs(found), axis=0)
+        return [(indices[j], float(d)) for j, d in zip(zero, size)
+                if d > DEPENDENCE_FLOOR * (1 + terms)]
 
     def second_derivatives(self, u, par, ws, par_indices) -> np.ndarray:
         """Mixed second derivatives f_zz[e_s, w_k] along every unit direction e_s

@@ -218,6 +218,7 @@ def build(c, problem, records=None, name: str = "", records_source: str = "the r
     rec = start.restart_record(c, problem, records, records_source)
     s = start.with_record_parameters(s, rec)
     u, par = start.start_values(c, s, problem, rec, data)
+    start.warn_unset_dfdp(s, problem, u, par)
     system, s, kind = start.system_for(c, s, problem, u, par, rec, data)
     # Numbering continues the restart file's only when restarting from it.
     known = records if rec is not None else []

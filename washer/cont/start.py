@@ -8,13 +8,14 @@ Errors are `RunError`s naming the constants file and what was expected.
 from __future__ import annotations
 
 import re
+import warnings
 
 import numpy as np
 
 from washer.cont.codes import split_code, type_name
 from washer.cont.parabolic import PARABOLIC_KINDS, TIME, ParabolicProblem
 from washer.cont.record import find_record
-from washer.cont.problem import ProblemError
+from washer.cont.problem import ProblemError, ProblemWarning
 from washer.cont.settings import Settings, SettingsError
 from washer.cont.system import StartData
 from washer.cont.systems import find
@@ -67,6 +68,31 @@ def settings_for(c, problem) -> tuple[Settings, object]:
         # it is, where taking ICP(1) for the time would integrate with PAR(1) moving.
         s = _time_first(s)
     return s, problem
+
+
+def warn_unset_dfdp(s: Settings, problem, u, par) -> None:
+    """A ProblemWarning for each continuation parameter whose derivative the user's
+    DFDP leaves zero at the start while f depends on it (`Problem.unset_dfdp`, at the
+    start point or the first point of a start orbit), with JAC = 1. AUTO-07p's FUNC
+    gets DFDP zero-filled and its Newton takes those zeros as exact, without a word:
+    it may converge slowly or diverge (she.f's first step). Runs of equilibria and
+    fixed points here take DFDP from the user too; orbits take their parameter
+    derivatives by differences of f, and the warning says the file is wrong for AUTO."""
+    unset = getattr(problem, "unset_dfdp", None)
+    u = np.asarray(u, dtype=float)
+    point = u if u.ndim == 1 else u[0]
+    if unset is None or u.ndim > 2 or len(point) != problem.ndim:
+        return
+    used = s.IPS in (-1, 0, 1, 5) and u.ndim == 1
+    for i, size in unset(point, par, [i for i in s.ICP if 0 < i <= len(par)]):
+        what = ("JAC = 1 takes d f / d PAR({i}) from FUNC's DFDP (as AUTO-07p does)" if used
+                else "AUTO-07p's JAC = 1 takes d f / d PAR({i}) from FUNC's DFDP (washer "
+                "differences f for it here)").format(i=i)
+        warnings.warn(f"{problem.source or problem.name}: {what}, which is zero at the "
+                      f"start, but f changes with PAR({i}) (central difference: max "
+                      f"|d f / d PAR({i})| = {size:.3g}): set DFDP(., {i}) in FUNC or use "
+                      f"JAC = -1 (differences in the parameters)", ProblemWarning,
+                      stacklevel=2)
 
 
 def _time_first(s: Settings) -> Settings:

@@ -428,6 +428,7 @@ class CompiledProblem(Problem):
 
     def __init__(self, user: CompiledUser, name: str):
         self.user = user
+        self.source = str(user.path)
         super().__init__(user.ndim, user.func, stpnt=user.stpnt if user.has["stpnt"] else None,
                          dfdu=user.dfdu, dfdp=user.dfdp, name=name,
                          dfdu_batch=user.dfdu_batch, func_batch=user.func_batch,
