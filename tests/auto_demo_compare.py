@@ -280,8 +280,33 @@ def auto_point_count(demo: str) -> int:
     return len({point_key(p) for ref in reference_files(demo) for p in points(ref, True)})
 
 
+#: In a variant's autoref/ (VARIANT_OF), the SHA-256 of each b-file AUTO-07p wrote with
+#: the variant's user file where they are its base folder's byte for byte (`sha256sum` of
+#: the b-files as AUTO wrote them, not gzipped): the folder keeps these instead of copies
+#: and the comparison reads the base's (test_auto_demo_folders.py checks the digests).
+SAME_AS_BASE = "b-files.sha256"
+
+
+def base_digests(demo: str) -> dict[str, str]:
+    """{b-file name: SHA-256} of a variant's SAME_AS_BASE, or {} where it stores its own."""
+    manifest = DEMOS / demo / "autoref" / SAME_AS_BASE
+    if not manifest.exists():
+        return {}
+    pairs = (line.split() for line in manifest.read_text().splitlines() if line.strip())
+    return {name: digest for digest, name in pairs}
+
+
+def reference_folder(demo: str) -> Path:
+    """The autoref/ folder whose b-files are AUTO's output of the demo: its own, or its
+    base demo's where they are the same (SAME_AS_BASE)."""
+    return DEMOS / (VARIANT_OF[demo] if base_digests(demo) else demo) / "autoref"
+
+
 def reference_files(demo: str) -> list[Path]:
-    ref = DEMOS / demo / "autoref"
+    ref = reference_folder(demo)
+    names = base_digests(demo)
+    if names:
+        return sorted(p for p in ref.iterdir() if p.name.removesuffix(".gz") in names)
     return sorted(p for p in ref.rglob("*") if p.name.startswith("b.") or
                   p.name in ("fort.7", "fort.7.gz"))
 
@@ -316,7 +341,7 @@ def run_demo(demo: str, workdir: Path, timeout: float = 1200) -> Result:
     res = Result(demo, rc, time.perf_counter() - t0, log=log)
     seen: dict = {}
     for ref in reference_files(demo):
-        rel = ref.relative_to(src / "autoref")
+        rel = ref.relative_to(reference_folder(demo))
         ours = work / str(rel).removesuffix(".gz")
         a, matched, why = compare_files(ours, ref)
         res.problems += why

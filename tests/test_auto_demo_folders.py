@@ -22,7 +22,8 @@ from pathlib import Path
 import pytest
 
 from auto07p_parsers import auto_python, check_folder
-from auto_demo_compare import DEMOS, all_demos, auto_point_count, run_demo
+from auto_demo_compare import (DEMOS, VARIANT_OF, all_demos, auto_point_count, base_digests,
+                               reference_files, run_demo)
 
 #: Demos in the default run (a few seconds each, IPS 1 and 2, Fortran user files, dat=
 #: starts, save/append/relabel): the others are marked slow (the whole set takes minutes).
@@ -269,3 +270,30 @@ def test_demo_table_agrees_with_folders_and_expected_failures():
     assert all(a > 0 for _, a in rows.values())
     assert total == (sum(m for m, _ in rows.values()), sum(a for _, a in rows.values()))
     assert sorted(d for d, (m, a) in rows.items() if m < a) == sorted(EXPECTED_FAIL)
+
+
+def test_autos_output_with_a_variants_user_file_is_its_bases_where_the_table_says():
+    """Where the demo table says AUTO-07p's b-files with a variant's user file (AUTO's
+    Fortran-77 NAME.f) are its b-files with the base's NAME.f90 byte for byte, the
+    variant's autoref/ keeps their SHA-256 (SAME_AS_BASE) instead of copies, and the
+    base folder's b-files have those digests: each of them, and no other."""
+    import gzip
+    import hashlib
+    import re
+    said = set()
+    for line in DEMO_TABLE.read_text().splitlines():
+        m = re.match(r"\| ([a-z0-9]+) \|", line)
+        if m and re.search(r"AUTO's (?:\w+ )?b-files? with it (?:are|is) its b-files? with "
+                           r"`\w+\.f90`, byte for byte", line):
+            said.add(m[1])
+    stored = {d for d in VARIANT_OF if base_digests(d)}
+    assert said == stored and len(stored) == 10
+    for demo in sorted(stored):
+        digests = base_digests(demo)
+        files = reference_files(demo)
+        assert all(f.parent == DEMOS / VARIANT_OF[demo] / "autoref" for f in files)
+        got = {f.name.removesuffix(".gz"): hashlib.sha256(
+            gzip.decompress(f.read_bytes()) if f.suffix == ".gz" else f.read_bytes()).hexdigest()
+            for f in files}
+        assert got == digests, demo
+        assert not [p.name for p in (DEMOS / demo / "autoref").glob("b.*")], demo
