@@ -472,3 +472,51 @@ def test_traced_folders_write_the_python_runs_files(folder, tmp_path):
     for name in names:
         a, b = ((outs[t][0] / name).read_text().split("Total Time")[0] for t in ("0", "1"))
         assert a == b, name
+
+
+#: numpy's elementwise ufuncs of doubles that a traced func calls through numpy's loop
+#: (np_loop1 / np_loop2 in the C; the gufuncs matmul, vecdot, ... are not elementwise),
+#: each once (np.abs is np.absolute)
+LOOPED = list({id(u): u for u in (getattr(np, n) for n in sorted(dir(np)))
+               if isinstance(u, np.ufunc) and u.nout == 1 and u.nin in (1, 2)
+               and u.signature is None
+               and ("dd->d" if u.nin == 2 else "d->d") in u.types}.values())
+#: arguments inside the domain (the file is verified where it starts, where every
+#: component must be finite): |x| < 1 for these, x >= 1 for those, y >= 1 as a divisor
+_UNIT = {np.arcsin, np.arccos, np.arctanh}
+_ABOVE_ONE = {np.arccosh, np.log, np.log10, np.log2, np.log1p, np.sqrt, np.reciprocal}
+_DIVISOR = {np.divide, np.floor_divide, np.fmod, np.remainder, np.float_power}
+
+
+def _every_loop(u, par):
+    out = []
+    for f in LOOPED:
+        x, y = u[0], u[1]
+        x = x / (1 + abs(x)) if f in _UNIT else 1 + x * x if f in _ABOVE_ONE else x
+        if f is np.float_power:
+            x = 1 + x * x
+        out.append(f(x) if f.nin == 1 else f(x, 1 + y * y if f in _DIVISOR else y))
+    return np.array(out + [u[2]])
+
+
+@pytest.mark.parametrize("k", [1, 63, 64, 65, 200])
+@pytest.mark.parametrize("low, high", [(-1.0, 1.0), (-30.0, 30.0), (1.0, 700.0)])
+def test_batched_f_is_f_point_by_point(tmp_path, k, low, high):
+    """f at k points in one call (washer_traced_batch: each numpy loop called once for
+    up to BATCH_CHUNK points, as numpy calls it on a vectorised func's arrays) gives the
+    bytes of FUNC called point by point (one element a loop call) and of the Python func
+    on numpy scalars, for every elementwise numpy ufunc of doubles (overflow to inf
+    included), at k points on both sides of the chunk's boundary."""
+    n = len(LOOPED) + 1
+    py = _problem(_every_loop, ndim=n)
+    p = traced_problem(py, tmp_path / "every.py")
+    assert isinstance(p, TracedProblem), getattr(p, "route", "")
+    rng = np.random.default_rng(k)
+    us = rng.uniform(low, high, (k, n))
+    ps = rng.uniform(-5, 5, (k, 3))
+    with np.errstate(all="ignore"):
+        batched = p.user.func_batch(us, ps)
+        pointwise, _, _ = p.user.jac_batch(us, ps)
+        ref = np.array([_every_loop(u.copy(), q.copy()) for u, q in zip(us, ps)], dtype=float)
+    assert batched.tobytes() == pointwise.tobytes()
+    assert batched.tobytes() == ref.tobytes()

@@ -495,6 +495,22 @@ static double np_loop1(int i, double a)
     return out;
 }}
 
+/* numpy's loop i on n contiguous doubles (a, out; a, b, out): `np_loop1` and `np_loop2`
+ * over a chunk of points (out may be a) */
+static void np_vec1(int i, const double *a, double *out, int n)
+{{
+    char *args[2] = {{(char *)a, (char *)out}};
+    const ptrdiff_t nn = n, steps[2] = {{sizeof(double), sizeof(double)}};
+    np_loops[i](args, &nn, steps, np_data[i]);
+}}
+
+static void np_vec2(int i, const double *a, const double *b, double *out, int n)
+{{
+    char *args[3] = {{(char *)a, (char *)b, (char *)out}};
+    const ptrdiff_t nn = n, steps[3] = {{sizeof(double), sizeof(double), sizeof(double)}};
+    np_loops[i](args, &nn, steps, np_data[i]);
+}}
+
 static double np_loop2(int i, double a, double b)
 {{
     double out;
@@ -587,4 +603,68 @@ def emit_user_file(source: str, ndim: int, func, dfdu=None, dfdp=None) -> str:
           "                doublereal *dfdu, doublereal *dfdp)", "{",
           "    (void)ndim; (void)icp; (void)ijac; (void)dfdu; (void)dfdp; (void)u; (void)par;",
           *body, "    return 0;", "}", ""]
-    return head + "\n".join(fn) + _TAIL
+    return head + "\n".join(fn) + "\n".join(_batch(func, ndim)) + _TAIL
+
+
+#: Points per pass of the batched f (`_batch`): each temporary is an array of this many
+#: doubles on the stack, and numpy's loops get that many elements a call.
+BATCH_CHUNK = 64
+#: A line of the tape that is one numpy loop of temporaries, constants, u[i] or par[i].
+_LOOP_LINE = re.compile(r"np_loop([12])\((\d+), (.+)\)")
+
+
+def _batch(func, ndim: int) -> list[str]:
+    """washer_traced_batch: f at k points (the bridge's washer_func_batch calls it for
+    the rows of us and pars), the same operations as `func` on each point, with every
+    temporary an array over up to BATCH_CHUNK points: numpy's loops (np_loop1,
+    np_loop2: exp, arctan, ...) are called once for the chunk, as numpy calls them on
+    the arrays of a vectorised func, instead of once a point (their SIMD kernels
+    compute a vector's lanes independently, so each element is the double a call with
+    one element gives: the lanes of a call with one element are masked, not another
+    formula; tests/test_user_files_traced.py compares both on every traced ufunc).
+    Everything else is per point, as in `func` (the power's modes included)."""
+    tape, exprs = func
+    outputs = list(exprs.flat)
+    lines = tape.live_lines(outputs)
+    ch = BATCH_CHUNK
+    per_q = "const double *u = uq + (size_t)q * " + str(ndim) + \
+            ", *par = pq + (size_t)q * par_stride; (void)u; (void)par;"
+
+    def at_q(expr: str) -> str:
+        return _NAME.sub(lambda m: f"{m.group(0)}[q]", expr)
+
+    def each(target: str, expr: str) -> str:
+        return f"        for (int q = 0; q < c; q++) {{ {per_q} {target}[q] = {at_q(expr)}; }}"
+
+    out = ["", "/* f at k points (see tracer._batch): us (k, NDIM), pars (k, NPAR) with row",
+           " * stride par_stride (0: one PAR for all), fs (k, NDIM); 0, or 1 for another NDIM */",
+           "int washer_traced_batch(int k, int ndim, const double *us, const double *pars,",
+           "                        int par_stride, double *fs)", "{",
+           f"    if (ndim != {ndim}) return 1;",
+           f"    for (int q0 = 0; q0 < k; q0 += {ch}) {{",
+           f"        const int c = k - q0 < {ch} ? k - q0 : {ch};",
+           f"        const double *uq = us + (size_t)q0 * {ndim};",
+           "        const double *pq = pars + (size_t)q0 * par_stride;",
+           f"        double *fq = fs + (size_t)q0 * {ndim};",
+           f"        double arg2[{ch}];", "        (void)arg2;"]
+    for line in lines:
+        name, expr = line.strip()[len("const double "):-1].split(" = ", 1)
+        out.append(f"        double {name}[{ch}];")
+        m = _LOOP_LINE.fullmatch(expr)
+        if m is None:
+            out.append(each(name, expr))
+            continue
+        nin, i, args = int(m.group(1)), m.group(2), [a.strip() for a in m.group(3).split(",")]
+        arrays = []
+        for j, a in enumerate(args):
+            if _NAME.fullmatch(a):
+                arrays.append(a)                     # a temporary: already an array
+            else:                                    # u[i], par[i], a constant
+                target = name if j == 0 else "arg2"
+                out.append(each(target, a))
+                arrays.append(target)
+        out.append(f"        np_vec{nin}({i}, {', '.join(arrays)}, {name}, c);")
+    for j, e in enumerate(outputs):
+        out.append(f"        for (int q = 0; q < c; q++) {{ {per_q} "
+                   f"fq[(size_t)q * {ndim} + {j}] = {at_q(e)}; }}")
+    return out + ["    }", "    return 0;", "}", ""]

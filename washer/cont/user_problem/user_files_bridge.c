@@ -11,6 +11,10 @@
  * file does not define are weak symbols (NULL). WASHER_FORTRAN = 0: the C file's
  * table `user` (auto_f2c.h).
  *
+ * WASHER_TRACED_BATCH = 1 (a Python file's func traced into C, washer.cont.user_problem.
+ * tracer): the file also defines washer_traced_batch, f at many points at once, which
+ * washer_func_batch calls instead of FUNC point by point.
+ *
  * GETP, AUTO's support routine for PVLS (support.f90:GETP), reads the context that
  * washer_set_context stores before each PVLS call.
  */
@@ -264,9 +268,17 @@ static void call_func(int ndim, const double *u, const int *icp, const double *p
 /* f at k points: us (k, ndim), pars (k, npar) with row stride par_stride (0: one PAR
    for all points), fs (k, ndim). scratch: ndim * (ndim + npar) doubles for DFDU/DFDP,
    which FUNC may touch even with IJAC = 0. */
+#if WASHER_TRACED_BATCH
+int washer_traced_batch(int k, int ndim, const double *us, const double *pars, int par_stride,
+                        double *fs);
+#endif
+
 void washer_func_batch(int k, int ndim, int npar, const double *us, const double *pars,
                        int par_stride, const int *icp, double *fs, double *scratch)
 {
+#if WASHER_TRACED_BATCH
+    if (washer_traced_batch(k, ndim, us, pars, par_stride, fs) == 0) return;
+#endif
     for (int i = 0; i < k; i++) {
         memset(fs + (size_t)i * ndim, 0, sizeof(double) * ndim);
         call_func(ndim, us + (size_t)i * ndim, icp, pars + (size_t)i * par_stride, 0,

@@ -475,7 +475,8 @@ def _build(python: Problem, path: Path) -> TracedProblem:
     tag = hashlib.sha256(text.encode()).hexdigest()[:12]
     lib = build_library([source_text(f"{path.stem}_traced_{tag}.c", text),
                          source_text("washer_shim.c", shim)], f"{path.stem}_traced",
-                        includes=[INCLUDE], defines={"WASHER_FORTRAN": 0}, flags=FLAGS)
+                        includes=[INCLUDE], defines={"WASHER_FORTRAN": 0, "WASHER_TRACED_BATCH": 1},
+                        flags=FLAGS)
     _bind(lib, loops)
     state = TraceState("func(u, par) traced into C (compared with the Python func bit for "
                        "bit at the start and at the first points of each run)" + python_dfdp)
