@@ -111,6 +111,26 @@ ZERO_FACTOR = 1e-6
 POLE_FACTOR = 1.0
 
 
+def _no_nearer_zero(q: float, q_prev: float, q_cur: float) -> bool:
+    """Whether a located point's test value q is no nearer zero than the step's end of its
+    own sign, and not small against the step's values (ZERO_FACTOR). Towards a zero a test
+    falls in magnitude; towards a pole it grows from both sides, and a trial on the side of
+    the step's smaller end (-1.2e5 at the step's start, +1.7e8 at its end: n-body's
+    collinear branch passing the massless primary in one step) stays above that end
+    whatever the iteration does and below the other, so POLE_FACTOR's comparison with the
+    larger end passes it."""
+    same = q_prev if (q < 0) == (q_prev < 0) else q_cur
+    return abs(q) >= abs(same) and abs(q) > ZERO_FACTOR * max(abs(q_prev), abs(q_cur))
+
+
+def _left_behind(s_best: float, lo: float, hi: float, tol: float) -> bool:
+    """Whether the location's point lies more than tol outside its last sign bracket [lo,
+    hi]: a trial that converged (two corrections below tol) where the secant put the zero,
+    after which the trials went on and the bracket closed elsewhere (on n-body's pole,
+    5.8e-5 from the step's start against a bracket [9.47e-3, 1.0e-2])."""
+    return s_best < min(lo, hi) - tol or s_best > max(lo, hi) + tol
+
+
 class LocationFailed(RuntimeError):
     """The location did not converge (ITMX) or a trial step failed."""
 
@@ -384,6 +404,11 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     pt, s_best, q = best
     if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
+    if _left_behind(s_best, lo, hi, tol) and _no_nearer_zero(q, q_prev, q_cur):
+        raise LocationFailed(f"sign change through a pole, not a zero (the test is {q:.3g} "
+                             f"at s = {s_best:.3g}, {q_prev:.3g} and {q_cur:.3g} at the "
+                             f"step's ends, the last bracket [{min(lo, hi):.3g}, "
+                             f"{max(lo, hi):.3g}])")
     width = abs(hi - lo)
     # An end of the bracket this far below the step's values is the zero itself: across a
     # bracket narrower than the trials' Newton tolerance the test's change is their noise
