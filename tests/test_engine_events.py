@@ -261,6 +261,28 @@ def test_a_user_value_whose_change_newton_does_not_resolve_is_located_not_a_jump
         locate(gap, ("UZ", 0), q0, q1, 1.0, settings)
 
 
+def test_a_user_value_has_no_pole():
+    """A test whose located trial exceeds its values at both ends of the step is refused
+    as a pole (the first Lyapunov coefficient through a zero eigenvalue), but a user
+    value PAR(i) - v has no pole: its trials' values are the parameter's own, and Newton's
+    noise on it (fnb's run 6 starts where Lin's gap PAR(22) is 0 by construction: the gap
+    changes sign at 1e-10 between two points at one PAR(21), and AUTO labels UZ30 there)
+    is no reason to refuse its zero. Here q = -1e-9 (1 - |s - 0.3|) up to s = 0.3,
+    +1e-9 (1 - |s - 0.3|) beyond, below the resolution 1e-7 of a parameter converged to
+    EPSL: located at 0.3 as a user value, refused as a pole for a bifurcation test."""
+    from types import SimpleNamespace
+    from washer.cont.events import LocationFailed, locate, location_tolerance
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=60, DSMIN=1e-12)
+
+    def noise(s):
+        return ("point", s), math.copysign(1e-9 * (1 - abs(s - 0.3)), s - 0.3)
+    q0, q1 = noise(0.0)[1], noise(1.0)[1]
+    _, s = locate(noise, ("UZ", 0), q0, q1, 1.0, settings, resolution=1e-7, crossing=True)
+    assert abs(s - 0.3) < 10 * location_tolerance(settings)
+    with pytest.raises(LocationFailed, match="pole"):
+        locate(noise, "BP", q0, q1, 1.0, settings, resolution=1e-7)
+
+
 def test_a_zero_with_newton_noise_on_one_side_is_located():
     """A test whose values at converged points carry an error of the Newton tolerance's
     size (r3b's circle of L5 at mu = 1: 0.47 and -0.18 at the step's ends, -3.6e-10 at a
@@ -430,6 +452,54 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
         nxt = point(sp.x[0] + 1e-3)
         nxt.tests[Code.BP] = noise
         assert sign_changes(sp.tests, nxt.tests) == []
+
+
+@pytest.mark.parametrize("key, state_jumps", [(("UZ", 0), True), (("UZ", 0), False),
+                                              ("BP", True)],
+                         ids=["UZ-branch-jumps", "UZ-value-jumps", "BP"])
+def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_where_it_landed(
+        key, state_jumps):
+    """A branch that jumps within one step (Newton leaving for another sheet of solutions:
+    kdv's run 3, from PAR(1) = 3.0488 to 2.7364 across UZR = 3) crosses the user value
+    there. Here the state x = s + 0.05 up to s = 0.2 and s - 0.3 beyond, and the test is x:
+    it changes sign only across the jump, where the location's bracket closes. AUTO's
+    LCSPBV steps on from the step's end and labels that side (its UZ4 of kdv's run 3, at
+    PAR(1) = 2.7295); the point is the step's end, where the branch landed, with a note.
+    A user value that jumps while the state does not (a PVLS's step function of a
+    continuous branch, the state here s) is no crossing of the branch, and a bifurcation
+    test jumping is no zero (tfc's BP test): both stay unlabelled, 'Possible special
+    point'."""
+    from types import SimpleNamespace
+    from washer.cont.branch import Point
+    from washer.cont.codes import Code
+    from washer.cont.events import first_zero
+    key = Code.BP if key == "BP" else key
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=60, DSMIN=1e-12)
+
+    def q_of(s):
+        return s + 0.05 if s < 0.2 else s - 0.3
+
+    def point(s):
+        return Point(np.array([q_of(s) if state_jumps else s]), np.array([1.0]), None,
+                     {key: q_of(s)})
+
+    def refresh(p):
+        p.tests = {key: q_of(p.x[0]) if not state_jumps else p.x[0]}
+    prev, cur = point(0.0), point(0.25)
+    notes = []
+    hit = first_zero(prev, cur, 0.25, settings,
+                     trial=lambda s, k, base=None, chord=None: (point(s), q_of(s)),
+                     accepted=lambda k, a, b: True, refresh=refresh,
+                     inner=lambda a, b: float(a @ b), note=notes.append)
+    assert len(notes) == 1
+    if key == Code.BP or not state_jumps:
+        # (the BP refused as a pole here: its trials beyond the jump exceed the step's
+        # values; a user value has no pole, and its bracket closes on the jump)
+        assert hit is None and notes[0].startswith("NOTE:Possible special point")
+        return
+    sp, k, same = hit
+    assert sp is cur and k == key and same == []
+    assert "UZ1 crossed by a jump of the branch" in notes[0]
 
 
 def test_a_second_zero_within_the_tolerance_of_a_located_fold_is_not_searched():

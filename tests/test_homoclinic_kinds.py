@@ -231,9 +231,8 @@ def test_saddle_node_homoclinic_circle():
 @pytest.mark.slow
 def test_mtn_runs_4_to_6_from_autos_own_solutions(tmp_path, monkeypatch):
     """AUTO's demo mtn (tests/data/auto_demos/mtn) runs 4-6 restarted from AUTO's own s.1:
-    the demo's script cannot reach them in washer, whose labels differ from AUTO's after
-    AUTO's UZ6 of run 2, a jump of psi_15 and not a zero (docs/auto_compatibility.md's demo
-    table). Run 6 holds
+    what these runs give from AUTO's records, whatever washer's runs 1-3 (the demo's script
+    reaches them too, docs/auto_compatibility.md's demo table). Run 6 holds
     psi_15 = 0 (IFIXED = [15], IEQUIB = 2) in (PAR(3), PAR(1), PAR(2))."""
     src = DEMOS / "mtn"
     work = tmp_path / "mtn"

@@ -358,8 +358,8 @@ KDV = Path(__file__).parent / "data" / "homcont" / "kdv"
 @pytest.mark.slow
 def test_kdv_switch_to_3_homoclinic_orbits_matches_auto(tmp_path, monkeypatch):
     # AUTO's demo kdv, runs 4 and 5 (ISTART = -3: four pieces, Lin's gaps PAR(22), PAR(24))
-    # from AUTO's own run 3 (its s.3: washer's run 3 labels one UZ fewer,
-    # docs/auto_compatibility.md's table).
+    # from AUTO's own run 3 (its s.3: from washer's own s.3 run 4 cuts the reversible
+    # orbit at the other of its two equal peaks, docs/auto_compatibility.md's table).
     # Run 4 continues the pieces in (PAR(3), PAR(21), PAR(22), PAR(24)) to PAR(21) = 3.5,
     # run 5 restarts from its pieces' record with NPAR 32 widened to 36 (Lin's direction
     # and f(x_max) stay the last parameters) and closes the gaps in PAR(2).

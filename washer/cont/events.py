@@ -135,6 +135,17 @@ class LocationFailed(RuntimeError):
     """The location did not converge (ITMX) or a trial step failed."""
 
 
+class CrossedByJump(LocationFailed):
+    """The location's bracket closed on a jump of the test, not on a zero: ends, the
+    converged trial points at the bracket's two ends, on the previous point's side and on
+    the step end's (None where no trial has moved that end), width, the bracket's
+    arclength."""
+
+    def __init__(self, text: str, ends=(None, None), width: float = 0.0):
+        super().__init__(text)
+        self.ends, self.width = ends, width
+
+
 def location_tolerance(settings) -> float:
     """A location's stopping tolerance on the arclength, EPSS (1 + sqrt|DS DSMAX|), as
     AUTO's LCSPAE / LCSPBV scale it; settings has EPSS, DS, DSMAX."""
@@ -261,7 +272,7 @@ def _converged_trial(trial, s_new: float, s_last: float, settings, base=None):
 
 def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
            from_last: bool = False, position=None, resolution: float = 0.0,
-           trace: list | None = None):
+           trace: list | None = None, crossing: bool = False):
     """Zero of test `key` between the previous point (s = 0, value q_prev) and
     the current one (s = s_cur, value q_cur).
 
@@ -279,7 +290,10 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     points (a user value's, `first_zero`); a bracket whose ends differ by no more is no
     jump of the test, whatever its width.
     trace: a list to which every converged trial (point, s) is appended, in order.
-    Returns (point, s) or raises LocationFailed.
+    crossing: the test is a coordinate of the solution (a user value PAR(i) - v), which
+    has no pole: a trial beyond the step's values is no reason to refuse the bracket.
+    Returns (point, s) or raises LocationFailed (CrossedByJump where the bracket closed
+    on a jump of the test).
 
     AUTO stops as soon as a correction of s is below the tolerance; a
     one-sided iteration can then stop with the zero still far inside its
@@ -296,6 +310,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     tol = location_tolerance(settings)
     lo, qlo, hi, qhi = 0.0, q_prev, s_cur, q_cur          # the bracket (as s values)
     raw = {"lo": q_prev, "hi": q_cur}                      # its ends' values, unscaled
+    end_pts = {"lo": None, "hi": None}                     # its ends' trial points
     ss, qs = [0.0, s_cur], [q_prev, q_cur]
     s_new = s_cur - q_cur * s_cur / (q_cur - q_prev)       # secant (AUTO's first step)
     s_last = s_cur
@@ -344,12 +359,14 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
         if (q < 0) == (qlo < 0):
             lo, qlo = s_new, q
             raw["lo"] = q
+            end_pts["lo"] = pt
             if side == -1:
                 qhi /= 2
             side = -1
         else:
             hi, qhi = s_new, q
             raw["hi"] = q
+            end_pts["hi"] = pt
             if side == 1:
                 qlo /= 2
             side = 1
@@ -402,7 +419,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
                              f"step: s = 0 to {s_cur:.6g}, test {q_prev:.3g} to {q_cur:.3g}"
                              f"{tried}; bracket [{min(lo, hi):.6g}, {max(lo, hi):.6g}])")
     pt, s_best, q = best
-    if abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
+    if not crossing and abs(q) > POLE_FACTOR * max(abs(q_prev), abs(q_cur)):
         raise LocationFailed("sign change through a pole, not a zero")
     if _left_behind(s_best, lo, hi, tol) and _no_nearer_zero(q, q_prev, q_cur):
         raise LocationFailed(f"sign change through a pole, not a zero (the test is {q:.3g} "
@@ -425,9 +442,9 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
         # creeps towards such a point and stops at ITMX: "Possible special point";
         # tfc's test of BPs of cycles just after its Hopf start, -6.8e-7 at 2e-9 from
         # the previous point, +5e-7 there).
-        raise LocationFailed(f"sign change through a jump, not a zero (the test changes by "
-                             f"{abs(raw['lo'] - raw['hi']):.3g} across the last bracket of "
-                             f"{width:.3g})")
+        raise CrossedByJump(f"sign change through a jump, not a zero (the test changes by "
+                            f"{abs(raw['lo'] - raw['hi']):.3g} across the last bracket of "
+                            f"{width:.3g})", (end_pts["lo"], end_pts["hi"]), width)
     if auto_nit is not None and hasattr(pt, "iterations"):
         # The step control after a located point counts the Newton iterations of the
         # trial AUTO ends its location with (the further trials that narrow the
@@ -552,7 +569,34 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                               if sphere else
                               (lambda p: inner(p.x - prev.x, prev.step_direction)),
                               resolution=0.0 if resolution is None else resolution(key),
-                              trace=trace)
+                              trace=trace, crossing=isinstance(key, tuple))
+        except CrossedByJump as exc:
+            # (an end no trial has moved is still the interval's own: prev or target)
+            lo_pt, hi_pt = exc.ends
+            d = (target if hi_pt is None else hi_pt).x - (prev if lo_pt is None else lo_pt).x
+            jumped = isinstance(key, tuple) and \
+                math.sqrt(inner(d, d)) > JUMP_FACTOR * exc.width
+            if not jumped:
+                failed.add(key)
+                note(f"NOTE:Possible special point ({_key_name(key, curve_type)}: {exc})")
+                continue
+            # The solution itself jumps across the bracket (its ends' states lie
+            # JUMP_FACTOR times further apart than its arclength: Newton leaving for
+            # another sheet of solutions within the step), and a user value's test, the
+            # parameter PAR(i) - v, crosses the value with it. AUTO's LCSPBV, whose trials
+            # step on from the step's end, labels it on that side (kdv's run 3: the step
+            # from PAR(1) = 3.0488 lands at 2.7364 across UZR = 3, AUTO's UZ4 at 2.7295,
+            # its trials' last); its scripts count that label (kdv.auto's r3('UZ2') is
+            # the UZ at 3 reached later). Labelled at the step's end. A value that jumps
+            # while the solution does not (a PVLS's step function of the state) is no
+            # crossing of the branch: left unlocated.
+            note(f"NOTE:{_key_name(key, curve_type)} crossed by a jump of the branch, "
+                 f"labelled where the step landed ({exc})")
+            refresh(target)
+            found = (target, key)
+            located[key] = span
+            near_sp = [(prev, 0.0)]
+            continue
         except RuntimeError as exc:
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other
