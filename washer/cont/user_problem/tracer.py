@@ -622,11 +622,21 @@ def _batch(func, ndim: int) -> list[str]:
     compute a vector's lanes independently, so each element is the double a call with
     one element gives: the lanes of a call with one element are masked, not another
     formula; tests/test_user_files_traced.py compares both on every traced ufunc).
-    Everything else is per point, as in `func` (the power's modes included)."""
+    Everything else is per point, as in `func` (the power's modes included). A func
+    without numpy loops gains nothing by it (lrz's f: 4.6M instructions a run more than
+    FUNC point by point, callgrind): its washer_traced_batch returns 1, and the bridge
+    calls FUNC point by point."""
     tape, exprs = func
     outputs = list(exprs.flat)
     lines = tape.live_lines(outputs)
     ch = BATCH_CHUNK
+    if not any(_LOOP_LINE.fullmatch(ln.strip()[len("const double "):-1].split(" = ", 1)[1])
+               for ln in lines):
+        return ["", "/* f at k points: FUNC point by point (no numpy loop to batch) */",
+                "int washer_traced_batch(int k, int ndim, const double *us, const double *pars,",
+                "                        int par_stride, double *fs)", "{",
+                "    (void)k; (void)ndim; (void)us; (void)pars; (void)par_stride; (void)fs;",
+                "    return 1;", "}", ""]
     per_q = "const double *u = uq + (size_t)q * " + str(ndim) + \
             ", *par = pq + (size_t)q * par_stride; (void)u; (void)par;"
 
