@@ -746,3 +746,40 @@ def test_isw_minus_one_at_a_regular_orbit_continues_the_family(tmp_path):
         p = row.par
         assert p[0] > 0.1 - 1e-9
         assert p[10] == pytest.approx(lw_period(p), rel=1e-6)
+
+
+def test_a_fold_of_cycles_is_located_at_the_closed_forms_fold():
+    """x' = x g - y, y' = y g + x with g = mu + 2 r^2 - r^4: its cycles are the circles
+    g = 0, r^2 = 1 +- sqrt(1 + mu), of period 2 pi, and they fold at mu = -1, r = 1.
+    Followed from the outer circle at mu = -0.5 towards the fold with steps of up to 0.5,
+    the fold test changes sign over a step and the location's first trial is taken from
+    the previous point on the plane across the chord to the step's end (AUTO's LCSPBV
+    steps back from the step's end along that secant), the later ones from the last
+    trial. The LP lies at mu = -1 to 1e-9: mu is quadratic in the arclength at a fold,
+    so the location tolerance EPSS (1 + sqrt|DS DSMAX|) = 1.2e-6 in arclength moves it by
+    ~1e-12, and the collocation of a circle traversed at constant speed is exact to
+    rounding here (measured: 0 and 1e-16)."""
+    from washer.cont import runner
+    from washer.cont.constants import Constants
+    from washer.cont.problem import Problem
+
+    def func(u, par):
+        r2 = u[0] ** 2 + u[1] ** 2
+        g = par[0] + 2 * r2 - r2 * r2
+        return np.array([u[0] * g - u[1], u[1] * g + u[0]])
+
+    def stpnt(u, par, t):
+        par[0], par[10] = -0.5, 2 * np.pi
+        r = math.sqrt(1 + math.sqrt(0.5))
+        u[0], u[1] = r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t)
+    br = runner.run(Constants(dict(NDIM=2, IPS=2, ICP=[1, 11], NTST=20, NCOL=4, ILP=1,
+                                   ISP=2, NMX=10, NPR=1000, DS=-0.1, DSMAX=0.5, ITMX=4,
+                                   EPSL=1e-7, EPSU=1e-7, EPSS=1e-6)),
+                    Problem(2, func, stpnt=stpnt, name="fold_of_circles"))
+    folds = [rec for rec in br.specials if rec.ty == "LP"]
+    assert folds, [(rec.ty, rec.par[0]) for rec in br.specials]
+    lp = folds[0]
+    U = np.asarray(lp.U, float)
+    assert abs(lp.par[0] + 1) < 1e-9
+    assert lp.par[10] == pytest.approx(2 * np.pi, abs=1e-9)
+    assert np.allclose(U[:, 0] ** 2 + U[:, 1] ** 2, 1.0, atol=1e-9)

@@ -283,9 +283,11 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     its last trial point: the final step is tiny and converges in the fewest Newton
     iterations, which is what ADPTDS then sees).
     position(point) -> s: where a trial point lies on the previous point's arclength
-    coordinate; with from_last the steps from the trial points do not end exactly at the
-    s asked for, and q must stay a function of one coordinate for the secant, Muller
-    and the bracket to make sense.
+    coordinate; with from_last no trial ends exactly at the s asked for (the first, from
+    the previous point, lands on the plane across the chord to the step's end, as AUTO's
+    first trial back from the step's end; the later ones step from the trial points), so
+    every trial is placed by position: q must stay a function of one coordinate for the
+    secant, Muller and the bracket to make sense.
     resolution: the smallest change of the test Newton's tolerance resolves between two
     points (a user value's, `first_zero`); a bracket whose ends differ by no more is no
     jump of the test, whatever its width.
@@ -341,7 +343,7 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
                 pt, q, s_new = got
             else:
                 pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
-            if base is not None and position is not None:
+            if position is not None and (base is not None or from_last):
                 s_new = position(pt)
         except LocationFailed:
             if last is not None and abs(s_new - last[1]) < 2 * tol:
@@ -478,8 +480,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     and the next one is tried.
 
     trial(s, key, base, chord) -> (point, value of test key): the continuation step of
-        arclength s from prev, evaluating that test only; chord: the unit secant from prev
-        to the far end of the interval being searched (the predictor's direction).
+        arclength s from prev, evaluating that test only; chord: the secant from prev to
+        the far end of the interval being searched per unit of its arclength (prev.x +
+        s chord is that end at s = its span: the predictor's line).
     accepted(key, prev, cur) -> bool: the system's acceptance rule (UZ keys always).
     refresh(point) -> None: all test values at a located point, at its tangent.
     inner(a, b): the system's inner product (the BP's secant is made unit in it).
@@ -552,7 +555,6 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         # pitchfork met at its fold, u^3 - p u = 0 followed along p = u^2) it leaves
         # the branch's side and Newton converges onto the crossing branch.
         chord = (target.x - prev.x) / span
-        chord = chord / math.sqrt(inner(chord, chord))
         if found is None and at_step_end(prev.tests[key], target.tests[key], span, settings):
             # AUTO's LCSPAE / LCSPBV: the step's end is the special point itself.
             refresh(target)

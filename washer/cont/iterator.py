@@ -559,10 +559,20 @@ class Continuation:
             x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent, s_)
             pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=s_, it=it)
         elif chord is not None and self.sys.arclength == "sphere":
-            # The sphere of radius |s_| about prev is the same whatever the predictor;
-            # the plane arclength of BVPs is measured along prev's tangent, which the
-            # location's s coordinate (`events.locate`, position) keeps.
+            # The sphere of radius |s_| about prev is the same whatever the predictor.
+            chord = chord / math.sqrt(self.sys.inner(chord, chord))
             x, it = self.correct(prev.x + s_ * chord, prev.x, chord, s_)
+            pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
+        elif chord is not None:
+            # AUTO's LCSPBV steps back from the far end along the secant of the step
+            # (CONTBV), on the plane across it: the predictor interpolates between prev and
+            # the far end, and Newton's arclength row is the secant's, not prev's step
+            # direction, across which the branch may run nearly parallel where it turns
+            # within the step (pkc's fold of cycles on its second lap: the step along
+            # prev's direction failed in ITNW = 5). The point lands off the s asked for:
+            # the location places it by its projection (`events.locate`, position).
+            n = math.sqrt(self.sys.inner(chord, chord))
+            x, it = self.correct(prev.x + s_ * chord, prev.x, chord / n, s_ * n)
             pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
         else:
             pt = self._step(prev, s_, keys=[key])
