@@ -283,9 +283,9 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
     its last trial point: the final step is tiny and converges in the fewest Newton
     iterations, which is what ADPTDS then sees).
     position(point) -> s: where a trial point lies on the previous point's arclength
-    coordinate; with from_last no trial ends exactly at the s asked for (the first, from
-    the previous point, lands on the plane across the chord to the step's end, as AUTO's
-    first trial back from the step's end; the later ones step from the trial points), so
+    coordinate; with from_last no trial ends exactly at the s asked for (the first steps
+    back from the step's end along the chord to it by s - s_cur, on the plane across it,
+    as AUTO's first trial; the later ones step from the trial points), so
     every trial is placed by position: q must stay a function of one coordinate for the
     secant, Muller and the bracket to make sense.
     resolution: the smallest change of the test Newton's tolerance resolves between two
@@ -479,10 +479,10 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     that cannot be located is left (`note` says so, AUTO's "Possible special point")
     and the next one is tried.
 
-    trial(s, key, base, chord) -> (point, value of test key): the continuation step of
-        arclength s from prev, evaluating that test only; chord: the secant from prev to
-        the far end of the interval being searched per unit of its arclength (prev.x +
-        s chord is that end at s = its span: the predictor's line).
+    trial(s, key, base, chord, span) -> (point, value of test key): the continuation
+        step of arclength s from prev, evaluating that test only; chord: the secant from
+        prev to the far end of the interval being searched per unit of its arclength span
+        (prev.x + span chord is that end: the predictor's line).
     accepted(key, prev, cur) -> bool: the system's acceptance rule (UZ keys always).
     refresh(point) -> None: all test values at a located point, at its tangent.
     inner(a, b): the system's inner product (the BP's secant is made unit in it).
@@ -564,7 +564,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
             continue
         trace: list = []
         try:
-            sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord), key,
+            sp, s_sp = locate(lambda s_, base=None: trial(s_, key, base, chord, span), key,
                               prev.tests[key], target.tests[key], span, settings,
                               from_last=secant,
                               position=(lambda p: signed_distance(p.x - prev.x, span, inner))

@@ -459,7 +459,9 @@ class Continuation:
     # ------------------------------------------------------------- location
     def _first_zero(self, prev: Point, cur: Point, ds: float):
         """The earliest accepted zero between prev and cur (`events.first_zero`)."""
-        return first_zero(prev, cur, ds, self.s, trial=lambda s_, key, base=None, chord=None: self._trial(prev, s_, key, base, chord),
+        return first_zero(prev, cur, ds, self.s,
+                          trial=lambda s_, key, base=None, chord=None, span=None:
+                          self._trial(prev, s_, key, base, chord, span),
                           accepted=self._accepted, refresh=self._refresh, inner=self.sys.inner,
                           note=lambda text: self._pending.append(Step("note", text=text)),
                           curve_type=self.sys.curve_type,
@@ -489,11 +491,13 @@ class Continuation:
         J = cached[2]
         sp.tests = self._tests(sp, J, self._factor(J, self.sys.border(sp.tangent)), None)
 
-    def _trial(self, prev: Point, s_, key, base=None, chord=None):
+    def _trial(self, prev: Point, s_, key, base=None, chord=None, span=None):
         """The trial point at arclength s_ from prev, evaluating test `key` only: a step
         from prev, or from `base` = (an earlier trial point, its s) by s_ - s. chord: the
-        predictor's direction of a step from prev on the sphere (`events.first_zero`);
-        prev's tangent when None or where the arclength is a plane along it."""
+        secant from prev to the far end of the interval searched per unit of its
+        arclength span (`events.first_zero`): the predictor's direction on the sphere;
+        on the plane, the line along which the step goes back from that end (prev's
+        tangent when None)."""
         if base is not None:
             # The tangent at the trial point is oriented by (and the BP test borders the
             # Jacobian with) the earlier trial's tangent, not the secant of the step from
@@ -565,14 +569,22 @@ class Continuation:
             pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
         elif chord is not None:
             # AUTO's LCSPBV steps back from the far end along the secant of the step
-            # (CONTBV), on the plane across it: the predictor interpolates between prev and
-            # the far end, and Newton's arclength row is the secant's, not prev's step
-            # direction, across which the branch may run nearly parallel where it turns
-            # within the step (pkc's fold of cycles on its second lap: the step along
-            # prev's direction failed in ITNW = 5). The point lands off the s asked for:
-            # the location places it by its projection (`events.locate`, position).
+            # (CONTBV, made unit by SCALEB), by its secant correction s_ - span as it
+            # stands, on the plane across the secant: not along prev's step direction, to
+            # which the branch may run nearly parallel where it turns within the step
+            # (pkc's fold of cycles on its second lap: the step along prev's direction
+            # failed in ITNW = 5). The correction is measured along the secant, not
+            # rescaled to prev's coordinate (by the secant's length per unit of it): where
+            # the branch bends within the step, as kpr's run 7 at its zero of PSI 9, the
+            # rescaled step went 6 % further back, landed at PSI 9 = -5.6e-6 where AUTO's
+            # lands at -1.8e-6, and the location ended on a one-iteration trial, so that
+            # ADPTDS doubled the next step where AUTO's grows it by 1.5. The point lands
+            # off the s asked for: the location places it by its projection
+            # (`events.locate`, position).
             n = math.sqrt(self.sys.inner(chord, chord))
-            x, it = self.correct(prev.x + s_ * chord, prev.x, chord / n, s_ * n)
+            end = prev.x + span * chord
+            back = s_ - span
+            x, it = self.correct(end + back * chord / n, end, chord / n, back)
             pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
         else:
             pt = self._step(prev, s_, keys=[key])
