@@ -783,3 +783,49 @@ def test_a_fold_of_cycles_is_located_at_the_closed_forms_fold():
     assert abs(lp.par[0] + 1) < 1e-9
     assert lp.par[10] == pytest.approx(2 * np.pi, abs=1e-9)
     assert np.allclose(U[:, 0] ** 2 + U[:, 1] ** 2, 1.0, atol=1e-9)
+
+
+def test_a_locations_first_trial_steps_back_from_the_steps_end_along_its_unit_secant(
+        monkeypatch):
+    """AUTO's LCSPBV takes the first trial of a location on a BVP branch from the step's
+    end: CONTBV makes the secant of the step unit (SCALEB) and STEPBV goes by the secant
+    correction s - span along it, on the plane across it. The trial of the fold of the
+    circles g = mu + 2 r^2 - r^4 = 0 (above) lies on that plane: <x - end, c> = s - span
+    with c the unit secant, to rounding (the plane's row is linear, Newton meets it at
+    every iterate). Where the branch bends within the step the secant is longer than the
+    span (here by the ratio measured below) and a step of (s - span) times that ratio
+    lands further back: kpr's run 7 (HomCont, its zero of PSI 9) then ended its location
+    on a one-iteration trial and ADPTDS doubled the next step where AUTO's grew it by 1.5."""
+    from washer.cont import iterator, runner
+    from washer.cont.constants import Constants
+    from washer.cont.problem import Problem
+
+    seen = []
+    trial = iterator.Continuation._trial
+
+    def spy(self, prev, s_, key, base=None, chord=None, span=None):
+        pt, q = trial(self, prev, s_, key, base, chord, span)
+        if base is None and chord is not None and key == iterator.Code.LPC:
+            seen.append((self.sys.inner, prev.x.copy(), s_, chord.copy(), span, pt.x.copy()))
+        return pt, q
+    monkeypatch.setattr(iterator.Continuation, "_trial", spy)
+
+    def func(u, par):
+        r2 = u[0] ** 2 + u[1] ** 2
+        g = par[0] + 2 * r2 - r2 * r2
+        return np.array([u[0] * g - u[1], u[1] * g + u[0]])
+
+    def stpnt(u, par, t):
+        par[0], par[10] = -0.5, 2 * np.pi
+        r = math.sqrt(1 + math.sqrt(0.5))
+        u[0], u[1] = r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t)
+    runner.run(Constants(dict(NDIM=2, IPS=2, ICP=[1, 11], NTST=20, NCOL=4, ILP=1, ISP=2,
+                              NMX=10, NPR=1000, DS=-0.1, DSMAX=0.5, ITMX=4, EPSL=1e-7,
+                              EPSU=1e-7, EPSS=1e-6)),
+               Problem(2, func, stpnt=stpnt, name="fold_of_circles"))
+    assert seen
+    inner, x0, s_, chord, span, x = seen[0]
+    n = math.sqrt(inner(chord, chord))
+    end = x0 + span * chord
+    assert n > 1 + 1e-3                       # the branch bends within the step
+    assert inner(x - end, chord / n) == pytest.approx(s_ - span, rel=1e-9, abs=1e-13)

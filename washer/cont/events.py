@@ -343,7 +343,15 @@ def locate(trial, key, q_prev: float, q_cur: float, s_cur: float, settings,
                 pt, q, s_new = got
             else:
                 pt, q, s_new = _converged_trial(trial, s_new, s_last, settings, base)
-            if position is not None and (base is not None or from_last):
+            # Trials from the last trial, and the chord's first trial (a step back from
+            # the step's end, `iterator.Continuation._trial`), land off the s asked: each
+            # is placed by its projection. The first trial of a BP of a BVP, a step from
+            # prev along its tangent on its plane, stays at the s asked, as before the
+            # chord's trial: placed by its projection, ppp's BP of cycles at the tip of its
+            # fold moved 5.7e-10 in arclength and the step after it then failed down to
+            # DSMIN (its EP at NMX lost, an MX).
+            if position is not None and (base is not None
+                                         or (from_last and key != Code.BPC)):
                 s_new = position(pt)
         except LocationFailed:
             if last is not None and abs(s_new - last[1]) < 2 * tol:
