@@ -748,17 +748,9 @@ def test_isw_minus_one_at_a_regular_orbit_continues_the_family(tmp_path):
         assert p[10] == pytest.approx(lw_period(p), rel=1e-6)
 
 
-def test_a_fold_of_cycles_is_located_at_the_closed_forms_fold():
-    """x' = x g - y, y' = y g + x with g = mu + 2 r^2 - r^4: its cycles are the circles
-    g = 0, r^2 = 1 +- sqrt(1 + mu), of period 2 pi, and they fold at mu = -1, r = 1.
-    Followed from the outer circle at mu = -0.5 towards the fold with steps of up to 0.5,
-    the fold test changes sign over a step and the location's first trial is taken from
-    the previous point on the plane across the chord to the step's end (AUTO's LCSPBV
-    steps back from the step's end along that secant), the later ones from the last
-    trial. The LP lies at mu = -1 to 1e-9: mu is quadratic in the arclength at a fold,
-    so the location tolerance EPSS (1 + sqrt|DS DSMAX|) = 1.2e-6 in arclength moves it by
-    ~1e-12, and the collocation of a circle traversed at constant speed is exact to
-    rounding here (measured: 0 and 1e-16)."""
+def _run_fold_of_circles():
+    """AUTO's run of the cycles of x' = x g - y, y' = y g + x, g = mu + 2 r^2 - r^4, from the
+    outer circle at mu = -0.5 towards their fold at mu = -1 (steps of up to 0.5)."""
     from washer.cont import runner
     from washer.cont.constants import Constants
     from washer.cont.problem import Problem
@@ -772,10 +764,23 @@ def test_a_fold_of_cycles_is_located_at_the_closed_forms_fold():
         par[0], par[10] = -0.5, 2 * np.pi
         r = math.sqrt(1 + math.sqrt(0.5))
         u[0], u[1] = r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t)
-    br = runner.run(Constants(dict(NDIM=2, IPS=2, ICP=[1, 11], NTST=20, NCOL=4, ILP=1,
-                                   ISP=2, NMX=10, NPR=1000, DS=-0.1, DSMAX=0.5, ITMX=4,
-                                   EPSL=1e-7, EPSU=1e-7, EPSS=1e-6)),
-                    Problem(2, func, stpnt=stpnt, name="fold_of_circles"))
+    return runner.run(Constants(dict(NDIM=2, IPS=2, ICP=[1, 11], NTST=20, NCOL=4, ILP=1,
+                                     ISP=2, NMX=10, NPR=1000, DS=-0.1, DSMAX=0.5, ITMX=4,
+                                     EPSL=1e-7, EPSU=1e-7, EPSS=1e-6)),
+                      Problem(2, func, stpnt=stpnt, name="fold_of_circles"))
+
+
+def test_a_fold_of_cycles_is_located_at_the_closed_forms_fold():
+    """x' = x g - y, y' = y g + x with g = mu + 2 r^2 - r^4: its cycles are the circles
+    g = 0, r^2 = 1 +- sqrt(1 + mu), of period 2 pi, and they fold at mu = -1, r = 1.
+    Followed from the outer circle at mu = -0.5 towards the fold with steps of up to 0.5,
+    the fold test changes sign over a step and the location's first trial is taken back
+    from the step's end along the chord to it, on the plane across it (AUTO's LCSPBV),
+    the later ones from the last trial. The LP lies at mu = -1 to 1e-9: mu is quadratic in the arclength at a fold,
+    so the location tolerance EPSS (1 + sqrt|DS DSMAX|) = 1.2e-6 in arclength moves it by
+    ~1e-12, and the collocation of a circle traversed at constant speed is exact to
+    rounding here (measured: 0 and 1e-16)."""
+    br = _run_fold_of_circles()
     folds = [rec for rec in br.specials if rec.ty == "LP"]
     assert folds, [(rec.ty, rec.par[0]) for rec in br.specials]
     lp = folds[0]
@@ -793,12 +798,10 @@ def test_a_locations_first_trial_steps_back_from_the_steps_end_along_its_unit_se
     circles g = mu + 2 r^2 - r^4 = 0 (above) lies on that plane: <x - end, c> = s - span
     with c the unit secant, to rounding (the plane's row is linear, Newton meets it at
     every iterate). Where the branch bends within the step the secant is longer than the
-    span (here by the ratio measured below) and a step of (s - span) times that ratio
+    span (1.137 times here, measured) and a step of (s - span) times that ratio
     lands further back: kpr's run 7 (HomCont, its zero of PSI 9) then ended its location
     on a one-iteration trial and ADPTDS doubled the next step where AUTO's grew it by 1.5."""
-    from washer.cont import iterator, runner
-    from washer.cont.constants import Constants
-    from washer.cont.problem import Problem
+    from washer.cont import iterator
 
     seen = []
     trial = iterator.Continuation._trial
@@ -810,19 +813,7 @@ def test_a_locations_first_trial_steps_back_from_the_steps_end_along_its_unit_se
         return pt, q
     monkeypatch.setattr(iterator.Continuation, "_trial", spy)
 
-    def func(u, par):
-        r2 = u[0] ** 2 + u[1] ** 2
-        g = par[0] + 2 * r2 - r2 * r2
-        return np.array([u[0] * g - u[1], u[1] * g + u[0]])
-
-    def stpnt(u, par, t):
-        par[0], par[10] = -0.5, 2 * np.pi
-        r = math.sqrt(1 + math.sqrt(0.5))
-        u[0], u[1] = r * np.cos(2 * np.pi * t), r * np.sin(2 * np.pi * t)
-    runner.run(Constants(dict(NDIM=2, IPS=2, ICP=[1, 11], NTST=20, NCOL=4, ILP=1, ISP=2,
-                              NMX=10, NPR=1000, DS=-0.1, DSMAX=0.5, ITMX=4, EPSL=1e-7,
-                              EPSU=1e-7, EPSS=1e-6)),
-               Problem(2, func, stpnt=stpnt, name="fold_of_circles"))
+    _run_fold_of_circles()
     assert seen
     inner, x0, s_, chord, span, x = seen[0]
     n = math.sqrt(inner(chord, chord))
