@@ -334,7 +334,7 @@ def test_the_fold_is_located_before_a_branch_point_in_the_same_step():
     cur = point(1.0, {Code.LPC: -0.09, Code.BPC: 1e-15})
     tried = []
 
-    def trial(s, key, base=None, chord=None):
+    def trial(s, key, base=None, chord=None, span=None):
         tried.append(key)
         return point(s), tests[key](s)
 
@@ -441,7 +441,7 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
     point, refresh = _points_of(tests)
     prev, cur = point(0.0), point(1.0)
     sp, key, same = first_zero(prev, cur, 1.0, settings,
-                               trial=lambda s, k, base=None, chord=None: (point(s),
+                               trial=lambda s, k, base=None, chord=None, span=None: (point(s),
                                                                          tests[k](s)),
                                accepted=lambda k, a, b: True, refresh=refresh,
                                inner=lambda a, b: float(a @ b), note=lambda text: None)
