@@ -683,10 +683,6 @@ def test_the_a1_window_and_the_row_share_one_solution_per_point(tmp_path, monkey
     assert rows == data_rows("b.lin2")
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "the UZ's direction is the last location trial's tangent, cosine 0.91 with the "
-    "branch: the EP lands at PAR(1) = 1.03168, AUTO's at 1.02887 (docs/auto_compatibility.md: "
-    "the secant directions tried, and what they cost kpr, abcb, cir)"))
 def test_nag_leaves_its_located_uz_along_the_branch(tmp_path):
     """nag's heteroclinic orbits of u'' = c u' - u (1 - u)(u - a) from 0 to 1 are the one
     front u = 1 / (1 + exp(-t / sqrt 2)) for every a, with c = (1 - 2 a) / sqrt 2: the
@@ -695,13 +691,11 @@ def test_nag_leaves_its_located_uz_along_the_branch(tmp_path):
     PAR(1) moving 1 / sqrt 3 per unit of arclength (THL = 1, |(1, -sqrt 2)| = sqrt 3).
     From the UZ located at PAR(1) = 1 = RL1 the next step (DS = DSMAX = 0.05) ends the run
     EP at PAR(1) = 1 + 0.05 / sqrt 3, as AUTO-07p's (1.02887): the located point leaves
-    along the secant of the location's last trial step (AUTO's CONTBV after LCSPBV). Ours
-    leaves along the tangent of the trial before its last (a step of 1e-11, which AUTO
-    does not take), the null vector of the Jacobian bordered by the trial's before: it
-    has cosine 0.91 with the branch (PAR(3), PAR(4), the orbit's distances from the
-    equilibria, are nearly free: 1e-9 to 4e-7 along the run) and the step lands at
-    1.03168; a direction at cosine 0.73 (under AUTO's first location trial, from the
-    step's end) made every step fail down to DSMIN (MX). Tolerance: the secant of a
+    along the secant of the location's last trial step (AUTO's CONTBV after LCSPBV). Its
+    tangent, the null vector of the Jacobian bordered by the previous trial's, had cosine
+    0.91 with the branch (PAR(3), PAR(4), the orbit's distances from the equilibria, are
+    nearly free: 1e-9 to 4e-7 along the run) and the step landed at 1.03168; a direction
+    at cosine 0.73 made every step fail down to DSMIN (MX). Tolerance: the secant of a
     trial step of 0.017 to 0.033 between points converged to EPSU = 1e-7 is within
     ~1e-5 of the branch's direction, 0.05 times that in PAR(1)."""
     copy_demo("nag", tmp_path)

@@ -38,7 +38,7 @@ import numpy as np
 from washer.cont.branch import Counters, Point
 from washer.cont.codes import Code
 from washer.cont.corrector_algebraic import compiled_corrector
-from washer.cont.events import first_zero, sign_changes, signed_distance
+from washer.cont.events import first_zero, location_tolerance, sign_changes, signed_distance
 from washer.cont.problem import ProblemError
 from washer.cont.linalg import orient, quietly
 from washer.cont.newton import ConvergenceError, newton  # noqa: F401 (ConvergenceError: API)
@@ -521,6 +521,7 @@ class Continuation:
                 self.sys.inner(p0.tangent, prev.step_direction)
             if abs(c) > 0.05:
                 ds /= c
+            origin, origin_direction = p0.x, p0.step_direction
             try:
                 x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
             except ConvergenceError:
@@ -548,6 +549,7 @@ class Continuation:
                     x, it = self.correct(prev.x + s_ * prev.tangent, prev.x, prev.tangent,
                                          s_)
                     ds = s_
+                    origin, origin_direction = prev.x, prev.step_direction
             if key in (Code.BP, Code.BPC):
                 # A branch point's test is a determinant of the Jacobian bordered by a
                 # direction: the same one, prev's tangent, at every trial, so that its
@@ -555,6 +557,7 @@ class Continuation:
                 pt = self.evaluate(x, prev.tangent, [key], tangent=prev.tangent, ds=ds, it=it)
             else:
                 pt = self.evaluate(x, p0.tangent, [key], ds=ds, it=it)
+                self._leave_along_secant(pt, origin, ds, origin_direction)
         elif key == Code.BPC:
             # The first trial of a BP of a BVP too: bordered by prev's tangent, as the
             # later ones, so that all trials evaluate one function (its own tangent,
@@ -586,9 +589,32 @@ class Continuation:
             back = s_ - span
             x, it = self.correct(end + back * chord / n, end, chord / n, back)
             pt = self.evaluate(x, (x - prev.x) / s_, [key], ds=s_, it=it)
+            self._leave_along_secant(pt, end, back, chord / n)
         else:
             pt = self._step(prev, s_, keys=[key])
         return pt, pt.tests.get(key)
+
+    def _leave_along_secant(self, pt: Point, origin, ds: float, fallback) -> None:
+        """A location's trial point on a BVP branch leaves, if located, along the unit
+        secant of the trial step that reached it, (x - origin) / ds: AUTO's CNRLBV calls
+        CONTBV after LCSPBV, whose last STEPBV went from the previous trial (from the
+        step's end for the first) by DSOLD. Not along a tangent: where the branch's
+        null space is nearly two-dimensional the tangent is off the branch as computed
+        (nag's heteroclinic orbits at PAR(1) = 1: the previous trial's tangent had
+        cosine 0.73 with the branch's secant, and every step from the UZ failed down to
+        DSMIN where AUTO's next step ends EP at RL1). A step shorter than the
+        location's tolerance is one AUTO does not take (it stops at the trial before,
+        whose next correction is below the tolerance) and its secant is Newton's noise:
+        the point then keeps `fallback`, the direction its origin left along. ds is
+        signed as the step (a step back from the step's end gives a secant pointing
+        on along the branch)."""
+        if self.sys.arclength != "plane":
+            return
+        if abs(ds) >= location_tolerance(self.s):
+            d = (pt.x - origin) / ds
+        else:
+            d = fallback
+        pt.direction = d / math.sqrt(self.sys.inner(d, d))
 
     def _radial(self, prev: Point, p: Point, s: float) -> np.ndarray:
         """The unit vector from prev to p in the system's inner product, signed as the
