@@ -239,10 +239,14 @@ def check_on_torus_locus(res):
     """Every row: p1 = p2^2 and cos(theta) = cos(pi - sqrt(1 + p2)) (theta continued past
     pi is the same torus as 2 pi - theta). At the R2 point the extended system is
     singular (the PD locus, theta = pi, crosses it there: AUTO's BP): Newton converges
-    only linearly and stops on its increment test, EPSL (1 + |p|) (EPSL = 1e-7)."""
+    only linearly, at ratio 1/2 at a simple singular point, and stops on its increment
+    test, |dp| <= EPSL (1 + |p|) = 2e-7 (EPSL = 1e-7, |p| = 1): each parameter's error is
+    then up to its last increment (the rest of the geometric series), and p1 - p2^2 moves
+    by dp1 - 2 p2 dp2, up to 3 times that (measured: 5.4e-8 and 2.6e-7 on two step
+    sequences into the point)."""
     for r in res.rows:
         p1, p2, theta = r.par[0], r.par[1], r.par[11]
-        tol = 2e-7 if r.code == -86 else COLLOCATION
+        tol = 6e-7 if r.code == -86 else COLLOCATION
         assert p1 == pytest.approx(p2 * p2, abs=tol)
         assert math.cos(theta) == pytest.approx(math.cos(math.pi - math.sqrt(1 + p2)),
                                                 abs=tol)
