@@ -37,9 +37,10 @@ DEMO_TABLE = Path(__file__).resolve().parents[1] / "docs" / "auto_compatibility.
 EXPECTED_FAIL = {
     "pci": "AUTO's backward run 8 turns to NaN after its BP and ends with an EP of "
            "NaNs at NMX = 1000; ours goes on through finite solutions and ends MX",
-    "abcb": "AUTO's BP two points past run 2's tip (PAR(1) = 0.3462, where fold "
-            "and branch point coincide, both label LP) is not a branch point (shooting, "
-            "tests/test_cycle_branch_point.py)",
+    "abcb": "at run 2's tip (PAR(1) = 0.3462, where fold and branch point coincide) "
+            "AUTO labels LP, ours BP (its fold location does not converge within ITMX: the "
+            "fold test scatters by 8e-6 there); AUTO's BP two points on is not a branch "
+            "point (shooting, tests/test_cycle_branch_point.py)",
     "tfc": "run 5's first BP of cycles is the tip of a fold (a zero of third "
            "order): ours there, AUTO's where its location stopped on a jump of its test; the "
            "BP locus ends at that tip, AUTO's end 0.01 before it; where the BP locus meets a "
@@ -71,11 +72,13 @@ EXPECTED_FAIL = {
     "revf77": "the same as rev's (AUTO's b-files with rev.f are its b-files with rev.f90)",
     "kpr": "run 10, continued past a zero of PSI 9 (the equilibrium's leading "
            "stable eigenvalue crossing 0, where the truncated problem is ill-posed), ends "
-           "earlier in ours (MX) than in AUTO (EP at NMX)",
+           "earlier in ours (MX) than in AUTO (EP at NMX); run 8's UZ11, in run 7's ill-posed "
+           "region, lies 2.07e-5 from AUTO's in PAR(1), tolerance 2e-5",
     "snh": "tb.auto's 8th run, away from the Hopf point, goes on where AUTO's steps "
            "collapse (its MX at nu1 = 1.2910) to an LP at nu1 = 1.417015, where the "
            "other tangency locus comes too; a point of ours past AUTO's MX is a fold of "
-           "the connection's branch (docs/auto_compatibility.md)",
+           "the connection's branch (docs/auto_compatibility.md); run 9 the other way reaches "
+           "that meeting point too (LP at nu1 = 1.418), where AUTO's ends MX at 1.1917",
     "fhh": "AUTO's UZ for PAR(2) = 0 in run 5 is written at -7.53e-4 (its "
            "location stopped on step size off the zero); run 8 (IFIXED = [13]) ends MX in "
            "ours where PSI 2 = 0, AUTO's steps pass it to EP at NMX",
@@ -88,7 +91,9 @@ EXPECTED_FAIL = {
            "UZ and r5('UZ1') is not found",
     "r3b": "V1b.auto's seven UZ lie 0.17 % later in PAR(11) than AUTO's: its start, V1's "
            "label 12, lies further along the vertical family than AUTO's (period 5.20876, "
-           "AUTO 5.19993: the step after the BP at PT 10 goes further)",
+           "AUTO 5.19993: the step after the BP at PT 10 goes further); V1b's start run ends MX at "
+           "PT 740 (its steps fail down to DSMIN, 525 steps after its last UZ) where AUTO's "
+           "ends EP at NMX = 800",
     "cir": "run 2's UZ7 and UZ8 lie 1e-4 from AUTO's in PAR(1), near PAR(2) = 0, where the "
            "equilibrium's stable pair crosses the imaginary axis: the size of the "
            "discretisation error there (tests/test_homoclinic.py)",
