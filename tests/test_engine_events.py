@@ -488,7 +488,7 @@ def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_where_it_lande
     prev, cur = point(0.0), point(0.25)
     notes = []
     hit = first_zero(prev, cur, 0.25, settings,
-                     trial=lambda s, k, base=None, chord=None: (point(s), q_of(s)),
+                     trial=lambda s, k, base=None, chord=None, span=None: (point(s), q_of(s)),
                      accepted=lambda k, a, b: True, refresh=refresh,
                      inner=lambda a, b: float(a @ b), note=notes.append)
     assert len(notes) == 1
