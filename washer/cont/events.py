@@ -479,6 +479,18 @@ def at_step_end(q_prev: float, q_cur: float, s_cur: float, settings) -> bool:
     return abs((1 + HMACH) * q_cur * s_cur) < tol * abs(q_prev - q_cur)
 
 
+def _solution_jumped(exc: Exception, prev, target, inner) -> bool:
+    """Whether a location that failed on a jump of its test (CrossedByJump) had the
+    solution itself jump across its last bracket: the bracket's end points (an end no
+    trial has moved is still the interval's own, prev or target) lie JUMP_FACTOR times
+    further apart, in the system's inner product, than the bracket's arclength."""
+    if not isinstance(exc, CrossedByJump):
+        return False
+    lo_pt, hi_pt = exc.ends
+    d = (target if hi_pt is None else hi_pt).x - (prev if lo_pt is None else lo_pt).x
+    return math.sqrt(inner(d, d)) > JUMP_FACTOR * exc.width
+
+
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
                curve_type: int = 0, secant: bool = False, sphere: bool = False,
                resolution=None):
@@ -580,34 +592,25 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                               (lambda p: inner(p.x - prev.x, prev.step_direction)),
                               resolution=0.0 if resolution is None else resolution(key),
                               trace=trace, crossing=isinstance(key, tuple))
-        except CrossedByJump as exc:
-            # (an end no trial has moved is still the interval's own: prev or target)
-            lo_pt, hi_pt = exc.ends
-            d = (target if hi_pt is None else hi_pt).x - (prev if lo_pt is None else lo_pt).x
-            jumped = isinstance(key, tuple) and \
-                math.sqrt(inner(d, d)) > JUMP_FACTOR * exc.width
-            if not jumped:
-                failed.add(key)
-                note(f"NOTE:Possible special point ({_key_name(key, curve_type)}: {exc})")
-                continue
-            # The solution itself jumps across the bracket (its ends' states lie
-            # JUMP_FACTOR times further apart than its arclength: Newton leaving for
-            # another sheet of solutions within the step), and a user value's test, the
-            # parameter PAR(i) - v, crosses the value with it. AUTO's LCSPBV, whose trials
-            # step on from the step's end, labels it on that side (kdv's run 3: the step
-            # from PAR(1) = 3.0488 lands at 2.7364 across UZR = 3, AUTO's UZ4 at 2.7295,
-            # its trials' last); its scripts count that label (kdv.auto's r3('UZ2') is
-            # the UZ at 3 reached later). Labelled at the step's end. A value that jumps
-            # while the solution does not (a PVLS's step function of the state) is no
-            # crossing of the branch: left unlocated.
-            note(f"NOTE:{_key_name(key, curve_type)} crossed by a jump of the branch, "
-                 f"labelled where the step landed ({exc})")
-            refresh(target)
-            found = (target, key)
-            located[key] = span
-            near_sp = [(prev, 0.0)]
-            continue
         except RuntimeError as exc:
+            if isinstance(key, tuple) and _solution_jumped(exc, prev, target, inner):
+                # The solution itself jumps across the bracket (its ends' states lie
+                # JUMP_FACTOR times further apart than its arclength: Newton leaving for
+                # another sheet of solutions within the step), and a user value's test, the
+                # parameter PAR(i) - v, crosses the value with it. AUTO's LCSPBV, whose trials
+                # step on from the step's end, labels it on that side (kdv's run 3: the step
+                # from PAR(1) = 3.0488 lands at 2.7364 across UZR = 3, AUTO's UZ4 at 2.7295,
+                # its trials' last); its scripts count that label (kdv.auto's r3('UZ2') is
+                # the UZ at 3 reached later). Labelled at the step's end. A value that jumps
+                # while the solution does not (a PVLS's step function of the state) is no
+                # crossing of the branch: left unlocated.
+                note(f"NOTE:{_key_name(key, curve_type)} crossed by a jump of the branch, "
+                     f"labelled where the step landed ({exc})")
+                refresh(target)
+                found = (target, key)
+                located[key] = span
+                near_sp = [(prev, 0.0)]
+                continue
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other
             # tests of the interval are still looked at (a UZSTOP next to a noisy GH
