@@ -222,3 +222,19 @@ int cont_fold_tests(void *const *routines, int n, const double *A, int lda,
 int cont_ae_tangent(void *getrf, void *getrs, int n, const double *J, int ldj,
                     const double *ref, const double *theta, double big, double *border,
                     double *lu, int64_t *ipiv, double *sign_logdet, int *info, double *t);
+
+/* ADAPT's interpolation (csrc/cont/adapt.cpp; washer.cont.collocation.evaluator): for
+ * each time t[i] of nt, the interval j[i] of the mesh tm (NTST + 1,) with lengths dtm
+ * (NTST,) it lies in (numpy's searchsorted 'right' less one, clipped to 0..NTST-1) and the
+ * weights W (NCOL + 1, nt) row-major of the NCOL + 1 equally spaced nodes of that interval
+ * (the Lagrange basis at z = (t - tm[j]) / dtm[j]; others (NCOL, NCOL + 1) row-major, the
+ * other nodes of each basis function, and denom (NCOL + 1,), their products, as
+ * collocation._lagrange_nodes gives them). Returns 0; 1 where tm is not increasing or a
+ * time is NaN (nothing is written: numpy computes it); 2 for bad sizes. */
+int cont_mesh_weights(int ntst, int ncol, const double *tm, const double *dtm, int nt,
+                      const double *t, const double *others, const double *denom, int *j,
+                      double *W);
+/* out (nt, width) row-major: the sum over k = 0..NCOL of W[k, i] U[j[i] NCOL + k, :], in
+ * order from 0.0, for U (n_nodes, width) row-major. */
+void cont_mesh_apply(int nt, int ncol, const int *j, const double *W, const double *U,
+                     int width, double *out);

@@ -44,6 +44,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from washer.cont.reduction import _ptr as _cont_ptr, ffi as _ffi, lib as _lib
 from washer.cont.settings import HMACH
 
 if TYPE_CHECKING:                  # annotations only; imported where used
@@ -566,15 +567,53 @@ def evaluate(mesh: Mesh, U: np.ndarray, t) -> np.ndarray:
     return evaluator(mesh, t)(U)
 
 
+@lru_cache(maxsize=None)
+def _interpolation_nodes(ncol: int) -> tuple[np.ndarray, np.ndarray]:
+    """`_lagrange_nodes` of INTWTS's nodes k / NCOL as cont_mesh_weights takes them: the
+    other nodes of each basis function (NCOL, NCOL + 1) C-contiguous, the denominators
+    (NCOL + 1,) (read-only)."""
+    _, denom, others = _lagrange_nodes(tuple((np.arange(ncol + 1) / ncol).tolist()))
+    return _frozen(np.ascontiguousarray(others.reshape(ncol, ncol + 1))), denom
+
+
 def evaluator(mesh: Mesh, t):
-    """`evaluate` at the times t as a function of the node values U (n_nodes, ...)."""
-    t = np.asarray(t, float)
+    """`evaluate` at the times t as a function of the node values U (n_nodes, ...).
+    ADAPT moves a point, its directions and the phase reference every IAD points: the
+    intervals and weights, and the values of U with two or more columns, are computed in
+    one compiled call each (csrc/cont/adapt.cpp: numpy's operations in numpy's order,
+    the same doubles); other U (one column, where einsum sums in another order), and
+    times or meshes numpy's searchsorted alone orders (a NaN, a mesh out of order), by
+    numpy."""
+    t = np.ascontiguousarray(t, dtype=float)
     m = mesh.ncol
-    j = np.clip(np.searchsorted(mesh.tm, t, side="right") - 1, 0, mesh.ntst - 1)
-    z = (t - mesh.tm[j]) / mesh.dtm[j]
-    W = interpolation_weights(m, z)                                   # (len(t), m+1)
-    idx = j[:, None] * m + np.arange(m + 1)[None, :]
-    return lambda U: _einsum("tk,tk...->t...", W, np.asarray(U)[idx])
+    others, denom = _interpolation_nodes(m)
+    j = np.empty(len(t), np.intc)
+    L = np.empty((m + 1, len(t)))            # INTWTS's basis; the weights W are L.T, the
+    jp = _ffi.from_buffer("int[]", j)        # layout einsum's order of summation follows
+    compiled = _lib.cont_mesh_weights(
+        mesh.ntst, m, _cont_ptr(np.ascontiguousarray(mesh.tm, dtype=float)),
+        _cont_ptr(mesh.dtm), len(t), _cont_ptr(t), _cont_ptr(others), _cont_ptr(denom), jp,
+        _cont_ptr(L)) == 0
+    if compiled:
+        W = L.T
+    else:
+        j = np.clip(np.searchsorted(mesh.tm, t, side="right") - 1, 0, mesh.ntst - 1)
+        W = interpolation_weights(m, (t - mesh.tm[j]) / mesh.dtm[j])          # (len(t), m+1)
+    idx = None
+
+    def at(U):
+        nonlocal idx
+        U = np.asarray(U)
+        if compiled and U.ndim == 2 and U.shape[1] >= 2 and U.dtype == float:
+            U = np.ascontiguousarray(U)
+            out = np.empty((len(t), U.shape[1]))
+            _lib.cont_mesh_apply(len(t), m, jp, _cont_ptr(L), _cont_ptr(U), U.shape[1],
+                                 _cont_ptr(out))
+            return out
+        if idx is None:
+            idx = j[:, None] * m + np.arange(m + 1)[None, :]
+        return _einsum("tk,tk...->t...", W, U[idx])
+    return at
 
 
 def profile_from_data(t: np.ndarray, U: np.ndarray, ntst: int, ncol: int,
