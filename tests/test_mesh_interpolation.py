@@ -53,3 +53,45 @@ def test_nan_times_and_unordered_meshes_are_numpy_s():
     bad = col.Mesh(mesh.tm[[0, 2, 1, 3, 4, 5, 6]], 4)
     t = np.linspace(0, 1, 9)
     assert np.array_equal(col.evaluator(bad, t)(U), numpy_evaluate(bad, U, t), equal_nan=True)
+
+
+def numpy_new_mesh(mesh, U, ntst_new, periodic):
+    """NEWMSH on EQDF in numpy alone (collocation.eqdf, then new_mesh's inversion)."""
+    eqf = col.eqdf(mesh, U, periodic)
+    if not (np.diff(eqf) > 0).all():
+        eqf = eqf + 1e-12 * eqf[-1] * np.arange(len(eqf)) / max(len(eqf) - 1, 1)
+    targets = eqf[-1] * np.arange(1, ntst_new) / ntst_new
+    return np.concatenate((mesh.tm[:1], np.interp(targets, eqf, mesh.tm), mesh.tm[-1:]))
+
+
+@pytest.mark.parametrize("ncol", [1, 2, 3, 4, 5, 7])
+def test_new_mesh_is_numpy_s(ncol):
+    """cont_new_mesh against numpy's EQDF and NEWMSH: profiles smooth and steep, widths 1 to
+    20 (pairwise sums from 8 terms on), flat components, a constant profile (EQDF's small
+    derivative), periodic or not, other numbers of intervals."""
+    rng = np.random.default_rng(10 + ncol)
+    for ntst in (1, 2, 3, 5, 20, 70):
+        mesh = random_mesh(rng, ntst, ncol)
+        t = mesh.node_times()
+        for n in (1, 2, 3, 7, 8, 9, 12, 20):
+            k = rng.integers(1, 6, n)
+            U = np.sin(2 * np.pi * k * t[:, None] + rng.uniform(0, 6, n)) * rng.uniform(0.1, 10, n)
+            U[:, 0] = np.tanh(40 * (t - 0.5)) if n > 2 else U[:, 0]       # a steep layer
+            for V in (U, np.where(rng.uniform(size=n) < 0.3, 1.0, U),   # flat components
+                      np.ones_like(U), U * 1e-300):
+                for periodic in (True, False):
+                    for new in (ntst, max(ntst - 1, 1), ntst + 3):
+                        got = col.new_mesh(mesh, V, new, periodic)
+                        assert np.array_equal(got, numpy_new_mesh(mesh, V, new, periodic))
+
+
+def test_new_mesh_of_a_non_finite_profile_is_numpy_s():
+    rng = np.random.default_rng(1)
+    mesh = random_mesh(rng, 8, 4)
+    U = rng.standard_normal((mesh.n_nodes, 3))
+    for bad in (np.nan, np.inf):
+        V = U.copy()
+        V[5, 1] = bad
+        with np.errstate(invalid="ignore"):
+            assert np.array_equal(col.new_mesh(mesh, V, 8), numpy_new_mesh(mesh, V, 8, True),
+                                  equal_nan=True)

@@ -238,3 +238,13 @@ int cont_mesh_weights(int ntst, int ncol, const double *tm, const double *dtm, i
  * order from 0.0, for U (n_nodes, width) row-major. */
 void cont_mesh_apply(int nt, int ncol, const int *j, const double *W, const double *U,
                      int width, double *out);
+/* ADAPT's new mesh (csrc/cont/adapt.cpp; washer.cont.collocation.new_mesh: EQDF, NEWMSH) of
+ * ntst_new intervals, tm_new (ntst_new + 1,), for the profile U (NTST*NCOL + 1, ndim)
+ * row-major on the mesh tm (NTST + 1,) with lengths dtm: periodic != 0 wraps EQDF's last
+ * jump around; cntdif (NCOL + 1,) CNTDIF's weights; small EQDF's threshold of a zero
+ * derivative; pow_loop, pow_data numpy's power loop for doubles and its data. Returns 0;
+ * 1 where EQDF is not finite or not non-decreasing after NEWMSH's perturbation (nothing
+ * is written: numpy computes it); 2 for bad sizes. */
+int cont_new_mesh(int ntst, int ncol, int ndim, const double *tm, const double *dtm,
+                  const double *U, int periodic, const double *cntdif, double small,
+                  void *pow_loop, void *pow_data, int ntst_new, double *tm_new);

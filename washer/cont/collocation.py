@@ -533,7 +533,13 @@ def local_nodes(ntst: int, ncol: int) -> np.ndarray:
 
 
 def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) -> np.ndarray:
-    """AUTO's NEWMSH: a mesh (ntst_new + 1,) that divides the range of EQDF uniformly."""
+    """AUTO's NEWMSH: a mesh (ntst_new + 1,) that divides the range of EQDF uniformly.
+    ADAPT makes one every IAD points: a profile of two or more components is taken in one
+    compiled call (cont_new_mesh, csrc/cont/adapt.cpp: these numpy operations in their
+    order, numpy's own power loop, the same doubles), unless EQDF is not finite."""
+    tm_new = _compiled_new_mesh(mesh, U, ntst_new, periodic)
+    if tm_new is not None:
+        return tm_new
     eqf = eqdf(mesh, U, periodic)
     if not (np.diff(eqf) > 0).all():
         # flat pieces (a component with vanishing derivative over an interval):
@@ -542,6 +548,35 @@ def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) ->
     targets = eqf[-1] * np.arange(1, ntst_new) / ntst_new
     tm_new = np.interp(targets, eqf, mesh.tm)
     return np.concatenate((mesh.tm[:1], tm_new, mesh.tm[-1:]))
+
+
+_POWER: list = []
+
+
+def _compiled_new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int,
+                       periodic: bool) -> np.ndarray | None:
+    """`new_mesh` by cont_new_mesh, or None where numpy computes it: one component (einsum
+    sums CNTDIF's terms in another order), a power loop numpy does not show, EQDF not
+    finite."""
+    U = np.asarray(U)
+    if U.ndim != 2 or U.shape[1] < 2 or U.dtype != float or ntst_new < 1:
+        return None
+    if not _POWER:
+        from washer.cont.user_problem.tracer import TraceError, numpy_loop
+        try:
+            _POWER.append(tuple(_ffi.cast("void *", a) for a in numpy_loop(np.power)))
+        except TraceError:
+            _POWER.append(None)
+    if _POWER[0] is None:
+        return None
+    m, N = mesh.ncol, mesh.ntst
+    U = np.ascontiguousarray(U)
+    out = np.empty(ntst_new + 1)
+    status = _lib.cont_new_mesh(N, m, U.shape[1], _cont_ptr(np.ascontiguousarray(mesh.tm, float)),
+                                _cont_ptr(mesh.dtm), _cont_ptr(U), int(periodic),
+                                _cont_ptr(_cntdif(m)), EQDF_SMALL, *_POWER[0], ntst_new,
+                                _cont_ptr(out))
+    return out if status == 0 else None
 
 
 def interpolate(mesh: Mesh, U: np.ndarray, tm_new: np.ndarray, ncol_new: int) -> np.ndarray:
