@@ -91,6 +91,47 @@ def test_getp_measures_of_an_orbit(cache):
     assert par[20] == pytest.approx(0.3) and par[22] == pytest.approx(-0.3)
 
 
+def test_getp_of_an_orbit_in_one_call(cache):
+    """PVLS on an orbit (a washer.cont.pvls.Orbit, as the periodic systems pass it) in one
+    foreign call: the same PAR bit for bit as the routines called one by one (GETP's
+    measures on a non-uniform mesh, whose intervals the bridge takes from the node
+    times); GETP('EIG') and 'STA' the orbit's multipliers, asked for on the first call
+    (which is repeated with them, PAR restored) and given from then on."""
+    from washer.cont.pvls import Orbit
+    p = load_compiled_problem(DATA / "compiled" / "jac.f90", 2)
+    ntst, ncol = 10, 4
+    knots = np.cumsum(np.r_[0.0, np.linspace(1.0, 2.0, ntst)])
+    knots /= knots[-1]
+    t = np.concatenate([knots[j] + (knots[j + 1] - knots[j]) * np.arange(ncol) / ncol
+                        for j in range(ntst)] + [knots[-1:]])
+    U = np.column_stack([np.sin(2 * np.pi * t), t])
+    mu = np.array([1.0 + 0j, 0.5 + 0.2j])
+    asked = []
+
+    def multipliers():
+        asked.append(1)
+        return mu
+    orbit = Orbit.of(U, t, np.zeros(len(t)), 2.0, ntst, ncol, multipliers)
+    par0 = np.arange(34.0)             # shorter than AUTO's PAR: padded for PVLS
+    assert not p.user.pvls_wants_eigenvalues
+    out = p.pvls(orbit, par0)
+    assert p.user.pvls_wants_eigenvalues and asked == [1]
+    p.user.set_multipliers(mu)
+    one_by_one = p.pvls(U, par0, t=t, ntst=ntst, ncol=ncol)
+    np.testing.assert_array_equal(out, one_by_one)
+    np.testing.assert_array_equal(out[29:33], [1.0, 0.0, 0.5, 0.2])
+    assert out[33] == 2                                          # STA: |mu| <= 1
+    # the mesh's own intervals: NRM by its quadrature, MXT the time of the largest node
+    assert out[20] == pytest.approx(math.sqrt(0.5), abs=1e-5)
+    assert out[26] == pytest.approx(t[np.argmax(U[:, 0])], abs=1e-15)
+    assert (out[27], out[28]) == (ntst, ncol)
+    np.testing.assert_array_equal(out[:20], par0[:20])
+    # learnt: the next orbit's PVLS is one call with its multipliers
+    mu = np.array([1.0 + 0j, 2.0 + 0j])
+    out = p.pvls(Orbit.of(U, t, np.zeros(len(t)), 2.0, ntst, ncol, mu), par0)
+    np.testing.assert_array_equal(out[29:34], [1.0, 0.0, 2.0, 0.0, 1])
+
+
 def test_getp_eigenvalues_of_an_equilibrium(cache):
     """GETP('EIG') on an equilibrium: the eigenvalues of f_u (real, imaginary parts
     alternating, by decreasing real part), here of the closed-form Jacobian; 'STA' the

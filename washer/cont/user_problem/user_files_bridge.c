@@ -390,6 +390,32 @@ int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int np
     return washer_eig_wanted();
 }
 
+/* PVLS of a boundary-value solution (AUTO's PVLSBV: IPS 2, 4 and their loci) as one
+ * call, the same calls washer.cont.user_problem.user_files_native makes one by one for
+ * it: the node values u (ntpl, ndim) copied into AUTO's UPS(NDIM*NCOL, NTST+1) in `ups`
+ * (ndim * ncol * (ntst + 1) doubles, the columns past NTPL zero), GETP's mesh interval
+ * lengths t[(j+1) ncol] - t[j ncol] of the node times t (ntpl,) into `dtm` (ntst,) (t
+ * NULL: a uniform mesh), GETP's measures with the multipliers `eig` (2 ndim doubles, re
+ * and im alternating; NULL: none) and their stable count nins, PAR(1..npar) copied to
+ * `first`, PVLS, and whether GETP asked for eigenvalues it did not have (then the caller
+ * restores PAR from `first` and calls again with them). ctx keeps dtm and eig: the
+ * caller holds them until the next call. */
+int washer_pvls_bvp(int ips, int ndim, int ntst, int ncol, int nbc, int nint, int ntpl,
+                    const double *u, const double *t, double *dtm, double *ups, int nins,
+                    const double *eig, double *par, double *first, int npar)
+{
+    size_t n = (size_t)ntpl * ndim, size = (size_t)ndim * ncol * (ntst + 1);
+    memcpy(ups, u, n * sizeof(double));
+    if (size > n) memset(ups + n, 0, (size - n) * sizeof(double));
+    if (t)
+        for (int j = 0; j < ntst; j++) dtm[j] = t[(size_t)(j + 1) * ncol] - t[(size_t)j * ncol];
+    washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, nins, eig);
+    washer_set_context(ips, ndim, ntst, ncol, nbc, nint, t ? dtm : NULL);
+    memcpy(first, par, (size_t)npar * sizeof(double));
+    washer_pvls(ndim, ups, par);
+    return washer_eig_wanted();
+}
+
 /* BCND: fb (nbc,), dbc column-major (nbc, 2 ndim + npar) when ijac > 0. */
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
                  const double *u1, int ijac, double *fb, double *dbc)

@@ -77,6 +77,9 @@ void washer_po_jac(int k, const double *us, const double *pars, int pstride, dou
                    double *Jp);
 void washer_pvls(int ndim, const double *u, double *par);
 int washer_pvls_ae(int ndim, const double *u, double *par, double *first, int npar);
+int washer_pvls_bvp(int ips, int ndim, int ntst, int ncol, int nbc, int nint, int ntpl,
+                    const double *u, const double *t, double *dtm, double *ups, int nins,
+                    const double *eig, double *par, double *first, int npar);
 void washer_set_homcont(const int *values);
 void washer_bcnd(int ndim, const double *par, const int *icp, int nbc, const double *u0,
                  const double *u1, int ijac, double *fb, double *dbc);
@@ -163,7 +166,10 @@ class CompiledUser:
         self._pvls_seen = not self.has["pvls"]
         self.nbc = self.nint = 0
         self.pvls_wants_eigenvalues = False     # learnt on the first PVLS that asks GETP
-        self._pvls_first = None                 # PAR before PVLS (`pvls_plain`)
+        self._pvls_first = None                 # PAR before PVLS (`pvls_plain`, `pvls_orbit`)
+        # AUTO's UPS and GETP's mesh intervals for `pvls_orbit`: the bridge's context
+        # keeps pointing at the intervals after the call, as at the multipliers (_eig)
+        self._ups = self._dtm = np.zeros(0)
 
     def reload(self) -> None:
         """Unload and load the library again: the user file's SAVEd and module variables
@@ -369,17 +375,53 @@ class CompiledUser:
         """Whether the last PVLS asked GETP for 'EIG' or 'STA' that were not set."""
         return bool(self.lib.washer_eig_wanted())
 
-    def set_multipliers(self, mu, stable=None) -> None:
-        """Floquet multipliers (or eigenvalues) for GETP's 'EIG' and 'STA' (None: none);
-        stable(mu) -> bool array says which count as stable (default |mu| <= 1)."""
+    def _measures(self, mu, stable=None) -> tuple:
+        """(pointer, nins) of GETP's 'EIG' and 'STA' for the multipliers (or eigenvalues)
+        mu (None: NULL, 0); stable(mu) -> bool array says which count as stable (default
+        |mu| <= 1). The values are held in `_eig` while the bridge's context points at
+        them."""
         if mu is None:
             self._eig = None
-            self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, 0, _ffi.NULL)
-            return
+            return _ffi.NULL, 0
         mu = np.asarray(mu, dtype=complex)
         self._eig = np.ascontiguousarray(np.column_stack([mu.real, mu.imag]).ravel())
         nins = int(np.sum(stable(mu))) if stable else int(np.sum(np.abs(mu) <= 1 + 1e-5))
-        self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, nins, _dptr(self._eig))
+        return _dptr(self._eig), nins
+
+    def set_multipliers(self, mu, stable=None) -> None:
+        """Floquet multipliers (or eigenvalues) for GETP's 'EIG' and 'STA' (None: none);
+        stable(mu) -> bool array says which count as stable (default |mu| <= 1)."""
+        eig, nins = self._measures(mu, stable)
+        self.lib.washer_set_measures(0.0, 0.0, 0.0, 0.0, 0.0, nins, eig)
+
+    def pvls_orbit(self, u, par, t, ntst: int, ncol: int, mu=None) -> np.ndarray | None:
+        """AUTO's PVLS on a boundary-value solution in one foreign call (washer_pvls_bvp):
+        u the node values (NTPL, k), t their times (NTPL,) (None: a uniform mesh), mu
+        the Floquet multipliers for GETP's EIG and STA (None: none); par (NPAR,) set in
+        place. None, or where GETP asked for multipliers it did not have, a copy of par
+        from before the call (then the caller calls again with them). The calls `pvls`
+        with `set_multipliers` make one by one, with the same values."""
+        u = np.ascontiguousarray(u, dtype=float)
+        ntpl, k = u.shape
+        buf, copy_back = _writable_par(par)
+        first = self._pvls_first
+        if first is None or len(first) != len(buf):
+            first = self._pvls_first = np.empty(len(buf))
+        size = k * ncol * (ntst + 1)
+        if len(self._ups) != size:
+            self._ups = np.empty(size)
+        tp = _ffi.NULL
+        if t is not None and len(t) == ntpl:
+            t = np.ascontiguousarray(t, dtype=float)
+            if len(self._dtm) != ntst:
+                self._dtm = np.empty(ntst)
+            tp = _dptr(t)
+        eig, nins = self._measures(mu)
+        wanted = self.lib.washer_pvls_bvp(2, k, ntst, ncol, self.nbc, self.nint, ntpl,
+                                          _dptr(u), tp, _dptr(self._dtm), _dptr(self._ups),
+                                          nins, eig, _dptr(buf), _dptr(first), len(buf))
+        copy_back()
+        return first[:len(par)].copy() if wanted else None
 
     def bcnd(self, par, nbc: int, u0, u1) -> np.ndarray:
         """AUTO's BCND: the NBC boundary conditions at u(0) = u0, u(1) = u1."""
@@ -488,20 +530,16 @@ class CompiledProblem(Problem):
         if getattr(u, "ntst", None):
             # An Orbit: its multipliers (GETP's EIG, STA) cost a condensation, so they are
             # computed only for a PVLS that asks for them (learnt on its first call).
-            orbit = u
+            orbit, user = u, self.user
             t, ntst, ncol = orbit.t, orbit.ntst, orbit.ncol
             u = np.asarray(orbit).view(np.ndarray)
-            if self.user.pvls_wants_eigenvalues:
-                self.user.set_multipliers(orbit.multipliers)
-            else:
-                self.user.set_multipliers(None)
-            first = np.array(par)
-            self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
-            if self.user.eig_wanted() and not self.user.pvls_wants_eigenvalues:
-                self.user.pvls_wants_eigenvalues = True
+            wants = user.pvls_wants_eigenvalues
+            first = user.pvls_orbit(u, par, t, ntst, ncol,
+                                    orbit.multipliers if wants else None)
+            if first is not None and not wants:
+                user.pvls_wants_eigenvalues = True
                 par[:] = first
-                self.user.set_multipliers(orbit.multipliers)
-                self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
+                user.pvls_orbit(u, par, t, ntst, ncol, orbit.multipliers)
             return par
         if np.ndim(u) == 2:
             self.user.pvls(u, par, t=t, ntst=ntst, ncol=ncol)
