@@ -454,21 +454,27 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
         assert sign_changes(sp.tests, nxt.tests) == []
 
 
-@pytest.mark.parametrize("key, state_jumps", [(("UZ", 0), True), (("UZ", 0), False),
-                                              ("BP", True)],
-                         ids=["UZ-branch-jumps", "UZ-value-jumps", "BP"])
-def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_where_it_landed(
-        key, state_jumps):
+@pytest.mark.parametrize("key, state_jumps, bvp", [(("UZ", 0), True, True),
+                                                   (("UZ", 0), True, False),
+                                                   (("UZ", 0), False, True),
+                                                   ("BP", True, False)],
+                         ids=["UZ-branch-jumps", "UZ-branch-jumps-algebraic",
+                              "UZ-value-jumps", "BP"])
+def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_past_it(
+        key, state_jumps, bvp):
     """A branch that jumps within one step (Newton leaving for another sheet of solutions:
     kdv's run 3, from PAR(1) = 3.0488 to 2.7364 across UZR = 3) crosses the user value
-    there. Here the state x = s + 0.05 up to s = 0.2 and s - 0.3 beyond, and the test is x:
-    it changes sign only across the jump, where the location's bracket closes. AUTO's
-    LCSPBV steps on from the step's end and labels that side (its UZ4 of kdv's run 3, at
-    PAR(1) = 2.7295); the point is the step's end, where the branch landed, with a note.
+    there. Here the state is (s, q) with q = s + 0.05 up to s = 0.2 and s - 0.3 beyond, and
+    the test is q: it changes sign only across the jump, where the location's bracket
+    closes. AUTO's LCSPBV steps on from the step's end and labels its last trial (its UZ4
+    of kdv's run 3, at PAR(1) = 2.7295): here the trials (secant, then Muller on the s
+    asked for) end on the far sheet's own zero, q = 0 at s = 0.3, to the location
+    tolerance EPSS (1 + sqrt|DS DSMAX|) = 1.03e-6 in s (q = s - 0.3 there). On an
+    algebraic branch (no BVP secants) the step's end is labelled, with a note.
     A user value that jumps while the state does not (a PVLS's step function of a
-    continuous branch, the state here s) is no crossing of the branch, and a bifurcation
-    test jumping is no zero (tfc's BP test): both stay unlabelled, 'Possible special
-    point'."""
+    continuous branch, the state here (s, 0)) is no crossing of the branch, and a
+    bifurcation test jumping is no zero (tfc's BP test): both stay unlabelled, 'Possible
+    special point'."""
     from types import SimpleNamespace
     from washer.cont.branch import Point
     from washer.cont.codes import Code
@@ -480,17 +486,17 @@ def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_where_it_lande
         return s + 0.05 if s < 0.2 else s - 0.3
 
     def point(s):
-        return Point(np.array([q_of(s) if state_jumps else s]), np.array([1.0]), None,
-                     {key: q_of(s)})
+        return Point(np.array([s, q_of(s) if state_jumps else 0.0]), np.array([1.0, 0.0]),
+                     None, {key: q_of(s)})
 
     def refresh(p):
-        p.tests = {key: q_of(p.x[0]) if not state_jumps else p.x[0]}
+        p.tests = {key: q_of(p.x[0])}
     prev, cur = point(0.0), point(0.25)
     notes = []
     hit = first_zero(prev, cur, 0.25, settings,
                      trial=lambda s, k, base=None, chord=None, span=None: (point(s), q_of(s)),
                      accepted=lambda k, a, b: True, refresh=refresh,
-                     inner=lambda a, b: float(a @ b), note=notes.append)
+                     inner=lambda a, b: float(a @ b), note=notes.append, secant=bvp)
     assert len(notes) == 1
     if key == Code.BP or not state_jumps:
         # (the BP refused as a pole here: its trials beyond the jump exceed the step's
@@ -498,8 +504,79 @@ def test_a_user_value_crossed_by_a_jump_of_the_branch_is_labelled_where_it_lande
         assert hit is None and notes[0].startswith("NOTE:Possible special point")
         return
     sp, k, same = hit
-    assert sp is cur and k == key and same == []
-    assert "UZ1 crossed by a jump of the branch" in notes[0]
+    assert k == key and same == []
+    if not bvp:
+        assert sp is cur and not sp.across_jump
+        assert "UZ1 crossed by a jump of the branch, labelled where the step landed" \
+            in notes[0]
+        return
+    assert sp is not cur and sp.across_jump
+    assert sp.x[0] == pytest.approx(0.3, abs=1.03e-6) and sp.x[1] == sp.x[0] - 0.3
+    assert "UZ1 crossed by a jump of the branch, labelled at the location's last trial" \
+        in notes[0]
+
+
+def test_past_a_jump_the_trials_go_on_from_the_step_end_as_autos_lcspbv():
+    """kdv's run 3: past the jump the trials land on the far sheet, where the user value's
+    test hardly changes (AUTO's -0.2703, -0.2705, -0.27049): they converge because they
+    stop moving, not on a zero. Here the far sheet's test is q = -0.27 - 0.1 s and prev's
+    0.05 (the step from 0 to -0.002, as kdv's DS). The labelled point is the last trial,
+    the first steps back from the step's end by the secant correction, every later one from
+    the trial before, and the corrections, recomputed with AUTO's MUELLER as it is written
+    (the parabola's coefficients A, B about the last trial, its root -C -+ R), fall below
+    EPSS (1 + sqrt|DS DSMAX|) at the last trial only."""
+    import math
+    from types import SimpleNamespace
+    from washer.cont.branch import Point
+    from washer.cont.events import first_zero, location_tolerance
+    from washer.cont.settings import HMACH
+    key = ("UZ", 0)
+    settings = SimpleNamespace(EPSS=1e-5, DS=-0.001, DSMAX=2.0, ITMX=10, DSMIN=1e-8)
+    tol = location_tolerance(settings)
+
+    def far(s):
+        return -0.27 - 0.1 * s
+
+    def point(s, q):
+        # the state (s, q): s along the branch, the test q
+        return Point(np.array([s, q]), np.array([1.0, 0.0]), None, {key: q})
+    prev, cur = point(0.0, 0.05), point(-0.002, far(-0.002))
+    asked = []
+
+    def trial(s, k, base=None, chord=None, span=None):
+        # a trial from the step's end (chord) or from a trial (base, stepping as it
+        # stands) lands on the far sheet
+        asked.append((s, base))
+        p = point(s, far(s))
+        return p, p.x[1]
+    notes = []
+    sp, k, same = first_zero(prev, cur, -0.002, settings, trial=trial,
+                             accepted=lambda k_, a, b: True,
+                             refresh=lambda p: None, inner=lambda a, b: float(a @ b),
+                             note=notes.append, secant=True)
+    assert k == key and sp.across_jump and "last trial past it" in notes[0]
+    trials = asked[-len([a for a in asked if a[1] is not None and len(a[1]) > 2]) - 1:]
+    assert trials[0][1] is None and all(b is not None and b[2] for _, b in trials[1:])
+    q0, q1 = 0.05, far(-0.002)
+    assert trials[0][0] == pytest.approx(-0.002 + (1 + HMACH) * q1 / (q0 - q1) * -0.002,
+                                         rel=1e-12)
+    s0, s1 = 0.0, -0.002
+    corrections = []
+    for s, _ in trials:
+        q = far(s)
+        h0, h1 = s0 - s, s1 - s
+        d = h0 * h1 * (h1 - h0)
+        a = (h1 ** 2 * (q0 - q) - h0 ** 2 * (q1 - q)) / d
+        b = (-h1 * (q0 - q) + h0 * (q1 - q)) / d
+        c = a / (2 * b)
+        r = math.sqrt(c * c - q / b)
+        corrections.append((1 + HMACH) * (-c - r if c < 0 else -c + r))
+        if q1 * q < 0:
+            q0, s0 = q1, s1
+        q1, s1 = q, s
+    assert len(trials) > 1 and all(abs(c) >= tol for c in corrections[:-1])
+    assert abs(corrections[-1]) < tol
+    assert sp.x[1] == far(trials[-1][0])
 
 
 def test_a_second_zero_within_the_tolerance_of_a_located_fold_is_not_searched():

@@ -45,6 +45,10 @@ class Point:
     tangent: on BVP branches the unit secant of the step that reached the point
     (AUTO's CONTBV), on algebraic ones that step's secant (x - x_old) / ds
     (SOLVAE's UDOT, not the arclength's normal there); None means the tangent.
+    across_jump : the point was located beyond a jump of the branch (a user value
+    crossed by Newton leaving for another sheet of solutions, `events.first_zero`): its
+    direction is the location's last step on that sheet, kept as it is even where it
+    points back against the previous point's.
     """
     x: np.ndarray
     tangent: np.ndarray
@@ -53,6 +57,7 @@ class Point:
     ds: float = 0.0
     iterations: int = 0
     direction: np.ndarray | None = None
+    across_jump: bool = False
 
     @property
     def step_direction(self) -> np.ndarray:

@@ -491,6 +491,46 @@ def _solution_jumped(exc: Exception, prev, target, inner) -> bool:
     return math.sqrt(inner(d, d)) > JUMP_FACTOR * exc.width
 
 
+def locate_past_jump(trial, q_prev: float, q_cur: float, s_cur: float, settings):
+    """AUTO's LCSPBV as it runs where the branch jumped across a user value within the
+    step (`_solution_jumped`): (point, s) of its last trial, or LocationFailed.
+
+    The first trial steps back from the step's end by the secant correction
+    (1 + HMACH) q_cur s_cur / (q_prev - q_cur) (trial(s)); every later one steps from the
+    last trial by Muller's correction as it stands (trial(s, (last, s_last, True))). The
+    s of each trial is the one asked for, not where Newton put it: on the far sheet
+    the trials land where it lies, whatever s says, and their test hardly changes.
+    Muller's parabola (`_muller`) runs through the bracket's end q0 (at s0, prev's
+    until a trial changes sign), the trial before (q1, s1) and the last (AUTO's MUELLER:
+    q0, s0 move to q1, s1 where the last trial's sign differs from q1's), and the
+    location stops when its correction is below the tolerance EPSS (1 + sqrt|DS DSMAX|),
+    at most ITMX + 1 trials: it converges as the trials stop moving, not on a zero of
+    the test. kdv's run 3 (PAR(1) from 3.0488 to 2.7364 across UZR = 3): AUTO's trials
+    land at PAR(1) - 3 = -0.2703, -0.2705, -0.27049 and it labels the last, UZ4 at
+    2.7295; mtn's run 2, where the step lands 0.0066 past AUTO's UZ6 at 5.98510."""
+    tol = location_tolerance(settings)
+    s0, q0, s1, q1 = 0.0, q_prev, s_cur, q_cur
+    rds = (1 + HMACH) * q1 / (q0 - q1) * (s1 - s0)
+    last = None
+    for _ in range(max(settings.ITMX, 0) + 1):
+        s = s1 + rds
+        pt, q = trial(s) if last is None else trial(s, (last, s1, True))
+        if q is None or not np.isfinite(q):
+            raise LocationFailed("test function undefined at a trial point")
+        root = _muller([s0, s1, s], [q0, q1, q])
+        if root is None:
+            raise LocationFailed(f"Muller's parabola has no real zero (trial at s = {s:.6g}, "
+                                 f"test {q:.3g})")
+        if (q1 < 0) != (q < 0):
+            s0, q0 = s1, q1
+        s1, q1, last = s, q, pt
+        rds = (1 + HMACH) * (root - s)
+        if abs(rds) < tol:
+            return pt, s
+    raise LocationFailed(f"no convergence in ITMX = {settings.ITMX} iterations past the jump "
+                         f"(the last trial at s = {s1:.6g} with test {q1:.3g})")
+
+
 def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inner, note,
                curve_type: int = 0, secant: bool = False, sphere: bool = False,
                resolution=None):
@@ -502,7 +542,9 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     trial(s, key, base, chord, span) -> (point, value of test key): the continuation
         step of arclength s from prev, evaluating that test only; chord: the secant from
         prev to the far end of the interval being searched per unit of its arclength span
-        (prev.x + span chord is that end: the predictor's line).
+        (prev.x + span chord is that end: the predictor's line); base: (an earlier trial
+        point, its s) to step from it instead, with a third item True to step along that
+        point's own direction by s - its s as it stands (`locate_past_jump`).
     accepted(key, prev, cur) -> bool: the system's acceptance rule (UZ keys always).
     refresh(point) -> None: all test values at a located point, at its tangent.
     inner(a, b): the system's inner product (the BP's secant is made unit in it).
@@ -598,18 +640,35 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
                 # JUMP_FACTOR times further apart than its arclength: Newton leaving for
                 # another sheet of solutions within the step), and a user value's test, the
                 # parameter PAR(i) - v, crosses the value with it. AUTO's LCSPBV, whose trials
-                # step on from the step's end, labels it on that side (kdv's run 3: the step
-                # from PAR(1) = 3.0488 lands at 2.7364 across UZR = 3, AUTO's UZ4 at 2.7295,
-                # its trials' last); its scripts count that label (kdv.auto's r3('UZ2') is
-                # the UZ at 3 reached later). Labelled at the step's end. A value that jumps
-                # while the solution does not (a PVLS's step function of the state) is no
-                # crossing of the branch: left unlocated.
-                note(f"NOTE:{_key_name(key, curve_type)} crossed by a jump of the branch, "
-                     f"labelled where the step landed ({exc})")
-                refresh(target)
-                found = (target, key)
-                located[key] = span
+                # step on from the step's end, labels it on that side, at its last trial
+                # (`locate_past_jump`); its scripts count that label (kdv.auto's r3('UZ2')
+                # is the UZ at 3 reached later). Where those trials fail, and on algebraic
+                # branches (LCSPAE's trials, from prev on the sphere, are not these), the
+                # step's end is labelled. A value that jumps while the solution does not (a
+                # PVLS's step function of the state) is no crossing of the branch: left
+                # unlocated.
+                name, past = _key_name(key, curve_type), None
+                if secant:
+                    try:
+                        sp, s_sp = locate_past_jump(
+                            lambda s_, base=None: trial(s_, key, base, chord, span),
+                            prev.tests[key], target.tests[key], span, settings)
+                    except RuntimeError as failed_past:
+                        past = failed_past
+                if secant and past is None:
+                    note(f"NOTE:{name} crossed by a jump of the branch, labelled at the "
+                         f"location's last trial past it ({exc})")
+                    sp.across_jump = True
+                else:
+                    why = "" if past is None else f"; past the jump: {past}"
+                    note(f"NOTE:{name} crossed by a jump of the branch, labelled where the "
+                         f"step landed ({exc}{why})")
+                    sp, s_sp = target, span
+                refresh(sp)
+                found = (sp, key)
+                located[key] = s_sp
                 near_sp = [(prev, 0.0)]
+                target, span = sp, s_sp
                 continue
             # LocationFailed, or a failed evaluation (ConvergenceError, ProblemError):
             # that zero stays unlocated (AUTO: "Possible special point"); the other

@@ -493,11 +493,24 @@ class Continuation:
 
     def _trial(self, prev: Point, s_, key, base=None, chord=None, span=None):
         """The trial point at arclength s_ from prev, evaluating test `key` only: a step
-        from prev, or from `base` = (an earlier trial point, its s) by s_ - s. chord: the
+        from prev, or from `base` = (an earlier trial point, its s) by s_ - s (with a
+        third item, along that point's direction as it stands:
+        `events.locate_past_jump`). chord: the
         secant from prev to the far end of the interval searched per unit of its
         arclength span (`events.first_zero`): the predictor's direction on the sphere;
         on the plane, the line along which the step goes back from that end (prev's
         tangent when None)."""
+        if base is not None and len(base) > 2:
+            # AUTO's STEPBV from its last trial past a jump of the branch
+            # (`events.locate_past_jump`): along that point's own direction, the unit
+            # secant of the step that reached it (CONTBV), by the correction as it stands.
+            p0, s0 = base[:2]
+            ds = s_ - s0
+            d0 = p0.step_direction
+            x, it = self.correct(p0.x + ds * d0, p0.x, d0, ds)
+            pt = self.evaluate(x, d0, [key], ds=ds, it=it)
+            self._leave_along_secant(pt, p0.x, ds, d0)
+            return pt, pt.tests.get(key)
         if base is not None:
             # The tangent at the trial point is oriented by (and the BP test borders the
             # Jacobian with) the earlier trial's tangent, not the secant of the step from
@@ -731,7 +744,9 @@ class Continuation:
         if hit is not None:
             # sp's located tests are stored as 0 (`events.clear_located`).
             sp, key, same = hit
-            if sysm.arclength == "plane" and sp is not nxt:
+            if sysm.arclength == "plane" and sp is not nxt and not sp.across_jump:
+                # (past a jump the last trial's secant is the far sheet's way on, AUTO's
+                # CONTBV after LCSPBV: kdv's run 3 turns back there to PAR(1) = 3)
                 self._orient_located(sp, current, nxt)
             # a system may know the way on at a point where its locus meets another
             # (ContinuedSystem.leaving_direction: the torus locus at R1 / R2)
