@@ -29,7 +29,10 @@ arclength (parameters are located to about that times the parameter's rate
 along the branch; in practice much better, since Muller converges with order
 ~1.84 and the last step is below the tolerance). A location that does not
 converge, or whose trial step fails, is not an error: the point is kept
-unlabelled and the d-file says "NOTE:Possible special point" (AUTO).
+unlabelled and the d-file says "NOTE:Possible special point" (AUTO). A user value
+crossed by a jump of a BVP branch within the step (Newton leaving for another sheet)
+is labelled where AUTO's LCSPBV stops, at the last of its trials past the jump
+(`locate_past_jump`).
 
 When several zeros lie in one step (`first_zero`), the earliest is located first and
 the interval up to it searched again; zeros of several tests at one point are one
