@@ -428,10 +428,12 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
     test whose zero lies within the location tolerance of the point; a stored 0 makes no
     sign change with the next point. Here a fold test 0.3 - s (simple zero) and a
     branch-point test (s - 0.3)^3 (a zero of order three, vanishing with it) change sign
-    over one step: both are stored as 0 at the point located, so that on the next step
-    the branch-point test's rounding noise, of either sign, is no new sign change (with
-    the sign beyond the zero stored instead, noise of the other sign was one: a second
-    label for the one point)."""
+    over one step: the fold, AUTO's ITEST 1, is located first and the branch point,
+    ITEST 2, vanishing there, is absorbed (first come, first served: LP); both are
+    stored as 0 at the point located, so that on the next step the branch-point test's
+    rounding noise, of either sign, is no new sign change (with the sign beyond the zero
+    stored instead, noise of the other sign was one: a second label for the one
+    point)."""
     from types import SimpleNamespace
     from washer.cont.codes import Code
     from washer.cont.events import first_zero, sign_changes
@@ -445,13 +447,49 @@ def test_a_located_zero_is_not_counted_again_whatever_the_noise_beyond_it():
                                                                          tests[k](s)),
                                accepted=lambda k, a, b: True, refresh=refresh,
                                inner=lambda a, b: float(a @ b), note=lambda text: None)
-    assert key == Code.BP and Code.LP in same          # one point, BP first (PRIORITY)
+    assert key == Code.LP and Code.BP in same          # one point, the fold's (AUTO's order)
     assert sp.x[0] == pytest.approx(0.3, abs=1e-6)
     assert sp.tests[Code.LP] == 0.0 and sp.tests[Code.BP] == 0.0
     for noise in (1e-17, -1e-17):
         nxt = point(sp.x[0] + 1e-3)
         nxt.tests[Code.BP] = noise
         assert sign_changes(sp.tests, nxt.tests) == []
+
+
+def test_a_branch_point_located_short_of_a_located_fold_is_the_point_and_the_fold_counts_again():
+    """AUTO's CNRLAE / CNRLBV visit each test once after a step, the fold (ITEST 1) before
+    the branch point (ITEST 2), each at the point the tests before it left. The fold test
+    0.3 - s is located first, at s = 0.3; the branch-point test 0.299995 - s there is
+    -5e-6, of the sign opposite its value at the previous point, and its secant zero
+    5e-6 away, beyond the location tolerance EPSS (1 + sqrt(DS DSMAX)) = 1.03e-6 (though
+    within ten of it): it is located between the previous point and the fold and the
+    point is its, a BP (last located). The fold test is evaluated afresh there (5e-6, the
+    sign before its zero, not stored as 0), so the next step, across s = 0.3, labels the
+    fold: BP, then LP, on consecutive points."""
+    from types import SimpleNamespace
+    from washer.cont.codes import Code
+    from washer.cont.events import first_zero, sign_changes
+    settings = SimpleNamespace(EPSS=1e-6, DS=0.01, DSMAX=0.1, ITMX=9, DSMIN=1e-6)
+    tests = {Code.LP: lambda s: 0.3 - s, Code.BP: lambda s: 0.299995 - s}
+
+    point, refresh = _points_of(tests)
+
+    def kwargs(s0):
+        """first_zero's hooks for a step from the point at s0 (trials land at s0 + s)."""
+        return dict(trial=lambda s, k, base=None, chord=None, span=None:
+                    (point(s0 + s), tests[k](s0 + s)),
+                    accepted=lambda k, a, b: True, refresh=refresh,
+                    inner=lambda a, b: float(a @ b), note=lambda text: None)
+    prev, cur = point(0.0), point(1.0)
+    sp, key, same = first_zero(prev, cur, 1.0, settings, **kwargs(0.0))
+    assert key == Code.BP and same == []
+    assert sp.x[0] == pytest.approx(0.299995, abs=1e-7)
+    assert sp.tests[Code.BP] == 0.0
+    assert sp.tests[Code.LP] == pytest.approx(5e-6, abs=1e-7)
+    nxt = point(0.5)
+    assert sign_changes(sp.tests, nxt.tests) == [Code.LP]
+    sp2, key2, _ = first_zero(sp, nxt, 0.5 - sp.x[0], settings, **kwargs(sp.x[0]))
+    assert key2 == Code.LP and sp2.x[0] == pytest.approx(0.3, abs=1e-7)
 
 
 @pytest.mark.parametrize("key, state_jumps, bvp", [(("UZ", 0), True, True),

@@ -98,16 +98,17 @@ def test_the_bifurcating_branch_turns_at_the_other_pitchfork(enz):
 def test_the_bifurcating_branch_labels_the_first_pitchfork_once(enz):
     """Branch 2 runs on back to the pitchfork 34.22289, where its fold test and its
     branch-point test vanish at one point (its parameter is even in the asymmetry). The
-    fold is located first in the step, then the branch point between the previous point
-    and it, within the tolerance of it: one special point, labelled once, BP (AUTO's
-    order), at the closed-form pitchfork and symmetric to within the tolerance. (Before,
+    fold is located first in the step and the branch-point test, vanishing within the
+    tolerance of it, absorbed there (AUTO's LCSPAE: first come, first served), or, where
+    the fold's location fails, the branch point located: one special point, labelled
+    once, at the closed-form pitchfork and symmetric to within the tolerance. (Before,
     BP LP BP on three consecutive points: the fold's last trial, a step from the one
     before, was measured by its projection on the previous point's direction, the other
     trials by their distance from it, so the branch point's bracket closed 3.4e-4 short
     of the pitchfork in U(1) - U(2), and its test changed sign again at the next step.)"""
     bp = _closed_form()["BP"][1]
     near = [r for r in enz.rows if r.br == 2 and r.lab and abs(r.values[0] - bp) < 1e-3]
-    assert [r.ty for r in near] == ["BP"]
+    assert len(near) == 1 and near[0].ty in ("LP", "BP")
     assert near[0].values[0] == pytest.approx(bp, abs=TOL)
     # U(1) - U(2) moves at most at rate sqrt(2) per unit of arclength
     assert abs(near[0].values[2] - near[0].values[3]) < 2 ** 0.5 * TOL
@@ -124,8 +125,9 @@ def test_autos_fold_at_the_other_pitchfork_is_not_located_to_its_tolerance(enz, 
     point's PAR(1) and the BP's row are within it. Its fold location stopped on a Muller
     correction below the tolerance while its fold test wandered over its trials (its d-file:
     1.9e-4, -2.0e-4, -1.2e-4, -5.3e-6); a label there is an error of that stop, not a
-    second special point: ours labels the one point once, BP (the first in AUTO's order),
-    at the pitchfork."""
+    second special point: ours labels the one point once, at the pitchfork, BP (our fold
+    location meets the same noise and does not converge in ITMX, 'Possible special
+    point', and the branch point is located: AUTO's rule on that failure)."""
     import gzip
 
     from washer.auto.files import read_b

@@ -36,7 +36,7 @@ is labelled where AUTO's LCSPBV stops, at the last of its trials past the jump
 
 When several zeros lie in one step (`first_zero`), the earliest is located first and
 the interval up to it searched again; zeros of several tests at one point are one
-special point whose type is the first in AUTO's order (PRIORITY); at a BP the
+special point typed as AUTO types it (`autos_type`); at a BP the
 branch's direction is the secant from the previous point.
 
 Where a change goes: the rules (which zero, when a location has converged, what counts as
@@ -62,15 +62,40 @@ from washer.cont.settings import HMACH
 SIMULTANEOUS = 1e-6
 
 
-#: AUTO's order among tests that vanish at the same point (LCSPAE: first come,
-#: first served in its test order, a bifurcation overriding UZ, CP overriding LP). For
-#: BVPs LCSPBV's order is FNCSBV's: ITEST 1 the fold (LPC), 2 the branch point (BPC),
-#: 3 PD/TR (tfc's BP locus meets a fold at PAR(6) = 0.0173913: AUTO's restart types it LP).
-#: The fold (ITEST 1) comes before the BT (ITEST 4): where a Hopf curve touches a fold
-#: curve that is a line of constant PAR(ICP(1)) (a parameter the folds do not depend on),
-#: the BT is a fold of the Hopf curve too, and AUTO types it LP and goes on.
-PRIORITY = (Code.BP, Code.CP, Code.LP, Code.BT, Code.HB, Code.ZH, Code.LPC, Code.BPC,
-            Code.PD, Code.TR)
+#: AUTO's test order (ITEST) after its user values: LCSPAE's FNCSAE / FNCSEQ check the
+#: fold (1), the branch point (2), the cusp (3), BT (4), GH (5) and the Hopf test (6);
+#: LCSPBV's FNCSBV the fold of cycles (1), their branch point (2), PD / TR (3). After a
+#: step each test is visited once in this order, at the point the tests before it left
+#: (the step's end or the point one of them located): first come, first served
+#: (`autos_type`). GH shares the cusp's code (Code.CP), and with it the cusp's rank.
+ORDER = (Code.LP, Code.BP, Code.CP, Code.BT, Code.HB, Code.ZH, Code.LPC, Code.BPC,
+         Code.PD, Code.TR)
+
+
+def _order(key) -> int:
+    """Rank of a test key in AUTO's visiting order: user values (tuples) first, in IUZ's
+    order, then ORDER."""
+    if isinstance(key, tuple):
+        return key[1] - 10 ** 6
+    return ORDER.index(key) if key in ORDER else len(ORDER)
+
+
+def autos_type(keys):
+    """The type AUTO gives one point at which the tests `keys` vanish together (each
+    absorbed by the first located: LCSPAE / LCSPBV set a later test's Q1 = 0 where its
+    zero lies within the location tolerance of the located point): the first in AUTO's
+    order, except that a bifurcation overrides a user value and the cusp a fold (the
+    two overrides LCSPAE writes out). So a fold and a branch point at one point are an
+    LP (tfc's BP locus meeting a fold at PAR(6) = 0.0173913, AUTO's restart: LP), a fold
+    and a BT an LP (a Hopf curve touching a fold line of constant PAR(ICP(1)): AUTO goes
+    on along it)."""
+    ranked = sorted(keys, key=_order)
+    t = ranked[0]
+    for k in ranked[1:]:
+        if (isinstance(t, tuple) and not isinstance(k, tuple)) \
+                or (t == Code.LP and k == Code.CP):
+            t = k
+    return t
 
 
 #: Resonances at which a torus locus (curve type 8: the TR locus of cycles, the
@@ -88,13 +113,6 @@ def _key_name(key, curve_type: int = 0) -> str:
     if isinstance(key, tuple):
         return f"UZ{key[1] + 1}"
     return type_name(curve_code(key, curve_type))
-
-
-def _priority(key) -> int:
-    """Rank of a test key in PRIORITY (UZ keys, tuples, come last)."""
-    if isinstance(key, tuple):
-        return len(PRIORITY) + 1
-    return PRIORITY.index(key) if key in PRIORITY else len(PRIORITY)
 
 
 #: A located zero whose bracket's ends differ, per unit of arclength, by more than this
@@ -564,7 +582,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
 
     Zeros of several tests at one point (a transcritical BP is also a zero eigenvalue;
     two Hopf loci crossing) are one special point: its type is the first in AUTO's
-    order (PRIORITY), whichever zero was located. A zero whose first secant estimate lies
+    order (`autos_type`), whichever zero was located. A zero whose first secant estimate lies
     within the location tolerance of cur is cur itself (`at_step_end`): the point returned
     is then the object cur."""
     target, span, found = cur, ds, None
@@ -696,8 +714,14 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     if users:
         key = min(users, key=lambda k: k[1])
     # Other tests that change sign over the step and vanish at sp, to within the
-    # location tolerance: located there in this step, or by their linear zero estimate
-    # from sp's value.
+    # location tolerance, by their linear zero estimate from sp's value. A test located
+    # earlier in this step, before this one moved the point short of it, is not among
+    # them: AUTO visits each test once (LCSPAE / LCSPBV in CNRLAE's / CNRLBV's loop), and
+    # a test it located is evaluated afresh where a later one's location leaves the point
+    # (DO ITEST = 1, ISTEPPED - 1), its zero then labelled on the next step if it lies
+    # beyond: a fold located first, then a branch point between the previous point and
+    # the fold, is a BP here.
+    earlier = [k for k in located if k != key]
     same = []
     for k in sign_changes(prev.tests, cur.tests):
         # User values are not merged with each other here: one vanishing at a located
@@ -707,8 +731,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         # bifurcation is that point.
         if k == key or (isinstance(k, tuple) and isinstance(key, tuple)):
             continue
-        if k in located and abs(located[k] - span) < tol:
-            same.append(k)
+        if k in earlier:
             continue
         if k not in sp.tests or sp.tests[k] is None:
             continue
@@ -720,7 +743,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         same = [k for k in same if k not in folds] + folds
         best = key
     else:
-        best = min([key] + same, key=_priority)
+        best = autos_type([key] + same)
     if best != key:
         same = [k for k in same if k != best] + [key]
     tangent = branch_point_tangent(sp, span, near_sp, tol / 10, inner) \
@@ -745,7 +768,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
     # best is stored as 0 too: the label's test (a fold typed over a branch point found
     # within the tolerance of it) would otherwise change sign again on the next step
     # where sp lies short of its zero, and label the same point twice.
-    clear_located(prev, sp, span, [best, key] + same + users, settings)
+    clear_located(prev, sp, span, [best, key] + same + users, settings, fresh=earlier)
     return sp, best, same
 
 
@@ -809,7 +832,7 @@ def signed_distance(d: np.ndarray, s: float, inner) -> float:
     return math.copysign(math.sqrt(inner(d, d)), s)
 
 
-def clear_located(prev, sp, s_sp: float, located, settings) -> None:
+def clear_located(prev, sp, s_sp: float, located, settings, fresh=()) -> None:
     """The stored values of the tests at a located special point sp, reached by a step of
     arclength s_sp from prev: AUTO's LCSPAE (ae.f90) and LCSPBV (bvp.f90) return Q = 0
     for the test they located, and, once a point is located (AP%ITP /= 0), set Q1 = 0
@@ -823,9 +846,11 @@ def clear_located(prev, sp, s_sp: float, located, settings) -> None:
 
     located: the tests labelled at sp (the one located and those merged with it).
     User values (UZ tests) are kept apart as in the merge (`first_zero`): two UZR values
-    within the tolerance of each other are two points, so only a located UZ is cleared."""
+    within the tolerance of each other are two points, so only a located UZ is cleared.
+    fresh: tests located earlier in the step, short of which a later location moved the
+    point: they keep their values at sp (AUTO evaluates them afresh there)."""
     for k, q in sp.tests.items():
-        if q is None:
+        if q is None or k in fresh:
             continue
         q0 = prev.tests.get(k)
         if k in located or (not isinstance(k, tuple) and q0 is not None
