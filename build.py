@@ -57,7 +57,8 @@ contbuilder.set_source(
     sources=["csrc/cont/reduce.cpp", "csrc/cont/assemble.cpp", "csrc/cont/po_correct.cpp",
              "csrc/cont/es_format.cpp", "csrc/cont/auto_point.cpp",
              "csrc/cont/dense_lapack.cpp", "csrc/cont/floquet.cpp",
-             "csrc/cont/fold_tests.cpp", "csrc/cont/adapt.cpp"],
+             "csrc/cont/fold_tests.cpp", "csrc/cont/adapt.cpp",
+             "csrc/cont/bvp_tangent.cpp"],
     include_dirs=["csrc/cont", EIGEN],
     source_extension=".cpp",
     # -O3: the elimination's short row updates (sub_scaled below 24 terms) and the

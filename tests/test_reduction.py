@@ -255,3 +255,23 @@ def test_a_border_row_that_makes_the_matrix_singular():
     assert f.reborder(row)
     assert f.singular == fresh.singular
     assert f.sign_logdet() == fresh.sign_logdet()
+
+
+@pytest.mark.parametrize("N, m, n, npar", [(1, 3, 2, 2), (7, 4, 3, 2), (12, 3, 2, 4),
+                                           (70, 4, 2, 2)])
+def test_the_compiled_unit_tangent_is_the_iterator_s(N, m, n, npar):
+    """BorderedCollocation.unit_tangent against Continuation.tangent's Python way on the
+    same factorisation (the solve of e_n, CollocationBVP.inner's numpy dot, the division):
+    the same doubles; None where that way would not take z (its norm above big)."""
+    rng = np.random.default_rng(N * 100 + m * 10 + n + 11)
+    blocks, parcols, extra, M = random_system(rng, N, m, n, npar)
+    f = reduction.BorderedCollocation(blocks, parcols, extra)
+    theta = rng.uniform(0.0, 2.0, len(M))
+    theta[-npar:] = [0.0, 1.0][:npar] + [0.5] * (npar - 2)
+    e = np.zeros(len(M))
+    e[-1] = 1.0
+    z = f.solve(e)
+    nz = np.sqrt(abs(float(np.dot(z, theta * z))))
+    t = f.unit_tangent(theta, 1e30)
+    assert t is not None and t.tobytes() == (z / nz).tobytes()
+    assert f.unit_tangent(theta, 0.5 * nz) is None

@@ -248,3 +248,11 @@ void cont_mesh_apply(int nt, int ncol, const int *j, const double *W, const doub
 int cont_new_mesh(int ntst, int ncol, int ndim, const double *tm, const double *dtm,
                   const double *U, int periodic, const double *cntdif, double small,
                   void *pow_loop, void *pow_data, int ntst_new, double *tm_new);
+/* After cont_bvp_factor (or cont_bvp_reborder) of a matrix M (nx, nx) without a zero pivot:
+ * the unit tangent t = z / sqrt|<z, theta z>| of z = M^-1 e_nx (csrc/cont/bvp_tangent.cpp),
+ * <a, b> = 0.0 + ddot(a, theta b) with ddot numpy's own CBLAS ddot (numpy's dot of two
+ * vectors). Returns 0; 1 where z is not finite or its norm is 0, not finite or above big
+ * (t then holds z or its division partly done: the caller computes it again); 2 for bad
+ * arguments. */
+int cont_bvp_unit_tangent(const cont_bvp *f, int nx, const double *theta, double big,
+                          void *ddot, double *t);

@@ -170,7 +170,8 @@ class Continuation:
         self._newton = None
         # The last point evaluated from the corrector's Newton matrix (`evaluate`).
         self._newton_point = None
-        # The system's compiled tangent (AlgebraicSystem.unit_tangent: `tangent`) or None.
+        # The system's compiled tangent (AlgebraicSystem.unit_tangent, CollocationBVP.
+        # unit_tangent: `tangent`) or None.
         self._unit_tangent = getattr(system, "unit_tangent", None)
 
     # ------------------------------------------------------- counted calls

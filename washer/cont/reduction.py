@@ -96,6 +96,19 @@ def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:
     return Sc, X
 
 
+_DDOT: list = []
+
+
+def _numpy_ddot():
+    """numpy's own CBLAS ddot (the one numpy's dot of two float vectors calls) as a cffi
+    `void *`, or None where it is not found (washer.cont.lapack.routines)."""
+    if not _DDOT:
+        from washer.cont import lapack
+        found = lapack.routines()
+        _DDOT.append(None if found is None else found[3])
+    return _DDOT[0]
+
+
 def _ptr(a: np.ndarray):
     """The data of a C-contiguous float64 array as a double[] for the compiled calls (one
     from_buffer with the type: a fifth of the cost of from_buffer and a cast, and a
@@ -238,6 +251,23 @@ class BorderedCollocation:
         x = np.empty(self.nx)
         lib.cont_bvp_solve(self._f, _ptr(rhs), _ptr(x))
         return x
+
+    def unit_tangent(self, theta: np.ndarray, big: float) -> np.ndarray | None:
+        """z / sqrt|<z, theta z>| of z = M^-1 e_n, the unit tangent Continuation.tangent
+        makes from this factorisation with CollocationBVP.inner (theta (nx,) its weights),
+        in one compiled call (cont_bvp_unit_tangent: the same solve, numpy's dot of two
+        vectors through numpy's own CBLAS ddot, the same doubles). None where the caller
+        computes it: a zero pivot (least squares), z or its norm not finite, the norm 0
+        or above big, numpy's ddot not found."""
+        ddot = _numpy_ddot()
+        if self.singular or ddot is None:
+            return None
+        theta = np.ascontiguousarray(theta, dtype=float)
+        t = np.empty(self.nx)
+        if len(theta) != self.nx or lib.cont_bvp_unit_tangent(
+                self._f, self.nx, _ptr(theta), float(big), ddot, _ptr(t)) != 0:
+            return None
+        return t
 
     def sign_logdet(self) -> tuple[float, float]:
         if self._sl is None:

@@ -364,6 +364,17 @@ class CollocationBVP:
             return f
         return SparseFactor(self.coll.bordered(J, border))
 
+    def unit_tangent(self, J, ref: np.ndarray, big: float):
+        """Continuation.tangent's unit tangent at a point of Jacobian J, oriented along
+        ref: the factorisation of [J; border(ref)] (`factor`) and, where it is the
+        compiled one, z = [J; border(ref)]^-1 e_n made unit in `inner` in one call
+        (reduction.BorderedCollocation.unit_tangent). (t, factor, True), or (None,
+        factor, False) where the caller takes it on from the factorisation."""
+        factor = self.factor(J, self.border(ref))
+        t = (factor.unit_tangent(self.weights, big)
+             if isinstance(factor, reduction.BorderedCollocation) else None)
+        return t, factor, t is not None
+
     def inner(self, a: np.ndarray, b: np.ndarray) -> float:
         """int_0^1 sum_i THU_i a_i(t) b_i(t) dt + sum THL(k) a_k b_k over the parameter
         unknowns (AUTO's RINPR + THL; THL(11) = 0 by default)."""
