@@ -820,3 +820,38 @@ def test_a_locations_first_trial_steps_back_from_the_steps_end_along_its_unit_se
     end = x0 + span * chord
     assert n > 1 + 1e-3                       # the branch bends within the step
     assert inner(x - end, chord / n) == pytest.approx(s_ - span, rel=1e-9, abs=1e-13)
+
+
+def test_a_locations_later_trials_step_along_the_secant_that_reached_the_last_one(
+        monkeypatch):
+    """AUTO's LCSPBV calls CONTBV before every STEPBV of a location: each later trial goes
+    from the last trial point along the unit secant of the trial step that reached it, on
+    the plane across that secant, not along the trial point's tangent (which predicts
+    better: Newton then needs an iteration fewer than AUTO's, and the located point's
+    count sets the next step through ADPTDS). On the fold of the circles g = mu + 2 r^2 -
+    r^4 = 0 (above) every later trial lies on that plane, <x - x0, c0> = (s - s0) /
+    <c0, d> with c0 the unit secant at the last trial x0 (at s0) and d prev's step
+    direction (the step is asked to land at s on prev's coordinate), to rounding: the
+    plane's row is linear and Newton meets it at every iterate. The fold is still
+    located at mu = -1 to 1e-9 (the closed form)."""
+    from washer.cont import iterator
+
+    seen = []
+    trial = iterator.Continuation._trial
+
+    def spy(self, prev, s_, key, base=None, chord=None, span=None):
+        pt, q = trial(self, prev, s_, key, base, chord, span)
+        if base is not None and key == iterator.Code.LPC:
+            p0, s0 = base
+            seen.append((self.sys.inner, prev.step_direction.copy(), p0.x.copy(),
+                         p0.step_direction.copy(), p0.tangent.copy(), s0, s_, pt.x.copy()))
+        return pt, q
+    monkeypatch.setattr(iterator.Continuation, "_trial", spy)
+
+    br = _run_fold_of_circles()
+    assert seen
+    for inner, d, x0, c0, t0, s0, s_, x in seen:
+        assert inner(x - x0, c0) == pytest.approx((s_ - s0) / inner(c0, d), rel=1e-9,
+                                                  abs=1e-13)
+    lp = [rec for rec in br.specials if rec.ty == "LP"][0]
+    assert abs(lp.par[0] + 1) < 1e-9

@@ -519,6 +519,19 @@ class Continuation:
             # 2.2e-4 off with it, 1.2e-7 without).
             p0, s0 = base
             ds = s_ - s0
+            # The step goes from the earlier trial along the unit secant of the trial
+            # step that reached it (`_leave_along_secant`), on the plane across it: AUTO's
+            # LCSPBV calls CONTBV before each STEPBV, and STEPBV predicts along that
+            # secant, not along the trial point's tangent. The tangent predicts better,
+            # so its Newton took one iteration fewer than AUTO's, and the located point's
+            # count decides the next step (ADPTDS): r3b's V1b manifold run, whose UZ
+            # at PAR(23) = 0 was reached by a trial of one iteration where AUTO's took
+            # two, doubled its step there where AUTO's grew it by 1.5, and its steps,
+            # longer ever after, failed down to DSMIN 525 steps later (AUTO ends EP at
+            # NMX). A branch point's trials keep the trial point's tangent (their test
+            # borders prev's; tor's LPs after its BP of cycles were lost with secants).
+            d0 = p0.step_direction if self.sys.arclength == "plane" \
+                and key not in (Code.BP, Code.BPC) else p0.tangent
             # s is measured along prev's step direction (`events.first_zero`'s position,
             # the coordinate in which a step from prev of arclength s lands at s); a step
             # of length d along p0's tangent moves it by d <t_p0, d_prev>: ask for the
@@ -530,14 +543,14 @@ class Continuation:
             # on the sphere about p0, moves it by d times the cosine of p0's tangent
             # with the radius from prev); on the plane, the projection on prev's step
             # direction.
-            c = self.sys.inner(p0.tangent, self._radial(prev, p0, s0)) \
+            c = self.sys.inner(d0, self._radial(prev, p0, s0)) \
                 if self.sys.arclength == "sphere" else \
-                self.sys.inner(p0.tangent, prev.step_direction)
+                self.sys.inner(d0, prev.step_direction)
             if abs(c) > 0.05:
                 ds /= c
             origin, origin_direction = p0.x, p0.step_direction
             try:
-                x, it = self.correct(p0.x + ds * p0.tangent, p0.x, p0.tangent, ds)
+                x, it = self.correct(p0.x + ds * d0, p0.x, d0, ds)
             except ConvergenceError:
                 if key not in (Code.BP, Code.BPC):
                     raise
