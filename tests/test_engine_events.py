@@ -655,3 +655,24 @@ def test_a_second_zero_within_the_tolerance_of_a_located_fold_is_not_searched():
     assert sp.x[0] == pytest.approx(0.5, abs=1e-6)
     assert sp.tests[Code.LPC] == 0.0 and sp.tests[Code.BPC] == 0.0
     assert sign_changes(sp.tests, point(0.6).tests) == []
+
+
+@pytest.mark.parametrize("keys, curve_type, want", [
+    (["BP", "LP"], 0, "LP"),          # ITEST 1 before 2: the fold first, the BP absorbed
+    (["BT", "LP"], 3, "LP"),          # the fold (1) before BT (4) on a Hopf locus
+    (["CP", "LP"], 2, "CP"),          # the cusp overrides the fold on a fold locus (ITP 22)
+    (["CP", "LP"], 3, "LP"),          # GH does not override the fold on a Hopf locus (32)
+    ([("UZ", 0), "HB"], 0, "HB"),     # a bifurcation overrides a user value
+    ([("UZ", 1), ("UZ", 0)], 0, ("UZ", 0)),   # user values in IUZ's order
+    (["PD", "BPC", "LPC"], 0, "LPC"),  # LCSPBV's order: the fold of cycles first
+])
+def test_tests_vanishing_at_one_point_are_typed_as_autos_lcspae(keys, curve_type, want):
+    """AUTO's CNRLAE / CNRLBV visit the tests in ITEST order (user values first), each at
+    the point the ones before left, and LCSPAE / LCSPBV set Q1 = 0 for a test whose zero
+    lies within the tolerance of a point already located: the first located types the
+    point, but for the two overrides LCSPAE writes out (a bifurcation over UZ, and CP
+    over LP where ITP = 22, a fold on a fold locus)."""
+    from washer.cont.codes import Code
+    from washer.cont.events import autos_type
+    code = lambda k: k if isinstance(k, tuple) else Code[k]        # noqa: E731
+    assert autos_type([code(k) for k in keys], curve_type) == code(want)

@@ -80,20 +80,21 @@ def _order(key) -> int:
     return ORDER.index(key) if key in ORDER else len(ORDER)
 
 
-def autos_type(keys):
+def autos_type(keys, curve_type: int = 0):
     """The type AUTO gives one point at which the tests `keys` vanish together (each
     absorbed by the first located: LCSPAE / LCSPBV set a later test's Q1 = 0 where its
     zero lies within the location tolerance of the located point): the first in AUTO's
-    order, except that a bifurcation overrides a user value and the cusp a fold (the
-    two overrides LCSPAE writes out). So a fold and a branch point at one point are an
-    LP (tfc's BP locus meeting a fold at PAR(6) = 0.0173913, AUTO's restart: LP), a fold
-    and a BT an LP (a Hopf curve touching a fold line of constant PAR(ICP(1)): AUTO goes
-    on along it)."""
+    order, except that a bifurcation overrides a user value and, on a fold locus
+    (curve_type 2: AUTO's ITP 22), the cusp a fold (the two overrides LCSPAE writes
+    out). So a fold and a branch point at one point are an LP (tfc's BP locus meeting a
+    fold at PAR(6) = 0.0173913, AUTO's restart: LP), a fold and a BT an LP (a Hopf curve
+    touching a fold line of constant PAR(ICP(1)): AUTO goes on along it), a fold and GH
+    on a Hopf locus an LP."""
     ranked = sorted(keys, key=_order)
     t = ranked[0]
     for k in ranked[1:]:
         if (isinstance(t, tuple) and not isinstance(k, tuple)) \
-                or (t == Code.LP and k == Code.CP):
+                or (t == Code.LP and k == Code.CP and curve_type == 2):
             t = k
     return t
 
@@ -743,7 +744,7 @@ def first_zero(prev, cur, ds: float, settings, *, trial, accepted, refresh, inne
         same = [k for k in same if k not in folds] + folds
         best = key
     else:
-        best = autos_type([key] + same)
+        best = autos_type([key] + same, curve_type)
     if best != key:
         same = [k for k in same if k != best] + [key]
     tangent = branch_point_tangent(sp, span, near_sp, tol / 10, inner) \
