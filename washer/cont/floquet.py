@@ -342,11 +342,12 @@ def stability(mu: np.ndarray, ndim: int, suspended: bool, trivial: bool = True,
     trivial multiplier (forced orbits) NINS counts those with |mu| <= 1 + tol; `tol`
     (default AUTO's STABLE_TOL) is the multipliers' accuracy."""
     if not trivial:
-        n_st = int(np.sum(np.abs(mu) <= 1 + tol))
+        n_st = int(np.count_nonzero(np.abs(mu) <= 1 + tol))
         return Stability(values=mu, n_stable=n_st, stable=n_st == ndim, kind="multipliers")
     notes = []
     err = abs(mu[0] - 1) if len(mu) else 0.0
-    n_st = 1 + int(np.sum(np.abs(mu[1:]) <= 1 + STABLE_TOL))
+    # (count_nonzero: the count np.sum gives, without its Python wrapper; every point asks)
+    n_st = 1 + int(np.count_nonzero(np.abs(mu[1:]) <= 1 + STABLE_TOL))
     if err > INACCURATE or (suspended and err >= ACCURATE):
         notes.append(INACCURATE_NOTE)
         n_st = 0
