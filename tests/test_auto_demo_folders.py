@@ -300,3 +300,31 @@ def test_autos_output_with_a_variants_user_file_is_its_bases_where_the_table_say
             for f in files}
         assert got == digests, demo
         assert not [p.name for p in (DEMOS / demo / "autoref").glob("b.*")], demo
+
+
+def test_demo_table_by_kind_of_run_sums_its_rows():
+    """The sentence under the demo table that splits its total by kind of run (IPS 0, 1, 2
+    only; any IPS 9; the rest) gives the sums of the rows of each kind, and the three add up
+    to the total."""
+    import re
+    text = DEMO_TABLE.read_text()
+    sums = {"012": [0, 0], "9": [0, 0], "other": [0, 0]}
+    for line in text.splitlines():
+        m = re.match(r"\| ([a-z0-9]+) \| ([-0-9 ]+) \| (\d+) / (\d+)", line)
+        if not m:
+            continue
+        ips = set(m[2].split())
+        kind = "012" if ips <= {"0", "1", "2"} else "9" if "9" in ips else "other"
+        sums[kind][0] += int(m[3])
+        sums[kind][1] += int(m[4])
+    said = re.search(r"\(IPS 0, 1, 2 only\) (\d+) / (\d+) \(([\d.]+) %\).*?\(IPS 9\)\s+"
+                     r"(\d+) / (\d+) \(([\d.]+) %\).*?IPS 0-2\) (\d+) / (\d+) \(([\d.]+) %\)",
+                     text, re.S)
+    assert said, "the split by kind of run is not under the demo table"
+    g = said.groups()
+    for k, kind in enumerate(("012", "9", "other")):
+        m, a = sums[kind]
+        assert (int(g[3 * k]), int(g[3 * k + 1])) == (m, a), kind
+        assert float(g[3 * k + 2]) == round(100 * m / a, 1), kind
+    rows, total = _demo_table()
+    assert tuple(map(sum, zip(*sums.values()))) == total
