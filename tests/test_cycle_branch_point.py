@@ -375,7 +375,10 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path, window, order):
     point'): it labels only the LP, one point earlier than ours from there on (its last LP,
     PT 124, is our PT 125, the EP at NMX). Checked independently by shooting over half a period
     (DOP853, rtol 1e-12): a symmetric orbit is a fixed point of u0 -> -phi_{T/2}(u0), and
-    the symmetry breaks where -Dphi_{T/2} has the eigenvalue -1 (the fold is its +1).
+    the symmetry breaks where -Dphi_{T/2} has the eigenvalue -1; the fold is where its
+    other nontrivial eigenvalue meets +1, a separate point (0.22 in period before the BP
+    at PT 79, 0.062 after it at PT 93), and the shooting system over the whole period with
+    PAR(1) loses rank at the BP only: a second branch crosses there, none at the fold.
     Tolerance: the location tolerance EPSS (1 + sqrt(DS DSMAX)) in arclength, in which
     PAR(1) has weight 1, so PAR(1) is located at least that well; the collocation error
     (NTST = 25) moves the exact zero by far less (AUTO's BP lies 2e-7 from the shooting
@@ -432,6 +435,51 @@ def test_symmetry_breaking_bp_just_past_a_fold(tmp_path, window, order):
     # PT 79, 1.6e-3 against 0.062 at PT 93).
     fold = labelled[order.index("LP")]
     assert abs(bp.par[10] - T_bp) < 0.1 * abs(fold.par[10] - T_bp)
+
+    # The fold, where the other nontrivial eigenvalue of -Dphi_{T/2} meets the trivial 1:
+    # the characteristic polynomial with the root 1 divided out, x^2 - s x + p from the
+    # trace s + 1 and the determinant p (the two eigenvalues meeting there are
+    # ill-conditioned, their sum and product are not), vanishing at x = 1. It is the LP
+    # labelled, within the location tolerance in PAR(1), and the LP's period lies far
+    # nearer it than the BP's (measured 1.6e-7 and 0.22 at PT 78, 4.7e-6 and 0.062 at
+    # PT 94): a fold of its own, apart from the branch point, not a pitchfork at a fold.
+    def one_minus_s_plus_p(T):
+        w = orbit(T)
+        H = -half_map(w[:3], w[3], T)[1]
+        return float(1 - (np.trace(H) - 1) + np.linalg.det(H))
+
+    half_gap = 0.5 * abs(fold.par[10] - bp.par[10])
+    T_fold = brentq(one_minus_s_plus_p, fold.par[10] - half_gap, fold.par[10] + half_gap,
+                    xtol=1e-10)
+    assert abs(fold.par[0] - orbit(T_fold)[3]) < tol
+    assert abs(fold.par[10] - T_fold) < 0.1 * abs(T_fold - T_bp)
+
+    # A second branch crosses at the BP and none at the fold: the shooting system over the
+    # whole period in (u0, T, PAR(1)), phi_T(u0) - u0 and the phase, has rank 4 on a branch
+    # and loses it at a branch point. Its smallest singular value at T_bp is bounded by
+    # T_bp's error (1e-10) times its slope (~40 per unit period) and the integration's
+    # rounding (rtol 1e-12 of the largest, ~300), ~4e-9: measured 3.7e-12 at PT 79, 2.9e-10
+    # at PT 93, 1e-6 allowed; at the fold it is the branch's own (0.91 at PT 78, 0.86 at
+    # PT 94; 0.75 at the regular PT 92).
+    def smallest_singular_value(T):
+        w = orbit(T)
+        u0, lam = w[:3], w[3]
+        f, fu = _tor_field(np.r_[lam, P[1:]])
+        r = P[3]
+
+        def rhs(_t, y):
+            A = fu(y[:3])
+            return np.r_[f(y[:3]), (A @ y[3:12].reshape(3, 3)).ravel(),
+                          A @ y[12:] + [-y[0] / r, 0.0, 0.0]]      # f_PAR(1) = (-x / r, 0, 0)
+        y = solve_ivp(rhs, [0, T], np.r_[u0, np.eye(3).ravel(), np.zeros(3)],
+                      method="DOP853", rtol=1e-12, atol=1e-14).y[:, -1]
+        J = np.zeros((4, 5))
+        J[:3, :3], J[:3, 3], J[:3, 4] = y[3:12].reshape(3, 3) - np.eye(3), f(y[:3]), y[12:]
+        J[3, :3] = f(u0) / np.linalg.norm(f(u0))
+        return np.linalg.svd(J, compute_uv=False)[-1]
+
+    assert smallest_singular_value(T_bp) < 1e-6
+    assert smallest_singular_value(T_fold) > 0.1
 
 
 def _abcb_field(p):
