@@ -10,7 +10,19 @@
 //   einsum "tk,tk...->t..." sums in that order when the values have two or more columns).
 #include "cont.h"
 
+#include <algorithm>
 #include <cmath>
+
+namespace {
+
+// The count of a[k] <= x in a non-decreasing array without NaN (numpy's searchsorted
+// 'right', the search np.interp makes): std::upper_bound's place of x.
+int count_not_above(const double *a, int len, double x)
+{
+    return (int)(std::upper_bound(a, a + len, x) - a);
+}
+
+}  // namespace
 
 extern "C" int cont_mesh_weights(int ntst, int ncol, const double *tm, const double *dtm,
                                  int nt, const double *t, const double *others,
@@ -29,15 +41,7 @@ extern "C" int cont_mesh_weights(int ntst, int ncol, const double *tm, const dou
             return 1;
     for (int i = 0; i < nt; ++i) {
         const double ti = t[i];
-        int lo = 0, hi = ntst + 1;                 // the count of tm[k] <= t[i]
-        while (lo < hi) {
-            const int mid = lo + ((hi - lo) >> 1);
-            if (tm[mid] <= ti)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        int jj = lo - 1;
+        int jj = count_not_above(tm, ntst + 1, ti) - 1;
         if (jj < 0)
             jj = 0;
         if (jj > ntst - 1)
@@ -105,15 +109,7 @@ double np_interp(double x, const double *xp, const double *fp, int len)
         return fp[len - 1];
     if (x < xp[0])
         return fp[0];
-    int lo = 0, hi = len;                         // the count of xp[k] <= x
-    while (lo < hi) {
-        const int mid = lo + ((hi - lo) >> 1);
-        if (xp[mid] <= x)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    const int j = lo - 1;
+    const int j = count_not_above(xp, len, x) - 1;
     if (j == len - 1 || xp[j] == x)
         return fp[j];
     const double slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j]);
