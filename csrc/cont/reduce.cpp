@@ -33,6 +33,42 @@ double perm_sign(const std::vector<int> &p) {
     return s;
 }
 
+// The sign of cont_bvp_factor's row and column orders (as original indices in elimination
+// order) when no pivot swaps rows: the interior rows of every interval, the rows the
+// reduction pivots on, the rows left in the remaining system, the dense rows; the columns
+// likewise.
+double orders_sign(int N, int m, int n, int np) {
+    const int mn = m * n, K = (m - 1) * n, nc = N * mn, nx = (N * m + 1) * n + np;
+    std::vector<int> rows, cols, R_ids, tids(2 * n);
+    rows.reserve(nx);
+    cols.reserve(nx);
+    for (int j = 0; j < N; ++j) {
+        for (int t = 0; t < K; ++t) {
+            rows.push_back(j * mn + t);
+            cols.push_back(j * mn + n + t);
+        }
+        if (j == 0) {
+            for (int r = K; r < mn; ++r) R_ids.push_back(r);
+            continue;
+        }
+        for (int r = 0; r < n; ++r) {
+            tids[r] = R_ids[r];
+            tids[n + r] = j * mn + K + r;
+        }
+        for (int t = 0; t < n; ++t) {
+            rows.push_back(tids[t]);
+            cols.push_back(j * mn + t);
+        }
+        R_ids.assign(tids.begin() + n, tids.end());
+    }
+    for (int r = 0; r < n; ++r) rows.push_back(R_ids[r]);
+    for (int e = 0; e < n + np; ++e) rows.push_back(nc + e);
+    for (int i = 0; i < n; ++i) cols.push_back(i);
+    for (int i = 0; i < n; ++i) cols.push_back(N * mn + i);
+    for (int i = 0; i < np; ++i) cols.push_back(nx - np + i);
+    return perm_sign(rows) * perm_sign(cols);
+}
+
 // y[k] -= l * x[k], k < len: the same operations, element by element, whichever way
 // (so the same values): a plain loop for short rows, where Eigen's per-expression
 // set-up dominated (NDIM 3: lengths 3 to 20), Eigen's vectorised one for long rows.
@@ -133,6 +169,19 @@ struct cont_bvp {
     double sign_chain = 1.0;
     size_t n_chain = 0;
     bool singular_chain = false;
+    // The sign of the elimination's row and column orders when no pivoting swaps rows
+    // (the orders depend on the sizes alone): each swap a factorisation makes transposes
+    // two rows of its order, so its sign is this one times (-1)^swaps.
+    double sign_orders = 1.0;
+    // Work arrays, allocated once with the object: the dense rows during a factorisation
+    // (Ex, NE x nx) and the rows carried along the chain (R); a solve's right-hand sides
+    // (rc, re, the reduction's t2, tR, the remaining system's d, z) and the refinement's
+    // residual and correction (rr, dd). A solve writes them (mutable): one factorisation
+    // is not solved with from two threads at once.
+    RawBuffer<double> Exb;
+    Mat R;
+    mutable RawBuffer<double> rc, re, t2, tR, rr, dd;
+    mutable Eigen::VectorXd dv, zv;
 };
 
 namespace {
@@ -192,6 +241,17 @@ cont_bvp *cont_bvp_new(int ntst, int ncol, int ndim, int npar) {
         f->E2b.allocate((size_t)ntst * f->ne * ndim);
         f->piv1b.allocate((size_t)ntst * f->K);
         f->piv2b.allocate((size_t)ntst * ndim);
+        f->Exb.allocate((size_t)f->ne * f->nx);
+        f->R.resize(ndim, 2 * ndim + npar);
+        f->rc.allocate((size_t)f->nc);
+        f->re.allocate((size_t)f->ne);
+        f->t2.allocate((size_t)ntst * 2 * ndim);
+        f->tR.allocate((size_t)ndim);
+        f->rr.allocate((size_t)f->nx);
+        f->dd.allocate((size_t)f->nx);
+        f->dv.resize(2 * ndim + npar);
+        f->zv.resize(2 * ndim + npar);
+        f->sign_orders = orders_sign(ntst, ncol, ndim, npar);
     } catch (const std::bad_alloc &) {
         delete f;
         return nullptr;
@@ -203,25 +263,26 @@ void cont_bvp_free(cont_bvp *f) { delete f; }
 
 namespace {
 
-// cont_bvp_factor with NDIM = NN and NPAR = NP where they are positive / not negative,
-// else f's: with the sizes known to the compiler, the row updates of NDIM and NPAR
-// terms (most of them, at NDIM 2 to 4) are straight-line code without a loop's set-up;
-// the same operations on the same values.
-template <int NN, int NP>
+// cont_bvp_factor with NDIM = NN, NPAR = NP and NCOL = NM where they are positive / not
+// negative / positive, else f's: with the sizes known to the compiler, the row updates of
+// NDIM and NPAR terms (most of them, at NDIM 2 to 4) and the loops over an interval's rows
+// and pivots are straight-line code without a loop's set-up; the same operations on the
+// same values.
+template <int NN, int NP, int NM>
 int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                  const double *extra, double *sign_logdet, double *P0, double *P1) {
-    const int N = f->N, m = f->m, K = f->K, nx = f->nx;
+    const int N = f->N, nx = f->nx;
     const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np, ne = n + np;
+    const int m = NM > 0 ? NM : f->m, K = (m - 1) * n;
     const int mn = m * n, cw = (m + 1) * n + np;
-    Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
+    std::copy(extra, extra + (size_t)ne * nx, f->Exb.data());
+    Eigen::Map<Mat> Ex(f->Exb.data(), ne, nx);
     f->blocks0.assign(blocks, blocks + (size_t)N * mn * (m + 1) * n);
     f->parcols0.assign(parcols, parcols + (size_t)N * mn * np);
     f->extra0.assign(extra, extra + (size_t)ne * nx);
     double sign = 1.0;
     bool singular = false;
-    std::vector<int> rows, cols;     // the elimination order, as original indices
-    rows.reserve(nx);
-    cols.reserve(nx);
+    int swaps = 0;                   // row swaps: each changes the sign of the row order
     std::vector<double> &pivots = f->pivots;
     pivots.clear();
     pivots.reserve(nx);
@@ -235,15 +296,13 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
     };
 
     // ---- condensation of the interior nodes of every interval
-    Mat R;                      // the rows carried along the chain: (U_0, U_k, par)
-    std::vector<int> R_ids, ids(mn), tids(2 * n);
+    Mat &R = f->R;              // the rows carried along the chain: (U_0, U_k, par)
     for (int j = 0; j < N; ++j) {
         Eigen::Map<Mat> W = f->W(j);
         W.leftCols((m + 1) * n) = Eigen::Map<const Mat>(blocks + (size_t)j * mn * (m + 1) * n, mn, (m + 1) * n);
         if (np) W.rightCols(np) = Eigen::Map<const Mat>(parcols + (size_t)j * mn * np, mn, np);
         Eigen::Map<Mat> E = f->E1(j);
         int *piv = f->piv1(j);
-        for (int r = 0; r < mn; ++r) ids[r] = j * mn + r;
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
             int p = t;
@@ -252,12 +311,10 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
             piv[t] = p;
             if (p != t) {
                 W.row(t).swap(W.row(p));
-                std::swap(ids[t], ids[p]);
+                ++swaps;
             }
             const double d = W(t, c);
             pivot_step(d);
-            rows.push_back(ids[t]);
-            cols.push_back(j * mn + c);
             if (d == 0.0) {             // no elimination: the dense rows' multipliers 0
                 E.col(t).setZero();
                 continue;
@@ -278,11 +335,9 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
         }
         // the n condensed rows of interval j: (U_j, U_j+1, par)
         if (j == 0) {
-            R.resize(n, 2 * n + np);
             R.leftCols(n) = W.block(K, 0, n, n);
             R.middleCols(n, n) = W.block(K, n + K, n, n);
             if (np) R.rightCols(np) = W.block(K, (m + 1) * n, n, np);
-            R_ids.assign(ids.begin() + K, ids.end());
             continue;
         }
         // ---- reduction: eliminate U_j from R (U_0, U_j, par) and interval j's rows
@@ -295,10 +350,6 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
         T.block(n, 0, n, n) = W.block(K, 0, n, n);              // U_j
         T.block(n, 2 * n, n, n) = W.block(K, n + K, n, n);      // U_j+1
         if (np) T.block(n, 3 * n, n, np) = W.block(K, (m + 1) * n, n, np);
-        for (int r = 0; r < n; ++r) {
-            tids[r] = R_ids[r];
-            tids[n + r] = ids[K + r];
-        }
         Eigen::Map<Mat> E2 = f->E2(j);
         int *piv2 = f->piv2(j);
         for (int t = 0; t < n; ++t) {
@@ -308,12 +359,10 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
             piv2[t] = p;
             if (p != t) {
                 T.row(t).swap(T.row(p));
-                std::swap(tids[t], tids[p]);
+                ++swaps;
             }
             const double d = T(t, t);
             pivot_step(d);
-            rows.push_back(tids[t]);
-            cols.push_back(j * mn + t);
             if (d == 0.0) {
                 E2.col(t).setZero();
                 continue;
@@ -333,7 +382,6 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
         R.leftCols(n) = T.block(n, n, n, n);
         R.middleCols(n, n) = T.block(n, 2 * n, n, n);
         if (np) R.rightCols(np) = T.block(n, 3 * n, n, np);
-        R_ids.assign(tids.begin() + n, tids.end());
     }
     // R: P0 U_0 + P1 U_N + S par = ... (the collocation rows, reduced)
     f->Rfin = R;
@@ -344,12 +392,8 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
     f->D.resize(nd, nd);
     f->D.topRows(n) = R;
     for (int e = 0; e < ne; ++e) final_row(f, &Ex(e, 0), e);
-    for (int r = 0; r < n; ++r) rows.push_back(R_ids[r]);
-    for (int e = 0; e < ne; ++e) rows.push_back(f->nc + e);
-    for (int i = 0; i < n; ++i) cols.push_back(i);
-    for (int i = 0; i < n; ++i) cols.push_back(N * mn + i);
-    for (int i = 0; i < np; ++i) cols.push_back(nx - np + i);
-    f->sign_chain = sign * (perm_sign(rows) * perm_sign(cols));
+    const double orders = swaps % 2 ? -f->sign_orders : f->sign_orders;
+    f->sign_chain = sign * orders;
     f->singular_chain = singular;
     f->n_chain = pivots.size();
     factor_final(f);
@@ -361,15 +405,23 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
 
 int cont_bvp_factor(cont_bvp *f, const double *blocks, const double *parcols,
                     const double *extra, double *sign_logdet, double *P0, double *P1) {
-    if (f->np == 2) {               // periodic orbits: (PERIOD, a parameter)
+    if (f->np == 2 && f->m == 4) {  // periodic orbits ((PERIOD, a parameter), NCOL 4)
         switch (f->n) {
-        case 2: return factor_sized<2, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
-        case 3: return factor_sized<3, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
-        case 4: return factor_sized<4, 2>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 2: return factor_sized<2, 2, 4>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 3: return factor_sized<3, 2, 4>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 4: return factor_sized<4, 2, 4>(f, blocks, parcols, extra, sign_logdet, P0, P1);
         default: break;
         }
     }
-    return factor_sized<0, -1>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+    if (f->np == 2) {
+        switch (f->n) {
+        case 2: return factor_sized<2, 2, 0>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 3: return factor_sized<3, 2, 0>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        case 4: return factor_sized<4, 2, 0>(f, blocks, parcols, extra, sign_logdet, P0, P1);
+        default: break;
+        }
+    }
+    return factor_sized<0, -1, 0>(f, blocks, parcols, extra, sign_logdet, P0, P1);
 }
 
 int cont_bvp_reborder(cont_bvp *f, const double *row) {
@@ -470,14 +522,17 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
 
 namespace {
 
-// One solve with the factorisation; NN, NP as in factor_sized.
-template <int NN, int NP>
+// One solve with the factorisation; NN, NP, NM as in factor_sized.
+template <int NN, int NP, int NM>
 void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
-    const int N = f->N, m = f->m, K = f->K, nx = f->nx;
+    const int N = f->N, nx = f->nx;
     const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np, ne = n + np;
+    const int m = NM > 0 ? NM : f->m, K = (m - 1) * n;
     const int mn = m * n;
-    std::vector<double> rc(rhs, rhs + f->nc), re(rhs + f->nc, rhs + nx);
-    RawBuffer<double> t2all((size_t)N * 2 * n);     // the reduction's right-hand sides
+    RawBuffer<double> &rc = f->rc, &re = f->re;
+    std::copy(rhs, rhs + f->nc, rc.data());
+    std::copy(rhs + f->nc, rhs + nx, re.data());
+    RawBuffer<double> &t2all = f->t2;               // the reduction's right-hand sides
     // forward: condensation
     for (int j = 0; j < N; ++j) {
         const Eigen::Map<const Mat> W = f->W(j);
@@ -504,7 +559,8 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
         }
     }
     // forward: reduction
-    std::vector<double> tR(rc.begin() + K, rc.begin() + mn);
+    RawBuffer<double> &tR = f->tR;
+    std::copy(rc.begin() + K, rc.begin() + mn, tR.data());
     for (int j = 1; j < N; ++j) {
         const Eigen::Map<const Mat> T = f->T(j);
         double *tv = t2all.data() + (size_t)j * 2 * n;
@@ -531,11 +587,11 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
         for (int r = 0; r < n; ++r) tR[r] = tv[n + r];
     }
     // the (U_0, U_N, par) system
-    const int nd = 2 * n + np, gN = N * mn;
-    Eigen::VectorXd d(nd);
+    const int gN = N * mn;
+    Eigen::VectorXd &d = f->dv, &z = f->zv;
     for (int r = 0; r < n; ++r) d(r) = tR[r];
     for (int e = 0; e < ne; ++e) d(n + e) = re[e];
-    Eigen::VectorXd z = f->lu.solve(d);
+    z = f->lu.solve(d);
     for (int i = 0; i < n; ++i) {
         x[i] = z(i);
         x[gN + i] = z(n + i);
@@ -575,13 +631,13 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
 void solve_once(const cont_bvp *f, const double *rhs, double *x) {
     if (f->np == 2) {
         switch (f->n) {
-        case 2: return solve_sized<2, 2>(f, rhs, x);
-        case 3: return solve_sized<3, 2>(f, rhs, x);
-        case 4: return solve_sized<4, 2>(f, rhs, x);
+        case 2: return solve_sized<2, 2, 0>(f, rhs, x);
+        case 3: return solve_sized<3, 2, 0>(f, rhs, x);
+        case 4: return solve_sized<4, 2, 0>(f, rhs, x);
         default: break;
         }
     }
-    solve_sized<0, -1>(f, rhs, x);
+    solve_sized<0, -1, 0>(f, rhs, x);
 }
 
 // r = rhs - M x with the matrix as given to cont_bvp_factor.
@@ -616,7 +672,7 @@ void residual(const cont_bvp *f, const double *rhs, const double *x, double *r) 
 // (near homoclinic orbits the corrector needs it: ab's seventh family stalled otherwise).
 int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x) {
     solve_once(f, rhs, x);
-    RawBuffer<double> r(f->nx), d(f->nx);
+    RawBuffer<double> &r = f->rr, &d = f->dd;
     residual(f, rhs, x, r.data());
     solve_once(f, r.data(), d.data());
     for (int i = 0; i < f->nx; ++i) x[i] += d[i];
