@@ -95,3 +95,52 @@ def test_new_mesh_of_a_non_finite_profile_is_numpy_s():
         with np.errstate(invalid="ignore"):
             assert np.array_equal(col.new_mesh(mesh, V, 8), numpy_new_mesh(mesh, V, 8, True),
                                   equal_nan=True)
+
+
+def loop_node_weights(mesh):
+    """Mesh.node_weights as a sum over the intervals, node by node in order."""
+    wi = col.integration_weights(mesh.ncol)
+    w = np.zeros(mesh.n_nodes)
+    m = mesh.ncol
+    for k in range(m + 1):
+        w[k:k + mesh.ntst * m:m] += mesh.dtm * wi[k]
+    return w
+
+
+@pytest.mark.parametrize("ncol", [1, 2, 3, 4, 5, 7])
+def test_node_weights_are_the_interval_sums(ncol):
+    rng = np.random.default_rng(20 + ncol)
+    for ntst in (1, 2, 5, 70):
+        mesh = random_mesh(rng, ntst, ncol)
+        assert np.array_equal(mesh.node_weights(), loop_node_weights(mesh))
+
+
+@pytest.mark.parametrize("ncol", [1, 2, 3, 4, 5, 7])
+def test_adapt_is_the_steps_one_by_one(ncol):
+    """collocation.adapt (cont_adapt_mesh: the new mesh, its lengths, node times, node
+    weights and the interpolation's weights in one call) against new_mesh, a fresh Mesh's
+    dtm, node_times, node_weights and mesh_interpolator, bit for bit; one column and a
+    non-finite profile take the steps themselves."""
+    rng = np.random.default_rng(30 + ncol)
+    for ntst in (1, 2, 3, 20, 70):
+        mesh = random_mesh(rng, ntst, ncol)
+        t = mesh.node_times()
+        for n in (1, 2, 3, 12):
+            U = np.sin(2 * np.pi * rng.integers(1, 6, n) * t[:, None] + rng.uniform(0, 6, n))
+            U[:, 0] = np.tanh(40 * (t - 0.5))                             # a steep layer
+            for periodic in (True, False):
+                new, onto = col.adapt(mesh, U, periodic)
+                ref = col.Mesh(col.new_mesh(mesh, U, ntst, periodic), ncol)
+                assert np.array_equal(new.tm, ref.tm) and np.array_equal(new.dtm, ref.dtm)
+                assert np.array_equal(new.node_times(), ref.node_times())
+                assert np.array_equal(new.node_weights(), ref.node_weights())
+                ref_onto = col.mesh_interpolator(mesh, ref)
+                for V in (U, rng.standard_normal((mesh.n_nodes, 5)), U[:, :1]):
+                    assert np.array_equal(onto(V), ref_onto(V))
+                    out = np.empty((new.n_nodes, V.shape[1]))
+                    assert onto(V, out=out) is out and np.array_equal(out, ref_onto(V))
+    V = U.copy()
+    V[3, 1] = np.nan
+    with np.errstate(invalid="ignore"):
+        new, _ = col.adapt(mesh, V)
+        assert np.array_equal(new.tm, col.new_mesh(mesh, V, mesh.ntst), equal_nan=True)

@@ -248,6 +248,18 @@ void cont_mesh_apply(int nt, int ncol, const int *j, const double *W, const doub
 int cont_new_mesh(int ntst, int ncol, int ndim, const double *tm, const double *dtm,
                   const double *U, int periodic, const double *cntdif, double small,
                   void *pow_loop, void *pow_data, int ntst_new, double *tm_new);
+/* ADAPT's mesh in one call (csrc/cont/adapt.cpp; washer.cont.collocation.adapt): the new
+ * mesh of the same NTST (cont_new_mesh's arguments) tm_new (NTST + 1,), its interval
+ * lengths dtm_new (NTST,), node times t_new and node weights w_new (NTST*NCOL + 1,) as
+ * Mesh.node_times and Mesh.node_weights compute them (wi (NCOL + 1,): WINT's weights),
+ * and the interpolation from the old mesh onto t_new, j and W as cont_mesh_weights gives
+ * them (others, denom its arguments). Returns cont_new_mesh's status where it is not 0,
+ * else cont_mesh_weights'. */
+int cont_adapt_mesh(int ntst, int ncol, int ndim, const double *tm, const double *dtm,
+                    const double *U, int periodic, const double *cntdif, double small,
+                    void *pow_loop, void *pow_data, const double *others,
+                    const double *denom, const double *wi, double *tm_new, double *dtm_new,
+                    double *t_new, double *w_new, int *j, double *W);
 /* After cont_bvp_factor (or cont_bvp_reborder) of a matrix M (nx, nx) without a zero pivot:
  * the unit tangent t = z / sqrt|<z, theta z>| of z = M^-1 e_nx (csrc/cont/bvp_tangent.cpp),
  * <a, b> = 0.0 + ddot(a, theta b) with ddot numpy's own CBLAS ddot (numpy's dot of two

@@ -198,12 +198,20 @@ class Mesh:
     def node_weights(self) -> np.ndarray:
         """Quadrature weight of every node, (NTST*NCOL + 1,): sum_j dtm[j] WI[k] over
         the intervals the node belongs to, so that int_0^1 g dt = w @ g(nodes) for
-        any continuous piecewise polynomial of degree NCOL (AUTO's RINPR, RNRMSQ)."""
+        any continuous piecewise polynomial of degree NCOL (AUTO's RINPR, RNRMSQ).
+        A new array (`adapt` hands a mesh its weights computed with it: a copy of them)."""
+        kept = self.__dict__.get("_node_weights")
+        if kept is not None and kept[0] == (self.tm.tobytes(), self.ncol):
+            return kept[1].copy()
         wi = integration_weights(self.ncol)
-        w = np.zeros(self.n_nodes)
-        m = self.ncol
-        for k in range(m + 1):
-            w[k:k + self.ntst * m:m] += self.dtm * wi[k]
+        m, dtm = self.ncol, self.dtm
+        w = np.empty(self.n_nodes)
+        # every node but the last is node k < NCOL of one interval; an interval's first
+        # node is also the last (k = NCOL) of the one before: two terms, whose sum does
+        # not depend on their order
+        w[:-1].reshape(self.ntst, m)[...] = dtm[:, None] * wi[None, :m]
+        w[m:-1:m] += dtm[:-1] * wi[m]
+        w[-1] = dtm[-1] * wi[m]
         return w
 
 
@@ -553,6 +561,18 @@ def new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int, periodic: bool = True) ->
 _POWER: list = []
 
 
+def _power_loop():
+    """numpy's power loop for doubles and its data as the compiled EQDF calls it (void *
+    each), or None where numpy does not show it (EQDF is numpy's then)."""
+    if not _POWER:
+        from washer.cont.user_problem.tracer import TraceError, numpy_loop
+        try:
+            _POWER.append(tuple(_ffi.cast("void *", a) for a in numpy_loop(np.power)))
+        except TraceError:
+            _POWER.append(None)
+    return _POWER[0]
+
+
 def _compiled_new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int,
                        periodic: bool) -> np.ndarray | None:
     """`new_mesh` by cont_new_mesh, or None where numpy computes it: one component (einsum
@@ -561,20 +581,14 @@ def _compiled_new_mesh(mesh: Mesh, U: np.ndarray, ntst_new: int,
     U = np.asarray(U)
     if U.ndim != 2 or U.shape[1] < 2 or U.dtype != float or ntst_new < 1:
         return None
-    if not _POWER:
-        from washer.cont.user_problem.tracer import TraceError, numpy_loop
-        try:
-            _POWER.append(tuple(_ffi.cast("void *", a) for a in numpy_loop(np.power)))
-        except TraceError:
-            _POWER.append(None)
-    if _POWER[0] is None:
+    if _power_loop() is None:
         return None
     m, N = mesh.ncol, mesh.ntst
     U = np.ascontiguousarray(U)
     out = np.empty(ntst_new + 1)
     status = _lib.cont_new_mesh(N, m, U.shape[1], _cont_ptr(np.ascontiguousarray(mesh.tm, float)),
                                 _cont_ptr(mesh.dtm), _cont_ptr(U), int(periodic),
-                                _cont_ptr(_cntdif(m)), EQDF_SMALL, *_POWER[0], ntst_new,
+                                _cont_ptr(_cntdif(m)), EQDF_SMALL, *_power_loop(), ntst_new,
                                 _cont_ptr(out))
     return out if status == 0 else None
 
@@ -629,6 +643,17 @@ def evaluator(mesh: Mesh, t):
         mesh.ntst, m, _cont_ptr(np.ascontiguousarray(mesh.tm, dtype=float)),
         _cont_ptr(mesh.dtm), len(t), _cont_ptr(t), _cont_ptr(others), _cont_ptr(denom), jp,
         _cont_ptr(L)) == 0
+    return _values_at(mesh, t, j, L, compiled)
+
+
+def _values_at(mesh: Mesh, t: np.ndarray, j: np.ndarray, L: np.ndarray, compiled: bool):
+    """`evaluator`'s function of U (and optionally `out`, (len(t), width) C-contiguous, to
+    write the values into) from the intervals j (intc) and basis L (NCOL + 1, len(t)) of
+    the times t that cont_mesh_weights computed (compiled), else (nothing computed) by
+    numpy."""
+    m = mesh.ncol
+    jp = _ffi.from_buffer("int[]", j)
+    Lp = _cont_ptr(L)
     if compiled:
         W = L.T
     else:
@@ -636,19 +661,57 @@ def evaluator(mesh: Mesh, t):
         W = interpolation_weights(m, (t - mesh.tm[j]) / mesh.dtm[j])          # (len(t), m+1)
     idx = None
 
-    def at(U):
+    def at(U, out=None):
         nonlocal idx
         U = np.asarray(U)
         if compiled and U.ndim == 2 and U.shape[1] >= 2 and U.dtype == float:
             U = np.ascontiguousarray(U)
-            out = np.empty((len(t), U.shape[1]))
-            _lib.cont_mesh_apply(len(t), m, jp, _cont_ptr(L), _cont_ptr(U), U.shape[1],
-                                 _cont_ptr(out))
+            if out is None:
+                out = np.empty((len(t), U.shape[1]))
+            _lib.cont_mesh_apply(len(t), m, jp, Lp, _cont_ptr(U), U.shape[1], _cont_ptr(out))
             return out
         if idx is None:
             idx = j[:, None] * m + np.arange(m + 1)[None, :]
-        return _einsum("tk,tk...->t...", W, U[idx])
+        values = _einsum("tk,tk...->t...", W, U[idx])
+        if out is None:
+            return values
+        out[...] = values
+        return out
     return at
+
+
+def adapt(mesh: Mesh, U: np.ndarray, periodic: bool = True):
+    """AUTO's ADAPT of the profile U (n_nodes, k) on `mesh`: (the new Mesh of the same
+    NTST and NCOL, `new_mesh`, and the function of node values moving them onto its nodes,
+    `mesh_interpolator`). A profile of two or more columns in one compiled call
+    (cont_adapt_mesh: the new mesh, its interval lengths, node times and node weights,
+    kept with it, and the interpolation's weights, the same doubles as the steps one by
+    one), every IAD points; otherwise (one column; EQDF or the times not finite) the steps
+    one by one."""
+    m, N = mesh.ncol, mesh.ntst
+    U = np.asarray(U)
+    if (U.ndim == 2 and U.shape[1] >= 2 and U.dtype == float and _power_loop() is not None):
+        U = np.ascontiguousarray(U)
+        n_nodes = N * m + 1
+        tm, dtm, t, w = np.empty(N + 1), np.empty(N), np.empty(n_nodes), np.empty(n_nodes)
+        j = np.empty(n_nodes, np.intc)
+        L = np.empty((m + 1, n_nodes))
+        others, denom = _interpolation_nodes(m)
+        p = _cont_ptr
+        status = _lib.cont_adapt_mesh(
+            N, m, U.shape[1], p(np.ascontiguousarray(mesh.tm, float)), p(mesh.dtm), p(U),
+            int(periodic), p(_cntdif(m)), EQDF_SMALL, *_power_loop(), p(others), p(denom),
+            p(integration_weights(m)), p(tm), p(dtm), p(t), p(w), _ffi.from_buffer("int[]", j),
+            p(L))
+        if status == 0:
+            new = Mesh(tm, m)
+            key = tm.tobytes()
+            dtm.setflags(write=False)
+            new._dtm, new._node_times = (key, dtm), ((key, m), t)
+            new._node_weights = ((key, m), w)
+            return new, _values_at(mesh, t, j, L, True)
+    new = Mesh(new_mesh(mesh, U, N, periodic=periodic), m)
+    return new, mesh_interpolator(mesh, new)
 
 
 def profile_from_data(t: np.ndarray, U: np.ndarray, ntst: int, ncol: int,

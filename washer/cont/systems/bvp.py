@@ -279,8 +279,9 @@ class CollocationBVP:
                                     general_bc=self.general_bc, nbc=self.nbc,
                                     npar=self.n_tail)
         self.n_eq = self.coll.n_eq
-        thu = self.settings.theta_u(self.ndim)
-        th = np.concatenate((thu, np.ones(self.n_comp - self.ndim)))
+        th = self._theta_u()
+        if self.n_comp > self.ndim:
+            th = np.concatenate((th, np.ones(self.n_comp - self.ndim)))
         # np.kron(w_node, th) of these 1-D arrays, without kron's generic set-up (ADAPT
         # makes a mesh every IAD points)
         self.weights = np.concatenate(((self.coll.w_node[:, None] * th[None, :]).ravel(),
@@ -288,6 +289,16 @@ class CollocationBVP:
 
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
+
+    def _theta_u(self) -> np.ndarray:
+        """THU of the user's NDIM components, (NDIM,) read-only: kept with the settings
+        it was read from (every mesh and every point's b-row column ask for it)."""
+        kept = self.__dict__.get("_thu_kept")
+        if kept is None or kept[0] is not self.settings:
+            thu = self.settings.theta_u(self.ndim)
+            thu.setflags(write=False)
+            self._thu_kept = kept = (self.settings, thu)
+        return kept[1]
 
     def pvls_params(self, U: np.ndarray, par: np.ndarray, period: float, multipliers=None,
                     problem=None) -> np.ndarray:
@@ -411,15 +422,8 @@ class CollocationBVP:
         # null vectors too), extended by periodicity only for the orbits themselves
         # ((IPS = 2 or 12) and |ISW| <= 1); a locus of cycles (ISW = 2) extrapolates.
         periodic = self.periodic_mesh and abs(self.settings.ISW) <= 1
-        new = col.Mesh(col.new_mesh(old, W, old.ntst, periodic=periodic), old.ncol)
-        nt = self.n_tail
-        onto = col.mesh_interpolator(old, new)
-
-        def move(v):
-            v = np.asarray(v, float)
-            Wv = v[:self.coll.n_u].reshape(-1, self.n_comp)
-            return np.concatenate((onto(Wv).ravel(), v[-nt:]))
-        out = [move(x)] + [move(v) for v in vectors]
+        new, onto = col.adapt(old, W, periodic=periodic)
+        out = [self._moved(onto, v) for v in (x,) + vectors]
         # CONTBV after ADAPT: the phase reference's derivative is T f of the
         # interpolated profile (STUPBV), not the interpolant of the old T f: where the
         # mesh moves across a steep layer the two differ by the interpolation error.
@@ -427,6 +431,17 @@ class CollocationBVP:
         self.set_mesh(new)
         self.mesh_changed()
         return tuple(out)
+
+    def _moved(self, onto, v: np.ndarray) -> np.ndarray:
+        """A vector in the unknown layout with its profile moved by `onto` (ADAPT's
+        interpolation onto the new mesh, written into the new vector) and its parameter
+        unknowns kept."""
+        v = np.asarray(v, float)
+        n_u = self.coll.n_u
+        out = np.empty(len(v))
+        onto(v[:n_u].reshape(-1, self.n_comp), out=out[:n_u].reshape(-1, self.n_comp))
+        out[n_u:] = v[n_u:]
+        return out
 
     def mesh_changed(self) -> None:
         """Drop what was cached on the old mesh."""
@@ -573,7 +588,7 @@ class CollocationBVP:
             return float(w @ U[:, iplt - n - 1])
         if 2 * n < iplt <= 3 * n:
             return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
-        thu = self.settings.theta_u(n)
+        thu = self._theta_u() if n == self.ndim else self.settings.theta_u(n)
         return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
 
     def column_titles(self) -> list:
@@ -601,7 +616,11 @@ class CollocationBVP:
         """The Solution of x: b-row columns of u, the whole profile W and its direction
         stored; rldot(tangent) gives the record's parameter derivatives."""
         W = self.coll.profile(x)
-        cols = [self.measure(W)] + [float(np.max(W[:, i])) for i in range(self.n2())]
+        n2 = self.n2()
+        # the maxima of the first N2 columns, each a contiguous row of the transposed copy
+        # (a maximum is exact: the same doubles as np.max of each column; numpy reduces
+        # across the rows of a narrow array one element at a time, 5 us at NTPL 281)
+        cols = [self.measure(W)] + (W[:, :n2].T.copy().max(axis=1).tolist() if n2 else [])
         udot = None
         rl = []
         if tangent is not None:

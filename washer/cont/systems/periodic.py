@@ -319,6 +319,8 @@ class PeriodicOrbits(CollocationBVP):
         bv0, bv1, the multipliers and the stable count, computed on first use; None
         with ISP = 0)."""
         U, par = self.unpack(x)
+        if not getattr(self.problem, "has_pvls", False):
+            return par                  # a fresh copy (`unpack`), as pvls_params gives it
         # A point's PAR is asked for twice (the UZ tests, then its b-row): the second
         # time PVLS would see the same profile, PAR and mesh, so its result is kept,
         # unless it read the multipliers (their cache follows the Jacobian and the
