@@ -277,7 +277,11 @@ def parse_old(lines: list[str], first: int, source: str,
 
 #: parse_text's statements of the texts parsed in this process (a chain of runs reads
 #: the same constants file again and again; its character scanner cost a short run of a
-#: small problem a twentieth of its time). Callers get deep copies.
+#: small problem a twentieth of its time). Callers get deep copies. A text in the new
+#: KEY = value format is remembered by the text alone: its statements do not depend on
+#: the file it came from (the source names only errors, which are not remembered), so a
+#: copy of the file in another folder is not scanned again; one in the old positional
+#: format by (text, source), as its parse may warn naming the file.
 _PARSED: dict = {}
 _PARSED_MAX = 64
 
@@ -286,12 +290,15 @@ def parse_text(text: str, source: str = "<string>") -> list[tuple[str, object, i
     """Statements (key, value, line) of a constants file: KEY = value statements, and,
     from the first line that starts with a digit on, AUTO's old positional format
     (AUTO's parseC reads both so: new-style lines such as parnames may come first)."""
-    key = (text, source)
-    if key not in _PARSED:
+    statements = _PARSED.get(text)
+    if statements is None:
+        statements = _PARSED.get((text, source))
+    if statements is None:
         if len(_PARSED) >= _PARSED_MAX:
             _PARSED.clear()
-        _PARSED[key] = _parse_text(text, source)
-    return [(k, _copied(v), line) for k, v, line in _PARSED[key]]
+        statements, old = _parse_text(text, source)
+        _PARSED[(text, source) if old else text] = statements
+    return [(k, _copied(v), line) for k, v, line in statements]
 
 
 def _copied(value):
@@ -308,17 +315,18 @@ def _copied(value):
     return copy.deepcopy(value)
 
 
-def _parse_text(text: str, source: str) -> list[tuple[str, object, int]]:
+def _parse_text(text: str, source: str) -> tuple[list[tuple[str, object, int]], bool]:
+    """(statements, whether the text goes on in the old positional format)."""
     sc = _Scanner(text, source)
     out = []
     while True:
         sc.skip()
         if sc.peek() == "":
-            return out
+            return out, False
         if sc.peek().isdigit():
             names = [v for k, v, _ in out if k == "parnames" and isinstance(v, dict)]
             return out + parse_old(text.splitlines(), sc.line - 1, source,
-                                   [str(x) for d in names for x in d.values()])
+                                   [str(x) for d in names for x in d.values()]), True
         line = sc.line
         key = sc.word()
         sc.skip(newlines=False, commas=False)

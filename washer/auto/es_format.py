@@ -207,10 +207,14 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
             cplx = 1
         neig = a.size // 2 if cplx else a.size
         e = _ffi.from_buffer("double[]", a)
-    nm, dh = _utf8(name), _utf8(dhead)
+    nm, dh = _UTF8.get(name), _UTF8.get(dhead)
+    if nm is None or dh is None:
+        nm, dh = _utf8(name), _utf8(dhead)
     size = 80 + 20 * max(n, 0) + len(nm) + len(dh) + 8 * 14 + 40 + 90 * max(neig, 0)
-    buf = _buffer(size + 1)
-    blen = _lengths()
+    scratch = _buffers.__dict__
+    buf, blen = scratch.get("buf"), scratch.get("lengths")
+    if buf is None or len(buf) < size + 1 or blen is None:
+        buf, blen = _buffer(size + 1), _lengths()
     try:
         total = _lib.cont_auto_point(br, pt, ty, lab, nm, v, n, dh, ebr, ept, e, neig, cplx,
                                      nstable, buf, blen)

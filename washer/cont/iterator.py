@@ -737,10 +737,12 @@ class Continuation:
             # 2 DS beyond PT 2).
             st.detect = True
             yield from self._untested(current, nxt)
-            yield from self._accept(nxt, current)
+            yield self._accept(nxt, current)
+            self._adapt_mesh(nxt, st.n_points)
             self._adapt_step(nxt.iterations)
             return
-        if nxt is self._newton_point and sign_changes(current.tests, nxt.tests):
+        changed = sign_changes(current.tests, nxt.tests)
+        if changed and nxt is self._newton_point:
             # A test changes sign over the step: the point is evaluated again from the
             # Jacobian at it (as the location's trials are), so that the zeros are found
             # and located from exact values. Next to a zero of high order the Newton
@@ -749,10 +751,10 @@ class Continuation:
             # the fold's sign change showed and the branch point's did not.
             nxt = self.evaluate(nxt.x, (nxt.x - current.x) / nxt.ds, ds=nxt.ds,
                                 it=nxt.iterations)
+            changed = sign_changes(current.tests, nxt.tests)
         # (no test changes sign over the step: nothing to locate, `first_zero` would
         # find no key; most steps, and its set-up costs more than this check)
-        hit = self._first_zero(current, nxt, st.ds) \
-            if sign_changes(current.tests, nxt.tests) else None
+        hit = self._first_zero(current, nxt, st.ds) if changed else None
         if self._pending:
             yield from self._flush()
         if hit is not None:
@@ -779,7 +781,8 @@ class Continuation:
                 # the last location step's iterations); CNRLAE only after regular ones.
                 self._adapt_step(sp.iterations)
             return
-        yield from self._accept(nxt, current)
+        yield self._accept(nxt, current)
+        self._adapt_mesh(nxt, st.n_points)
         self._adapt_step(nxt.iterations)
 
     def _orient_located(self, sp: Point, prev: Point, cur: Point) -> None:
@@ -826,14 +829,14 @@ class Continuation:
             st.ds = adapt_step(st.ds, iterations, self.s)
             st.n_since_adapt = 0
 
-    def _accept(self, pt: Point, prev: Point):
-        """A regular point becomes the state's point (then the mesh may adapt)."""
+    def _accept(self, pt: Point, prev: Point) -> Step:
+        """A regular point becomes the state's point: its Step, which the caller yields
+        before `_adapt_mesh` (the consumer writes the point as it was accepted)."""
         st = self.state
         self.sys.update(pt.x, pt.tangent)
         st.point = pt
         st.n_points += 1
-        yield Step("point", pt, prev=prev)
-        self._adapt_mesh(pt, st.n_points)
+        return Step("point", pt, prev=prev)
 
     def _adapt_mesh(self, p: Point, n_points: int) -> None:
         """Mesh adaptation of BVP systems (AUTO's ADAPT every IAD points): the

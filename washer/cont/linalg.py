@@ -380,17 +380,35 @@ def unit_tangent(J, theta: np.ndarray, ref: np.ndarray, big: float):
         return None
     ffi = _C.ffi
     border, t = np.empty(n), np.empty(n)
-    lu, ipiv, sl, info = ffi.new("double[]", n * n + n), ffi.new("int64_t[]", n), \
-        ffi.new("double[2]"), ffi.new("int *")
+    # the factors stay with the DenseFactor (its later solves); the determinant's sign and
+    # logarithm and GETRF's info are read at once, into scratch made once per thread
+    lu, ipiv = ffi.new("double[]", n * n + n), ffi.new("int64_t[]", n)
+    sl, info, theta_c = _tangent_scratch(theta)
     buf = ffi.from_buffer
     status = _C.lib.cont_ae_tangent(_C.getrf, _C.getrs, n, buf("double[]", J), n,
-                                    buf("double[]", ref), buf("double[]", theta), big,
+                                    buf("double[]", ref), theta_c, big,
                                     buf("double[]", border), lu, ipiv, sl, info,
                                     buf("double[]", t))
     if status < 0:
         return None
     factor = DenseFactor.factored(J, border, (lu, ipiv, (sl[0], sl[1]), info[0]))
     return (t, factor, True) if status == 0 else (None, factor, False)
+
+
+#: unit_tangent's scratch of this thread: (sign_logdet (2,), info, the weights theta and
+#: their pointer) of the last call; a run passes the same theta at every point.
+_TANGENT_SCRATCH = threading.local()
+
+
+def _tangent_scratch(theta: np.ndarray):
+    """(sign_logdet, info, a pointer to theta's data) for unit_tangent in this thread."""
+    got = _TANGENT_SCRATCH.__dict__.get("last")
+    if got is None or got[2] is not theta:
+        ffi = _C.ffi
+        sl, info = (ffi.new("double[2]"), ffi.new("int *")) if got is None else got[:2]
+        # (theta kept with its pointer: the array stays alive while its pointer is used)
+        got = _TANGENT_SCRATCH.last = (sl, info, theta, ffi.from_buffer("double[]", theta))
+    return got[0], got[1], got[3]
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:

@@ -57,6 +57,8 @@ class _Executor:
         self._window_solution = None
         # the sinks' point methods, looked up once (every record calls each)
         self._point_sinks = [sink.point for sink in self.sinks]
+        # PAR indices (0-based) of the b-row's values after the columns: ICP(2), ICP(3), ...
+        self._icp_rest = [i - 1 for i in self.s.ICP[1:]]
 
     def emit(self, what: str, *args) -> None:
         for sink in self.sinks:
@@ -74,7 +76,8 @@ class _Executor:
             sol = kept[3]
         else:
             sol = sysm.solution(point.x, point.tangent)
-        values = [float(point.x[-1])] + list(sol.columns) + [float(sol.par[i - 1]) for i in s.ICP[1:]]
+        par = sol.par
+        values = [float(point.x[-1])] + list(sol.columns) + [float(par[i]) for i in self._icp_rest]
         # The record's NFPR, ICP and RLDOT are AUTO's: all the free parameters, a locus'
         # internal ones included where AUTO counts them (the cycle fold's beta, PAR(NPAR+1):
         # periodic.f90 INITPS, NFPR = NBC + NINT - NDIM + 1 = 4), as the header lists them.

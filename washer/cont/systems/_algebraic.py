@@ -176,30 +176,18 @@ class AlgebraicSystem:
         = x[:-1] (NDIM the system's own: extended on the loci): U(|IPLT|) for 1 <= |IPLT|
         <= NDIM, U(IPLT - NDIM) up to 2 NDIM, U(IPLT - 2 NDIM) up to 3 NDIM, else the L2
         norm of the user's U."""
-        s = x[:-1]
-        nd, iplt = len(s), self.settings.IPLT
-        if 0 < abs(iplt) <= nd:
-            return float(s[abs(iplt) - 1])
-        if nd < iplt <= 3 * nd:
-            return float(s[(iplt - 1) % nd])
-        u = x[:self.ndim]
-        if len(u) <= SEQUENTIAL_SUM:
-            # the same float as numpy's below (squares, a left-to-right sum, and a
-            # correctly rounded square root)
-            total = 0.0
-            for k, v in enumerate(u.tolist()):
-                total = v * v if k == 0 else total + v * v
-            return math.sqrt(total)
-        return float(np.sqrt((u ** 2).sum()))
+        return _measure(x, self.settings.IPLT, self.ndim)
 
     def solution(self, x, tangent) -> Solution:
         par = self.params(x)
-        u = x[:self.ndim]
+        values = x.tolist()
         ncols = self.n_columns
-        cols = [self.measure(x)] + u[:ncols].tolist()
-        rldot = [float(tangent[-1])] + [float(tangent[-1 - k]) for k in range(1, len(self.free))]
-        return Solution(par=par, columns=cols, u=np.array(x[:-1]), udot=np.array(tangent[:-1]),
-                        rldot=rldot, ndim_user=self.ndim)
+        cols = [_measure(x, self.settings.IPLT, self.ndim, values)] + values[:ncols]  # (<= NDIM)
+        m = len(self.free)
+        rldot = tangent[-m:].tolist()[::-1] if m > 1 else [float(tangent[-1])]
+        # (positional: par, columns, u, t, udot, rldot, ntst, ncol, ndim_user)
+        return Solution(par, cols, np.array(x[:-1]), None, np.array(tangent[:-1]), rldot,
+                        0, 0, self.ndim)
 
     def column_titles(self) -> list:
         un = self.unames
@@ -227,3 +215,22 @@ class AlgebraicSystem:
         """AUTO's N2 = min(NDM, 7 - NICP): how many U(i) the b-file shows."""
         nicp = len(self.settings.ICP)
         return 0 if nicp > 7 else min(self.ndim, 7 - nicp)
+
+
+def _measure(x, iplt: int, ndim: int, values: list | None = None) -> float:
+    """AlgebraicSystem.measure of x by IPLT, the user's NDIM = ndim; values: x.tolist()
+    where the caller has it."""
+    nd = len(x) - 1
+    if 0 < abs(iplt) <= nd:
+        return float(x[abs(iplt) - 1])
+    if nd < iplt <= 3 * nd:
+        return float(x[(iplt - 1) % nd])
+    if ndim <= SEQUENTIAL_SUM:
+        # the same float as numpy's below (squares, a left-to-right sum, and a correctly
+        # rounded square root)
+        total = 0.0
+        for k, v in enumerate(values[:ndim] if values is not None else x[:ndim].tolist()):
+            total = v * v if k == 0 else total + v * v
+        return math.sqrt(total)
+    u = x[:ndim]
+    return float(np.sqrt((u ** 2).sum()))

@@ -92,15 +92,19 @@ def neutral_tolerance(A: np.ndarray) -> float:
 def stable_count(lam, neutral: float) -> int:
     """AUTO's NINS: how many of the eigenvalues `lam` (NDIM,) have Re <= neutral."""
     re = lam.real if type(lam) is np.ndarray else np.real(lam)    # (np.real: two Python calls)
-    return sum(1 for v in re.tolist() if v <= neutral)
+    count = 0
+    for v in re.tolist():               # (a plain loop: no generator at these sizes)
+        if v <= neutral:
+            count += 1
+    return count
 
 
 def spectrum(lam: np.ndarray, neutral: float = 0.0) -> Stability:
     """The Stability of eigenvalues `lam` (NDIM,): AUTO's NINS counts Re <= neutral (0, or
     `neutral_tolerance` where f_u looks conservative), stable when every one does."""
     n_stable = stable_count(lam, neutral)
-    return Stability(values=lam, n_stable=n_stable, stable=n_stable == len(lam),
-                     neutral=neutral)
+    # (positional: values, n_stable, stable, kind, neutral)
+    return Stability(lam, n_stable, n_stable == len(lam), "eigenvalues", neutral)
 
 
 #: The test key of Hopf points across conservative steps (located points are HB). In a
