@@ -81,6 +81,19 @@ inline void sub_scaled(double *__restrict y, const double *__restrict x, double 
 }
 
 
+// dst[r, c] = src[r, c] for r < rows, c < cols (row strides ds, ss).
+inline void copy_block(double *__restrict dst, int ds, const double *__restrict src, int ss,
+                       int rows, int cols) {
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) dst[(size_t)r * ds + c] = src[(size_t)r * ss + c];
+}
+
+// dst[r, c] = 0 for r < rows, c < cols (row stride ds).
+inline void zero_block(double *dst, int ds, int rows, int cols) {
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) dst[(size_t)r * ds + c] = 0.0;
+}
+
 // One dense row `ex` (nx) through interior pivot t of interval j (pivot row wt of W(j),
 // pivot d, `tail` columns of nodes right of the pivot column): its multiplier, stored in
 // E1. cont_bvp_factor and cont_bvp_reborder take every dense row through the same calls
@@ -295,13 +308,15 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
         pivots.push_back(p);
     };
 
-    // ---- condensation of the interior nodes of every interval
-    Mat &R = f->R;              // the rows carried along the chain: (U_0, U_k, par)
+    // ---- condensation of the interior nodes of every interval: first each interval's
+    // own rows (independent of the other intervals: one after the other without waiting
+    // for the chain), then the dense rows through those pivots and the reduction, in the
+    // elimination's order (the same operations on every value as interval by interval)
     for (int j = 0; j < N; ++j) {
         Eigen::Map<Mat> W = f->W(j);
-        W.leftCols((m + 1) * n) = Eigen::Map<const Mat>(blocks + (size_t)j * mn * (m + 1) * n, mn, (m + 1) * n);
-        if (np) W.rightCols(np) = Eigen::Map<const Mat>(parcols + (size_t)j * mn * np, mn, np);
-        Eigen::Map<Mat> E = f->E1(j);
+        copy_block(W.data(), cw, blocks + (size_t)j * mn * (m + 1) * n, (m + 1) * n, mn,
+                   (m + 1) * n);
+        copy_block(W.data() + (m + 1) * n, cw, parcols + (size_t)j * mn * np, np, mn, np);
         int *piv = f->piv1(j);
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
@@ -314,13 +329,8 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                 ++swaps;
             }
             const double d = W(t, c);
-            pivot_step(d);
-            if (d == 0.0) {             // no elimination: the dense rows' multipliers 0
-                E.col(t).setZero();
-                continue;
-            }
+            if (d == 0.0) continue;     // no elimination
             // the columns still to eliminate: U_j (0..n-1) and everything right of c
-            const int tail = (m + 1) * n - c - 1;
             const double *wt = &W(t, 0);
             for (int r = t + 1; r < mn; ++r) {
                 double *wr = &W(r, 0);
@@ -330,26 +340,48 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                 sub_scaled(wr, wt, l, n);
                 sub_scaled(wr + c + 1, wt + c + 1, l, cw - c - 1);
             }
+        }
+    }
+    Mat &R = f->R;              // the rows carried along the chain: (U_0, U_k, par)
+    for (int j = 0; j < N; ++j) {
+        Eigen::Map<Mat> W = f->W(j);
+        Eigen::Map<Mat> E = f->E1(j);
+        for (int t = 0; t < K; ++t) {
+            const int c = n + t;
+            const double d = W(t, c);   // the pivot row t is final once it has pivoted
+            pivot_step(d);
+            if (d == 0.0) {             // no elimination: the dense rows' multipliers 0
+                E.col(t).setZero();
+                continue;
+            }
+            const int tail = (m + 1) * n - c - 1;
+            const double *wt = &W(t, 0);
             for (int e = 0; e < ne; ++e)
                 E(e, t) = dense_step_interior(&Ex(e, 0), wt, d, j, t, n, mn, cw, np, nx, tail);
         }
         // the n condensed rows of interval j: (U_j, U_j+1, par)
+        // (plain copies of blocks of NDIM and NPAR columns: Eigen's block assignment costs
+        // more than the copying at these sizes)
+        const int rw = 2 * n + np, tw = 3 * n + np;
+        double *Rp = R.data();
+        const double *WK = W.data() + (size_t)K * cw;           // the condensed rows
         if (j == 0) {
-            R.leftCols(n) = W.block(K, 0, n, n);
-            R.middleCols(n, n) = W.block(K, n + K, n, n);
-            if (np) R.rightCols(np) = W.block(K, (m + 1) * n, n, np);
+            copy_block(Rp, rw, WK, cw, n, n);
+            copy_block(Rp + n, rw, WK + n + K, cw, n, n);
+            copy_block(Rp + 2 * n, rw, WK + (m + 1) * n, cw, n, np);
             continue;
         }
         // ---- reduction: eliminate U_j from R (U_0, U_j, par) and interval j's rows
         Eigen::Map<Mat> T = f->T(j);
-        T.block(0, 2 * n, n, n).setZero();                      // what is not copied in
-        T.block(n, n, n, n).setZero();
-        T.block(0, 0, n, n) = R.middleCols(n, n);               // U_j
-        T.block(0, n, n, n) = R.leftCols(n);                    // U_0
-        if (np) T.block(0, 3 * n, n, np) = R.rightCols(np);
-        T.block(n, 0, n, n) = W.block(K, 0, n, n);              // U_j
-        T.block(n, 2 * n, n, n) = W.block(K, n + K, n, n);      // U_j+1
-        if (np) T.block(n, 3 * n, n, np) = W.block(K, (m + 1) * n, n, np);
+        double *Tp = T.data();
+        zero_block(Tp + 2 * n, tw, n, n);                      // what is not copied in
+        zero_block(Tp + (size_t)n * tw + n, tw, n, n);
+        copy_block(Tp, tw, Rp + n, rw, n, n);                   // U_j
+        copy_block(Tp + n, tw, Rp, rw, n, n);                   // U_0
+        copy_block(Tp + 3 * n, tw, Rp + 2 * n, rw, n, np);
+        copy_block(Tp + (size_t)n * tw, tw, WK, cw, n, n);                  // U_j
+        copy_block(Tp + (size_t)n * tw + 2 * n, tw, WK + n + K, cw, n, n);  // U_j+1
+        copy_block(Tp + (size_t)n * tw + 3 * n, tw, WK + (m + 1) * n, cw, n, np);
         Eigen::Map<Mat> E2 = f->E2(j);
         int *piv2 = f->piv2(j);
         for (int t = 0; t < n; ++t) {
@@ -358,7 +390,8 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                 if (std::fabs(T(r, t)) > std::fabs(T(p, t))) p = r;
             piv2[t] = p;
             if (p != t) {
-                T.row(t).swap(T.row(p));
+                std::swap_ranges(Tp + (size_t)t * tw, Tp + (size_t)(t + 1) * tw,
+                                 Tp + (size_t)p * tw);
                 ++swaps;
             }
             const double d = T(t, t);
@@ -367,21 +400,20 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                 E2.col(t).setZero();
                 continue;
             }
-            const int tw = 3 * n + np - t - 1;
             const double *tt = &T(t, 0);
             for (int r = t + 1; r < 2 * n; ++r) {
                 double *tr = &T(r, 0);
                 const double l = tr[t] / d;
                 tr[t] = l;
                 if (l == 0.0) continue;
-                sub_scaled(tr + t + 1, tt + t + 1, l, tw);
+                sub_scaled(tr + t + 1, tt + t + 1, l, tw - t - 1);
             }
             for (int e = 0; e < ne; ++e)
                 E2(e, t) = dense_step_end(&Ex(e, 0), tt, d, j, t, n, mn, np, nx);
         }
-        R.leftCols(n) = T.block(n, n, n, n);
-        R.middleCols(n, n) = T.block(n, 2 * n, n, n);
-        if (np) R.rightCols(np) = T.block(n, 3 * n, n, np);
+        copy_block(Rp, rw, Tp + (size_t)n * tw + n, tw, n, n);
+        copy_block(Rp + n, rw, Tp + (size_t)n * tw + 2 * n, tw, n, n);
+        copy_block(Rp + 2 * n, rw, Tp + (size_t)n * tw + 3 * n, tw, n, np);
     }
     // R: P0 U_0 + P1 U_N + S par = ... (the collocation rows, reduced)
     f->Rfin = R;
@@ -522,6 +554,69 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
 
 namespace {
 
+// The back substitution of the interior nodes of the L intervals j0 .. j0 + L - 1 (their
+// end nodes and the parameters par known), interleaved: each interval's values take the
+// operations of one interval alone, in its order (the same values); side by side, the
+// divisions and the chains of subtractions of one interval overlap another's instead of
+// waiting for each other. NN, NP as in factor_sized.
+template <int NN, int NP, int L>
+inline void back_interior(const cont_bvp *f, const double *rc, double *x, const double *par,
+                          int j0) {
+    const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np;
+    const int m = f->m, K = f->K, mn = m * n, cw = f->cw;
+    const double *W[L], *rb[L], *uL[L], *uR[L];
+    double *uI[L];
+    for (int l = 0; l < L; ++l) {
+        const int j = j0 + l;
+        W[l] = f->Wb.data() + (size_t)j * mn * cw;
+        rb[l] = rc + (size_t)j * mn;
+        uL[l] = x + (size_t)j * mn;
+        uR[l] = x + (size_t)(j + 1) * mn;
+        uI[l] = x + (size_t)j * mn + n;
+    }
+    for (int t = K - 1; t >= 0; --t) {
+        double s[L];
+        for (int l = 0; l < L; ++l) s[l] = rb[l][t];
+        for (int w = t + 1; w < K; ++w)
+            for (int l = 0; l < L; ++l) s[l] -= W[l][(size_t)t * cw + n + w] * uI[l][w];
+        for (int i = 0; i < n; ++i)
+            for (int l = 0; l < L; ++l)
+                s[l] -= W[l][(size_t)t * cw + i] * uL[l][i]
+                        + W[l][(size_t)t * cw + n + K + i] * uR[l][i];
+        for (int i = 0; i < np; ++i)
+            for (int l = 0; l < L; ++l) s[l] -= W[l][(size_t)t * cw + (m + 1) * n + i] * par[i];
+        for (int l = 0; l < L; ++l) uI[l][t] = s[l] / W[l][(size_t)t * cw + n + t];
+    }
+}
+
+// The forward substitution of the L intervals j0 .. j0 + L - 1 through their own rows
+// (rc: their right-hand sides, in place), interleaved as in back_interior. The factor
+// swapped whole rows (multipliers included, as LAPACK's getrf): all interchanges first,
+// then the unit lower triangle row by row: each rb[r] takes its updates in the pivots'
+// order, as column by column (the same operations), from a contiguous row of multipliers.
+template <int NN, int NP, int L>
+inline void forward_interior(const cont_bvp *f, double *rc, int j0) {
+    const int n = NN > 0 ? NN : f->n;
+    const int m = f->m, K = f->K, mn = m * n, cw = f->cw;
+    const double *W[L];
+    double *rb[L];
+    for (int l = 0; l < L; ++l) {
+        const int j = j0 + l;
+        W[l] = f->Wb.data() + (size_t)j * mn * cw + n;
+        rb[l] = rc + (size_t)j * mn;
+        const int *piv = f->piv1(j);
+        for (int t = 0; t < K; ++t)
+            if (piv[t] != t) std::swap(rb[l][t], rb[l][piv[t]]);
+    }
+    for (int r = 1; r < mn; ++r) {
+        double s[L];
+        for (int l = 0; l < L; ++l) s[l] = rb[l][r];
+        for (int t = 0, tn = std::min(r, K); t < tn; ++t)
+            for (int l = 0; l < L; ++l) s[l] -= W[l][(size_t)r * cw + t] * rb[l][t];
+        for (int l = 0; l < L; ++l) rb[l][r] = s[l];
+    }
+}
+
 // One solve with the factorisation; NN, NP, NM as in factor_sized.
 template <int NN, int NP, int NM>
 void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
@@ -533,23 +628,14 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
     std::copy(rhs, rhs + f->nc, rc.data());
     std::copy(rhs + f->nc, rhs + nx, re.data());
     RawBuffer<double> &t2all = f->t2;               // the reduction's right-hand sides
-    // forward: condensation
+    // forward: condensation (the intervals' own rows four intervals at a time,
+    // forward_interior; the dense rows interval after interval)
     for (int j = 0; j < N; ++j) {
-        const Eigen::Map<const Mat> W = f->W(j);
         double *rb = rc.data() + (size_t)j * mn;
-        // The factor swapped whole rows (multipliers included, as LAPACK's getrf):
-        // all interchanges first, then the unit lower triangle.
-        for (int t = 0; t < K; ++t) {
-            const int p = f->piv1(j)[t];
-            if (p != t) std::swap(rb[t], rb[p]);
-        }
-        // row by row: each rb[r] takes its updates in the pivots' order, as column by
-        // column (the same operations), from a contiguous row of multipliers
-        for (int r = 1; r < mn; ++r) {
-            const double *wr = W.data() + (size_t)r * W.cols() + n;
-            double s = rb[r];
-            for (int t = 0, tn = std::min(r, K); t < tn; ++t) s -= wr[t] * rb[t];
-            rb[r] = s;
+        if (j % 4 == 0) {
+            if (j + 4 <= N) forward_interior<NN, NP, 4>(f, rc.data(), j);
+            else
+                for (int i = j; i < N; ++i) forward_interior<NN, NP, 1>(f, rc.data(), i);
         }
         const double *E1 = f->E1b.data() + (size_t)j * ne * K;
         for (int e = 0; e < ne; ++e) {
@@ -612,20 +698,11 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
             uj[t] = s / T(t, t);
         }
     }
-    // back: the interior nodes of every interval
-    for (int j = 0; j < N; ++j) {
-        const Eigen::Map<const Mat> W = f->W(j);
-        const double *rb = rc.data() + (size_t)j * mn;
-        const double *uL = x + (size_t)j * mn, *uR = x + (size_t)(j + 1) * mn;
-        double *uI = x + (size_t)j * mn + n;
-        for (int t = K - 1; t >= 0; --t) {
-            double s = rb[t];
-            for (int w = t + 1; w < K; ++w) s -= W(t, n + w) * uI[w];
-            for (int i = 0; i < n; ++i) s -= W(t, i) * uL[i] + W(t, n + K + i) * uR[i];
-            for (int i = 0; i < np; ++i) s -= W(t, (m + 1) * n + i) * par[i];
-            uI[t] = s / W(t, n + t);
-        }
-    }
+    // back: the interior nodes of every interval (independent of each other once the
+    // end nodes are known), four intervals at a time
+    int j = 0;
+    for (; j + 4 <= N; j += 4) back_interior<NN, NP, 4>(f, rc.data(), x, par, j);
+    for (; j < N; ++j) back_interior<NN, NP, 1>(f, rc.data(), x, par, j);
 }
 
 void solve_once(const cont_bvp *f, const double *rhs, double *x) {
@@ -641,27 +718,45 @@ void solve_once(const cont_bvp *f, const double *rhs, double *x) {
 }
 
 // r = rhs - M x with the matrix as given to cont_bvp_factor.
+// s[l] -= A[l, k] v[k] for k = 0 .. len - 1 in order, for the L rows of A (row stride
+// `stride`) side by side: each row's sum is taken in its own order (the same values as one
+// row at a time), and the L chains of subtractions overlap instead of waiting for each other.
+template <int L>
+inline void minus_dots(const double *A, size_t stride, const double *v, int len, double *s) {
+    for (int k = 0; k < len; ++k)
+        for (int l = 0; l < L; ++l) s[l] -= A[l * stride + k] * v[k];
+}
+
+// r[i] = rhs[i] - A[i, :len] v for the `rows` rows of A (row stride `stride`), and, where
+// C is given, minus C[i, :clen] c after that: four rows at a time (minus_dots).
+void rows_residual(const double *rhs, const double *A, size_t stride, const double *v, int len,
+                   const double *C, const double *c, int clen, int rows, double *r) {
+    int i = 0;
+    for (; i + 4 <= rows; i += 4) {
+        double s[4] = {rhs[i], rhs[i + 1], rhs[i + 2], rhs[i + 3]};
+        minus_dots<4>(A + (size_t)i * stride, stride, v, len, s);
+        if (C) minus_dots<4>(C + (size_t)i * clen, clen, c, clen, s);
+        std::copy(s, s + 4, r + i);
+    }
+    for (; i < rows; ++i) {
+        double s[1] = {rhs[i]};
+        minus_dots<1>(A + (size_t)i * stride, stride, v, len, s);
+        if (C) minus_dots<1>(C + (size_t)i * clen, clen, c, clen, s);
+        r[i] = s[0];
+    }
+}
+
 void residual(const cont_bvp *f, const double *rhs, const double *x, double *r) {
     const int N = f->N, m = f->m, n = f->n, np = f->np, ne = f->ne, nx = f->nx;
     const int mn = m * n, w = (m + 1) * n;
     const double *par = x + nx - np;
     for (int j = 0; j < N; ++j) {
-        const double *B = f->blocks0.data() + (size_t)j * mn * w;
-        const double *C = f->parcols0.data() + (size_t)j * mn * np;
-        const double *xj = x + (size_t)j * mn;
-        for (int i = 0; i < mn; ++i) {
-            double s = rhs[(size_t)j * mn + i];
-            for (int k = 0; k < w; ++k) s -= B[(size_t)i * w + k] * xj[k];
-            for (int k = 0; k < np; ++k) s -= C[(size_t)i * np + k] * par[k];
-            r[(size_t)j * mn + i] = s;
-        }
+        const size_t o = (size_t)j * mn;
+        rows_residual(rhs + o, f->blocks0.data() + o * w, w, x + o, w,
+                      np ? f->parcols0.data() + o * np : nullptr, par, np, mn, r + o);
     }
-    for (int e = 0; e < ne; ++e) {
-        const double *E = f->extra0.data() + (size_t)e * nx;
-        double s = rhs[f->nc + e];
-        for (int k = 0; k < nx; ++k) s -= E[k] * x[k];
-        r[f->nc + e] = s;
-    }
+    rows_residual(rhs + f->nc, f->extra0.data(), nx, x, nx, nullptr, nullptr, 0, ne,
+                  r + f->nc);
 }
 
 }  // namespace
