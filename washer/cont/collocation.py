@@ -258,6 +258,19 @@ class Collocation:
         self.w_node = mesh.node_weights()
         self._pattern()
 
+    def on_mesh(self, mesh: Mesh) -> "Collocation":
+        """This discretisation on another mesh of the same NTST and NCOL (ADAPT's, every IAD
+        points): a new object sharing everything that depends on the sizes alone (the
+        weights, the sparsity pattern), with the mesh's own node weights."""
+        if (mesh.ntst, mesh.ncol) != (self.mesh.ntst, self.mesh.ncol):
+            raise ValueError(f"a mesh of NTST = {mesh.ntst}, NCOL = {mesh.ncol} for a "
+                             f"collocation of {self.mesh.ntst}, {self.mesh.ncol}")
+        other = object.__new__(Collocation)
+        other.__dict__.update(self.__dict__)
+        other.mesh = mesh
+        other.w_node = mesh.node_weights()
+        return other
+
     # -- sparsity pattern: it depends on the sizes only, so the meshes of a run (ADAPT
     # moves tm, never NTST or NCOL) share one (`_sparsity`)
     def _pattern(self) -> None:

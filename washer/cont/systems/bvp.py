@@ -274,21 +274,44 @@ class CollocationBVP:
         return self.nint + 1
 
     def set_mesh(self, mesh: col.Mesh) -> None:
+        """The mesh, its collocation and the inner product's weights. A mesh of the sizes
+        of the current one (ADAPT's, every IAD points) takes the collocation on
+        (`Collocation.on_mesh`)."""
+        coll = self.__dict__.get("coll")
         self.mesh = mesh
-        self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint,
-                                    general_bc=self.general_bc, nbc=self.nbc,
-                                    npar=self.n_tail)
+        if coll is not None and self._sizes_of(coll) == self._sizes_of(mesh=mesh):
+            self.coll = coll.on_mesh(mesh)
+        else:
+            self.coll = col.Collocation(mesh, self.n_comp, nint=self.nint,
+                                        general_bc=self.general_bc, nbc=self.nbc,
+                                        npar=self.n_tail)
         self.n_eq = self.coll.n_eq
         th = self._theta_u()
         if self.n_comp > self.ndim:
             th = np.concatenate((th, np.ones(self.n_comp - self.ndim)))
-        # np.kron(w_node, th) of these 1-D arrays, without kron's generic set-up (ADAPT
-        # makes a mesh every IAD points)
-        self.weights = np.concatenate(((self.coll.w_node[:, None] * th[None, :]).ravel(),
-                                       self.tail_weights()))
+        # np.kron(w_node, th) of these 1-D arrays, a component at a time (numpy multiplies
+        # a product over a narrow last axis element by element; ADAPT makes a mesh every
+        # IAD points)
+        w_node, n_u = self.coll.w_node, self.coll.n_u
+        weights = np.empty(self.coll.n_x)
+        by_node = weights[:n_u].reshape(-1, self.n_comp)
+        for c in range(self.n_comp):
+            by_node[:, c] = w_node * th[c]
+        weights[n_u:] = self.tail_weights()
+        self.weights = weights
 
     def tail_weights(self) -> np.ndarray:
         raise NotImplementedError
+
+    def _sizes_of(self, coll=None, mesh=None) -> tuple:
+        """What a Collocation is built from besides the mesh's times: (NTST, NCOL, n_comp,
+        NINT, NBC, n_tail, general_bc), of `coll`, or the system's own on `mesh`."""
+        if coll is not None:
+            return (coll.mesh.ntst, coll.mesh.ncol, coll.ndim, coll.nint, coll.nbc, coll.npar,
+                    coll.general_bc)
+        return (mesh.ntst, mesh.ncol, self.n_comp, self.nint,
+                self.n_comp if self.nbc is None else int(self.nbc), self.n_tail,
+                self.general_bc)
 
     def _theta_u(self) -> np.ndarray:
         """THU of the user's NDIM components, (NDIM,) read-only: kept with the settings

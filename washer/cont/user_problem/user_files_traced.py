@@ -197,20 +197,12 @@ class TracedProblem(CompiledProblem):
                 pass                 # now the Python problem's: the call again by it
         pars = np.asarray(pars, dtype=float)
         if pars.ndim == 1 and not self.two_ways and self._func_batch is not None:
-            return self._one_par_batch(np.asarray(us, dtype=float), pars)
+            # One PAR for every row, passed once (row stride 0, as the compiled correctors
+            # pass it) instead of copied to each row by Problem.func_many: the generated
+            # FUNC only reads PAR (the phase reference's f at the mesh nodes, every point).
+            # The checked batch gives values of the right shape or raises ProblemError.
+            return self._checked_batch(us, pars)
         return Problem.func_many(self, us, pars)
-
-    def _one_par_batch(self, us, par) -> np.ndarray:
-        """f at the rows of us (k, NDIM) with one PAR (NPAR,) for all of them, as
-        Problem.func_many computes it (the checked batch, its failures named), with PAR
-        passed once (row stride 0, as the compiled correctors pass it) instead of
-        copied to every row: the generated FUNC only reads PAR (the phase reference's
-        f at the mesh nodes is asked for every point)."""
-        out = self._call(self._func_batch, "func_batch", us, par)
-        if out.shape != (len(us), self.ndim):
-            raise ProblemError(f"{self.name}: func_batch returned shape {out.shape}, "
-                               f"expected ({len(us)}, {self.ndim})")
-        return out
 
     def _as_python_calls(self, us, pars) -> np.ndarray:
         """Problem.func_many's choices (on this problem's `_vectorised` and `_pointwise`,
