@@ -197,15 +197,16 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
         ebr, ept, eig = eigen[:3]
         if len(eigen) == 4:
             nstable = eigen[3]
-        if type(eig) is np.ndarray and eig.dtype == np.complex128:
-            a = np.ascontiguousarray(eig).view(np.float64)
-            cplx = 1
+        kind = eig.dtype.type if type(eig) is np.ndarray and eig.flags.c_contiguous else None
+        if kind is np.complex128 or kind is np.float64:
+            # (re, im) pairs or real parts as they lie in memory
+            a, cplx = eig, int(kind is np.complex128)
         elif type(eig) is np.ndarray and eig.dtype == np.float64:
             a = np.ascontiguousarray(eig)
         else:
             a = np.ascontiguousarray(eig, dtype=complex).view(np.float64)
             cplx = 1
-        neig = a.size // 2 if cplx else a.size
+        neig = a.size // 2 if cplx and a.dtype.type is np.float64 else a.size
         e = _ffi.from_buffer("double[]", a)
     nm, dh = _UTF8.get(name), _UTF8.get(dhead)
     if nm is None or dh is None:

@@ -311,16 +311,24 @@ class OutputFiles:
         self._heading = (None, "", "")
         self._d_points = 0
 
-    def _append(self, path: Path, text: str) -> None:
-        """Append, and flush all files when `flush_seconds` have passed since the last
-        flush (0: after every write). Handles stay open for the run (opened without
-        following symlinks); `close` flushes and ends them."""
+    def _append(self, path: Path, text: str, path2: Path | None = None,
+                text2: str = "") -> None:
+        """Append text to path (and text2 to path2), and flush all files when
+        `flush_seconds` have passed since the last flush (0: after every write). Handles
+        stay open for the run (opened without following symlinks); `close` flushes and
+        ends them."""
         # (found by the Path object's identity, the three paths being this object's own: a
         # Path's hash is a Python-level call, and a point writes twice)
         fh = self._by_id.get(id(path))
         if fh is None:
             fh = self._handles[path] = self._by_id[id(path)] = _open_output(path, append=True)
         fh.write(text)
+        if path2 is not None:
+            fh = self._by_id.get(id(path2))
+            if fh is None:
+                fh = self._handles[path2] = self._by_id[id(path2)] = _open_output(path2,
+                                                                                  append=True)
+            fh.write(text2)
         now = time.monotonic()
         if now - self._flushed >= self.flush_seconds:
             self.flush()
@@ -512,17 +520,21 @@ class OutputFiles:
         the same point in screen format (unit 9), opening the point's block, and with
         eigen = (br, pt, eigenvalues) PRINTEIG's block after it (`eigenvalues`), with
         eigen = (br, pt, multipliers, stable count) PVSPBV's Floquet block (`multipliers`)."""
-        bar = D_BAR + "\n" if self._d_points else ""
+        self.point_row(r.br, r.pt, r.ty, r.lab, r.values, eigen)
+
+    def point_row(self, br: int, pt: int, ty: int, lab: int, values, eigen=None) -> None:
+        """`row` of the Row (br, pt, ty, lab, values)."""
+        heading = self._heading
+        if heading[0] != self.column_titles:
+            text = screen_heading(self.column_titles)
+            heading = self._heading = (list(self.column_titles), f"\n{text}\n",
+                                       f"{D_BAR}\n\n{text}\n")
+        # the bar and the heading before every point's block but the first
+        dhead = heading[2] if self._d_points else heading[1]
         self._d_points += 1
-        if self._heading[0] != self.column_titles:
-            heading = screen_heading(self.column_titles)
-            self._heading = (list(self.column_titles), f"\n{heading}\n",
-                             f"{D_BAR}\n\n{heading}\n")
-        b, d = point_text(r.br, r.pt, r.ty, r.lab, type_name(r.ty), r.values,
-                          self._heading[2] if bar else self._heading[1], eigen)
-        self._append(self.b_path, self._pending_b + b)
-        self._pending_b = ""
-        self._append(self.d_path, d)
+        b, d = point_text(br, pt, ty, lab, type_name(ty), values, dhead, eigen)
+        pending, self._pending_b = self._pending_b, ""
+        self._append(self.b_path, pending + b if pending else b, self.d_path, d)
 
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then

@@ -18,17 +18,8 @@ from __future__ import annotations
 
 import sys
 
-from washer.auto.files import OutputFiles, Row, fmt_es, screen_heading
+from washer.auto.files import OutputFiles, fmt_es, screen_heading
 from washer.cont.codes import type_name
-
-
-def _row(lab) -> Row:
-    """The b-file line: PT negative for stable points; BR negative for periodic
-    solutions (IPS = 2), as AUTO writes them (the s-file keeps BR > 0)."""
-    sign = -1 if lab.stable else 1
-    br = -lab.br if lab.ips in (2, 12) else lab.br
-    # the record's values themselves: the Row is formatted, never changed
-    return Row(br, sign * ((lab.pt - 1) % 9999 + 1), lab.code, lab.lab, lab.values)
 
 
 #: AUTO's LBTYPE of a curve type (ITPST), the header's 'Branch type' name.
@@ -79,19 +70,25 @@ class FileSink:
         self.files.branch_start()
 
     def point(self, lab, point) -> None:
+        files = self.files
         if lab.lab:
-            self.files.record(lab)
+            files.record(lab)
         st = lab.stability
+        pt = (lab.pt - 1) % 9999 + 1
+        # The b-file line: PT negative for stable points; BR negative for periodic
+        # solutions (IPS = 2), as AUTO writes them (the s-file keeps BR > 0); the record's
+        # values themselves (formatted, never changed).
+        b_br, b_pt = -lab.br if lab.ips in (2, 12) else lab.br, -pt if lab.stable else pt
         if st is None:
-            self.files.row(_row(lab))
+            files.point_row(b_br, b_pt, lab.code, lab.lab, lab.values)
         elif st.kind == "eigenvalues":
-            self.files.row(_row(lab), (lab.br, (lab.pt - 1) % 9999 + 1, st.values))
-            st = None
+            files.point_row(b_br, b_pt, lab.code, lab.lab, lab.values, (lab.br, pt, st.values))
         else:
             # the Floquet block in the row's own d text (one write)
-            self.files.row(_row(lab), (lab.br, (lab.pt - 1) % 9999 + 1, st.values, st.n_stable))
+            files.point_row(b_br, b_pt, lab.code, lab.lab, lab.values,
+                            (lab.br, pt, st.values, st.n_stable))
             for note in st.notes:
-                self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d} NOTE:{note}")
+                files.diag(f"{lab.br:4d}{pt:6d} NOTE:{note}")
         if "l1" in lab.info:
             crit = "supercritical" if lab.info["l1"] < 0 else "subcritical"
             self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d}         First Lyapunov "

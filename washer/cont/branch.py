@@ -32,7 +32,7 @@ class Counters:
         self.factorisations += other.factorisations
 
 
-@dataclass
+@dataclass(slots=True)
 class Point:
     """A converged point of a continued system.
 

@@ -366,6 +366,9 @@ class CompiledCorrector:
                       jac=np.empty((nx - 1, nx)), work=np.zeros(work_size(kind, n, self.npar)))
         ip2 = system.free[1] - 1 if kind else -1
         self._call = equations.ae_binder(kind, n, self.npar, system.free[0] - 1, ip2, self.a)
+        # the call's arguments after ds, the same at every correction (settings are frozen)
+        self._fixed = (settings.EPSL, settings.EPSU, settings.ITNW, divergence, FD_STEP,
+                       SECOND_STEP)
         self.last = None          # (x, the system's Jacobian at x) of the last point
         if kind == 2:
             # the first Lyapunov coefficient of the GH test in C (ae_lyapunov.h)
@@ -387,8 +390,7 @@ class CompiledCorrector:
             a["v_old"][:] = self.sys.v_old          # HopfSystem's phase condition
         a["x_pred"][:] = x_pred
         a["x_ref"][:] = x_ref
-        status = self._call(float(ds), s.EPSL, s.EPSU, s.ITNW, self.divergence, FD_STEP,
-                            SECOND_STEP)
+        status = self._call(float(ds), *self._fixed)
         err = getattr(user, "error", None)
         if err is not None:
             # what stopped the call back and is not a failure of f (PythonEquations._onerror)
@@ -397,7 +399,7 @@ class CompiledCorrector:
         self.last = None
         if status == 3:
             return None
-        it = int(a["iterations"][0])
+        it = a["iterations"].item()
         c = counters
         c.residuals += it
         c.jacobians += it
@@ -439,7 +441,13 @@ class CompiledCorrector:
         (computed there by the same differences as the system's jacobian: the same values
         to rounding), else None."""
         last = self.last
-        if last is not None and (last[0] is x or np.array_equal(last[0], x)):
+        if last is None:
+            return None
+        y = last[0]
+        # (arrays of one shape: equal values as np.array_equal finds them, 0.0 == -0.0 and
+        # NaN never equal, without its per-call overhead)
+        if y is x or (y.tolist() == x.tolist() if type(x) is np.ndarray and x.shape == y.shape
+                      else np.array_equal(y, x)):
             return last[1]
         return None
 

@@ -73,7 +73,7 @@ def adapt_step(ds: float, nit: int, s) -> float:
     return float(math.copysign(min(abs(new), s.DSMAX), new))
 
 
-@dataclass
+@dataclass(slots=True)
 class Step:
     """What the iterator reports.
 
@@ -165,6 +165,8 @@ class Continuation:
         # The corrector's compiled form where it applies (washer.cont.corrector_algebraic),
         # else None: the Python loop below.
         self._compiled = compiled_corrector(system, settings, DIVERGENCE_FACTOR)
+        # the arclength the compiled corrector takes (plane True, sphere False)
+        self._compiled_plane = getattr(self._compiled, "plane", False)
         # (x, J): the converged point of the last corrector and the Jacobian of its last
         # Newton iteration, where that serves x (`correct`); else None.
         self._newton = None
@@ -199,7 +201,7 @@ class Continuation:
         plane = (sysm.arclength == "plane") if plane is None else plane
         self._newton = None
         compiled = self._compiled
-        if compiled is not None and getattr(compiled, "plane", False) == plane:
+        if compiled is not None and self._compiled_plane == plane:
             # the same loop compiled (one foreign call); None: it hands over to this one
             if plane:
                 done = compiled.correct_plane(x_pred, x_ref, t_ref, ds, self.counters)
@@ -422,8 +424,9 @@ class Continuation:
         # A continuation step's point takes the corrector's last matrix; the trials of a
         # location (keys given) evaluate the Jacobian at the point (`_trial`).
         secant = (x - p.x) / ds
-        pt = self.evaluate(x, secant, keys, ds=ds, it=it,
-                           newton=self._newton if keys is None else None)
+        # (positional: keys, tangent, ds, it, newton)
+        pt = self.evaluate(x, secant, keys, None, ds, it,
+                           self._newton if keys is None else None)
         # (the point's x is a copy of x: its secant from p.x is this one, bit for bit)
         return self._secant(pt, p.x, ds, secant) if keys is None else pt
 

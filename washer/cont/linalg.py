@@ -383,7 +383,9 @@ def unit_tangent(J, theta: np.ndarray, ref: np.ndarray, big: float):
     # the factors stay with the DenseFactor (its later solves); the determinant's sign and
     # logarithm and GETRF's info are read at once, into scratch made once per thread
     lu, ipiv = ffi.new("double[]", n * n + n), ffi.new("int64_t[]", n)
-    sl, info, theta_c = _tangent_scratch(theta)
+    got = _TANGENT_SCRATCH.__dict__.get("last")
+    sl, info, theta_c = (got[0], got[1], got[3]) if got is not None and got[2] is theta \
+        else _tangent_scratch(theta)
     buf = ffi.from_buffer
     status = _C.lib.cont_ae_tangent(_C.getrf, _C.getrs, n, buf("double[]", J), n,
                                     buf("double[]", ref), theta_c, big,

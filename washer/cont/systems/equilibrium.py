@@ -250,7 +250,9 @@ class EquilibriumSystem(AlgebraicSystem):
             out[Code.HB] = hopf_test(self._pair(stability.values)) \
                 if stability is not None else None
         if NEUTRAL_HB in codes:
-            out[NEUTRAL_HB] = neutral_hopf_test(stability) if stability is not None else None
+            # (None where f_u does not look conservative: neutral_hopf_test's value there)
+            out[NEUTRAL_HB] = neutral_hopf_test(stability) \
+                if stability is not None and stability.neutral > 0 else None
         return out
 
     def accept(self, code, prev, cur) -> bool:
