@@ -381,12 +381,17 @@ class Collocation:
                 # the pattern's own arrays (scipy's may be views of them): `has_pattern`
                 # then knows it by identity instead of comparing indptr at every factor
                 template.indices, template.indptr = self._indices, self._indptr
-        J = object.__new__(type(template))
-        J.__dict__.update(template.__dict__)
-        J.data = vals[self._order]
+        fields = pat.__dict__.get("csc_fields")
+        if fields is None:
+            fields = pat.csc_fields = {k: v for k, v in template.__dict__.items()
+                                       if k != "data"}
+        J = object.__new__(_assembled_type())
+        J.__dict__.update(fields)
         # The values in assembly order, for washer.cont.reduction.pieces (which would
         # otherwise scatter J.data back): J is never changed in place (a variant is a
-        # copy, which does not carry this).
+        # copy, which does not carry this). J.data, in CSC order, is taken from them
+        # where it is first read (`AssembledJacobian`).
+        J._data = None
         J.assembly = (self, vals)
         return J
 
@@ -428,6 +433,50 @@ class Collocation:
             return sp.csc_matrix((data, self._indices_b, self._indptr_b),
                                  shape=(self.n_x, self.n_x))
         return sp.vstack([sp.csc_matrix(J), sp.csr_matrix(border[None, :])], format="csc")
+
+
+def _assembled_jacobian():
+    """The class of `Collocation.jacobian_from_values`'s matrices (made on first use: scipy
+    is imported by the first Jacobian, not by this module)."""
+    import scipy.sparse as sp
+
+    class AssembledJacobian(sp.csc_matrix):
+        """A CSC matrix whose `data` (nnz,) in CSC order is gathered from the values in
+        assembly order (`assembly = (Collocation, values)`) where it is first read: the
+        compiled factorisations read the assembly order, and the corrector makes a
+        Jacobian per iteration whose CSC values nothing may ask for (a gather of nnz
+        values, ~10 us at NTST 70)."""
+
+        @property
+        def data(self):
+            d = self.__dict__.get("_data")
+            if d is None:
+                coll, vals = self.__dict__["assembly"]
+                d = self.__dict__["_data"] = vals[coll._order]
+            return d
+
+        @data.setter
+        def data(self, values):
+            self.__dict__["_data"] = values
+
+    AssembledJacobian.__module__ = __name__
+    AssembledJacobian.__qualname__ = "AssembledJacobian"
+    return AssembledJacobian
+
+
+def _assembled_type():
+    """`AssembledJacobian`, made once."""
+    cls = globals().get("AssembledJacobian")
+    if cls is None:
+        cls = globals()["AssembledJacobian"] = _assembled_jacobian()
+    return cls
+
+
+def __getattr__(name: str):
+    # `AssembledJacobian` made on first use (and found by pickle under this name)
+    if name == "AssembledJacobian":
+        return _assembled_type()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @lru_cache(maxsize=16)
