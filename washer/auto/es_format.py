@@ -111,7 +111,9 @@ def es_text(values, width: int, digits: int, exp3: bool = False,
         v = _ffi.from_buffer("double[]", a)
     per = per_line or max(m, 1)
     size = k * m * max(width, digits + 8) + k * (m // per + 1) * (indent + 1) + 1
-    buf = _buffer(size)
+    buf = _buffers.__dict__.get("buf")
+    if buf is None or len(buf) < size:
+        buf = _buffer(size)
     try:
         n = _lib.cont_format_es(v, k, m, per, indent, width, digits, int(exp3), buf)
     except TypeError:             # nested rows, or items a double cannot take: numpy's view

@@ -182,8 +182,8 @@ def _record_text_algebraic(rec: Record) -> str:
             f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
     lines = [head]
-    vals = [0.0] + list(rec.u)
-    lines += _rows(vals[:7]) + _rows(vals[7:])
+    # t and the state, 7 a line (the first line t and U(1..6))
+    lines += _rows([0.0] + list(rec.u))
     if has_dir:
         lines += _icp_lines(rec.icp[:rec.nfpr])
         lines += _rows(rec.rldot)

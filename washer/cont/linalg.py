@@ -165,17 +165,19 @@ def eigenvalues_sorted(A: np.ndarray, leading: bool = False) -> np.ndarray:
     Up to EIG_MAX rows in one compiled call (csrc/cont/dense_lapack.cpp: numpy's own GEEV
     as numpy.linalg.eigvals calls it, the same values, the same errors)."""
     n = len(A)
-    if n <= EIG_MAX and _C is not None and type(A) is np.ndarray and A.dtype == np.float64 \
+    if n <= EIG_MAX and _C is not None and type(A) is np.ndarray \
+            and (A.dtype is _F64 or A.dtype == np.float64) \
             and A.ndim == 2 and (A.shape[1] == n or leading and A.shape[1] > n):
         if not A.flags.c_contiguous:
             A = np.ascontiguousarray(A)
-        buf, work, wptr, lwork = _EIG_BUFFERS.__dict__.get(n) or _eig_buffers(n)
-        status = _C.lib.cont_eigenvalues_sorted(_C.geev, n, _C.ffi.from_buffer("double[]", A),
-                                                A.shape[1], wptr, work, EIG_WORK * n, lwork)
+        call, geev, work, wptr, lwork, real, pairs = \
+            _EIG_BUFFERS.__dict__.get(n) or _eig_buffers(n)
+        status = call(geev, n, _C.ffi.from_buffer("double[]", A), A.shape[1], wptr, work,
+                      EIG_WORK * n, lwork)
         if status == 4:                     # all real: the real parts, as eigvals' w.real
-            return buf[0::2].copy()
+            return real.copy()
         if status == 0:
-            return buf.view(np.complex128).copy()
+            return pairs.copy()
         if status == 1:
             raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
         if status == 2:
@@ -238,15 +240,21 @@ EIG_WORK = 64
 
 
 def _eig_buffers(n: int):
-    """(out (2 n,), work, out's pointer, GEEV's lwork) of cont_eigenvalues_sorted for size
-    n, made once per size and thread; lwork starts at 0: the first call asks GEEV (as
-    numpy asks it at every call) and keeps its answer."""
+    """(cont_eigenvalues_sorted, GEEV, work, out's pointer, GEEV's lwork, out's real parts,
+    out as complex values) for size n, out (2 n,) the (re, im) pairs the call writes, made
+    once per size and thread; lwork starts at 0: the first call asks GEEV (as numpy asks
+    it at every call) and keeps its answer."""
     ffi = _C.ffi
     buf = np.empty(2 * n)
     work = ffi.new("double[]", n * n + 2 * n + EIG_WORK * n)
-    got = _EIG_BUFFERS.__dict__[n] = (buf, work, ffi.from_buffer("double[]", buf),
-                                      ffi.new("int *", 0))
+    got = _EIG_BUFFERS.__dict__[n] = (_C.lib.cont_eigenvalues_sorted, _C.geev, work,
+                                      ffi.from_buffer("double[]", buf), ffi.new("int *", 0),
+                                      buf[0::2], buf.view(np.complex128))
     return got
+
+
+#: float64's dtype (arrays of native doubles carry this object)
+_F64 = np.dtype(np.float64)
 
 
 def eig(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -378,39 +386,37 @@ def unit_tangent(J, theta: np.ndarray, ref: np.ndarray, big: float):
             or type(ref) is not np.ndarray or ref.dtype != np.float64 \
             or not ref.flags.c_contiguous or theta.shape != (n,):
         return None
-    ffi = _C.ffi
     border, t = np.empty(n), np.empty(n)
-    # the factors stay with the DenseFactor (its later solves); the determinant's sign and
-    # logarithm and GETRF's info are read at once, into scratch made once per thread
-    lu, ipiv = ffi.new("double[]", n * n + n), ffi.new("int64_t[]", n)
     got = _TANGENT_SCRATCH.__dict__.get("last")
-    sl, info, theta_c = (got[0], got[1], got[3]) if got is not None and got[2] is theta \
-        else _tangent_scratch(theta)
-    buf = ffi.from_buffer
-    status = _C.lib.cont_ae_tangent(_C.getrf, _C.getrs, n, buf("double[]", J), n,
-                                    buf("double[]", ref), theta_c, big,
-                                    buf("double[]", border), lu, ipiv, sl, info,
-                                    buf("double[]", t))
+    if got is None or got[0] is not theta:
+        got = _tangent_scratch(theta)
+    _, theta_c, sl, info, call, getrf, getrs, new, buf = got
+    # the factors stay with the DenseFactor (its later solves); the determinant's sign and
+    # logarithm and GETRF's info are read at once, from the thread's scratch
+    lu, ipiv = new("double[]", n * n + n), new("int64_t[]", n)
+    status = call(getrf, getrs, n, buf("double[]", J), n, buf("double[]", ref), theta_c, big,
+                  buf("double[]", border), lu, ipiv, sl, info, buf("double[]", t))
     if status < 0:
         return None
     factor = DenseFactor.factored(J, border, (lu, ipiv, (sl[0], sl[1]), info[0]))
     return (t, factor, True) if status == 0 else (None, factor, False)
 
 
-#: unit_tangent's scratch of this thread: (sign_logdet (2,), info, the weights theta and
-#: their pointer) of the last call; a run passes the same theta at every point.
+#: unit_tangent's scratch of this thread (`_tangent_scratch`), made for the weights theta
+#: of its last call: a run passes the same theta at every point.
 _TANGENT_SCRATCH = threading.local()
 
 
-def _tangent_scratch(theta: np.ndarray):
-    """(sign_logdet, info, a pointer to theta's data) for unit_tangent in this thread."""
-    got = _TANGENT_SCRATCH.__dict__.get("last")
-    if got is None or got[2] is not theta:
-        ffi = _C.ffi
-        sl, info = (ffi.new("double[2]"), ffi.new("int *")) if got is None else got[:2]
-        # (theta kept with its pointer: the array stays alive while its pointer is used)
-        got = _TANGENT_SCRATCH.last = (sl, info, theta, ffi.from_buffer("double[]", theta))
-    return got[0], got[1], got[3]
+def _tangent_scratch(theta: np.ndarray) -> tuple:
+    """(theta, a pointer to its data, sign_logdet (2,), info, cont_ae_tangent, GETRF, GETRS,
+    ffi.new, ffi.from_buffer) for unit_tangent in this thread (theta kept with its
+    pointer: the array stays alive while the pointer is used)."""
+    ffi = _C.ffi
+    got = _TANGENT_SCRATCH.last = (theta, ffi.from_buffer("double[]", theta),
+                                   ffi.new("double[2]"), ffi.new("int *"),
+                                   _C.lib.cont_ae_tangent, _C.getrf, _C.getrs, ffi.new,
+                                   ffi.from_buffer)
+    return got
 
 
 def dense_factor(J, border: np.ndarray) -> DenseFactor:
