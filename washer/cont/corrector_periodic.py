@@ -187,7 +187,7 @@ class PeriodicCorrector:
         bc = (ffi.NULL if bc is None
               else ffi.from_buffer("double[]", np.ascontiguousarray(bc, float)))
         WT, WP, dtm, w_node = self._mesh_pointers(coll, mesh)
-        fac = ffi.gc(lib.cont_bvp_new(N, m, n, 2), lib.cont_bvp_free)
+        fac = reduction.new_handle((N, m, n, 2))
         x, x_J = np.empty(nx), np.empty(nx)
         vals = np.empty(coll.nnz)
         P0, P1 = np.zeros((n, n)), np.zeros((n, n))

@@ -116,6 +116,41 @@ def _ptr(a: np.ndarray):
     return ffi.from_buffer("double[]", a)
 
 
+#: Factorisation objects (cont_bvp) whose owners have gone, by shape (NTST, NCOL, NDIM,
+#: NPAR), for the next factorisation of that shape: a new one costs its allocations
+#: (6 us at NTST 70, a third of a factorisation), and a continuation makes one or more per
+#: point. A factorisation overwrites all of an object's state before anything reads it.
+_KEPT: dict = {}
+#: how many objects of one shape are kept, and of how many shapes (the latest)
+_KEEP_PER_SHAPE, _KEEP_SHAPES = 4, 8
+
+
+def new_handle(shape: tuple):
+    """A cont_bvp of shape (NTST, NCOL, NDIM, NPAR) owned by the returned cdata: kept for
+    reuse (`_KEPT`) when that is collected, or freed. MemoryError where none can be made."""
+    kept = _KEPT.get(shape)
+    raw = kept[1].pop() if kept and kept[1] else lib.cont_bvp_new(*shape)
+    if raw == ffi.NULL:
+        raise MemoryError(f"no memory for a factorisation of shape {shape}")
+    if kept is None:
+        kept = _KEPT[shape] = (_releaser(shape), [])
+        while len(_KEPT) > _KEEP_SHAPES:              # the oldest shape's objects go
+            for old in _KEPT.pop(next(iter(_KEPT)))[1]:
+                lib.cont_bvp_free(old)
+    return ffi.gc(raw, kept[0])
+
+
+def _releaser(shape: tuple):
+    """The destructor of `new_handle`'s objects of this shape: kept, or freed."""
+    def release(raw) -> None:
+        kept = _KEPT.get(shape)
+        if kept is not None and len(kept[1]) < _KEEP_PER_SHAPE:
+            kept[1].append(raw)
+        else:
+            lib.cont_bvp_free(raw)
+    return release
+
+
 def collocation_blocks(WT: np.ndarray, WP: np.ndarray, dtm: np.ndarray, T: float,
                        A: np.ndarray) -> np.ndarray:
     """The collocation blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM) from the Jacobians A
@@ -148,9 +183,7 @@ def floquet_pair(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]
     m = mn // n
     if w != mn + n or mn != m * n:
         raise ValueError(f"floquet_pair: blocks of shape {blocks.shape} for NDIM = {n}")
-    handle = ffi.gc(lib.cont_bvp_new(N, m, n, 0), lib.cont_bvp_free)
-    if handle == ffi.NULL:
-        raise MemoryError("floquet_pair: no memory for the factorisation")
+    handle = new_handle((N, m, n, 0))
     # NDIM dense rows of zeros: the eliminations carry them along, the pair does not
     # read them (the remaining system is then singular, which the pair does not use)
     extra = np.zeros((n, (N * m + 1) * n))
@@ -186,7 +219,7 @@ class BorderedCollocation:
                 or mn != m * n):
             raise ValueError(f"inconsistent shapes {blocks.shape}, {parcols.shape}, "
                              f"{extra.shape}")
-        handle = ffi.gc(lib.cont_bvp_new(N, m, n, npar), lib.cont_bvp_free)
+        handle = new_handle((N, m, n, npar))
         P0, P1 = np.zeros((n, n)), np.zeros((n, n))
         rc = lib.cont_bvp_factor(handle, _ptr(blocks), _ptr(parcols), _ptr(extra),
                                  ffi.NULL, _ptr(P0), _ptr(P1))
