@@ -498,40 +498,28 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
     const int mn = m * n;
     if (!f->factored || f->Rfin.rows() != n) return 2;
     Mat Ex = Eigen::Map<const Mat>(extra, ne, nx);
-    // the dense rows through the eliminations of cont_bvp_factor, as they went there:
-    // each pivot row is final once it has pivoted
+    // the dense rows through the eliminations of cont_bvp_factor, as they went there
+    // (each pivot row is final once it has pivoted), by the calls that took its dense
+    // rows through them (dense_step_interior, dense_step_end)
+    const int cw = (m + 1) * n + np;
     for (int j = 0; j < N; ++j) {
         const Eigen::Map<const Mat> W = f->W(j);
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
             const double d = W(t, c);
             if (d == 0.0) return 1;
-            const int tail = (m + 1) * n - c - 1;
-            const int gc = j * mn + c;
-            for (int e = 0; e < ne; ++e) {
-                const double l = Ex(e, gc) / d;
-                Ex(e, gc) = 0.0;
-                if (l == 0.0) continue;
-                Ex.row(e).segment(j * mn, n) -= l * W.row(t).head(n);
-                Ex.row(e).segment(gc + 1, tail) -= l * W.row(t).segment(c + 1, tail);
-                if (np) Ex.row(e).tail(np) -= l * W.row(t).tail(np);
-            }
+            for (int e = 0; e < ne; ++e)
+                dense_step_interior(&Ex(e, 0), W.data() + (size_t)t * cw, d, j, t, n, mn, cw,
+                                    np, nx, (m + 1) * n - c - 1);
         }
         if (j == 0) continue;
         const Eigen::Map<const Mat> T = f->T(j);
         for (int t = 0; t < n; ++t) {
             const double d = T(t, t);
             if (d == 0.0) return 1;
-            const int gc = j * mn + t;
-            for (int e = 0; e < ne; ++e) {
-                const double l = Ex(e, gc) / d;
-                Ex(e, gc) = 0.0;
-                if (l == 0.0) continue;
-                Ex.row(e).segment(gc + 1, n - t - 1) -= l * T.row(t).segment(t + 1, n - t - 1);
-                Ex.row(e).segment(0, n) -= l * T.row(t).segment(n, n);
-                Ex.row(e).segment((j + 1) * mn, n) -= l * T.row(t).segment(2 * n, n);
-                if (np) Ex.row(e).tail(np) -= l * T.row(t).tail(np);
-            }
+            for (int e = 0; e < ne; ++e)
+                dense_step_end(&Ex(e, 0), T.data() + (size_t)t * (3 * n + np), d, j, t, n, mn,
+                               np, nx);
         }
     }
     // eliminate U_N with the reduced collocation rows: Sc = E_S - E_N P1^-1 [P0 Ppar]

@@ -391,8 +391,10 @@ class PeriodicOrbits(CollocationBVP):
         if self.settings.ISP == 0:
             return None
         cached = getattr(self, "_stab_cache", None)
-        if (cached is not None and cached[1] == self._suspended and cached[0].shape == x.shape
-                and np.array_equal(cached[0], x) and (J is None or cached[3] is J)):
+        # (the Jacobian's identity first: a new point's J fails it without comparing x;
+        # x's bits, not its values: a hit is then the same point without doubt)
+        if (cached is not None and cached[1] == self._suspended and (J is None or cached[3] is J)
+                and cached[0].shape == x.shape and cached[0].tobytes() == x.tobytes()):
             return cached[2]
         out = floquet.stability(self.multipliers(x, J), self.ndim, self._suspended)
         self._stab_cache = (np.array(x), self._suspended, out, J)
