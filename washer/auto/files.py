@@ -181,15 +181,42 @@ def _record_text_algebraic(rec: Record) -> str:
     head = (f"{rec.br:6d}{_mtot(rec.pt):6d}{rec.code:6d}{rec.lab:6d}{rec.nfpr:6d}{rec.isw:6d}"
             f"{1:8d}{n + 1:6d}{nrow:8d}{int(has_dir):5d}{0:5d}{npar:5d}{rec.npari:5d}"
             f"{rec.ndim_user:5d}{rec.ips:5d}{0:5d}")
-    lines = [head]
-    # t and the state, 7 a line (the first line t and U(1..6))
-    lines += _rows([0.0] + list(rec.u))
+    # t and the state (the first line t and U(1..6)), RLDOT, UDOT, PAR: each 7 a line
+    groups = [[0.0] + np.asarray(rec.u, float).tolist()]
     if has_dir:
-        lines += _icp_lines(rec.icp[:rec.nfpr])
-        lines += _rows(rec.rldot)
-        lines += _rows(list(rec.udot))
-    lines += _rows(list(rec.par))
+        groups += [list(rec.rldot), np.asarray(rec.udot, float).tolist()]
+    groups.append(np.asarray(rec.par, float).tolist())
+    blocks = _group_rows(groups)
+    lines = [head] + blocks[0]
+    if has_dir:
+        lines += _icp_lines(rec.icp[:rec.nfpr]) + blocks[1] + blocks[2]
+    lines += blocks[-1]
     return "\n".join(lines) + "\n"
+
+
+#: The width of an s-file value, ES19.10E3: every double's text fills it exactly (sign,
+#: 12 digits and the point, E and a signed 3-digit exponent: 18 characters at most; NaN and
+#: the infinities right-justified in it).
+S_FIELD = 19
+
+
+def _group_rows(groups: list) -> list[list[str]]:
+    """`_rows` of each group of values (lists of floats), as lines, from one formatted
+    call: the values' ES19.10E3 fields lie side by side in it, and a line is 4 blanks and
+    up to 7 of them."""
+    flat = [v for g in groups for v in g]
+    text = es_text(flat, S_FIELD, 10, exp3=True)
+    if len(text) != S_FIELD * len(flat):         # (not expected: each group on its own)
+        return [_rows(g) for g in groups]
+    out, pos = [], 0
+    for g in groups:
+        lines = []
+        for k in range(0, len(g), 7):
+            m = min(7, len(g) - k)
+            lines.append("    " + text[pos * S_FIELD:(pos + m) * S_FIELD])
+            pos += m
+        out.append(lines)
+    return out
 
 
 def _record_text_bvp(rec: Record) -> str:
