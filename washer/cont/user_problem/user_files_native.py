@@ -279,10 +279,18 @@ class CompiledUser:
             return None
         lib.washer_po_bind(self.ndim, npar, self._icp_ptr,
                            self._scratch_for(npar, extra=self.ndim))
+        # the pointers themselves stay those of this library handle (`reload` makes a new
+        # one): cast once per handle and kinds, not at every correction
+        key = (ffi, func_kind, jac_kind)
+        kept = self.__dict__.get("_po_kept")
+        if kept is not None and kept[0] is lib and kept[1] == key:
+            return kept[2]
 
         def pointer(name, kind):
             return ffi.cast(kind, int(_ffi.cast("uintptr_t", _ffi.addressof(lib, name))))
-        return pointer("washer_po_func", func_kind), pointer("washer_po_jac", jac_kind)
+        pointers = (pointer("washer_po_func", func_kind), pointer("washer_po_jac", jac_kind))
+        self._po_kept = (lib, key, pointers)
+        return pointers
 
     def l1_binder(self, ndim, npar, arrays):
         """washer_ae_l1 (user_files_bridge.c, ae_lyapunov.h) bound to the arrays x, par, A, l1,
