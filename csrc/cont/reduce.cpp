@@ -318,6 +318,8 @@ int factor_sized(cont_bvp *f, const double *blocks, const double *parcols,
                    (m + 1) * n);
         copy_block(W.data() + (m + 1) * n, cw, parcols + (size_t)j * mn * np, np, mn, np);
         int *piv = f->piv1(j);
+        // (unrolled where NCOL and NDIM are known: every row update of fixed length)
+#pragma GCC unroll 16
         for (int t = 0; t < K; ++t) {
             const int c = n + t;
             int p = t;
@@ -547,11 +549,11 @@ namespace {
 // operations of one interval alone, in its order (the same values); side by side, the
 // divisions and the chains of subtractions of one interval overlap another's instead of
 // waiting for each other. NN, NP as in factor_sized.
-template <int NN, int NP, int L>
+template <int NN, int NP, int NM, int L>
 inline void back_interior(const cont_bvp *f, const double *rc, double *x, const double *par,
                           int j0) {
     const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np;
-    const int m = f->m, K = f->K, mn = m * n, cw = f->cw;
+    const int m = NM > 0 ? NM : f->m, K = (m - 1) * n, mn = m * n, cw = (m + 1) * n + np;
     const double *W[L], *rb[L], *uL[L], *uR[L];
     double *uI[L];
     for (int l = 0; l < L; ++l) {
@@ -582,10 +584,10 @@ inline void back_interior(const cont_bvp *f, const double *rc, double *x, const 
 // swapped whole rows (multipliers included, as LAPACK's getrf): all interchanges first,
 // then the unit lower triangle row by row: each rb[r] takes its updates in the pivots'
 // order, as column by column (the same operations), from a contiguous row of multipliers.
-template <int NN, int NP, int L>
+template <int NN, int NP, int NM, int L>
 inline void forward_interior(const cont_bvp *f, double *rc, int j0) {
-    const int n = NN > 0 ? NN : f->n;
-    const int m = f->m, K = f->K, mn = m * n, cw = f->cw;
+    const int n = NN > 0 ? NN : f->n, np = NP >= 0 ? NP : f->np;
+    const int m = NM > 0 ? NM : f->m, K = (m - 1) * n, mn = m * n, cw = (m + 1) * n + np;
     const double *W[L];
     double *rb[L];
     for (int l = 0; l < L; ++l) {
@@ -621,9 +623,9 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
     for (int j = 0; j < N; ++j) {
         double *rb = rc.data() + (size_t)j * mn;
         if (j % 4 == 0) {
-            if (j + 4 <= N) forward_interior<NN, NP, 4>(f, rc.data(), j);
+            if (j + 4 <= N) forward_interior<NN, NP, NM, 4>(f, rc.data(), j);
             else
-                for (int i = j; i < N; ++i) forward_interior<NN, NP, 1>(f, rc.data(), i);
+                for (int i = j; i < N; ++i) forward_interior<NN, NP, NM, 1>(f, rc.data(), i);
         }
         const double *E1 = f->E1b.data() + (size_t)j * ne * K;
         for (int e = 0; e < ne; ++e) {
@@ -689,11 +691,19 @@ void solve_sized(const cont_bvp *f, const double *rhs, double *x) {
     // back: the interior nodes of every interval (independent of each other once the
     // end nodes are known), four intervals at a time
     int j = 0;
-    for (; j + 4 <= N; j += 4) back_interior<NN, NP, 4>(f, rc.data(), x, par, j);
-    for (; j < N; ++j) back_interior<NN, NP, 1>(f, rc.data(), x, par, j);
+    for (; j + 4 <= N; j += 4) back_interior<NN, NP, NM, 4>(f, rc.data(), x, par, j);
+    for (; j < N; ++j) back_interior<NN, NP, NM, 1>(f, rc.data(), x, par, j);
 }
 
 void solve_once(const cont_bvp *f, const double *rhs, double *x) {
+    if (f->np == 2 && f->m == 4) {
+        switch (f->n) {
+        case 2: return solve_sized<2, 2, 4>(f, rhs, x);
+        case 3: return solve_sized<3, 2, 4>(f, rhs, x);
+        case 4: return solve_sized<4, 2, 4>(f, rhs, x);
+        default: break;
+        }
+    }
     if (f->np == 2) {
         switch (f->n) {
         case 2: return solve_sized<2, 2, 0>(f, rhs, x);
