@@ -338,24 +338,24 @@ class OutputFiles:
         self._heading = (None, "", "")
         self._d_points = 0
 
+    def _handle(self, path: Path):
+        """The open handle of one of this object's files (opened on first use)."""
+        # (found by the Path object's identity, the three paths being this object's own: a
+        # Path's hash is a Python-level call, and a point writes twice)
+        fh = self._by_id.get(id(path))
+        if fh is None:
+            fh = self._handles[path] = self._by_id[id(path)] = _open_output(path, append=True)
+        return fh
+
     def _append(self, path: Path, text: str, path2: Path | None = None,
                 text2: str = "") -> None:
         """Append text to path (and text2 to path2), and flush all files when
         `flush_seconds` have passed since the last flush (0: after every write). Handles
         stay open for the run (opened without following symlinks); `close` flushes and
         ends them."""
-        # (found by the Path object's identity, the three paths being this object's own: a
-        # Path's hash is a Python-level call, and a point writes twice)
-        fh = self._by_id.get(id(path))
-        if fh is None:
-            fh = self._handles[path] = self._by_id[id(path)] = _open_output(path, append=True)
-        fh.write(text)
+        self._handle(path).write(text)
         if path2 is not None:
-            fh = self._by_id.get(id(path2))
-            if fh is None:
-                fh = self._handles[path2] = self._by_id[id(path2)] = _open_output(path2,
-                                                                                  append=True)
-            fh.write(text2)
+            self._handle(path2).write(text2)
         now = time.monotonic()
         if now - self._flushed >= self.flush_seconds:
             self.flush()

@@ -91,8 +91,8 @@ class FileSink:
                 files.diag(f"{lab.br:4d}{pt:6d} NOTE:{note}")
         if "l1" in lab.info:
             crit = "supercritical" if lab.info["l1"] < 0 else "subcritical"
-            self.files.diag(f"{lab.br:4d}{(lab.pt - 1) % 9999 + 1:6d}         First Lyapunov "
-                            f"coefficient:{fmt_es(lab.info['l1'], 14, 5)} ({crit})")
+            files.diag(f"{lab.br:4d}{pt:6d}         First Lyapunov "
+                       f"coefficient:{fmt_es(lab.info['l1'], 14, 5)} ({crit})")
 
     def note(self, br: int, pt: int, text: str) -> None:
         self.files.diag(f"{br:4d}{pt:6d} {text}")
