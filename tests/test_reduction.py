@@ -206,6 +206,34 @@ def test_factorisation_reduces_other_dense_rows_as_onto_start(general_bc, nbc, n
     np.testing.assert_allclose(Sc, Sc_ref, rtol=1e-10, atol=1e-10 * np.abs(Sc_ref).max())
 
 
+@pytest.mark.parametrize("N, m, n", [(1, 1, 1), (7, 4, 3), (25, 4, 3), (4, 3, 5)])
+def test_the_compiled_bp_test_of_cycles_is_its_steps(N, m, n):
+    """BorderedCollocation.bp_test (one compiled call) against its steps one by one: the
+    dense rows of J (reduction.dense_rows) with the phase row w_node * (T F) and the border
+    theta * tangent, BorderedCollocation.reduced and linalg.scaled_slogdet: the same bits."""
+    from washer.cont import linalg
+    lapack = linalg.compiled_lapack()
+    if lapack is None:
+        pytest.skip("numpy's LAPACK not found: the steps serve")
+    rng = np.random.default_rng(N + 10 * m + 100 * n)
+    coll = col.Collocation(col.Mesh(np.r_[0.0, np.sort(rng.random(N - 1)), 1.0], m), n)
+    J = random_jacobian(coll, rng, 1.7)
+    f = reduction.BorderedCollocation.from_jacobian(coll, J, rng.standard_normal(coll.n_x))
+    F = rng.standard_normal((coll.mesh.n_nodes, n))
+    theta, tangent = rng.random(coll.n_x), rng.standard_normal(coll.n_x)
+    T = 3.3
+    extra = reduction.dense_rows(coll, J, theta * tangent)
+    extra[coll.nbc] = np.concatenate(((coll.w_node[:, None] * (T * F)).ravel(),
+                                      np.zeros(coll.npar)))
+    Sc_ref = f.reduced(extra)
+    rows = np.ascontiguousarray(coll._tail_rows, np.int32)
+    cols = np.ascontiguousarray(coll._tail_cols, np.int32)
+    Sc, got = f.bp_test(lapack, reduction.dense_values_of(coll, J), rows, cols, coll.nbc,
+                        np.ascontiguousarray(coll.w_node), T, F, theta, tangent)
+    assert np.array_equal(Sc, Sc_ref)
+    assert got == linalg.scaled_slogdet(Sc_ref)
+
+
 @pytest.mark.parametrize("N, m, n, npar", [(1, 3, 2, 2), (7, 4, 3, 2), (12, 3, 2, 4),
                                            (30, 4, 3, 2)])
 def test_a_new_border_row_gives_the_bits_of_a_new_factorisation(N, m, n, npar):

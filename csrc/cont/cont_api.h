@@ -46,6 +46,19 @@ int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);
  * zero pivot before the remaining system (nothing is changed: factorise afresh). */
 int cont_bvp_reborder(cont_bvp *f, const double *row);
 int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc);
+/* The BP test of cycles at a point after cont_bvp_factor of a matrix with its collocation
+ * rows (washer.cont.systems.periodic's own-phase test; the Python: reduction.dense_rows,
+ * PeriodicOrbits._own_phase_row, cont_bvp_schur, linalg.scaled_slogdet): the dense rows
+ * (NE, nx) are zeros with the values tail (ntail) at (rows, cols), then row `phase`
+ * replaced by w_node[q] * (T * F[q, i]) on the NTST*NCOL + 1 nodes (F (nodes, NDIM): f at
+ * the nodes) and 0 in the parameter columns, and the last row theta * tangent (nx each);
+ * reduced onto S as cont_bvp_schur into Sc (NE, NE), whose scaled determinant
+ * (cont_scaled_slogdet with getrf, ddot) goes to out (3). Returns cont_scaled_slogdet's
+ * value (0, 1, 2), 10 + cont_bvp_schur's where that is not 0, -1 for bad arguments. */
+int cont_bvp_bp_test(const cont_bvp *f, void *getrf, void *ddot, const double *tail,
+                     const int *rows, const int *cols, int ntail, int phase,
+                     const double *w_node, double T, const double *F, const double *theta,
+                     const double *tangent, double *Sc, double *out);
 
 /* The collocation blocks (NTST, NCOL*NDIM, (NCOL+1)*NDIM), row-major, of the equations
  * sum_k WP[k, c] U_jk - dtm[j] T f(sum_k WT[k, c] U_jk) = 0 with respect to U_j:

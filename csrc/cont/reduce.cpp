@@ -542,6 +542,31 @@ int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc) {
     return 0;
 }
 
+int cont_bvp_bp_test(const cont_bvp *f, void *getrf, void *ddot, const double *tail,
+                     const int *rows, const int *cols, int ntail, int phase,
+                     const double *w_node, double T, const double *F, const double *theta,
+                     const double *tangent, double *Sc, double *out) {
+    const int n = f->n, ne = f->ne, nx = f->nx, nu = (f->N * f->m + 1) * n;
+    if (phase < 0 || phase >= ne - 1 || ntail < 0) return -1;
+    // the dense rows as reduction.dense_rows scatters them, the own-phase row
+    // (PeriodicOrbits._own_phase_row: T f first, then the node weight) and the border
+    std::vector<double> extra((size_t)ne * nx, 0.0);
+    for (int q = 0; q < ntail; ++q) {
+        if (rows[q] < 0 || rows[q] >= ne || cols[q] < 0 || cols[q] >= nx) return -1;
+        extra[(size_t)rows[q] * nx + cols[q]] = tail[q];
+    }
+    double *ph = &extra[(size_t)phase * nx];
+    for (int c = 0; c < nu; ++c) ph[c] = w_node[c / n] * (T * F[c]);
+    for (int c = nu; c < nx; ++c) ph[c] = 0.0;
+    double *border = &extra[(size_t)(ne - 1) * nx];
+    for (int c = 0; c < nx; ++c) border[c] = theta[c] * tangent[c];
+    const int rc = cont_bvp_schur(f, extra.data(), Sc);
+    if (rc != 0) return 10 + rc;
+    RawBuffer<double> work(2 * (size_t)ne * ne);
+    RawBuffer<int64_t> ipiv(ne);
+    return cont_scaled_slogdet(getrf, ddot, ne, Sc, work.data(), ipiv.data(), out);
+}
+
 namespace {
 
 // The back substitution of the interior nodes of the L intervals j0 .. j0 + L - 1 (their

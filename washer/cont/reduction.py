@@ -64,12 +64,22 @@ def _assembled(coll, J) -> np.ndarray:
 def _dense_rows(coll, vals: np.ndarray, border) -> np.ndarray:
     # the boundary conditions (periodic or general) and integral rows, dense
     # (NBC + NINT + 1 = NDIM + NPAR rows: NPAR = NBC + NINT - NDIM + 1), then the border
-    n, npar = coll.ndim, coll.npar
-    start = coll._n_blk + coll.mesh.ntst * coll.mesh.ncol * n * npar
-    extra = np.zeros((n + npar, coll.n_x))
-    extra[coll._tail_rows, coll._tail_cols] = vals[start:]
+    extra = np.zeros((coll.ndim + coll.npar, coll.n_x))
+    extra[coll._tail_rows, coll._tail_cols] = dense_values(coll, vals)
     extra[-1] = border
     return extra
+
+
+def dense_values(coll, vals: np.ndarray) -> np.ndarray:
+    """The values of the boundary and integral rows among `coll`'s assembled values vals
+    (a view, in the order of coll._tail_rows, coll._tail_cols): those after the blocks
+    and the parameter columns."""
+    return vals[coll._n_blk + coll.mesh.ntst * coll.mesh.ncol * coll.ndim * coll.npar:]
+
+
+def dense_values_of(coll, J) -> np.ndarray:
+    """`dense_values` of the Jacobian J assembled by `coll`."""
+    return dense_values(coll, _assembled(coll, J))
 
 
 def onto_start(coll, J, border) -> tuple[np.ndarray, np.ndarray]:
@@ -322,6 +332,31 @@ class BorderedCollocation:
         Sc = np.empty((n + npar, n + npar))
         rc = lib.cont_bvp_schur(self._f, _ptr(extra), _ptr(Sc))
         return Sc if rc == 0 else None
+
+    def bp_test(self, lapack, tail, rows, cols, phase: int, w_node, T: float, F, theta,
+                tangent):
+        """`reduced` of the dense rows (NDIM + NPAR, nx) that are zero but for the values
+        tail at (rows, cols) (int32), the own-phase row `phase` (w_node * (T F) on the
+        nodes, F (nodes, NDIM) f there; 0 in the parameter columns) and the border row
+        theta * tangent, and linalg.scaled_slogdet of it, in one compiled call
+        (cont_bvp_bp_test: the same values as those steps one by one). lapack:
+        linalg.compiled_lapack(). (Sc, scaled_slogdet's tuple), or None where a pivot of
+        the factorisation was zero (as `reduced`)."""
+        N, m, n, npar = self.shape
+        ne = n + npar
+        Sc = np.empty((ne, ne))
+        out = np.empty(3)
+        rc = lib.cont_bvp_bp_test(self._f, lapack.getrf, lapack.ddot, _ptr(tail),
+                                  ffi.from_buffer("int[]", rows), ffi.from_buffer("int[]", cols),
+                                  len(tail), phase, _ptr(w_node), T, _ptr(F), _ptr(theta),
+                                  _ptr(tangent), _ptr(Sc), _ptr(out))
+        if rc == 1:
+            return Sc, (float(out[0]),)
+        if rc in (0, 2):
+            return Sc, (float(out[0]), float(out[1]), float(out[2]))
+        if rc == 11:
+            return None
+        raise RuntimeError(f"cont_bvp_bp_test failed ({rc})")
 
     def floquet_pair(self) -> tuple[np.ndarray, np.ndarray]:
         """(P0, P1): P0 U(0) + P1 U(1) = 0 for the linearised collocation equations."""

@@ -533,7 +533,11 @@ class CollocationBVP:
         AUTO's FNBPBV (the reduced determinant over det P1). (Normalising each row instead
         would divide out the very row that vanishes at a decoupled BP, e.g.
         1 - exp((mu - a) T) of a symmetry-breaking direction.)"""
-        got = linalg.scaled_slogdet(Sc)
+        return CollocationBVP.bp_value_of(Sc, linalg.scaled_slogdet(Sc))
+
+    @staticmethod
+    def bp_value_of(Sc: np.ndarray, got: tuple) -> float | None:
+        """`bp_value` of Sc whose linalg.scaled_slogdet is `got` (computed already)."""
         if len(got) == 1:                       # |S|_F is 0 or not finite
             return 0.0
         _, sign, logdet = got

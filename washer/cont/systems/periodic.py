@@ -56,7 +56,7 @@ if TYPE_CHECKING:                  # annotations only; imported where used
     import scipy.sparse as sp
 
 from washer.cont import collocation as col
-from washer.cont import floquet, reduction
+from washer.cont import floquet, linalg, reduction
 from washer.cont.linalg import nullvc
 from washer.cont.codes import Code
 from washer.cont.system import Solution, Stability, register
@@ -421,16 +421,42 @@ class PeriodicOrbits(CollocationBVP):
             try:
                 compiled = self.compiled_factor_of(J, factor)
                 if compiled is not None and self.coll.has_pattern(J):
-                    extra = reduction.dense_rows(self.coll, J, self.weights * tangent)
-                    extra[self.coll.nbc] = self._own_phase_row(x)
-                    Sc = compiled.reduced(extra)
-                    if Sc is not None:
-                        return self.bp_value(Sc)
+                    got = self._bp_reduced(compiled, J, x, tangent)
+                    if got is not None:
+                        return self.bp_value_of(*got)
                 return self.bp_function(self._own_phase(x, J), tangent)
             except RuntimeError:
                 return None
         return floquet.test_functions(codes, tangent, stability, self.settings.EPSS,
                                       self.ndim, bp, floquet.spb_kinds(self.settings))
+
+    def _bp_reduced(self, factor, J, x: np.ndarray, tangent: np.ndarray):
+        """(Sc, linalg.scaled_slogdet(Sc)) of the own-phase Jacobian at x bordered by
+        `tangent` (`_own_phase`), reduced onto the boundary unknowns by `factor`, the
+        compiled factorisation of J: its dense rows (reduction.dense_rows of J with the
+        phase row `_own_phase_row`) taken through J's eliminations
+        (BorderedCollocation.reduced) and the scaled determinant, in one compiled call
+        where numpy's LAPACK is found (BorderedCollocation.bp_test), else step by step.
+        None where a pivot of the factorisation was zero."""
+        coll = self.coll
+        lapack = linalg.compiled_lapack()
+        if lapack is None:
+            extra = reduction.dense_rows(coll, J, self.weights * tangent)
+            extra[coll.nbc] = self._own_phase_row(x)
+            Sc = factor.reduced(extra)
+            return None if Sc is None else (Sc, linalg.scaled_slogdet(Sc))
+        kept = self.__dict__.get("_bp_tail_kept")
+        if kept is None or kept[0] is not coll._tail_rows:
+            # the tail's positions as int32 for the compiled call, once per pattern
+            kept = self._bp_tail_kept = (coll._tail_rows,
+                                         np.ascontiguousarray(coll._tail_rows, np.int32),
+                                         np.ascontiguousarray(coll._tail_cols, np.int32))
+        U, par = self.unpack(x)
+        F = np.ascontiguousarray(self.field.f(U, par), dtype=float)
+        return factor.bp_test(lapack, reduction.dense_values_of(coll, J), kept[1], kept[2],
+                              coll.nbc, np.ascontiguousarray(coll.w_node, dtype=float),
+                              self.period(par), F, self.weights,
+                              np.ascontiguousarray(tangent, dtype=float))
 
     def _own_phase(self, x: np.ndarray, J=None):
         """The Jacobian at x with its phase row taken at x itself (u'_old = T f(u(x)))
