@@ -200,3 +200,67 @@ def test_scaled_slogdet_of_a_zero_or_overflowing_matrix_is_its_norm_alone():
     assert linalg.scaled_slogdet(np.full((2, 2), 1e200)) == (np.inf,)
     got = linalg.scaled_slogdet(np.array([[1.0, np.nan], [0.0, 1.0]]))
     assert len(got) == 1 and np.isnan(got[0])
+
+
+def _hamiltonian(rng, m):
+    """A (2 m, 2 m) Hamiltonian matrix [[A, B], [C, -A^T]] (B, C symmetric): trace 0, its
+    spectrum symmetric about the imaginary axis (f_u of a conservative system)."""
+    A = rng.standard_normal((m, m))
+    B, C = rng.standard_normal((m, m)), rng.standard_normal((m, m))
+    return np.block([[A, B + B.T], [C + C.T, -A.T]])
+
+
+@compiled
+@pytest.mark.parametrize("ndim", [1, 2, 3, 4, 6, 8])
+def test_compiled_equilibrium_point_is_the_python_functions_bit_for_bit(ndim):
+    """PointValues (cont_ae_equilibrium_point) gives what the Python route of a point gives:
+    linalg.unit_tangent's tangent and determinant, eigenvalues_sorted of f_u, and
+    equilibrium's neutral_tolerance, stable_count and hopf_pair; it declines (a nonzero
+    status) where unit_tangent leaves the tangent to its caller."""
+    from washer.cont.system import determinant_test, determinant_value
+    from washer.cont.systems.equilibrium import (PointValues, hopf_pair, neutral_tolerance,
+                                                 stable_count)
+    rng = np.random.default_rng(300 + ndim)
+    n = ndim + 1
+    for k in range(300):
+        theta = rng.uniform(0.1, 2.0, n) if k % 2 else np.ones(n)
+        call = PointValues(ndim, theta)
+        J = rng.standard_normal((ndim, n)) * 10.0 ** rng.integers(-3, 4)
+        if k % 3 == 0 and ndim % 2 == 0:
+            J[:, :ndim] = _hamiltonian(rng, ndim // 2)     # conservative-looking
+        if k % 7 == 0:
+            J = np.round(J)                             # ties among real parts
+        if k % 11 == 0:
+            J[:, :ndim] = np.diag(rng.integers(-2, 3, ndim).astype(float))   # all real
+        if k % 13 == 0 and ndim > 1:
+            J[-1] = J[0]                                  # a singular bordered matrix
+        ref = rng.standard_normal(n)
+        got = call(J, ref, 1e12)
+        t, factor, done = linalg.unit_tangent(J, theta, ref, 1e12)
+        if not done:
+            assert got in (1, 2)
+            continue
+        assert got == 0
+        assert np.array_equal(call.t, t)
+        sl = call.sign_logdet
+        assert (sl[0], sl[1]) == factor.sign_logdet()
+        assert determinant_value(sl[0], sl[1]) == determinant_test(factor)
+        lam = linalg.eigenvalues_sorted(J, leading=True)
+        neutral, n_stable, pair, real = call.out.tolist()
+        got_lam = call.real if real else call.pairs
+        assert got_lam.dtype == lam.dtype and np.array_equal(got_lam, lam)
+        assert neutral == neutral_tolerance(J[:, :ndim])
+        assert n_stable == stable_count(lam, neutral)
+        mu = hopf_pair(lam)
+        assert (pair < 0) if mu is None else (complex(lam[int(pair)]) == mu)
+
+
+@compiled
+def test_compiled_equilibrium_point_declines_what_it_does_not_take():
+    from washer.cont.systems.equilibrium import PointValues
+    call = PointValues(2, np.ones(3))
+    assert call(np.ones((2, 3), dtype=np.float32), np.ones(3), 1e12) == -1
+    assert call(np.ones((2, 6))[:, :3], np.ones(3), 1e12) == -1
+    assert call(np.ones((3, 3)), np.ones(3), 1e12) == -1
+    J = np.array([[1.0, np.nan, 0.0], [0.0, 1.0, 1.0]])
+    assert call(J, np.ones(3), 1e12) != 0          # not finite: the Python route reports

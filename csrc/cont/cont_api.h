@@ -236,6 +236,26 @@ int cont_ae_tangent(void *getrf, void *getrs, int n, const double *J, int ldj,
                     const double *ref, const double *theta, double big, double *border,
                     double *lu, int64_t *ipiv, double *sign_logdet, int *info, double *t);
 
+/* An equilibrium's point values after its corrector in one call (washer.cont.systems.
+ * equilibrium.EquilibriumSystem.point_values): J = [f_u f_PAR] (ndim x (ndim + 1),
+ * row-major, ndim <= 8). routines: numpy's GETRF, GETRS and GEEV. First cont_ae_tangent
+ * with n = ndim + 1 (border, lu (n * n + n), ipiv, sign_logdet, info, t as there); then
+ * cont_eigenvalues_sorted of f_u into w (2 ndim) with ework (ndim^2 + 2 ndim + lwork_max)
+ * and *lwork as there; then out[0] = equilibrium.neutral_tolerance of f_u (conservative_tol
+ * where ndim is even and |trace| < trace_tol max |f_u[i, j]|, else 0), out[1] the count of
+ * real parts <= out[0] (stable_count), out[2] the index in w of equilibrium.hopf_pair's
+ * eigenvalue (|Im| > imag_tol (1 + hypot), the least |Re|, the first of equal ones; -1
+ * for none or all real), out[3] 1 where all are real (w's imaginary parts 0), else 0.
+ * Returns 0; 1, 2 the tangent's status (nothing else computed); 11, 12, 13 the
+ * eigenvalues' statuses 1, 2, 3 plus 10 (A not finite, GEEV failed, lwork_max too small);
+ * -1 bad sizes (ndim outside 1..8). */
+int cont_ae_equilibrium_point(void *const *routines, int ndim, const double *J,
+                              const double *ref, const double *theta, double big,
+                              double imag_tol, double trace_tol, double conservative_tol,
+                              double *border, double *lu, int64_t *ipiv, double *sign_logdet,
+                              int *info, double *t, double *w, double *ework, int lwork_max,
+                              int *lwork, double *out);
+
 /* ADAPT's interpolation (csrc/cont/adapt.cpp; washer.cont.collocation.evaluator): for
  * each time t[i] of nt, the interval j[i] of the mesh tm (NTST + 1,) with lengths dtm
  * (NTST,) it lies in (numpy's searchsorted 'right' less one, clipped to 0..NTST-1) and the

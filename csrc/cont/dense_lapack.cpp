@@ -146,3 +146,48 @@ extern "C" int cont_ae_tangent(void *getrf, void *getrs, int n, const double *J,
     for (int i = 0; i < n; ++i) t[i] = z[i] / nz;
     return 0;
 }
+
+extern "C" int cont_ae_equilibrium_point(void *const *routines, int ndim, const double *J,
+                                         const double *ref, const double *theta, double big,
+                                         double imag_tol, double trace_tol,
+                                         double conservative_tol, double *border, double *lu,
+                                         int64_t *ipiv, double *sign_logdet, int *info,
+                                         double *t, double *w, double *ework, int lwork_max,
+                                         int *lwork, double *out) {
+    if (ndim <= 0 || ndim > 8) return -1;
+    const int n = ndim + 1;
+    int st = cont_ae_tangent(routines[0], routines[1], n, J, n, ref, theta, big, border, lu,
+                             ipiv, sign_logdet, info, t);
+    if (st != 0) return st;
+    // the eigenvalues of f_u, the leading NDIM columns of J's rows
+    st = cont_eigenvalues_sorted(routines[2], ndim, J, n, w, ework, lwork_max, lwork);
+    if (st != 0 && st != 4) return 10 + st;
+    const bool real = st == 4;
+    // equilibrium.neutral_tolerance: the trace summed in order from 0.0, the largest
+    // magnitude of f_u's entries (all finite here: GEEV took them)
+    double neutral = 0.0;
+    if (ndim % 2 == 0) {
+        double trace = 0.0, largest = 0.0;
+        for (int i = 0; i < ndim; ++i) trace += J[(size_t)i * n + i];
+        for (int i = 0; i < ndim; ++i)
+            for (int j = 0; j < ndim; ++j) {
+                double a = std::fabs(J[(size_t)i * n + j]);
+                if (a > largest) largest = a;
+            }
+        if (std::fabs(trace) < trace_tol * largest) neutral = conservative_tol;
+    }
+    // equilibrium.stable_count and hopf_pair (Python's complex abs is libm's hypot)
+    int stable = 0, pair = -1;
+    for (int i = 0; i < ndim; ++i) {
+        double re = w[2 * i], im = w[2 * i + 1];
+        if (re <= neutral) ++stable;
+        if (!real && std::fabs(im) > imag_tol * (1.0 + std::hypot(re, im))
+            && (pair < 0 || std::fabs(re) < std::fabs(w[2 * pair])))
+            pair = i;
+    }
+    out[0] = neutral;
+    out[1] = stable;
+    out[2] = pair;
+    out[3] = real ? 1.0 : 0.0;
+    return 0;
+}

@@ -175,6 +175,10 @@ class Continuation:
         # The system's compiled tangent (AlgebraicSystem.unit_tangent, CollocationBVP.
         # unit_tangent: `tangent`) or None.
         self._unit_tangent = getattr(system, "unit_tangent", None)
+        # The system's point values in one call after the sphere's corrector (tangent,
+        # stability, tests: EquilibriumSystem.point_values) or None.
+        self._point_values = getattr(system, "point_values", None) \
+            if system.arclength == "sphere" else None
 
     # ------------------------------------------------------- counted calls
     def _residual(self, x):
@@ -387,6 +391,16 @@ class Continuation:
                 self._newton_point = pt
                 return pt
         J = self._jacobian(x)
+        if tangent is None and self._point_values is not None:
+            # tangent, stability and the tests in one call where the system has it
+            codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
+            got = self._point_values(x, J, ref, SINGULAR_TANGENT, codes)
+            if got is not None:
+                self.counters.factorisations += 1       # [J; border(ref)], as `tangent`
+                t, stab, out = got
+                pt = Point(np.array(x), t, stab, {}, ds, it, None)
+                pt.tests = self._uz_tests(pt, out, keys)
+                return pt
         if tangent is None:
             t, factor = self.tangent(J, ref)
             if self.sys.arclength == "plane":
@@ -403,6 +417,10 @@ class Continuation:
         codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
         out = dict(self.sys.test_functions(pt.x, pt.tangent, J, pt.stability, factor, codes)) \
             if codes else {}
+        return self._uz_tests(pt, out, keys)
+
+    def _uz_tests(self, pt, out: dict, keys) -> dict:
+        """out with the user values' tests (UZR) `keys` asks for (all where None) at pt."""
         uz_keys = range(len(self.uz)) if keys is None else \
             [k[1] for k in keys if isinstance(k, tuple)]
         if self.uz and uz_keys:

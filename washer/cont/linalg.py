@@ -207,6 +207,8 @@ class _Compiled:
         self.getrf, self.getrs, self.geev, self.ddot, self.gesdd = routines
         # cont_fold_tests' routines (GESDD, DDOT, GEEV), kept alive with this object
         self.fold_routines = ffi.new("void *[3]", [self.gesdd, self.ddot, self.geev])
+        # cont_ae_equilibrium_point's routines (GETRF, GETRS, GEEV)
+        self.point_routines = ffi.new("void *[3]", [self.getrf, self.getrs, self.geev])
 
 
 #: eigenvalues_sorted's buffers by size, one set a thread (cffi's call releases the GIL)

@@ -163,7 +163,11 @@ def determinant_test(factor: Factor) -> float:
     """The branch-point test of the algebraic systems (AUTO's FNBPAE): the determinant of
     the Newton matrix [G_x; border] from its factorisation, sign * exp(log|det|) with
     log|det| capped at 700 (exp(700) ~ 1e304: a large det stays finite)."""
-    sign, logdet = factor.sign_logdet()
+    return determinant_value(*factor.sign_logdet())
+
+
+def determinant_value(sign: float, logdet: float) -> float:
+    """determinant_test's value from the determinant's sign and log|det|."""
     return float(sign * np.exp(min(logdet, 700.0))) if sign != 0 else 0.0
 
 

@@ -18,8 +18,9 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
-from washer.cont.system import Stability, StartData, register
-from washer.cont.linalg import eigenvalues_sorted, null_vectors, nullvc
+from washer.cont.system import Stability, StartData, determinant_value, register
+from washer.cont.linalg import EIG_WORK, compiled_lapack, eigenvalues_sorted, null_vectors, \
+    nullvc
 from washer.cont.systems._algebraic import AlgebraicSystem
 
 #: |Im lambda| below this fraction of (1 + |lambda|) counts as real: AUTO's HB
@@ -148,6 +149,54 @@ def hopf_accepted(prev: Stability, cur: Stability) -> bool:
     return abs(stable_count(prev.values, tol) - stable_count(cur.values, tol)) >= 2
 
 
+#: Up to this NDIM a point's values come from one compiled call (`PointValues`): the sizes
+#: at which neutral_tolerance sums the trace in order on Python floats.
+POINT_NDIM = 8
+
+#: float64's dtype (arrays of native doubles carry this object)
+_F64 = np.dtype(np.float64)
+
+
+class PointValues:
+    """An equilibrium's tangent, spectrum and test values after its corrector in one
+    compiled call (csrc/cont/dense_lapack.cpp cont_ae_equilibrium_point): the values of
+    linalg.unit_tangent, eigenvalues_sorted of f_u, neutral_tolerance, stable_count and
+    hopf_pair, bit for bit (numpy's GETRF, GETRS and GEEV, the same sums and comparisons),
+    with the buffers of one system's size and weights bound once."""
+
+    def __init__(self, ndim: int, theta: np.ndarray):
+        C = compiled_lapack()
+        ffi, n = C.ffi, ndim + 1
+        self.ndim, self._theta = ndim, np.ascontiguousarray(theta, dtype=float)
+        self.t, self.w, self.out = np.empty(n), np.empty(2 * ndim), np.empty(4)
+        self.real, self.pairs = self.w[0::2], self.w.view(np.complex128)
+        self.sign_logdet = ffi.new("double[2]")
+        buf = ffi.from_buffer
+        self._lib_call, self._buf = C.lib.cont_ae_equilibrium_point, buf
+        # the arguments after J and ref, the same at every call (big: the caller's)
+        self._rest = (ffi.new("double[]", n), ffi.new("double[]", n * n + n),
+                      ffi.new("int64_t[]", n), self.sign_logdet, ffi.new("int *"),
+                      buf("double[]", self.t), buf("double[]", self.w),
+                      ffi.new("double[]", ndim * ndim + 2 * ndim + EIG_WORK * ndim),
+                      EIG_WORK * ndim, ffi.new("int *", 0), buf("double[]", self.out))
+        self._head = (C.point_routines, ndim)
+        self._tols = (IMAG_TOL, TRACE_TOL, CONSERVATIVE_TOL)
+        self._theta_c = buf("double[]", self._theta)
+
+    def __call__(self, J, ref, big: float) -> int:
+        """Status of cont_ae_equilibrium_point on J = [f_u f_PAR] (NDIM, NDIM + 1) and the
+        secant ref (NDIM + 1,) (0: every value in t, w, out, sign_logdet); -1 where the call
+        does not take these arrays (types, shapes, layouts)."""
+        n = self.ndim
+        if type(J) is not np.ndarray or J.dtype is not _F64 or J.shape != (n, n + 1) \
+                or not J.flags.c_contiguous or type(ref) is not np.ndarray \
+                or ref.dtype is not _F64 or ref.shape != (n + 1,) or not ref.flags.c_contiguous:
+            return -1
+        buf = self._buf
+        return self._lib_call(*self._head, buf("double[]", J), buf("double[]", ref),
+                              self._theta_c, big, *self._tols, *self._rest)
+
+
 @register(0, 1)
 @register(1, 1)
 @register(0, -1, "BP")
@@ -168,6 +217,8 @@ class EquilibriumSystem(AlgebraicSystem):
     #: equilibria (washer.cont.corrector_algebraic) may stand in for the Python loop.
     #: A subclass that changes the equations sets it False (FixedPoints).
     residual_is_func = True
+    #: the compiled point values of this system (`PointValues`), or None
+    _point_call = None
 
     def __init__(self, start: StartData):
         self._one_parameter(start)
@@ -182,6 +233,18 @@ class EquilibriumSystem(AlgebraicSystem):
             self._stored = np.zeros(self.ndim + 1)
             if rec.udot is not None and len(rec.rldot) and len(rec.udot) >= self.ndim:
                 self._stored = np.r_[np.asarray(rec.udot, float)[:self.ndim], rec.rldot[0]]
+
+        # one compiled call for a point's tangent, stability and tests (`point_values`)
+        # where this class's own stability, tests and weighted tangent are the system's
+        self._point_call = None
+        cls = type(self)
+        if compiled_lapack() is not None and start.settings.IPS in (1, 11) \
+                and 0 < self.ndim <= POINT_NDIM \
+                and cls.stability is EquilibriumSystem.stability \
+                and cls.test_functions is EquilibriumSystem.test_functions \
+                and cls.unit_tangent is AlgebraicSystem.unit_tangent \
+                and cls.inner is AlgebraicSystem.inner and len(self.theta) == self.ndim + 1:
+            self._point_call = PointValues(self.ndim, self.theta)
 
     @property
     def start_mode(self) -> str | None:
@@ -221,6 +284,41 @@ class EquilibriumSystem(AlgebraicSystem):
         lam = eigenvalues_sorted(J, leading=True)     # of f_u
         self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
         return spectrum(lam, neutral_tolerance(J[:, :len(J)]))
+
+    def point_values(self, x, J, ref, big: float, codes):
+        """A point's (tangent, stability, test values `codes`) from its Jacobian J = [f_u
+        f_PAR] and the secant ref in one compiled call (`PointValues`): what
+        Continuation.tangent (unit_tangent with its bound `big`), stability and
+        test_functions give, the same values in the same order; None where that call
+        does not apply or the tangent or the eigenvalues need the general route (a
+        singular or nearly singular bordered matrix, a failing GEEV), which repeats the
+        work and handles or reports it."""
+        call = self._point_call
+        if call is None or call(J, ref, big) != 0:
+            return None
+        t = call.t.copy()
+        neutral, n_stable, k, real = call.out.tolist()
+        lam = call.real.copy() if real else call.pairs.copy()
+        self._last_spectrum = (x.tolist(), lam)      # reused by solution() for PAR(11)
+        n_stable = int(n_stable)
+        # (positional: values, n_stable, stable, kind, neutral)
+        stab = Stability(lam, n_stable, n_stable == self.ndim, "eigenvalues", neutral)
+        # hopf_pair(lam), as `_pair` keeps it for the HB test and PAR(11)
+        mu = None if k < 0 else complex(*call.w[2 * int(k):2 * int(k) + 2].tolist())
+        self._pair_memo = (lam, mu)
+        out = {}
+        if not codes:
+            return t, stab, out
+        if Code.LP in codes:
+            out[Code.LP] = float(t[-1])                         # fold_test
+        if Code.BP in codes:
+            sl = call.sign_logdet
+            out[Code.BP] = determinant_value(sl[0], sl[1])      # determinant_test
+        if Code.HB in codes:
+            out[Code.HB] = hopf_test(mu)
+        if NEUTRAL_HB in codes:
+            out[NEUTRAL_HB] = neutral_hopf_test(stab) if neutral > 0 else None
+        return t, stab, out
 
     def active_tests(self) -> list:
         out = [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
