@@ -144,3 +144,19 @@ def test_adapt_is_the_steps_one_by_one(ncol):
     with np.errstate(invalid="ignore"):
         new, _ = col.adapt(mesh, V)
         assert np.array_equal(new.tm, col.new_mesh(mesh, V, mesh.ntst), equal_nan=True)
+
+
+def test_a_computed_mesh_keeps_its_arrays_until_tm_changes():
+    """Mesh.computed takes the lengths, node times and node weights computed with tm (the
+    very arrays, dtm read-only), and recomputes them as any Mesh does once tm changes."""
+    tm = np.array([0.0, 0.25, 1.0])
+    ref = col.Mesh(tm.copy(), 2)
+    dtm, t, w = np.diff(tm), ref.node_times(), ref.node_weights()
+    mesh = col.Mesh.computed(tm, 2, dtm, t, w)
+    assert mesh.dtm is dtm and not dtm.flags.writeable
+    assert np.array_equal(mesh.node_times(), t) and np.array_equal(mesh.node_weights(), w)
+    mesh.tm[1] = 0.5
+    moved = col.Mesh(np.array([0.0, 0.5, 1.0]), 2)
+    assert np.array_equal(mesh.dtm, moved.dtm)
+    assert np.array_equal(mesh.node_times(), moved.node_times())
+    assert np.array_equal(mesh.node_weights(), moved.node_weights())

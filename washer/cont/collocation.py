@@ -162,6 +162,21 @@ class Mesh:
         """AUTO's MSH."""
         return cls(np.arange(ntst + 1) / ntst, ncol)
 
+    @classmethod
+    def computed(cls, tm: np.ndarray, ncol: int, dtm: np.ndarray, node_times: np.ndarray,
+                 node_weights: np.ndarray) -> "Mesh":
+        """A mesh whose interval lengths (NTST,), node times and node weights
+        (NTST*NCOL + 1,) were computed with tm (`adapt`'s compiled call): kept as `dtm`,
+        `node_times` and `node_weights` would keep their own (the arrays are taken, not
+        copied; dtm is made read-only)."""
+        mesh = cls(tm, ncol)
+        key = tm.tobytes()
+        dtm.setflags(write=False)
+        mesh._dtm = (key, dtm)
+        mesh._node_times = ((key, ncol), node_times)
+        mesh._node_weights = ((key, ncol), node_weights)
+        return mesh
+
     @property
     def ntst(self) -> int:
         return len(self.tm) - 1
@@ -742,6 +757,15 @@ def _values_at(mesh: Mesh, t: np.ndarray, j: np.ndarray, L: np.ndarray, compiled
     return at
 
 
+@lru_cache(maxsize=None)
+def _adapt_constants(m: int) -> tuple:
+    """The arrays of NCOL = m that every `adapt` passes, as cont_adapt_mesh takes them:
+    CNTDIF's weights, INTWTS's other nodes and denominators, the integration weights
+    (double[] each; the arrays are cached read-only beside them, so they stay alive)."""
+    others, denom = _interpolation_nodes(m)
+    return tuple(_cont_ptr(a) for a in (_cntdif(m), others, denom, integration_weights(m)))
+
+
 def adapt(mesh: Mesh, U: np.ndarray, periodic: bool = True):
     """AUTO's ADAPT of the profile U (n_nodes, k) on `mesh`: (the new Mesh of the same
     NTST and NCOL, `new_mesh`, and the function of node values moving them onto its nodes,
@@ -758,20 +782,14 @@ def adapt(mesh: Mesh, U: np.ndarray, periodic: bool = True):
         tm, dtm, t, w = np.empty(N + 1), np.empty(N), np.empty(n_nodes), np.empty(n_nodes)
         j = np.empty(n_nodes, np.intc)
         L = np.empty((m + 1, n_nodes))
-        others, denom = _interpolation_nodes(m)
+        cntdif, others, denom, wi = _adapt_constants(m)
         p = _cont_ptr
         status = _lib.cont_adapt_mesh(
             N, m, U.shape[1], p(np.ascontiguousarray(mesh.tm, float)), p(mesh.dtm), p(U),
-            int(periodic), p(_cntdif(m)), EQDF_SMALL, *_power_loop(), p(others), p(denom),
-            p(integration_weights(m)), p(tm), p(dtm), p(t), p(w), _ffi.from_buffer("int[]", j),
-            p(L))
+            int(periodic), cntdif, EQDF_SMALL, *_power_loop(), others, denom, wi, p(tm),
+            p(dtm), p(t), p(w), _ffi.from_buffer("int[]", j), p(L))
         if status == 0:
-            new = Mesh(tm, m)
-            key = tm.tobytes()
-            dtm.setflags(write=False)
-            new._dtm, new._node_times = (key, dtm), ((key, m), t)
-            new._node_weights = ((key, m), w)
-            return new, _values_at(mesh, t, j, L, True)
+            return Mesh.computed(tm, m, dtm, t, w), _values_at(mesh, t, j, L, True)
     new = Mesh(new_mesh(mesh, U, N, periodic=periodic), m)
     return new, mesh_interpolator(mesh, new)
 

@@ -642,20 +642,24 @@ class CollocationBVP:
     def bvp_solution(self, x, tangent, par, rldot) -> Solution:
         """The Solution of x: b-row columns of u, the whole profile W and its direction
         stored; rldot(tangent) gives the record's parameter derivatives."""
-        W = self.coll.profile(x)
+        coll, mesh = self.coll, self.mesh
+        n_u, n_comp = coll.n_u, coll.ndim
+        W = x[:n_u].reshape(-1, n_comp)              # `Collocation.profile`
+        u = W.copy()
         n2 = self.n2()
         # the maxima of the first N2 columns, each a contiguous row of the transposed copy
         # (a maximum is exact: the same doubles as np.max of each column; numpy reduces
         # across the rows of a narrow array one element at a time, 5 us at NTPL 281)
-        cols = [self.measure(W)] + (W[:, :n2].T.copy().max(axis=1).tolist() if n2 else [])
+        cols = [self.measure(W)]
+        if n2:
+            cols += u[:, :n2].T.copy().max(axis=1).tolist()
         udot = None
         rl = []
         if tangent is not None:
-            udot = self.coll.profile(tangent).copy()
+            udot = tangent[:n_u].reshape(-1, n_comp).copy()
             rl = rldot(tangent)
-        return Solution(par=par, columns=cols, u=W.copy(), t=self.mesh.node_times(),
-                        udot=udot, rldot=rl, ntst=self.mesh.ntst, ncol=self.mesh.ncol,
-                        ndim_user=self.ndim)
+        return Solution(par, cols, u, mesh.node_times(), udot, rl, mesh.ntst, mesh.ncol,
+                        self.ndim)
 
 
 class CycleLocus(CollocationBVP):
