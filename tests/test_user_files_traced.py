@@ -360,7 +360,8 @@ import numpy as np
 calls = [0]
 def func(u, par):
     calls[0] += 1
-    s = 1.0 if calls[0] < 30 else 1.0 + 2.0 ** -40
+    # another value after loading's calls, within the run's first compared points
+    s = 1.0 if calls[0] < 27 else 1.0 + 2.0 ** -40
     return np.array([par[0] - s * u[0]])
 def stpnt(u, par, t=0.0):
     par[0] = 0.0
@@ -520,3 +521,32 @@ def test_batched_f_is_f_point_by_point(tmp_path, k, low, high):
         ref = np.array([_every_loop(u.copy(), q.copy()) for u, q in zip(us, ps)], dtype=float)
     assert batched.tobytes() == pointwise.tobytes()
     assert batched.tobytes() == ref.tobytes()
+
+
+def test_the_emitted_file_is_made_once_for_the_same_traces(tmp_path):
+    """_emitted keeps the C of the same traces (a run traces afresh): its text is what
+    emit_user_file writes of new traces of the same function; another function or
+    another file name is another source."""
+    from washer.cont.user_problem import user_files_traced as T
+    from washer.cont.user_problem.tracer import emit_user_file
+
+    def f(u, par):
+        return np.array([par[0] * np.exp(u[0]) - u[1], u[0] ** 2 + par[1] * u[1]])
+
+    def g(u, par):
+        return np.array([par[0] * np.exp(u[0]) - u[1], u[0] ** 2 - par[1] * u[1]])
+
+    def traced(fn):
+        loops: list = []
+        return trace_function(fn, 2, T.TRACE_NPAR, (2,), loops=loops)
+
+    path = tmp_path / "ef.py"
+    first = T._emitted(path, 2, traced(f), None, None)
+    again = traced(f)
+    assert T._emitted(path, 2, again, None, None) is first
+    assert first.text == emit_user_file(path.name, 2, again).encode()
+    other = T._emitted(path, 2, traced(g), None, None)
+    assert other.text == emit_user_file(path.name, 2, traced(g)).encode()
+    assert other.text != first.text and other.name != first.name
+    renamed = T._emitted(tmp_path / "eg.py", 2, traced(f), None, None)
+    assert renamed is not first and renamed.text != first.text

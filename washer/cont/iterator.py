@@ -368,12 +368,15 @@ class Continuation:
 
     # ----------------------------------------------------------- evaluation
     def evaluate(self, x, ref, keys=None, tangent=None, ds: float = 0.0, it: int = 0,
-                 newton=None) -> Point:
+                 newton=None, jacobian=None) -> Point:
         """A converged point: tangent, stability and the test values `keys`
         (all active tests and UZ values when None). newton: the corrector's (x, J)
         (`correct`): when it is this x's and no tangent is given, J serves as the
         Jacobian at x (AUTO's NEWTONBV) unless the system finds the stability it gives
-        too inexact (`newton_jacobian_serves`); else the Jacobian is evaluated at x."""
+        too inexact (`newton_jacobian_serves`); else the Jacobian is evaluated at x.
+        jacobian: the Jacobian at x as the caller has just evaluated it (the start's),
+        taken instead of evaluating it again and counted as that evaluation (the
+        counters stay those of two evaluations)."""
         direction = None
         if newton is not None and newton[0] is x and tangent is None:
             J = newton[1]
@@ -390,7 +393,11 @@ class Continuation:
                 pt.tests = self._tests(pt, J, factor, keys)
                 self._newton_point = pt
                 return pt
-        J = self._jacobian(x)
+        if jacobian is None:
+            J = self._jacobian(x)
+        else:
+            self.counters.jacobians += 1
+            J = jacobian
         if tangent is None and self._point_values is not None:
             # tangent, stability and the tests in one call where the system has it
             codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
@@ -696,7 +703,10 @@ class Continuation:
         J0 = _failing_as("the equations fail at the start point", self._jacobian)(x0)
         t0 = self.t0 if self.t0 is not None else self.initial_tangent(x0, J0)
         t0 = t0 / math.sqrt(sysm.inner(t0, t0))
-        start = self.evaluate(x0, t0, tangent=t0)
+        # (a dense J0 is taken again; a collocation system's Jacobian object is evaluated
+        # afresh, as its factorisations may keep state in it)
+        start = self.evaluate(x0, t0, tangent=t0, jacobian=J0) if type(J0) is np.ndarray \
+            else self.evaluate(x0, t0, tangent=t0)
         sysm.update(start.x, start.tangent)
         self.state = State(start, self.ds, counters=self.counters)
         yield Step("start", start)

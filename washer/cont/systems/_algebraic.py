@@ -179,14 +179,17 @@ class AlgebraicSystem:
         return _measure(x, self.settings.IPLT, self.ndim)
 
     def solution(self, x, tangent) -> Solution:
+        return self._solution(x, tangent, x.tolist())
+
+    def _solution(self, x, tangent, values: list) -> Solution:
+        """`solution` with values = x.tolist() (the caller's)."""
         par = self.params(x)
-        values = x.tolist()
         ncols = self.n_columns
         cols = [_measure(x, self.settings.IPLT, self.ndim, values)] + values[:ncols]  # (<= NDIM)
         m = len(self.free)
         rldot = tangent[-m:].tolist()[::-1] if m > 1 else [float(tangent[-1])]
         # (positional: par, columns, u, t, udot, rldot, ntst, ncol, ndim_user)
-        return Solution(par, cols, np.array(x[:-1]), None, np.array(tangent[:-1]), rldot,
+        return Solution(par, cols, x[:-1].copy(), None, tangent[:-1].copy(), rldot,
                         0, 0, self.ndim)
 
     def column_titles(self) -> list:

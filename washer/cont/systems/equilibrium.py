@@ -365,10 +365,11 @@ class EquilibriumSystem(AlgebraicSystem):
         return True
 
     def solution(self, x, tangent):
-        sol = super().solution(x, tangent)
+        values = x.tolist()
+        sol = self._solution(x, tangent, values)
         if self.settings.IPS in (1, 11) and len(sol.par) >= 11:
             cached = getattr(self, "_last_spectrum", None)
-            if cached is not None and cached[0] == x.tolist():
+            if cached is not None and cached[0] == values:
                 lam = cached[1]
             else:
                 lam = eigenvalues_sorted(self.problem.dfdu(x[:-1], self._p(x)))

@@ -477,13 +477,9 @@ def _build(python: Problem, path: Path) -> TracedProblem:
             # compiled path reads FUNC's DFDP of a traced file but TracedProblem's own)
             python_dfdp = f"; dfdp(u, par) in Python: {exc}"
     npar_used = max(t[0].npar_used for t in (traced_f, traced_j, traced_p) if t is not None)
-    text = emit_user_file(path.name, n, traced_f, traced_j, traced_p)
-    shim = SHIM.read_bytes()
-    tag = hashlib.sha256(text.encode()).hexdigest()[:12]
-    lib = build_library([source_text(f"{path.stem}_traced_{tag}.c", text),
-                         source_text("washer_shim.c", shim)], f"{path.stem}_traced",
-                        includes=[INCLUDE], defines={"WASHER_FORTRAN": 0, "WASHER_TRACED_BATCH": 1},
-                        flags=FLAGS)
+    lib = build_library([_emitted(path, n, traced_f, traced_j, traced_p), _shim_source()],
+                        f"{path.stem}_traced", includes=[INCLUDE],
+                        defines={"WASHER_FORTRAN": 0, "WASHER_TRACED_BATCH": 1}, flags=FLAGS)
     _bind(lib, loops)
     state = TraceState("func(u, par) traced into C (compared with the Python func bit for "
                        "bit at the start and at the first points of each run)" + python_dfdp)
@@ -502,6 +498,53 @@ def _build(python: Problem, path: Path) -> TracedProblem:
             _agree(P, python._dfdp, us, ps, "dfdp(u, par)")
     return TracedProblem(user, python, npar_used, two_ways, arrays,
                          dfdp_traced=traced_p is not None)
+
+
+#: `_emitted`'s sources by everything emit_user_file reads of its traces, of this process
+_EMITTED: dict = {}
+_EMITTED_MAX = 32
+
+
+def _trace_key(traced) -> tuple | None:
+    """What emit_user_file reads of one (tape, expressions) of trace_function: the tape's
+    lines and the expressions with their shape (None for no trace)."""
+    if traced is None:
+        return None
+    tape, exprs = traced
+    return tuple(tape.lines), exprs.shape, tuple(exprs.flat)
+
+
+def _emitted(path: Path, n: int, traced_f, traced_j, traced_p):
+    """The C user file of the traces (emit_user_file) as the Source build_library takes,
+    named by a hash of its text; made once per process for the same traces (a run
+    traces the file's functions afresh, and the same file traces to the same tapes: the
+    text, its hash and its bytes are then those of the first run, whose bytes also keep
+    their hash for library_key's memo)."""
+    key = (path.name, path.stem, n, len(traced_f[0].loops), _trace_key(traced_f),
+           _trace_key(traced_j), _trace_key(traced_p))
+    src = _EMITTED.get(key)
+    if src is None:
+        text = emit_user_file(path.name, n, traced_f, traced_j, traced_p)
+        tag = hashlib.sha256(text.encode()).hexdigest()[:12]
+        src = source_text(f"{path.stem}_traced_{tag}.c", text)
+        if len(_EMITTED) >= _EMITTED_MAX:
+            _EMITTED.clear()
+        _EMITTED[key] = src
+    return src
+
+
+#: (SHIM's size and modification time, its Source) of the last read
+_SHIM_SOURCE: list = [None, None]
+
+
+def _shim_source():
+    """washer_shim.c (SHIM) as a Source, read again only where the file changed (its size
+    or modification time)."""
+    st = os.stat(SHIM)
+    stamp = (st.st_size, st.st_mtime_ns)
+    if _SHIM_SOURCE[0] != stamp:
+        _SHIM_SOURCE[:] = [stamp, source_text("washer_shim.c", SHIM.read_bytes())]
+    return _SHIM_SOURCE[1]
 
 
 def _agree_on_arrays(user: TracedUser, fn, us, ps) -> bool:
