@@ -158,9 +158,10 @@ class PeriodicCorrector:
         made once per mesh (every correction and Jacobian asks; ADAPT makes a new mesh
         every IAD points): kept while the arrays are the same objects (the kept tuple
         holds them, so an identity cannot be reused by another array)."""
-        arrays = (coll.WT, coll.WP, mesh.dtm, coll.w_node)
+        WT, WP, dtm, w_node = arrays = (coll.WT, coll.WP, mesh.dtm, coll.w_node)
         kept = self._mesh_kept
-        if kept is None or any(a is not b for a, b in zip(kept[0], arrays)):
+        if kept is None or kept[0][2] is not dtm or kept[0][3] is not w_node \
+                or kept[0][0] is not WT or kept[0][1] is not WP:
             held = tuple(np.ascontiguousarray(a, dtype=float) for a in arrays)
             kept = self._mesh_kept = (arrays, tuple(reduction._ptr(a) for a in held), held)
         return kept[1]

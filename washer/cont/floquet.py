@@ -390,9 +390,19 @@ def active_tests(settings, ndim: int, trivial: bool = True) -> list:
 
 
 def spb_kinds(settings) -> tuple:
-    """The kinds (Code.PD, Code.TR) the combined test reports under `settings`."""
-    return tuple(int(c) for c, name in ((Code.PD, "PD"), (Code.TR, "TR"))
-                 if settings.detects(name))
+    """The kinds (Code.PD, Code.TR) the combined test reports under `settings` (kept for
+    the last settings asked about: they are frozen, and every point of a run asks)."""
+    kept = _SPB_KINDS
+    if kept[0] is not settings:
+        kept[:] = [settings, tuple(int(c) for c, name in ((Code.PD, "PD"), (Code.TR, "TR"))
+                                   if settings.detects(name))]
+    return kept[1]
+
+
+#: spb_kinds' last (settings, kinds)
+_SPB_KINDS: list = [None, ()]
+#: the codes of `test_functions` as ints (an IntEnum's int() at every point costs)
+_LPC, _BPC = int(Code.LPC), int(Code.BPC)
 
 
 def spb_code(key, stability: Stability | None, epss: float, trivial: bool = True):
@@ -421,11 +431,10 @@ def test_functions(codes, tangent, st: Stability | None, epss: float, ndim: int,
     """
     codes = [int(c) for c in codes]
     out = {}
-    if Code.LPC in codes:
-        out[int(Code.LPC)] = fold_test(tangent)
-    if Code.BPC in codes:
-        out[int(Code.BPC)] = None if (tangent is None or inaccurate(st) or bp is None) \
-            else bp()
+    if _LPC in codes:
+        out[_LPC] = fold_test(tangent)
+    if _BPC in codes:
+        out[_BPC] = None if (tangent is None or inaccurate(st) or bp is None) else bp()
     if SPB in codes:
         d = None
         if ndim - trivial >= 2 and st is not None and not inaccurate(st):

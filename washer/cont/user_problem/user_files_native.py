@@ -46,6 +46,11 @@ ICP_LENGTH = 200
 PAR_LENGTH = 36
 
 
+#: (library, arguments) of the process's last washer_po_bind (CompiledUser.po_pointers):
+#: one record for all libraries, as two handles of one file share the bridge's storage.
+_PO_BOUND: list = [None]
+
+
 def _writable_par(par: np.ndarray):
     """(buffer, copy_back): `par` where it is PAR_LENGTH long or more, else a zero-padded
     copy; copy_back() puts the copy's first len(par) values into `par`."""
@@ -277,8 +282,12 @@ class CompiledUser:
         lib = self.lib
         if not hasattr(lib, "washer_po_func"):
             return None
-        lib.washer_po_bind(self.ndim, npar, self._icp_ptr,
-                           self._scratch_for(npar, extra=self.ndim))
+        # (made again only where the process's last binding was another library's or
+        # had other arguments)
+        bind = (lib, self.ndim, npar, self._icp_ptr, self._scratch_for(npar, extra=self.ndim))
+        if _PO_BOUND[0] != bind:
+            lib.washer_po_bind(*bind[1:])
+            _PO_BOUND[0] = bind
         # the pointers themselves stay those of this library handle (`reload` makes a new
         # one): cast once per handle and kinds, not at every correction
         key = (ffi, func_kind, jac_kind)
