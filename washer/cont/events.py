@@ -248,9 +248,15 @@ def _power_secant(s: list, q: list) -> float | None:
     def g(v, m):
         return math.copysign(abs(v) ** (1 / m), v)
 
+    q0, q1, q2 = q
+    h1, h2 = s[1] - s[0], s[2] - s[1]
+
     def bend(m):
-        g0, g1, g2 = (g(v, m) for v in q)
-        return (g2 - g1) / (s[2] - s[1]) - (g1 - g0) / (s[1] - s[0])
+        # (g(q2, m) - g(q1, m)) / h2 - (g(q1, m) - g(q0, m)) / h1 with g written out: the
+        # bisection below evaluates it some 60 times
+        e = 1 / m
+        g0, g1 = math.copysign(abs(q0) ** e, q0), math.copysign(abs(q1) ** e, q1)
+        return (math.copysign(abs(q2) ** e, q2) - g1) / h2 - (g1 - g0) / h1
     if len(set(s)) < 3 or 0 in q:
         return None
     a, b = 1.0, MAX_ORDER
