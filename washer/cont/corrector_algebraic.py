@@ -456,15 +456,30 @@ def compiled_corrector(system, settings, divergence: float):
     """The compiled corrector of `system`, or None where the Python loop runs: this one
     for equilibria and the fold and Hopf loci (the sphere arclength), corrector_periodic's for periodic
     orbits (its `plane` attribute True: Continuation.correct hands it the plane
-    arclength's corrections)."""
-    from washer.cont.user_problem.user_files_native import CompiledProblem
-    from washer.cont.problem import Problem
-    from washer.cont.user_problem.user_files_sympy import SymbolicProblem
+    arclength's corrections). The branches of one run share its system and corrector."""
     problem = getattr(system, "problem", None)
     if getattr(system, "arclength", None) == "plane":
         # here: corrector_periodic brings the collocation code, which equilibria never use
         from washer.cont.corrector_periodic import periodic_corrector
         return periodic_corrector(system, settings, divergence)
+    kept = getattr(system, "_compiled_corrector", None)
+    if kept is not None and kept[0] is settings and kept[1] == divergence \
+            and kept[2] is problem:
+        # the branches of one run (BP switches) share their system: its corrector, without
+        # the last point of the branch before (`jacobian_at`)
+        kept[3].last = None
+        return kept[3]
+    corrector = _algebraic_corrector(system, settings, divergence, problem)
+    if corrector is not None:
+        system._compiled_corrector = (settings, divergence, problem, corrector)
+    return corrector
+
+
+def _algebraic_corrector(system, settings, divergence: float, problem):
+    """compiled_corrector's choice on the sphere arclength (made once per system)."""
+    from washer.cont.user_problem.user_files_native import CompiledProblem
+    from washer.cont.problem import Problem
+    from washer.cont.user_problem.user_files_sympy import SymbolicProblem
     name = "equilibrium" if getattr(system, "residual_is_func", False) else \
         getattr(system, "compiled_system", None)
     kind = KINDS.get(name)
