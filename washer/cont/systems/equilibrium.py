@@ -254,9 +254,21 @@ class EquilibriumSystem(AlgebraicSystem):
     def residual(self, x) -> np.ndarray:
         return self.problem.func(x[:-1], self._p(x))
 
+    #: (x's bytes, the Jacobian there) of the last `jacobian`
+    _jacobian_memo = None
+
     def jacobian(self, x) -> np.ndarray:
-        """[f_u, f_lambda], shape (N, N + 1)."""
-        return self.problem.jacobian(x[:-1], self._p(x), self.free)
+        """[f_u, f_lambda], shape (N, N + 1) (a new array). The same x twice in a row is
+        evaluated once: at a branch point its directions and the start of each branch
+        switched to there ask for it in turn."""
+        key = x.tobytes() if type(x) is np.ndarray and x.dtype == np.float64 else None
+        memo = self._jacobian_memo
+        if key is not None and memo is not None and memo[0] == key:
+            return memo[1].copy()
+        J = self.problem.jacobian(x[:-1], self._p(x), self.free)
+        if key is not None and type(J) is np.ndarray:
+            self._jacobian_memo = (key, J.copy())
+        return J
 
     def start(self):
         if self._perp:
