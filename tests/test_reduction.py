@@ -226,10 +226,8 @@ def test_the_compiled_bp_test_of_cycles_is_its_steps(N, m, n):
     extra[coll.nbc] = np.concatenate(((coll.w_node[:, None] * (T * F)).ravel(),
                                       np.zeros(coll.npar)))
     Sc_ref = f.reduced(extra)
-    rows = np.ascontiguousarray(coll._tail_rows, np.int32)
-    cols = np.ascontiguousarray(coll._tail_cols, np.int32)
-    Sc, got = f.bp_test(lapack, reduction.dense_values_of(coll, J), rows, cols, coll.nbc,
-                        np.ascontiguousarray(coll.w_node), T, F, theta, tangent)
+    layout = reduction.BPLayout.of(coll, theta)
+    Sc, got = f.bp_test(lapack, reduction.dense_values_of(coll, J), layout, T, F, tangent)
     assert np.array_equal(Sc, Sc_ref)
     assert got == linalg.scaled_slogdet(Sc_ref)
 

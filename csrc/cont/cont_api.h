@@ -208,6 +208,12 @@ int cont_floquet_deflated(void *const *routines, int n, const double *P0, const 
  * by ||mu| - 1|, ties in their order, nan last. out (2 n). Returns 0, 1 (trivial and every
  * distance nan: the Python raises), -1 (n <= 0). */
 int cont_multipliers_sorted(int n, const double *mu, int trivial, double *out);
+/* cont_floquet_deflated, then cont_multipliers_sorted with the trivial one, in one call
+ * (washer.cont.floquet.pencil_multipliers with the trivial multiplier deflated): mu (2 n)
+ * in AUTO's order. Returns 0, cont_floquet_deflated's value where it is not 0 (mu
+ * undefined), or 5 where the sort failed (mu then holds the unsorted multipliers). */
+int cont_floquet_multipliers(void *const *routines, int n, const double *P0, const double *P1,
+                             double *mu, int64_t *lwork);
 
 /* The test functions of the fold locus of equilibria at a point (washer.cont.systems.fold;
  * csrc/cont/fold_tests.cpp), numpy's values bit for bit. routines: numpy's GESDD, CBLAS

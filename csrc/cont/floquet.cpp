@@ -177,3 +177,15 @@ extern "C" int cont_multipliers_sorted(int n, const double *mu, int trivial, dou
     }
     return 0;
 }
+
+extern "C" int cont_floquet_multipliers(void *const *routines, int n, const double *P0,
+                                        const double *P1, double *mu, int64_t *lwork) {
+    std::vector<double> raw(2 * (size_t)std::max(n, 1));
+    const int rc = cont_floquet_deflated(routines, n, P0, P1, raw.data(), lwork);
+    if (rc != 0) return rc;
+    if (cont_multipliers_sorted(n, raw.data(), 1, mu) != 0) {
+        std::copy(raw.begin(), raw.end(), mu);
+        return 5;
+    }
+    return 0;
+}

@@ -112,6 +112,9 @@ class PeriodicCorrector:
         #: (Continuation.correct's `_newton`), else None
         self.newton = None
         self._mesh_kept = None
+        # cont_po_correct's counts, read as soon as it returns
+        self._info = np.zeros(4, dtype=np.int32)
+        self._info_ptr = ffi.from_buffer("int[]", self._info)
 
     def _onerror(self, exc, val, tb):
         # what escapes _evaluate is not a failure of f (those return 1, for the Python
@@ -192,7 +195,6 @@ class PeriodicCorrector:
         x, x_J = np.empty(nx), np.empty(nx)
         vals = np.empty(coll.nnz)
         P0, P1 = np.zeros((n, n)), np.zeros((n, n))
-        info = np.zeros(4, dtype=np.int32)
         p = reduction._ptr
         self.error = None
         status = lib.cont_po_correct(
@@ -200,13 +202,13 @@ class PeriodicCorrector:
             len(par), sysm.free[1] - 1, sysm.free[0] - 1, WT, WP, dtm, w_node,
             p(U_old), p(up_old), bc, p(par), p(x_pred), p(x_ref), p(row), float(ds), s.EPSL,
             s.EPSU, s.ITNW, s.NWTN, self.divergence, FD_STEP, bvp.FU_FP_ONE_CALL_MAX, p(x),
-            p(x_J), p(vals), p(P0), p(P1), ffi.from_buffer("int[]", info))
+            p(x_J), p(vals), p(P0), p(P1), self._info_ptr)
         if self.error is not None:
             err, self.error = self.error, None
             raise err
         if status in (3, 4):
             return None
-        it, it_J, residuals, jacobians = (int(v) for v in info)
+        it, it_J, residuals, jacobians = self._info.tolist()
         counters.residuals += residuals
         counters.jacobians += jacobians
         counters.factorisations += jacobians

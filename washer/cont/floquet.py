@@ -29,6 +29,7 @@ planar autonomous orbit has one, real and positive).
 """
 from __future__ import annotations
 
+import cmath
 import math
 from typing import Callable
 
@@ -160,9 +161,9 @@ def pencil_multipliers(P0: np.ndarray, P1: np.ndarray,
     is then no eigenvector and the deflation moves every multiplier.
     Sorted by `sort_multipliers`. Shape (NDIM,), complex."""
     if deflate_trivial:
-        mu = _compiled_deflated_eigvals(P0, P1)
+        mu = _compiled_deflated_eigvals(P0, P1, sort=True)
         if mu is not None:
-            return sort_multipliers(mu)
+            return mu
     C0, C1 = np.asarray(P0, float), -np.asarray(P1, float)
     with np.errstate(all="ignore"):
         mu = _deflated_eigvals(C0, C1) if deflate_trivial else _pencil_eigvals(C0, C1)
@@ -232,13 +233,14 @@ def compiled_routines():
     return _COMPILED[0]
 
 
-def _compiled_deflated_eigvals(P0, P1) -> np.ndarray | None:
+def _compiled_deflated_eigvals(P0, P1, sort: bool = False) -> np.ndarray | None:
     """`_deflated_eigvals(P0, -P1)` with non-finite values as inf, made by
     csrc/cont/floquet.cpp in one call (the same LAPACK and BLAS calls of numpy's and
     scipy's libraries, the same arithmetic: the same bits, without the Python around
     some fifteen numpy calls), or None where it does not serve: no compiled routines, not
     C-contiguous float64 square matrices of order >= 2, or a case the C++ leaves to the
-    Python (nothing finite to deflate by, LAPACK's failure, infinite eigenvalues)."""
+    Python (nothing finite to deflate by, LAPACK's failure, infinite eigenvalues).
+    sort: in AUTO's order (`sort_multipliers`, compiled in the same call)."""
     got = compiled_routines()
     if (got is None or type(P0) is not np.ndarray or type(P1) is not np.ndarray
             or P0.dtype != np.float64 or P1.dtype != np.float64 or P0.ndim != 2
@@ -251,11 +253,12 @@ def _compiled_deflated_eigvals(P0, P1) -> np.ndarray | None:
     if lwork is None:
         lwork = _COMPILED_LWORK[n] = ffi.new("int64_t[2]")
     mu = np.empty(n, complex)
-    if lib.cont_floquet_deflated(routines, n, ffi.from_buffer("double[]", P0),
-                                 ffi.from_buffer("double[]", P1),
-                                 ffi.from_buffer("double[]", mu), lwork) != 0:
-        return None
-    return mu
+    call = lib.cont_floquet_multipliers if sort else lib.cont_floquet_deflated
+    rc = call(routines, n, ffi.from_buffer("double[]", P0), ffi.from_buffer("double[]", P1),
+              ffi.from_buffer("double[]", mu), lwork)
+    if rc == 5 and sort:
+        return sort_multipliers(mu)          # the compiled sort left them: the Python's
+    return mu if rc == 0 else None
 
 
 def critical(mu: np.ndarray, trivial: bool = True) -> complex | None:
@@ -281,7 +284,7 @@ def torus_pair(mu, trivial: bool = True) -> complex:
 def _kind(m: complex, epss: float) -> int:
     """TPSPBV's type of one multiplier: Code.TR if complex (|Im| > sqrt(EPSS)), Code.PD if
     real and below -0.5, else 0 (real above -0.5: no PD/TR through it)."""
-    if not np.isfinite(m):
+    if not cmath.isfinite(m):
         return 0
     if abs(m.imag) > math.sqrt(epss):
         return int(Code.TR)

@@ -203,6 +203,32 @@ def floquet_pair(blocks: np.ndarray, ndim: int) -> tuple[np.ndarray, np.ndarray]
     return P0, P1
 
 
+class BPLayout:
+    """What BorderedCollocation.bp_test takes from a mesh, as the compiled call's pointers
+    (made once per mesh and inner product): the positions rows, cols (ntail,) of the
+    boundary and integral rows' values among the dense rows, the phase row's index, the
+    node weights w_node (nodes,) and the inner product's weights theta (nx,)."""
+
+    __slots__ = ("rows", "cols", "ntail", "phase", "w_node", "theta", "_held")
+
+    def __init__(self, rows, cols, phase: int, w_node, theta):
+        held = (np.ascontiguousarray(rows, dtype=np.int32),
+                np.ascontiguousarray(cols, dtype=np.int32),
+                np.ascontiguousarray(w_node, dtype=float), np.ascontiguousarray(theta, dtype=float))
+        if held[0].shape != held[1].shape:
+            raise ValueError(f"rows {held[0].shape} and cols {held[1].shape} differ")
+        self.rows, self.cols = ffi.from_buffer("int[]", held[0]), ffi.from_buffer("int[]", held[1])
+        self.ntail, self.phase = len(held[0]), int(phase)
+        self.w_node, self.theta = _ptr(held[2]), _ptr(held[3])
+        self._held = held            # the arrays the pointers read
+
+    @classmethod
+    def of(cls, coll, theta) -> "BPLayout":
+        """The layout of `coll`'s dense rows (its tail's positions, the integral row's
+        index NBC) with the inner product's weights theta."""
+        return cls(coll._tail_rows, coll._tail_cols, coll.nbc, coll.w_node, theta)
+
+
 class BorderedCollocation:
     """A factorised bordered collocation matrix (the `Factor` contract: solve,
     sign_logdet) with the Floquet pair.
@@ -333,12 +359,11 @@ class BorderedCollocation:
         rc = lib.cont_bvp_schur(self._f, _ptr(extra), _ptr(Sc))
         return Sc if rc == 0 else None
 
-    def bp_test(self, lapack, tail, rows, cols, phase: int, w_node, T: float, F, theta,
-                tangent):
+    def bp_test(self, lapack, tail, layout: "BPLayout", T: float, F, tangent):
         """`reduced` of the dense rows (NDIM + NPAR, nx) that are zero but for the values
-        tail at (rows, cols) (int32), the own-phase row `phase` (w_node * (T F) on the
-        nodes, F (nodes, NDIM) f there; 0 in the parameter columns) and the border row
-        theta * tangent, and linalg.scaled_slogdet of it, in one compiled call
+        tail at the layout's (rows, cols), the own-phase row (the layout's w_node * (T F)
+        on the nodes, F (nodes, NDIM) f there; 0 in the parameter columns) and the border
+        row theta * tangent, and linalg.scaled_slogdet of it, in one compiled call
         (cont_bvp_bp_test: the same values as those steps one by one). lapack:
         linalg.compiled_lapack(). (Sc, scaled_slogdet's tuple), or None where a pivot of
         the factorisation was zero (as `reduced`)."""
@@ -346,10 +371,9 @@ class BorderedCollocation:
         ne = n + npar
         Sc = np.empty((ne, ne))
         out = np.empty(3)
-        rc = lib.cont_bvp_bp_test(self._f, lapack.getrf, lapack.ddot, _ptr(tail),
-                                  ffi.from_buffer("int[]", rows), ffi.from_buffer("int[]", cols),
-                                  len(tail), phase, _ptr(w_node), T, _ptr(F), _ptr(theta),
-                                  _ptr(tangent), _ptr(Sc), _ptr(out))
+        rc = lib.cont_bvp_bp_test(self._f, lapack.getrf, lapack.ddot, _ptr(tail), layout.rows,
+                                  layout.cols, layout.ntail, layout.phase, layout.w_node, T,
+                                  _ptr(F), layout.theta, _ptr(tangent), _ptr(Sc), _ptr(out))
         if rc == 1:
             return Sc, (float(out[0]),)
         if rc in (0, 2):

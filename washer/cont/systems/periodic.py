@@ -445,18 +445,15 @@ class PeriodicOrbits(CollocationBVP):
             extra[coll.nbc] = self._own_phase_row(x)
             Sc = factor.reduced(extra)
             return None if Sc is None else (Sc, linalg.scaled_slogdet(Sc))
-        kept = self.__dict__.get("_bp_tail_kept")
-        if kept is None or kept[0] is not coll._tail_rows:
-            # the tail's positions as int32 for the compiled call, once per pattern
-            kept = self._bp_tail_kept = (coll._tail_rows,
-                                         np.ascontiguousarray(coll._tail_rows, np.int32),
-                                         np.ascontiguousarray(coll._tail_cols, np.int32))
+        kept = self.__dict__.get("_bp_layout")
+        if kept is None or kept[0] is not coll or kept[1] is not self.weights:
+            # once per mesh (the weights are the mesh's too)
+            kept = self._bp_layout = (coll, self.weights,
+                                      reduction.BPLayout.of(coll, self.weights))
         U, par = self.unpack(x)
         F = np.ascontiguousarray(self.field.f(U, par), dtype=float)
-        return factor.bp_test(lapack, reduction.dense_values_of(coll, J), kept[1], kept[2],
-                              coll.nbc, np.ascontiguousarray(coll.w_node, dtype=float),
-                              self.period(par), F, self.weights,
-                              np.ascontiguousarray(tangent, dtype=float))
+        return factor.bp_test(lapack, reduction.dense_values_of(coll, J), kept[2],
+                              self.period(par), F, np.ascontiguousarray(tangent, dtype=float))
 
     def _own_phase(self, x: np.ndarray, J=None):
         """The Jacobian at x with its phase row taken at x itself (u'_old = T f(u(x)))
