@@ -254,20 +254,30 @@ class EquilibriumSystem(AlgebraicSystem):
     def residual(self, x) -> np.ndarray:
         return self.problem.func(x[:-1], self._p(x))
 
-    #: (x's bytes, the Jacobian there) of the last `jacobian`
-    _jacobian_memo = None
+    #: How many of the last `jacobian`s are kept (by x's bytes)
+    JACOBIANS_KEPT = 8
+    #: (x's bytes, PAR's bytes, problem) -> the Jacobian there, of the last `jacobian`s
+    #: (this system's own, made by the first)
+    _jacobians = None
 
     def jacobian(self, x) -> np.ndarray:
-        """[f_u, f_lambda], shape (N, N + 1) (a new array). The same x twice in a row is
-        evaluated once: at a branch point its directions and the start of each branch
-        switched to there ask for it in turn."""
-        key = x.tobytes() if type(x) is np.ndarray and x.dtype == np.float64 else None
-        memo = self._jacobian_memo
-        if key is not None and memo is not None and memo[0] == key:
-            return memo[1].copy()
+        """[f_u, f_lambda], shape (N, N + 1) (a new array). An x asked for again among the
+        last JACOBIANS_KEPT is not evaluated again: at a branch point its refresh, the
+        directions and the start of each branch switched to there ask for the same one
+        (between the two starts, the first switched branch's first steps ask for others)."""
+        # (with the fixed parameters and the problem: the same f at the same x)
+        key = (x.tobytes(), self.par.tobytes(), self.problem) \
+            if type(x) is np.ndarray and x.dtype == np.float64 else None
+        kept = self._jacobians
+        if kept is None:
+            kept = self._jacobians = {}
+        if key is not None and key in kept:
+            return kept[key].copy()
         J = self.problem.jacobian(x[:-1], self._p(x), self.free)
         if key is not None and type(J) is np.ndarray:
-            self._jacobian_memo = (key, J.copy())
+            if len(kept) >= self.JACOBIANS_KEPT:
+                del kept[next(iter(kept))]          # the oldest
+            kept[key] = J.copy()
         return J
 
     def start(self):
