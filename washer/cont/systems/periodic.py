@@ -394,10 +394,11 @@ class PeriodicOrbits(CollocationBVP):
         # (the Jacobian's identity first: a new point's J fails it without comparing x;
         # x's bits, not its values: a hit is then the same point without doubt)
         if (cached is not None and cached[1] == self._suspended and (J is None or cached[3] is J)
-                and cached[0].shape == x.shape and cached[0].tobytes() == x.tobytes()):
+                and cached[0] == x.shape and cached[4] == x.tobytes()):
             return cached[2]
         out = floquet.stability(self.multipliers(x, J), self.ndim, self._suspended)
-        self._stab_cache = (np.array(x), self._suspended, out, J)
+        # (x's shape and bytes: a hit compares one copy of x, not two)
+        self._stab_cache = (x.shape, self._suspended, out, J, x.tobytes())
         return out
 
     def newton_jacobian_serves(self, stability) -> bool:
