@@ -186,6 +186,18 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
     with a newline; integers are right-justified, never cut."""
     if _lib is None:
         return python_point_text(br, pt, ty, lab, name, values, dhead, eigen)
+    data, nb = point_bytes(br, pt, ty, lab, name, values, dhead, eigen)
+    return data[:nb].decode("ascii"), data[nb:].decode("utf-8")
+
+
+def point_bytes(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: str,
+                eigen=None) -> tuple[bytes, int]:
+    """`point_text`'s b and d text as one run of UTF-8 bytes and the length of b in it
+    (the output files take the bytes as they are: no text made and encoded again)."""
+    if _lib is None:
+        b, d = python_point_text(br, pt, ty, lab, name, values, dhead, eigen)
+        b = b.encode("ascii")
+        return b + d.encode("utf-8"), len(b)
     n, v = -1, _ffi.NULL
     if values is not None:
         if type(values) is list or type(values) is tuple:
@@ -222,9 +234,8 @@ def point_text(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: st
         total = _lib.cont_auto_point(br, pt, ty, lab, nm, v, n, dh, ebr, ept, e, neig, cplx,
                                      nstable, buf, blen)
     except TypeError:           # items a double cannot take: numpy's view
-        return point_text(br, pt, ty, lab, name, np.asarray(values, dtype=float), dhead, eigen)
-    b = _ffi.unpack(buf, total)
-    return b[:blen[0]].decode("ascii"), b[blen[0]:].decode("utf-8")
+        return point_bytes(br, pt, ty, lab, name, np.asarray(values, dtype=float), dhead, eigen)
+    return _ffi.unpack(buf, total), blen[0]
 
 
 def _utf8(text: str) -> bytes:

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from washer.auto.es_format import es_text, point_text
+from washer.auto.es_format import es_text, point_bytes, point_text
 from washer.cont.codes import find, parse_label, type_name  # noqa: F401 (re-exported)
 from washer.cont.record import Record
 from washer.text_files import decode_text
@@ -295,6 +295,16 @@ def prepare_output(path: Path, protect=()) -> Path | None:
     return None
 
 
+#: The bytes held back for a flush at most (beyond them the files are written at once).
+MAX_HELD = 1 << 20
+
+
+def _open_fd(path: Path) -> int:
+    """A descriptor appending to `path` that never follows a symlink (O_NOFOLLOW)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0)
+    return os.open(path, flags, 0o666)
+
+
 def _open_output(path: Path, append: bool):
     """A text handle on `path` that never follows a symlink (O_NOFOLLOW)."""
     flags = os.O_WRONLY | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0)
@@ -328,8 +338,14 @@ class OutputFiles:
             except OSError as exc:      # found before any computation, not after it
                 raise AutoFileError(f"{p}: cannot write this output file "
                                     f"({exc.strerror or exc})") from None
-        self._handles: dict = {}
-        self._by_id: dict = {}      # the same handles by id(path)
+        # The text written and not yet flushed, a buffer a file (by the Path object's
+        # identity, the three paths being this object's own: a Path's hash is a
+        # Python-level call), and the files' descriptors, opened on first flush.
+        self._buffers = {id(p): bytearray() for p in (self.b_path, self.s_path, self.d_path)}
+        self._b = self._buffers[id(self.b_path)]
+        self._s = self._buffers[id(self.s_path)]
+        self._d = self._buffers[id(self.d_path)]
+        self._fds: dict = {}
         self.column_titles: list[str] = []
         self._pending_b = ""        # header lines waiting for the branch's first point
         self._flushed = time.monotonic()
@@ -338,26 +354,21 @@ class OutputFiles:
         self._heading = (None, "", "")
         self._d_points = 0
 
-    def _handle(self, path: Path):
-        """The open handle of one of this object's files (opened on first use)."""
-        # (found by the Path object's identity, the three paths being this object's own: a
-        # Path's hash is a Python-level call, and a point writes twice)
-        fh = self._by_id.get(id(path))
-        if fh is None:
-            fh = self._handles[path] = self._by_id[id(path)] = _open_output(path, append=True)
-        return fh
-
     def _append(self, path: Path, text: str, path2: Path | None = None,
                 text2: str = "") -> None:
         """Append text to path (and text2 to path2), and flush all files when
-        `flush_seconds` have passed since the last flush (0: after every write). Handles
-        stay open for the run (opened without following symlinks); `close` flushes and
-        ends them."""
-        self._handle(path).write(text)
+        `flush_seconds` have passed since the last flush (0: after every write)."""
+        buffers = self._buffers
+        buffers[id(path)] += text.encode("utf-8")
         if path2 is not None:
-            self._handle(path2).write(text2)
+            buffers[id(path2)] += text2.encode("utf-8")
+        self._written()
+
+    def _written(self) -> None:
+        """After a write: all files flushed when `flush_seconds` have passed since the last
+        flush, or when the text held back grows large (a run of big s-records)."""
         now = time.monotonic()
-        if now - self._flushed >= self.flush_seconds:
+        if now - self._flushed >= self.flush_seconds or len(self._s) + len(self._d) > MAX_HELD:
             self.flush()
             self._flushed = now
 
@@ -365,20 +376,32 @@ class OutputFiles:
         """Everything written so far to disk: the s-file first, so that each label of
         the b-file has its record there (an s-record is written before its b-row)."""
         for path in (self.s_path, self.b_path, self.d_path):
-            fh = self._handles.get(path)
-            if fh is not None:
-                fh.flush()
+            buf = self._buffers[id(path)]
+            if buf:
+                self._write_out(path, buf)
+                del buf[:]
+
+    def _write_out(self, path: Path, data: bytearray) -> None:
+        """data appended to the file at path (opened on first use without following
+        symlinks; it stays open for the run)."""
+        fd = self._fds.get(path)
+        if fd is None:
+            fd = self._fds[path] = _open_fd(path)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
 
     def close(self) -> None:
         """End of the run: everything written is flushed (the s-file first) and the
-        handles closed; a header still pending had no point to go with, and is dropped so
+        files closed; a header still pending had no point to go with, and is dropped so
         that the b-file never holds a header without data."""
         self._pending_b = ""
-        self.flush()
-        for fh in self._handles.values():
-            fh.close()
-        self._handles.clear()
-        self._by_id.clear()
+        try:
+            self.flush()
+        finally:
+            for fd in self._fds.values():
+                os.close(fd)
+            self._fds.clear()
 
     def __del__(self):
         try:
@@ -559,9 +582,13 @@ class OutputFiles:
         # the bar and the heading before every point's block but the first
         dhead = heading[2] if self._d_points else heading[1]
         self._d_points += 1
-        b, d = point_text(br, pt, ty, lab, type_name(ty), values, dhead, eigen)
-        pending, self._pending_b = self._pending_b, ""
-        self._append(self.b_path, pending + b if pending else b, self.d_path, d)
+        data, nb = point_bytes(br, pt, ty, lab, type_name(ty), values, dhead, eigen)
+        if self._pending_b:
+            self._b += self._pending_b.encode("utf-8")
+            self._pending_b = ""
+        self._b += data[:nb]
+        self._d += data[nb:]
+        self._written()
 
     def eigenvalues(self, br: int, pt: int, eig) -> None:
         """AUTO's PRINTEIG block in the d-file: the number of stable eigenvalues, then
