@@ -198,44 +198,51 @@ def point_bytes(br: int, pt: int, ty: int, lab: int, name: str, values, dhead: s
         b, d = python_point_text(br, pt, ty, lab, name, values, dhead, eigen)
         b = b.encode("ascii")
         return b + d.encode("utf-8"), len(b)
-    n, v = -1, _ffi.NULL
-    if values is not None:
-        if type(values) is list or type(values) is tuple:
-            n, v = len(values), values
-        else:
-            a = np.ascontiguousarray(values, dtype=float).ravel()
-            n, v = a.size, _ffi.from_buffer("double[]", a)
-    ebr = ept = 0
-    neig, e, cplx, nstable = -1, _ffi.NULL, 0, -1
-    if eigen is not None:
-        ebr, ept, eig = eigen[:3]
-        if len(eigen) == 4:
-            nstable = eigen[3]
-        kind = eig.dtype.type if type(eig) is np.ndarray and eig.flags.c_contiguous else None
-        if kind is np.complex128 or kind is np.float64:
-            # (re, im) pairs or real parts as they lie in memory
-            a, cplx = eig, int(kind is np.complex128)
-        elif type(eig) is np.ndarray and eig.dtype == np.float64:
-            a = np.ascontiguousarray(eig)
-        else:
-            a = np.ascontiguousarray(eig, dtype=complex).view(np.float64)
-            cplx = 1
-        neig = a.size // 2 if cplx and a.dtype.type is np.float64 else a.size
-        e = _ffi.from_buffer("double[]", a)
+    if type(values) is list or type(values) is tuple:
+        n, v = len(values), values
+    elif values is None:
+        n, v = -1, _ffi.NULL
+    else:
+        a = np.ascontiguousarray(values, dtype=float).ravel()
+        n, v = a.size, _ffi.from_buffer("double[]", a)
+    if eigen is None:
+        ebr = ept = 0
+        neig, e, cplx, nstable = -1, _ffi.NULL, 0, -1
+    else:
+        ebr, ept, eig = eigen[0], eigen[1], eigen[2]
+        nstable = eigen[3] if len(eigen) == 4 else -1
+        e, neig, cplx = _eigen_cdata(eig)
     nm, dh = _UTF8.get(name), _UTF8.get(dhead)
     if nm is None or dh is None:
         nm, dh = _utf8(name), _utf8(dhead)
-    size = 80 + 20 * max(n, 0) + len(nm) + len(dh) + 8 * 14 + 40 + 90 * max(neig, 0)
+    # (the b-line, heading and screen line, the eigenvalues' lines; n, neig >= -1)
+    size = 343 + 20 * n + len(nm) + len(dh) + 90 * neig
     scratch = _buffers.__dict__
     buf, blen = scratch.get("buf"), scratch.get("lengths")
-    if buf is None or len(buf) < size + 1 or blen is None:
-        buf, blen = _buffer(size + 1), _lengths()
+    if buf is None or len(buf) < size or blen is None:
+        buf, blen = _buffer(size), _lengths()
     try:
         total = _lib.cont_auto_point(br, pt, ty, lab, nm, v, n, dh, ebr, ept, e, neig, cplx,
                                      nstable, buf, blen)
     except TypeError:           # items a double cannot take: numpy's view
         return point_bytes(br, pt, ty, lab, name, np.asarray(values, dtype=float), dhead, eigen)
     return _ffi.unpack(buf, total), blen[0]
+
+
+_COMPLEX, _REAL = np.dtype(np.complex128), np.dtype(np.float64)
+
+
+def _eigen_cdata(eig) -> tuple:
+    """(pointer, count, 1 for complex values / 0 for real ones) of eigenvalues or
+    multipliers as cont_auto_point reads them: a contiguous complex or real array as it
+    lies in memory (no copy), anything else as a complex array's (re, im) pairs."""
+    if type(eig) is np.ndarray:
+        dt = eig.dtype
+        if dt == _COMPLEX or dt == _REAL:
+            a = eig if eig.flags.c_contiguous else np.ascontiguousarray(eig)
+            return _ffi.from_buffer("double[]", a), a.size, int(dt == _COMPLEX)
+    a = np.ascontiguousarray(eig, dtype=complex)
+    return _ffi.from_buffer("double[]", a.view(np.float64)), a.size, 1
 
 
 def _utf8(text: str) -> bytes:
