@@ -616,7 +616,8 @@ class CollocationBVP:
         if 2 * n < iplt <= 3 * n:
             return float(math.sqrt(w @ U[:, iplt - 2 * n - 1] ** 2))
         thu = self._theta_u() if n == self.ndim else self.settings.theta_u(n)
-        return float(math.sqrt(w @ (U[:, :n] ** 2 @ thu)))
+        # (U itself where it holds just the shown components: no view to make)
+        return float(math.sqrt(w @ ((U if U.shape[1] == n else U[:, :n]) ** 2 @ thu)))
 
     def column_titles(self) -> list:
         """HEADNG's titles: the IPLT column (named by unames where U(k) has a name:
@@ -652,7 +653,7 @@ class CollocationBVP:
         # across the rows of a narrow array one element at a time, 5 us at NTPL 281)
         cols = [self.measure(W)]
         if n2:
-            cols += u[:, :n2].T.copy().max(axis=1).tolist()
+            cols += (u if n2 == n_comp else u[:, :n2]).T.copy().max(axis=1).tolist()
         udot = None
         rl = []
         if tangent is not None:
