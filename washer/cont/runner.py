@@ -76,8 +76,10 @@ class _Executor:
             sol = kept[3]
         else:
             sol = sysm.solution(point.x, point.tangent)
-        par = sol.par
-        values = [float(point.x[-1])] + list(sol.columns) + [float(par[i]) for i in self._icp_rest]
+        values = [float(point.x[-1]), *sol.columns]
+        if self._icp_rest:
+            par = sol.par
+            values += [float(par[i]) for i in self._icp_rest]
         # The record's NFPR, ICP and RLDOT are AUTO's: all the free parameters, a locus'
         # internal ones included where AUTO counts them (the cycle fold's beta, PAR(NPAR+1):
         # periodic.f90 INITPS, NFPR = NBC + NINT - NDIM + 1 = 4), as the header lists them.
@@ -86,7 +88,7 @@ class _Executor:
         # (positional: Record's fields in their order)
         out = Record(br, pt, curve_code(base, sysm.curve_type), lab, nfpr, s.ISW,
                      sol.ndim_user, s.IPS, np.asarray(sol.u), np.asarray(sol.par), icp,
-                     list(sol.rldot)[:nfpr], sol.udot, sol.t, sol.ntst, sol.ncol, values,
+                     list(sol.rldot[:nfpr]), sol.udot, sol.t, sol.ntst, sol.ncol, values,
                      stable, point.stability, info or {}, getattr(sysm, "npari", 0))
         self.run.branch.rows.append(out)
         for sink_point in self._point_sinks:
