@@ -96,6 +96,25 @@ def test_collocation_jacobian_against_superlu_and_forward_monodromy():
     np.testing.assert_allclose(mu[key(mu)], mu_ref[key(mu_ref)], rtol=1e-9, atol=1e-12)
 
 
+@pytest.mark.parametrize("general_bc, nint, m", [(False, 1, 4), (True, 3, 3), (False, 2, 2)])
+def test_from_jacobian_is_the_factorisation_of_its_pieces(general_bc, nint, m):
+    """from_jacobian's one compiled call (the pieces made from the assembled values in
+    C++, cont_bvp_factor_values) factorises what `pieces` gives, to the bit: solves,
+    determinant, Floquet pair."""
+    rng = np.random.default_rng(17 + nint)
+    n, N = 3, 7
+    coll = col.Collocation(col.Mesh.uniform(N, m), n, nint=nint, general_bc=general_bc)
+    J = random_jacobian(coll, rng, 0.9)
+    border = rng.standard_normal(coll.n_x)
+    f = reduction.BorderedCollocation.from_jacobian(coll, J, border)
+    ref = reduction.BorderedCollocation(*reduction.pieces(coll, J, border))
+    rhs = rng.standard_normal(coll.n_x)
+    assert np.array_equal(f.solve(rhs), ref.solve(rhs))
+    assert f.sign_logdet() == ref.sign_logdet()
+    assert all(np.array_equal(a, b) for a, b in zip(f.floquet_pair(), ref.floquet_pair()))
+    assert f.singular == ref.singular and f.shape == ref.shape
+
+
 @pytest.mark.parametrize("general_bc", [False, True])
 def test_collocation_jacobians_with_their_boundary_rows_against_superlu(general_bc):
     """Periodic boundary rows and general ones (B0 u(0) + B1 u(1) + Bp p, the loci of

@@ -45,6 +45,15 @@ int cont_bvp_solve(const cont_bvp *f, const double *rhs, double *x);
  * cont_bvp_factor), 2 when called before a factorisation, 3 when the factorisation had a
  * zero pivot before the remaining system (nothing is changed: factorise afresh). */
 int cont_bvp_reborder(cont_bvp *f, const double *row);
+/* cont_bvp_factor (sign_logdet NULL) of the matrix given by its values `vals` in
+ * Collocation.jacobian_general's assembly order (the blocks, the parameter columns one
+ * after the other, then the ntail values of the boundary and integral rows at the dense
+ * rows' positions (rows, cols)) and the border row (nx): the blocks, parameter columns and
+ * dense rows reduction.pieces makes of them, copied (csrc/cont/po_correct.cpp). Returns
+ * cont_bvp_factor's value, or 2 for bad sizes or positions. */
+int cont_bvp_factor_values(cont_bvp *fac, int ntst, int ncol, int ndim, int npar,
+                           const double *vals, int ntail, const int *rows, const int *cols,
+                           const double *border, double *P0, double *P1);
 int cont_bvp_schur(const cont_bvp *f, const double *extra, double *Sc);
 /* The BP test of cycles at a point after cont_bvp_factor of a matrix with its collocation
  * rows (washer.cont.systems.periodic's own-phase test; the Python: reduction.dense_rows,

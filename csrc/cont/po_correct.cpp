@@ -359,3 +359,29 @@ int cont_po_jacobian(cont_po_feval feval, cont_po_sym_func sfunc, cont_po_sym_ja
     if (pj.f_gauss(par.data()) != 0) return 3;
     return pj.jacobian(par.data(), par[10], vals);
 }
+
+int cont_bvp_factor_values(cont_bvp *fac, int ntst, int ncol, int ndim, int npar,
+                           const double *vals, int ntail, const int *rows, const int *cols,
+                           const double *border, double *P0, double *P1) {
+    const int N = ntst, m = ncol, n = ndim, ne = ndim + npar;
+    if (N < 1 || m < 1 || n < 1 || npar < 0 || ntail < 0) return 2;
+    const long mn = (long)m * n, nc = N * mn, nb = nc * (m + 1) * n;
+    const long nx = ((long)N * m + 1) * n + npar;
+    // the parameter columns, stored column by column after the blocks, to (NTST,
+    // NCOL*NDIM, NPAR) (reduction.pieces' transpose)
+    std::vector<double> parcols((size_t)nc * std::max(npar, 1));
+    for (int s = 0; s < npar; ++s) {
+        const double *dp = vals + nb + (long)s * nc;
+        for (long q = 0; q < nc; ++q) parcols[(size_t)q * npar + s] = dp[q];
+    }
+    // the dense rows: zero but for the tail's values at (rows, cols), then the border row
+    // (reduction._dense_rows: later positions overwrite earlier ones, as numpy assigns)
+    std::vector<double> extra((size_t)ne * nx, 0.0);
+    const double *tail = vals + nb + (long)npar * nc;
+    for (int k = 0; k < ntail; ++k) {
+        if (rows[k] < 0 || rows[k] >= ne || cols[k] < 0 || cols[k] >= nx) return 2;
+        extra[(size_t)rows[k] * nx + cols[k]] = tail[k];
+    }
+    std::copy(border, border + nx, extra.begin() + (size_t)(ne - 1) * nx);
+    return cont_bvp_factor(fac, vals, parcols.data(), extra.data(), nullptr, P0, P1);
+}

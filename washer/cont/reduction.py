@@ -119,6 +119,26 @@ def _numpy_ddot():
     return _DDOT[0]
 
 
+#: (coll._tail_rows, coll._tail_cols, their int32 copies, pointers) of the last layout
+_TAIL: list = [None]
+
+
+def _tail_pointers(coll) -> tuple:
+    """(rows, cols, ntail): the positions of `coll`'s boundary and integral rows' values
+    among the dense rows as int[] for the compiled calls, made once per layout (the meshes
+    of a run share the arrays; the kept entry holds them, so an identity is not reused)."""
+    kept = _TAIL[0]
+    if kept is None or kept[0] is not coll._tail_rows or kept[1] is not coll._tail_cols:
+        held = (np.ascontiguousarray(coll._tail_rows, dtype=np.int32),
+                np.ascontiguousarray(coll._tail_cols, dtype=np.int32))
+        if held[0].shape != held[1].shape:
+            raise ValueError(f"rows {held[0].shape} and cols {held[1].shape} differ")
+        kept = _TAIL[0] = (coll._tail_rows, coll._tail_cols, held,
+                           (ffi.from_buffer("int[]", held[0]),
+                            ffi.from_buffer("int[]", held[1]), len(held[0])))
+    return kept[3]
+
+
 def _ptr(a: np.ndarray):
     """The data of a C-contiguous float64 array as a double[] for the compiled calls (one
     from_buffer with the type: a fifth of the cost of from_buffer and a cast, and a
@@ -289,8 +309,22 @@ class BorderedCollocation:
     def from_jacobian(cls, coll, J, border) -> "BorderedCollocation":
         """From a Jacobian assembled by `coll.jacobian_general` (its CSC pattern) and
         the border row (nx,)."""
-        blocks, parcols, extra = pieces(coll, J, border)
-        return cls(blocks, parcols, extra, dense=lambda: coll.bordered(J, border))
+        border = np.ascontiguousarray(border, dtype=float)
+        vals = _assembled(coll, J)
+        N, m, n, npar = shape = (coll.mesh.ntst, coll.mesh.ncol, coll.ndim, coll.npar)
+        if border.shape != ((N * m + 1) * n + npar,):
+            raise ValueError(f"border row of shape {border.shape} for {shape}")
+        rows, cols, ntail = _tail_pointers(coll)
+        handle = new_handle(shape)
+        P0, P1 = np.zeros((n, n)), np.zeros((n, n))
+        # the pieces (`pieces`) made from vals and the factorisation in one call
+        rc = lib.cont_bvp_factor_values(handle, N, m, n, npar, _ptr(vals), ntail, rows, cols,
+                                        _ptr(border), _ptr(P0), _ptr(P1))
+        if rc == 2:
+            raise ValueError(f"cont_bvp_factor_values: bad sizes {shape}")
+        self = object.__new__(cls)
+        self._hold(handle, shape, P0, P1, rc == 1, lambda: coll.bordered(J, border))
+        return self
 
     def reborder(self, border: np.ndarray, dense=None) -> bool:
         """The factorisation of the same matrix with the border row (the last dense row)
