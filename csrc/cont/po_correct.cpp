@@ -37,6 +37,21 @@ double dot(cont_ddot ddot, const double *a, const double *b, int len) {
     return s;
 }
 
+// Whether the len values are all finite: v * 0 is 0 for a finite v and NaN for an
+// infinite or NaN one, and a sum with a NaN is NaN. Eight sums side by side, without a
+// test and branch per value (the Jacobian's thousands of values: a test a value was
+// about 5 % of the corrector's time).
+bool all_finite(const double *v, long len) {
+    double s[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    long q = 0;
+    for (; q + 8 <= len; q += 8)
+        for (int r = 0; r < 8; ++r) s[r] += v[q + r] * 0.0;
+    for (; q < len; ++q) s[0] += v[q] * 0.0;
+    double total = 0.0;
+    for (int r = 0; r < 8; ++r) total += s[r];
+    return total == 0.0;
+}
+
 // The equations' evaluation and the difference Jacobian of one call (cont_po_correct's
 // iterations, cont_po_jacobian's point), with their work arrays.
 struct PoJacobian {
@@ -202,9 +217,7 @@ struct PoJacobian {
             }
             for (int q = 0; q < nc; ++q) parcols[(size_t)q * 2 + s] = dp[q];
         }
-        for (long q = 0; q < nb + 2L * nc; ++q)
-            if (!std::isfinite(vals[q])) return 3;
-        return 0;
+        return all_finite(vals, nb + 2L * nc) ? 0 : 3;
     }
 };
 
