@@ -244,3 +244,25 @@ def test_jacobian_at_a_point_is_the_systems(tmp_path, monkeypatch):
     assert np.array_equal(J.indptr, ref.indptr) and np.array_equal(J.indices, ref.indices)
     assert J.data.tobytes() == ref.data.tobytes()
     assert blocks_c.tobytes() == np.ascontiguousarray(blocks_r).tobytes()
+
+
+@pytest.mark.parametrize("bad", [np.inf, -np.inf, np.nan])
+def test_a_non_finite_jacobian_value_hands_over(bad, tmp_path, monkeypatch):
+    """A difference quotient that is not finite, wherever it falls among the Jacobian's
+    values (the first, one in the middle, the last difference point): jacobian_at gives
+    None (the system's own Jacobian is then evaluated); finite values give a Jacobian."""
+    cont, x_pred, *_ = _system(tmp_path, monkeypatch)
+    comp = cont._compiled
+    problem = comp.problem
+    original = problem.func_many
+    k = cont.sys.mesh.ntst * cont.sys.mesh.ncol
+    for where in (0, 1, "mid", -1):
+        def poisoned(us, pars, where=where):
+            F = np.array(original(us, pars), dtype=float)
+            if len(us) > k:                   # the difference points, not the Gauss points
+                F[len(F) // 2 if where == "mid" else where, 0] = bad
+            return F
+        with monkeypatch.context() as m:
+            m.setattr(problem, "func_many", poisoned)
+            assert comp.jacobian_at(x_pred) is None
+    assert comp.jacobian_at(x_pred) is not None
