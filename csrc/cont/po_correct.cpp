@@ -37,6 +37,17 @@ double dot(cont_ddot ddot, const double *a, const double *b, int len) {
     return s;
 }
 
+// sum_q W[q * m + c] u[q * n] for q = 0 .. m in order, from 0.0: a value of u at a Gauss
+// point (Collocation.at_gauss) or of u' there (the residual); with NCOL = M > 0 known to
+// the compiler (the sum unrolled, the same operations in the same order), else m.
+template <int M>
+inline double node_sum(const double *W, const double *u, int m, int c, int n) {
+    const int mm = M > 0 ? M : m;
+    double s = 0.0;
+    for (int q = 0; q <= mm; ++q) s += W[q * mm + c] * u[(size_t)q * n];
+    return s;
+}
+
 // Whether the len values are all finite: v * 0 is 0 for a finite v and NaN for an
 // infinite or NaN one, and a sum with a NaN is NaN. Eight sums side by side, without a
 // test and branch per value (the Jacobian's thousands of values: a test a value was
@@ -103,9 +114,8 @@ struct PoJacobian {
             for (int c = 0; c < m; ++c) {
                 double *g = &ug[((size_t)j * m + c) * n];
                 for (int i = 0; i < n; ++i) {
-                    double s = 0.0;
-                    for (int q = 0; q <= m; ++q) s += WT[q * m + c] * U[(j * m + q) * n + i];
-                    g[i] = s;
+                    const double *u = U + ((size_t)j * m) * n + i;
+                    g[i] = m == 4 ? node_sum<4>(WT, u, m, c, n) : node_sum<0>(WT, u, m, c, n);
                 }
             }
     }
@@ -291,8 +301,9 @@ int cont_po_correct(cont_bvp *fac, cont_po_feval feval, cont_po_sym_func sfunc,
         for (int j = 0; j < N; ++j)
             for (int c = 0; c < m; ++c)
                 for (int i = 0; i < n; ++i) {
-                    double s = 0.0;
-                    for (int q = 0; q <= m; ++q) s += WP[q * m + c] * U[(j * m + q) * n + i];
+                    const double *u = U + ((size_t)j * m) * n + i;
+                    const double s = m == 4 ? node_sum<4>(WP, u, m, c, n)
+                                            : node_sum<0>(WP, u, m, c, n);
                     const size_t r = ((size_t)j * m + c) * n + i;
                     G[r] = s - dtm[j] * (T * fg[r]);
                 }
