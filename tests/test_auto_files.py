@@ -230,6 +230,28 @@ def test_run_files_are_flushed_together_s_file_first(tmp_path):
     assert [r.lab for r in read_s(tmp_path / "s.x")] == [1]
 
 
+def test_a_write_failing_half_way_is_not_written_twice(tmp_path, monkeypatch):
+    """A flush whose write fails after part of the text reached the file (a full disk)
+    raises; closing the files afterwards writes only the rest, once."""
+    import os
+    from washer.auto import files
+    out = files.OutputFiles(tmp_path, "x", flush_seconds=3600.0)
+    out._append(out.d_path, "0123456789" * 10)
+    real_write, calls = os.write, []
+
+    def write(fd, data):                 # 40 bytes, then the disk is full
+        calls.append(len(data))
+        if len(calls) == 1:
+            return real_write(fd, bytes(data[:40]))
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(files.os, "write", write)
+    with pytest.raises(OSError):
+        out.flush()
+    monkeypatch.setattr(files.os, "write", real_write)
+    out.close()
+    assert (tmp_path / "d.x").read_text() == "0123456789" * 10
+
+
 def test_cli_errors_name_file_and_line(tmp_path, capsys):
     p = _c(tmp_path, "e = 'nothere'\nNDIM = 2\nBOGUS = 1\n")
     assert main([str(p)]) == 2

@@ -264,3 +264,32 @@ def test_compiled_equilibrium_point_declines_what_it_does_not_take():
     assert call(np.ones((3, 3)), np.ones(3), 1e12) == -1
     J = np.array([[1.0, np.nan, 0.0], [0.0, 1.0, 1.0]])
     assert call(J, np.ones(3), 1e12) != 0          # not finite: the Python route reports
+
+
+@compiled
+@pytest.mark.parametrize("demo", ["ab", "lrz"])
+def test_equilibrium_runs_write_the_same_files_with_and_without_the_compiled_point(
+        demo, tmp_path, monkeypatch):
+    """An equilibrium run (its LP, BP and HB tests, located points and stability) writes
+    the same b./s./d. files whether each point's values come from the compiled call
+    (EquilibriumSystem.point_values) or from the Python route (tangent, stability,
+    test_functions), which it is off for above POINT_NDIM."""
+    import shutil
+    from pathlib import Path
+    from washer.cont.systems import equilibrium
+    from washer.run import run
+    data = Path(__file__).parent / "data" / demo
+    texts = []
+    for on in (True, False):
+        d = tmp_path / str(on)
+        d.mkdir()
+        for f in (f"{demo}.py", f"c.{demo}"):
+            shutil.copy(data / f, d)
+        monkeypatch.setattr(equilibrium, "POINT_NDIM", equilibrium.POINT_NDIM if on else 0)
+        run(d / f"c.{demo}", verbose=False, sv="eq")
+        # (the d-file's last line, AUTO's "Total Time", is the run's clock)
+        texts.append([(d / f"{k}.eq").read_text() for k in "bsd"])
+        assert texts[-1][2].splitlines()[-1].startswith(" Total Time")
+        texts[-1][2] = texts[-1][2].rsplit(" Total Time", 1)[0]
+    assert texts[0] == texts[1]
+    assert "HB" in texts[0][2]          # (the test functions were used)

@@ -383,13 +383,20 @@ class OutputFiles:
 
     def _write_out(self, path: Path, data: bytearray) -> None:
         """data appended to the file at path (opened on first use without following
-        symlinks; it stays open for the run)."""
+        symlinks; it stays open for the run) and taken out of data as it is written: a
+        write that fails part-way (a full disk) leaves only the rest to write, so that
+        `close` does not write the first part twice."""
         fd = self._fds.get(path)
         if fd is None:
             fd = self._fds[path] = _open_fd(path)
-        view = memoryview(data)
-        while view:
-            view = view[os.write(fd, view):]
+        done = 0
+        try:
+            while done < len(data):
+                # (a copy of the rest only after a short write, which regular files
+                # hardly ever make)
+                done += os.write(fd, data[done:] if done else data)
+        finally:
+            del data[:done]
 
     def close(self) -> None:
         """End of the run: everything written is flushed (the s-file first) and the

@@ -402,6 +402,12 @@ class BorderedCollocation:
         linalg.compiled_lapack(). (Sc, scaled_slogdet's tuple), or None where a pivot of
         the factorisation was zero (as `reduced`)."""
         N, m, n, npar = self.shape
+        nodes = N * m + 1
+        # (the compiled call reads these sizes through bare pointers)
+        if tail.size != layout.ntail or F.size != nodes * n or tangent.size != nodes * n + npar:
+            raise ValueError(f"bp_test: tail ({tail.size}), F ({F.size}) or tangent "
+                             f"({tangent.size}) not of sizes {layout.ntail}, {nodes * n}, "
+                             f"{nodes * n + npar}")
         ne = n + npar
         Sc = np.empty((ne, ne))
         out = np.empty(3)

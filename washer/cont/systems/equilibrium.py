@@ -18,7 +18,7 @@ import numpy as np
 
 from washer.cont.codes import Code
 from washer.cont.normal_form import first_lyapunov
-from washer.cont.system import Stability, StartData, determinant_value, register
+from washer.cont.system import Stability, StartData, determinant_value, fold_test, register
 from washer.cont.linalg import EIG_WORK, compiled_lapack, eigenvalues_sorted, null_vectors, \
     nullvc
 from washer.cont.systems._algebraic import AlgebraicSystem
@@ -332,15 +332,11 @@ class EquilibriumSystem(AlgebraicSystem):
         if not codes:
             return t, stab, out
         if Code.LP in codes:
-            out[Code.LP] = float(t[-1])                         # fold_test
+            out[Code.LP] = fold_test(t)
         if Code.BP in codes:
             sl = call.sign_logdet
             out[Code.BP] = determinant_value(sl[0], sl[1])      # determinant_test
-        if Code.HB in codes:
-            out[Code.HB] = hopf_test(mu)
-        if NEUTRAL_HB in codes:
-            out[NEUTRAL_HB] = neutral_hopf_test(stab) if neutral > 0 else None
-        return t, stab, out
+        return t, stab, self._hopf_tests(out, stab, codes)
 
     def active_tests(self) -> list:
         out = [code for name, code in (("LP", Code.LP), ("BP", Code.BP), ("HB", Code.HB))
@@ -365,7 +361,11 @@ class EquilibriumSystem(AlgebraicSystem):
         return memo[1]
 
     def test_functions(self, x, tangent, J, stability, factor, codes) -> dict:
-        out = self._lp_bp(tangent, factor, codes)
+        return self._hopf_tests(self._lp_bp(tangent, factor, codes), stability, codes)
+
+    def _hopf_tests(self, out: dict, stability: Stability | None, codes) -> dict:
+        """out with the HB and NEUTRAL_HB tests' values where codes ask for them (of
+        test_functions and point_values)."""
         if Code.HB in codes:
             out[Code.HB] = hopf_test(self._pair(stability.values)) \
                 if stability is not None else None
