@@ -252,11 +252,8 @@ def _power_secant(s: list, q: list) -> float | None:
     h1, h2 = s[1] - s[0], s[2] - s[1]
 
     def bend(m):
-        # (g(q2, m) - g(q1, m)) / h2 - (g(q1, m) - g(q0, m)) / h1 with g written out: the
-        # bisection below evaluates it some 60 times
-        e = 1 / m
-        g0, g1 = math.copysign(abs(q0) ** e, q0), math.copysign(abs(q1) ** e, q1)
-        return (math.copysign(abs(q2) ** e, q2) - g1) / h2 - (g1 - g0) / h1
+        g1 = g(q1, m)
+        return (g(q2, m) - g1) / h2 - (g1 - g(q0, m)) / h1
     if len(set(s)) < 3 or 0 in q:
         return None
     a, b = 1.0, MAX_ORDER

@@ -400,7 +400,7 @@ class Continuation:
             J = jacobian
         if tangent is None and self._point_values is not None:
             # tangent, stability and the tests in one call where the system has it
-            codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
+            codes = self._codes(keys)
             got = self._point_values(x, J, ref, SINGULAR_TANGENT, codes)
             if got is not None:
                 self.counters.factorisations += 1       # [J; border(ref)], as `tangent`
@@ -420,8 +420,13 @@ class Continuation:
         pt.tests = self._tests(pt, J, factor, keys)
         return pt
 
+    def _codes(self, keys) -> list:
+        """The test functions' codes among keys (all active tests where None); the other
+        keys are the user values' (UZR) `(kind, index)` tuples."""
+        return self.tests if keys is None else [k for k in keys if isinstance(k, int)]
+
     def _tests(self, pt, J, factor, keys) -> dict:
-        codes = self.tests if keys is None else [k for k in keys if isinstance(k, int)]
+        codes = self._codes(keys)
         out = dict(self.sys.test_functions(pt.x, pt.tangent, J, pt.stability, factor, codes)) \
             if codes else {}
         return self._uz_tests(pt, out, keys)

@@ -644,8 +644,8 @@ class CollocationBVP:
         """The Solution of x: b-row columns of u, the whole profile W and its direction
         stored; rldot(tangent) gives the record's parameter derivatives."""
         coll, mesh = self.coll, self.mesh
-        n_u, n_comp = coll.n_u, coll.ndim
-        W = x[:n_u].reshape(-1, n_comp)              # `Collocation.profile`
+        n_comp = coll.ndim
+        W = coll.profile(x)
         u = W.copy()
         n2 = self.n2()
         # the maxima of the first N2 columns, each a contiguous row of the transposed copy
@@ -657,7 +657,7 @@ class CollocationBVP:
         udot = None
         rl = []
         if tangent is not None:
-            udot = tangent[:n_u].reshape(-1, n_comp).copy()
+            udot = coll.profile(tangent).copy()
             rl = rldot(tangent)
         return Solution(par, cols, u, mesh.node_times(), udot, rl, mesh.ntst, mesh.ncol,
                         self.ndim)

@@ -71,13 +71,18 @@ CONSERVATIVE_TOL = 1e-5
 TRACE_TOL = 1e-7
 
 
+#: Up to this NDIM neutral_tolerance sums the trace in order on Python floats, and a
+#: point's values come from one compiled call (`PointValues`) that sums it so too.
+POINT_NDIM = 8
+
+
 def neutral_tolerance(A: np.ndarray) -> float:
     """Re up to which an eigenvalue of f_u (A: (n, n)) counts as stable: CONSERVATIVE_TOL
     where A looks conservative (n even, |trace A| < TRACE_TOL max |A[i, j]|), else 0."""
     n = len(A)
     if n == 0 or n % 2:
         return 0.0
-    if n <= 8:
+    if n <= POINT_NDIM:
         # Python floats: on the 2-8 equations of most problems numpy's trace, abs and max
         # were 8 us a point, 6 % of an equilibrium step; the same sums (in order) and max
         rows = A.tolist()
@@ -148,10 +153,6 @@ def hopf_accepted(prev: Stability, cur: Stability) -> bool:
     tol = min(prev.neutral, cur.neutral)
     return abs(stable_count(prev.values, tol) - stable_count(cur.values, tol)) >= 2
 
-
-#: Up to this NDIM a point's values come from one compiled call (`PointValues`): the sizes
-#: at which neutral_tolerance sums the trace in order on Python floats.
-POINT_NDIM = 8
 
 #: float64's dtype (arrays of native doubles carry this object)
 _F64 = np.dtype(np.float64)
